@@ -1,0 +1,586 @@
+//! CIE colorimetry on the working grid: spectrum → XYZ by summation, xyY, CIELAB, linear and
+//! encoded sRGB, and CIEDE2000.
+//!
+//! Tables (CIE 1931 2° and CIE 1964 10° colour-matching functions; illuminants D65, D55, D50, A,
+//! E) are in `data/cie/`, written by `python/gen_cie.py` from colour-science 0.4.7 exactly as its
+//! `sd_to_XYZ(..., method="Integration", shape=SpectralShape(380, 780, 5))` aligns them, and
+//! embedded at compile time. `python/test_colorimetry.py` checks XYZ, Lab and sRGB against
+//! colour-science to 1e-6 for every illuminant and observer.
+//!
+//! # Conventions
+//! * **XYZ** (CIE 15:2004 §7.1, summation): `X = k Σ x̄(λ) S(λ) R(λ)` with
+//!   `k = 100 / Σ ȳ(λ) S(λ)`, so the perfect reflector has `Y = 100`. The 5 nm interval cancels.
+//! * **CIELAB** (CIE 15:2004 §8.2.1) relative to the white of the same illuminant and observer,
+//!   computed from the same tables (the perfect reflector's XYZ), so a non-selective grey has
+//!   exactly `a* = b* = 0`.
+//! * **sRGB** (IEC 61966-2-1:1999): its published XYZ→RGB matrix applied to `XYZ/100`. For D65 no
+//!   adaptation is applied (the XYZ are already relative to D65). For any other illuminant the
+//!   XYZ are first adapted with the **Bradford** transform (Lam 1985, von Kries scaling in the
+//!   Bradford cone space) from the computed white to the sRGB white point (x, y) = (0.3127,
+//!   0.3290): the colour the sample would have if the eye were adapted to the illuminant, shown on a
+//!   D65 display. With the 1964 10° observer the same matrix is used, an approximation (sRGB is
+//!   defined for the 2° observer) that is customary and documented here.
+//! * **Encoded sRGB** is not clipped: `12.92 L` for `L ≤ 0.0031308` (also for negative `L`),
+//!   `1.055 L^{1/2.4} − 0.055` above, as colour-science's `eotf_inverse_sRGB`.
+
+use crate::spectrum::{Spectrum, WORKING_LEN};
+use std::fmt;
+use std::sync::OnceLock;
+
+/// CIE standard illuminants available on the working grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum Illuminant {
+    /// CIE D65, average daylight (6504 K); the sRGB white.
+    D65,
+    /// CIE D55.
+    D55,
+    /// CIE D50, the graphic-arts viewing illuminant.
+    D50,
+    /// CIE A, incandescent tungsten (2856 K).
+    A,
+    /// Equal-energy illuminant E.
+    E,
+}
+
+impl Illuminant {
+    /// All illuminants, in table order.
+    pub const ALL: [Illuminant; 5] = [
+        Illuminant::D65,
+        Illuminant::D55,
+        Illuminant::D50,
+        Illuminant::A,
+        Illuminant::E,
+    ];
+
+    /// The name used in tables and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Illuminant::D65 => "D65",
+            Illuminant::D55 => "D55",
+            Illuminant::D50 => "D50",
+            Illuminant::A => "A",
+            Illuminant::E => "E",
+        }
+    }
+
+    /// Parses `D65`, `d50`, `A`, ... (case-insensitive).
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|i| i.name().eq_ignore_ascii_case(s.trim()))
+    }
+
+    /// Relative spectral power on the working grid (as tabulated; the scale cancels).
+    pub fn spd(self) -> &'static Spectrum {
+        &tables().illuminants[self as usize]
+    }
+}
+
+/// CIE standard colorimetric observers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum Observer {
+    /// CIE 1931 2° standard observer.
+    Cie1931,
+    /// CIE 1964 10° standard observer.
+    Cie1964,
+}
+
+impl Observer {
+    /// Both observers.
+    pub const ALL: [Observer; 2] = [Observer::Cie1931, Observer::Cie1964];
+
+    /// The year used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Observer::Cie1931 => "1931",
+            Observer::Cie1964 => "1964",
+        }
+    }
+
+    /// Parses `1931`, `2`, `1964`, `10` (also with a trailing `°`).
+    pub fn parse(s: &str) -> Option<Self> {
+        match s.trim().trim_end_matches('°') {
+            "1931" | "2" => Some(Observer::Cie1931),
+            "1964" | "10" => Some(Observer::Cie1964),
+            _ => None,
+        }
+    }
+
+    /// Colour-matching functions x̄, ȳ, z̄ on the working grid.
+    pub fn cmfs(self) -> &'static [Spectrum; 3] {
+        &tables().cmfs[self as usize]
+    }
+}
+
+/// An illuminant seen by an observer: the reference every XYZ and Lab value is relative to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub struct Viewing {
+    /// Illuminant.
+    pub illuminant: Illuminant,
+    /// Observer.
+    pub observer: Observer,
+}
+
+impl Viewing {
+    /// D65 and the 1931 2° observer: the default everywhere in Rouge.
+    pub const D65_1931: Viewing = Viewing {
+        illuminant: Illuminant::D65,
+        observer: Observer::Cie1931,
+    };
+}
+
+impl Default for Viewing {
+    fn default() -> Self {
+        Viewing::D65_1931
+    }
+}
+
+impl fmt::Display for Viewing {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} / CIE {}", self.illuminant.name(), self.observer.name())
+    }
+}
+
+/// Tristimulus values, scaled so the perfect reflector has `Y = 100`, under a [`Viewing`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Xyz {
+    /// X, Y, Z.
+    pub xyz: [f64; 3],
+    /// The illuminant and observer they are relative to.
+    pub viewing: Viewing,
+}
+
+impl Xyz {
+    /// Chromaticity and luminance `[x, y, Y]`. A black (X+Y+Z = 0) gets the chromaticity of
+    /// the white, as colour-science does.
+    pub fn xyy(&self) -> [f64; 3] {
+        let [x, y, z] = self.xyz;
+        let sum = x + y + z;
+        if sum == 0.0 {
+            let w = Colorimeter::get(self.viewing).white().xyz;
+            let ws = w[0] + w[1] + w[2];
+            return [w[0] / ws, w[1] / ws, 0.0];
+        }
+        [x / sum, y / sum, y]
+    }
+}
+
+/// CIELAB coordinates under a [`Viewing`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lab {
+    /// L*, a*, b*.
+    pub lab: [f64; 3],
+    /// The illuminant and observer of the white they are relative to.
+    pub viewing: Viewing,
+}
+
+/// Errors of colour computations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ColorError {
+    /// Two colours relative to different whites cannot be compared.
+    #[error("cannot compare a colour under {0} with one under {1}: convert one of them first")]
+    MixedViewing(Viewing, Viewing),
+}
+
+struct Tables {
+    /// Indexed by `Observer as usize`: [x̄, ȳ, z̄].
+    cmfs: [[Spectrum; 3]; 2],
+    /// Indexed by `Illuminant as usize`.
+    illuminants: [Spectrum; 5],
+}
+
+const CMFS_1931_CSV: &str = include_str!("../../data/cie/cmfs_cie1931_2.csv");
+const CMFS_1964_CSV: &str = include_str!("../../data/cie/cmfs_cie1964_10.csv");
+const ILLUMINANTS_CSV: &str = include_str!("../../data/cie/illuminants.csv");
+
+/// Parses an embedded table: `#` comments, a header with `wavelength_nm` first, 81 rows on the
+/// working grid. The tables are part of the build, so a malformed one is a bug caught by the tests
+/// (`tables_are_on_the_working_grid`), never a user error.
+fn parse_table(text: &str, columns: &[&str]) -> Vec<Spectrum> {
+    let mut lines = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let index: Vec<usize> = columns
+        .iter()
+        .map(|c| header.iter().position(|h| h.trim() == *c).unwrap_or(usize::MAX))
+        .collect();
+    let mut out = vec![[f64::NAN; WORKING_LEN]; columns.len()];
+    for (row, line) in lines.enumerate().take(WORKING_LEN) {
+        let cells: Vec<&str> = line.split(',').collect();
+        for (c, &i) in index.iter().enumerate() {
+            out[c][row] = cells
+                .get(i)
+                .and_then(|v| v.trim().parse().ok())
+                .unwrap_or(f64::NAN);
+        }
+    }
+    out.into_iter().map(Spectrum).collect()
+}
+
+fn tables() -> &'static Tables {
+    static TABLES: OnceLock<Tables> = OnceLock::new();
+    TABLES.get_or_init(|| {
+        let cmf = |text| -> [Spectrum; 3] {
+            let v = parse_table(text, &["x_bar", "y_bar", "z_bar"]);
+            [v[0], v[1], v[2]]
+        };
+        let ill = parse_table(ILLUMINANTS_CSV, &["D65", "D55", "D50", "A", "E"]);
+        Tables {
+            cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)],
+            illuminants: [ill[0], ill[1], ill[2], ill[3], ill[4]],
+        }
+    })
+}
+
+type Mat3 = [[f64; 3]; 3];
+
+/// XYZ → linear sRGB, IEC 61966-2-1:1999 (the published 4-decimal matrix).
+pub const XYZ_TO_SRGB: Mat3 = [
+    [3.2406, -1.5372, -0.4986],
+    [-0.9689, 1.8758, 0.0415],
+    [0.0557, -0.2040, 1.0570],
+];
+
+/// sRGB reference white chromaticity (D65 as IEC 61966-2-1 rounds it).
+pub const SRGB_WHITE_XY: [f64; 2] = [0.3127, 0.3290];
+
+/// Bradford cone-response matrix (Lam 1985).
+pub const BRADFORD: Mat3 = [
+    [0.8951, 0.2664, -0.1614],
+    [-0.7502, 1.7135, 0.0367],
+    [0.0389, -0.0685, 1.0296],
+];
+
+fn mat_vec(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+}
+
+fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+/// Inverse of a 3×3 matrix by the adjugate (the matrices here are well conditioned).
+fn mat_inv(m: &Mat3) -> Mat3 {
+    let c = |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+    let cof: Mat3 = [
+        [c(1, 2, 1, 2), -c(1, 2, 0, 2), c(1, 2, 0, 1)],
+        [-c(0, 2, 1, 2), c(0, 2, 0, 2), -c(0, 2, 0, 1)],
+        [c(0, 1, 1, 2), -c(0, 1, 0, 2), c(0, 1, 0, 1)],
+    ];
+    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
+    std::array::from_fn(|i| std::array::from_fn(|j| cof[j][i] / det))
+}
+
+fn xy_to_xyz_unit(xy: [f64; 2]) -> [f64; 3] {
+    [xy[0] / xy[1], 1.0, (1.0 - xy[0] - xy[1]) / xy[1]]
+}
+
+/// Bradford adaptation matrix from white `src` to white `dst` (both XYZ with Y = 1).
+pub fn bradford_adaptation(src: [f64; 3], dst: [f64; 3]) -> Mat3 {
+    let s = mat_vec(&BRADFORD, src);
+    let d = mat_vec(&BRADFORD, dst);
+    let scale: Mat3 = [
+        [d[0] / s[0], 0.0, 0.0],
+        [0.0, d[1] / s[1], 0.0],
+        [0.0, 0.0, d[2] / s[2]],
+    ];
+    mat_mul(&mat_inv(&BRADFORD), &mat_mul(&scale, &BRADFORD))
+}
+
+/// Precomputed weights for one [`Viewing`]: spectrum → XYZ → Lab / sRGB.
+#[derive(Clone, Debug)]
+pub struct Colorimeter {
+    viewing: Viewing,
+    /// `k x̄ S`, `k ȳ S`, `k z̄ S` on the working grid.
+    weights: [[f64; WORKING_LEN]; 3],
+    white: [f64; 3],
+    /// XYZ/100 → linear sRGB, adaptation included.
+    to_srgb: Mat3,
+}
+
+impl Colorimeter {
+    /// Builds the weights for `viewing` (a few hundred flops; [`Colorimeter::get`] caches them).
+    pub fn new(viewing: Viewing) -> Self {
+        let cmfs = viewing.observer.cmfs();
+        let spd = viewing.illuminant.spd();
+        let norm: f64 = (0..WORKING_LEN).map(|i| cmfs[1].0[i] * spd.0[i]).sum();
+        let k = 100.0 / norm;
+        let weights: [[f64; WORKING_LEN]; 3] =
+            std::array::from_fn(|c| std::array::from_fn(|i| k * cmfs[c].0[i] * spd.0[i]));
+        let white: [f64; 3] = std::array::from_fn(|c| weights[c].iter().sum());
+        let to_srgb = if viewing.illuminant == Illuminant::D65 {
+            XYZ_TO_SRGB
+        } else {
+            let ws = white[0] + white[1] + white[2];
+            let src = xy_to_xyz_unit([white[0] / ws, white[1] / ws]);
+            let dst = xy_to_xyz_unit(SRGB_WHITE_XY);
+            mat_mul(&XYZ_TO_SRGB, &bradford_adaptation(src, dst))
+        };
+        Colorimeter {
+            viewing,
+            weights,
+            white,
+            to_srgb,
+        }
+    }
+
+    /// A shared colorimeter for `viewing`, built once.
+    pub fn get(viewing: Viewing) -> &'static Colorimeter {
+        static ALL: OnceLock<Vec<Colorimeter>> = OnceLock::new();
+        let all = ALL.get_or_init(|| {
+            Observer::ALL
+                .into_iter()
+                .flat_map(|observer| {
+                    Illuminant::ALL.into_iter().map(move |illuminant| {
+                        Colorimeter::new(Viewing {
+                            illuminant,
+                            observer,
+                        })
+                    })
+                })
+                .collect()
+        });
+        &all[viewing.observer as usize * Illuminant::ALL.len() + viewing.illuminant as usize]
+    }
+
+    /// The viewing conditions.
+    pub fn viewing(&self) -> Viewing {
+        self.viewing
+    }
+
+    /// The weights `k·cmf·S` (rows X, Y, Z) over the working grid.
+    pub fn weights(&self) -> &[[f64; WORKING_LEN]; 3] {
+        &self.weights
+    }
+
+    /// XYZ of the perfect reflector (Y = 100).
+    pub fn white(&self) -> Xyz {
+        Xyz {
+            xyz: self.white,
+            viewing: self.viewing,
+        }
+    }
+
+    /// Tristimulus values of a reflectance (or transmittance) spectrum, by summation.
+    pub fn xyz(&self, spectrum: &Spectrum) -> Xyz {
+        let xyz = std::array::from_fn(|c| {
+            self.weights[c]
+                .iter()
+                .zip(&spectrum.0)
+                .map(|(w, r)| w * r)
+                .sum()
+        });
+        Xyz {
+            xyz,
+            viewing: self.viewing,
+        }
+    }
+
+    /// CIELAB of `xyz` relative to this viewing's white.
+    ///
+    /// # Panics
+    /// Never; an `xyz` of another viewing is a logic error caught in debug builds.
+    pub fn lab(&self, xyz: &Xyz) -> Lab {
+        debug_assert_eq!(xyz.viewing, self.viewing);
+        let f = |t: f64| {
+            if t > (24.0f64 / 116.0).powi(3) {
+                t.cbrt()
+            } else {
+                841.0 / 108.0 * t + 16.0 / 116.0
+            }
+        };
+        let [fx, fy, fz] = std::array::from_fn(|c| f(xyz.xyz[c] / self.white[c]));
+        Lab {
+            lab: [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)],
+            viewing: self.viewing,
+        }
+    }
+
+    /// Linear sRGB (white = 1) of `xyz`; adapted to D65 by Bradford when the illuminant is not D65.
+    pub fn srgb_linear(&self, xyz: &Xyz) -> [f64; 3] {
+        debug_assert_eq!(xyz.viewing, self.viewing);
+        mat_vec(&self.to_srgb, xyz.xyz.map(|v| v / 100.0))
+    }
+
+    /// Encoded (gamma) sRGB, not clipped.
+    pub fn srgb(&self, xyz: &Xyz) -> [f64; 3] {
+        self.srgb_linear(xyz).map(srgb_encode)
+    }
+}
+
+/// sRGB transfer function (IEC 61966-2-1), applied as colour-science's `eotf_inverse_sRGB`:
+/// linear below 0.0031308 (negative values included), power law above; not clipped.
+#[inline]
+pub fn srgb_encode(linear: f64) -> f64 {
+    if linear <= 0.003_130_8 {
+        12.92 * linear
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Inverse of [`srgb_encode`].
+#[inline]
+pub fn srgb_decode(encoded: f64) -> f64 {
+    if encoded <= 0.040_45 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// CIEDE2000 colour difference (CIE 142-2001; implementation notes of Sharma, Wu & Dalal 2005:
+/// hue angles in degrees in [0, 360), the mean hue taken on the shorter arc, `h' = 0` for a
+/// neutral colour). Both colours must share a [`Viewing`].
+pub fn delta_e_2000(lab1: &Lab, lab2: &Lab) -> Result<f64, ColorError> {
+    if lab1.viewing != lab2.viewing {
+        return Err(ColorError::MixedViewing(lab1.viewing, lab2.viewing));
+    }
+    Ok(delta_e_2000_raw(lab1.lab, lab2.lab))
+}
+
+/// CIEDE2000 on bare `[L*, a*, b*]` triples (the caller guarantees a common white).
+pub fn delta_e_2000_raw(lab1: [f64; 3], lab2: [f64; 3]) -> f64 {
+    let [l1, a1, b1] = lab1;
+    let [l2, a2, b2] = lab2;
+    let c1 = a1.hypot(b1);
+    let c2 = a2.hypot(b2);
+    let c_bar = 0.5 * (c1 + c2);
+    let c_bar7 = c_bar.powi(7);
+    let g = 0.5 * (1.0 - (c_bar7 / (c_bar7 + 25.0f64.powi(7))).sqrt());
+    let a1p = (1.0 + g) * a1;
+    let a2p = (1.0 + g) * a2;
+    let c1p = a1p.hypot(b1);
+    let c2p = a2p.hypot(b2);
+    let hue = |b: f64, a: f64| {
+        if a == 0.0 && b == 0.0 {
+            0.0
+        } else {
+            let h = b.atan2(a).to_degrees();
+            if h < 0.0 { h + 360.0 } else { h }
+        }
+    };
+    let h1p = hue(b1, a1p);
+    let h2p = hue(b2, a2p);
+    let dlp = l2 - l1;
+    let dcp = c2p - c1p;
+    let dhp_angle = if c1p * c2p == 0.0 {
+        0.0
+    } else {
+        let d = h2p - h1p;
+        if d > 180.0 {
+            d - 360.0
+        } else if d < -180.0 {
+            d + 360.0
+        } else {
+            d
+        }
+    };
+    let dhp = 2.0 * (c1p * c2p).sqrt() * (dhp_angle.to_radians() / 2.0).sin();
+    let lp_bar = 0.5 * (l1 + l2);
+    let cp_bar = 0.5 * (c1p + c2p);
+    let hp_bar = if c1p * c2p == 0.0 {
+        h1p + h2p
+    } else if (h1p - h2p).abs() <= 180.0 {
+        0.5 * (h1p + h2p)
+    } else if h1p + h2p < 360.0 {
+        0.5 * (h1p + h2p + 360.0)
+    } else {
+        0.5 * (h1p + h2p - 360.0)
+    };
+    let t = 1.0 - 0.17 * (hp_bar - 30.0).to_radians().cos()
+        + 0.24 * (2.0 * hp_bar).to_radians().cos()
+        + 0.32 * (3.0 * hp_bar + 6.0).to_radians().cos()
+        - 0.20 * (4.0 * hp_bar - 63.0).to_radians().cos();
+    let d_theta = 30.0 * (-((hp_bar - 275.0) / 25.0).powi(2)).exp();
+    let cp_bar7 = cp_bar.powi(7);
+    let rc = 2.0 * (cp_bar7 / (cp_bar7 + 25.0f64.powi(7))).sqrt();
+    let l50 = (lp_bar - 50.0).powi(2);
+    let sl = 1.0 + 0.015 * l50 / (20.0 + l50).sqrt();
+    let sc = 1.0 + 0.045 * cp_bar;
+    let sh = 1.0 + 0.015 * cp_bar * t;
+    let rt = -(2.0 * d_theta).to_radians().sin() * rc;
+    let (tl, tc, th) = (dlp / sl, dcp / sc, dhp / sh);
+    (tl * tl + tc * tc + th * th + rt * tc * th).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_are_on_the_working_grid() {
+        for obs in Observer::ALL {
+            for c in obs.cmfs() {
+                // The 10° functions dip slightly below zero in places; only finiteness is universal.
+                assert!(c.0.iter().all(|v| v.is_finite() && *v > -1e-3), "{obs:?}");
+            }
+        }
+        for ill in Illuminant::ALL {
+            assert!(ill.spd().0.iter().all(|v| v.is_finite() && *v > 0.0), "{ill:?}");
+        }
+        let w = crate::spectrum::working_wavelengths_nm();
+        let first_rows: Vec<f64> = CMFS_1931_CSV
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .skip(1)
+            .filter_map(|l| l.split(',').next()?.trim().parse().ok())
+            .collect();
+        assert_eq!(first_rows, w.to_vec());
+    }
+
+    #[test]
+    fn perfect_reflector_has_y_100_and_grey_is_neutral() {
+        for obs in Observer::ALL {
+            for ill in Illuminant::ALL {
+                let c = Colorimeter::get(Viewing {
+                    illuminant: ill,
+                    observer: obs,
+                });
+                let w = c.xyz(&Spectrum::constant(1.0));
+                assert!((w.xyz[1] - 100.0).abs() < 1e-12);
+                let lab = c.lab(&c.xyz(&Spectrum::constant(0.18)));
+                assert!(lab.lab[1].abs() < 1e-12 && lab.lab[2].abs() < 1e-12, "{lab:?}");
+                // sRGB is defined for the 2° observer: its white maps to (1, 1, 1) up to the
+                // 4-decimal rounding of the IEC matrix; the 10° white lands within 2 %.
+                let tol = if obs == Observer::Cie1931 { 2e-3 } else { 2e-2 };
+                let rgb = c.srgb_linear(&w);
+                for v in rgb {
+                    assert!((v - 1.0).abs() < tol, "{ill:?} {obs:?} white -> {rgb:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn srgb_transfer_round_trips() {
+        for v in [-0.1, 0.0, 0.001, 0.0031308, 0.01, 0.5, 1.0, 1.2] {
+            assert!((srgb_decode(srgb_encode(v)) - v).abs() < 1e-14, "{v}");
+        }
+    }
+
+    /// Pairs from Sharma, Wu & Dalal (2005), Table 1 (their test data for CIEDE2000).
+    #[test]
+    fn delta_e_2000_sharma_pairs() {
+        let pairs = [
+            ([50.0, 2.6772, -79.7751], [50.0, 0.0, -82.7485], 2.0425),
+            ([50.0, 0.0, 0.0], [50.0, -1.0, 2.0], 2.3669),
+            ([50.0, 2.5, 0.0], [73.0, 25.0, -18.0], 27.1492),
+            ([50.0, 2.5, 0.0], [61.0, -5.0, 29.0], 22.8977),
+            ([50.0, 2.5, 0.0], [56.0, -27.0, -3.0], 31.9030),
+            ([50.0, 2.5, 0.0], [58.0, 24.0, 15.0], 19.4535),
+        ];
+        for (a, b, expect) in pairs {
+            let d = delta_e_2000_raw(a, b);
+            assert!((d - expect).abs() < 5e-5, "{a:?} {b:?}: {d} vs {expect}");
+            assert!((delta_e_2000_raw(b, a) - d).abs() < 1e-12, "symmetry");
+        }
+        let l1 = Lab { lab: [50.0, 0.0, 0.0], viewing: Viewing::D65_1931 };
+        let mut l2 = l1;
+        l2.viewing.illuminant = Illuminant::A;
+        assert!(delta_e_2000(&l1, &l2).is_err());
+        assert_eq!(delta_e_2000(&l1, &l1), Ok(0.0));
+    }
+}

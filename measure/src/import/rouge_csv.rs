@@ -1,0 +1,208 @@
+//! Rouge CSV: `# key: value` comment lines, a header naming `wavelength_nm`, `r_inf`, `r`, `rg`
+//! (any order; other columns are refused, so a typo in a name cannot silently drop data), then
+//! one row per wavelength. Keys understood: `name`, `kind`, `thickness_mm`, `instrument`,
+//! `scale` (`fraction` or `percent`; `unit` is accepted too); all keys are kept in the metadata.
+
+use super::{
+    Cell, ImportError, Kind, Measurement, Scale, check_reflectance_range, check_wavelengths, detect_scale,
+    parse_number,
+};
+use crate::spectrum::SampledSpectrum;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+const COLUMNS: [&str; 4] = ["wavelength_nm", "r_inf", "r", "rg"];
+
+/// Parses the `# key: value` lines of a CSV (anywhere in the file) into a map, keys lower-cased.
+pub(crate) fn comment_metadata(text: &str) -> BTreeMap<String, String> {
+    text.lines()
+        .filter_map(|l| l.trim().strip_prefix('#'))
+        .filter_map(|l| {
+            let (k, v) = l.split_once(':')?;
+            let k = k.trim().to_ascii_lowercase();
+            (!k.is_empty() && !k.contains(' ')).then(|| (k, v.trim().to_string()))
+        })
+        .collect()
+}
+
+/// Splits a CSV line into trimmed cells (Rouge CSV holds numbers only: no quoting).
+pub(crate) fn cells(line: &str) -> Vec<&str> {
+    line.split(',').map(str::trim).collect()
+}
+
+/// Parses a Rouge CSV measurement.
+pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
+    let metadata = comment_metadata(text);
+    let mut rows = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) = rows
+        .next()
+        .ok_or_else(|| ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"))?;
+    let names: Vec<String> = cells(header).iter().map(|c| c.to_ascii_lowercase()).collect();
+    let mut index = [0usize; 4];
+    for (slot, want) in index.iter_mut().zip(COLUMNS) {
+        *slot = names.iter().position(|n| n == want).ok_or_else(|| {
+            ImportError::at(
+                path,
+                header_line,
+                None,
+                format!("the header has no `{want}` column (expected `wavelength_nm,r_inf,r,rg`, found `{header}`)"),
+            )
+        })?;
+    }
+    if let Some((col, extra)) = names.iter().enumerate().find(|(_, n)| !COLUMNS.contains(&n.as_str())) {
+        return Err(ImportError::at(
+            path,
+            header_line,
+            Some(col + 1),
+            format!("unknown column `{extra}` (Rouge CSV has exactly wavelength_nm, r_inf, r, rg)"),
+        ));
+    }
+    let mut columns: [Vec<Cell>; 4] = Default::default();
+    for (line, row) in rows {
+        let c = cells(row);
+        if c.len() != names.len() {
+            return Err(ImportError::at(
+                path,
+                line,
+                Some(c.len().min(names.len()) + 1),
+                format!("{} cells, but the header has {}", c.len(), names.len()),
+            ));
+        }
+        for (k, &i) in index.iter().enumerate() {
+            let value = parse_number(path, c[i], line, i + 1, COLUMNS[k])?;
+            columns[k].push(Cell { value, line, column: i + 1 });
+        }
+    }
+    if columns[0].len() < 2 {
+        return Err(ImportError::file(path, format!("{} data rows: a spectrum needs at least 2", columns[0].len())));
+    }
+    check_wavelengths(path, &columns[0])?;
+    let reflectances: Vec<Cell> = columns[1..].iter().flatten().copied().collect();
+    let declared = metadata.get("scale").or_else(|| metadata.get("unit"));
+    let scale = match declared.map(|u| u.to_ascii_lowercase()) {
+        None => detect_scale(&reflectances),
+        Some(u) if u == "percent" || u == "%" => Scale::Percent { declared: true },
+        Some(u) if u == "fraction" => Scale::Fraction { declared: true },
+        Some(u) => {
+            return Err(ImportError::file(path, format!("unknown `# scale: {u}` (use `fraction` or `percent`)")));
+        }
+    };
+    let factor = scale.factor();
+    check_reflectance_range(path, &reflectances, factor)?;
+    let kind = match metadata.get("kind") {
+        None => None,
+        Some(k) => Some(Kind::parse(k).ok_or_else(|| {
+            ImportError::file(path, format!("unknown `# kind: {k}` (foundation, blush, eyeshadow, lipstick or other)"))
+        })?),
+    };
+    let thickness_mm = match metadata.get("thickness_mm") {
+        None => None,
+        Some(t) => {
+            let line = text
+                .lines()
+                .position(|l| l.trim_start().starts_with('#') && l.contains("thickness_mm"))
+                .map_or(1, |i| i + 1);
+            let v = parse_number(path, t, line, 1, "thickness_mm")?;
+            if v <= 0.0 {
+                return Err(ImportError::at(path, line, None, format!("thickness_mm = {v} must be positive")));
+            }
+            Some(v)
+        }
+    };
+    let wavelengths: Vec<f64> = columns[0].iter().map(|c| c.value).collect();
+    let spectrum = |k: usize| {
+        let values = columns[k].iter().map(|c| c.value * factor).collect();
+        SampledSpectrum::new(wavelengths.clone(), values).map_err(|e| ImportError::file(path, e.to_string()))
+    };
+    Ok(Measurement {
+        source: path.to_path_buf(),
+        name: metadata
+            .get("name")
+            .cloned()
+            .unwrap_or_else(|| path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned())),
+        kind,
+        thickness_mm,
+        instrument: metadata.get("instrument").cloned(),
+        metadata,
+        scale,
+        r_inf: spectrum(1)?,
+        r: spectrum(2)?,
+        rg: spectrum(3)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p() -> &'static Path {
+        Path::new("sample.csv")
+    }
+
+    fn body(rows: &[(f64, f64, f64, f64)]) -> String {
+        rows.iter().map(|(w, a, b, c)| format!("{w},{a},{b},{c}\n")).collect()
+    }
+
+    #[test]
+    fn reads_fractions_and_metadata() {
+        let text = format!(
+            "# name: Test\n# kind: blush\n# thickness_mm: 0.02\nwavelength_nm,r_inf,r,rg\n{}",
+            body(&[(380.0, 0.5, 0.3, 0.1), (390.0, 0.6, 0.35, 0.1)])
+        );
+        let m = parse(p(), &text).unwrap();
+        assert_eq!(m.name, "Test");
+        assert_eq!(m.kind, Some(Kind::Blush));
+        assert_eq!(m.thickness_mm, Some(0.02));
+        assert_eq!(m.scale, Scale::Fraction { declared: false });
+        assert_eq!(m.r.values(), &[0.3, 0.35]);
+    }
+
+    #[test]
+    fn detects_percent() {
+        let text = format!("wavelength_nm,r_inf,r,rg\n{}", body(&[(380.0, 50.0, 30.0, 3.0), (390.0, 60.0, 35.0, 4.0)]));
+        let m = parse(p(), &text).unwrap();
+        assert_eq!(m.scale, Scale::Percent { declared: false });
+        assert!((m.r_inf.values()[0] - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let text = "wavelength_nm,r_inf,r,rg\n380,0.5,0.3,0.1\n390,0.5,abc,0.1\n";
+        let e = parse(p(), text).unwrap_err();
+        assert_eq!((e.line, e.column), (Some(3), Some(3)), "{e}");
+        assert!(e.to_string().starts_with("sample.csv:3:3: r `abc`"), "{e}");
+
+        let text = "wavelength_nm,r_inf,r,rg\n380,0.5,0.3,0.1\n380,0.5,0.3,0.1\n";
+        let e = parse(p(), text).unwrap_err();
+        assert!(e.to_string().contains("appears twice"), "{e}");
+
+        let text = "wavelength_nm,r_inf,r,rg\n390,0.5,0.3,0.1\n380,0.5,0.3,0.1\n";
+        assert!(parse(p(), text).unwrap_err().to_string().contains("must increase"));
+
+        let text = "wavelength_nm,r_inf,r,rg\n380,0.5,0.3,NaN\n390,0.5,0.3,0.1\n";
+        let e = parse(p(), text).unwrap_err();
+        assert_eq!((e.line, e.column), (Some(2), Some(4)), "{e}");
+
+        let text = "wavelength_nm,r_inf,r\n380,0.5,0.3\n";
+        assert!(parse(p(), text).unwrap_err().to_string().contains("no `rg` column"));
+
+        let text = "wavelength_nm,r_inf,r,rg\n380,0.5,0.3,0.1\n390,0.5,-0.01,0.1\n";
+        let e = parse(p(), text).unwrap_err();
+        assert_eq!((e.line, e.column), (Some(3), Some(3)), "{e}");
+
+        let text = "wavelength_nm,r_inf,r,rg\n380,0.5,0.3,0.1\n390,0.5,0.3\n";
+        assert_eq!(parse(p(), text).unwrap_err().line, Some(3));
+
+        let mut rows = String::from("wavelength_nm,r_inf,r,rg\n");
+        for i in 0..10 {
+            rows.push_str(&format!("{},0.5,0.3,0.1\n", 380 + 10 * i));
+        }
+        rows.push_str("480,0.5,7.0,0.1\n");
+        let e = parse(p(), &rows).unwrap_err();
+        assert_eq!((e.line, e.column), (Some(12), Some(3)), "{e}");
+    }
+}

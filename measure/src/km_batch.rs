@@ -1,0 +1,396 @@
+//! Data-parallel Kubelka-Munk over many wavelength samples: the same formulas as [`crate::km`],
+//! written so the compiler vectorises them (AVX-512 or AVX2+FMA chosen at run time, portable code
+//! otherwise).
+//!
+//! # How the fast path stays exact where it matters
+//! The loops contain no branches and no library calls: `ln` and `exp` are replaced by the
+//! polynomial kernels [`fast_ln`] and [`fast_exp_neg`] (relative error ≈ 1e-16, see their docs),
+//! and every special case is a select. Lanes outside the fast path's domain (invalid inputs,
+//! `R − R∞` so small that `z` overflows, optical thickness `βX > 700` where `sech` underflows,
+//! `w` overflowing) are marked with NaN and counted; a second, scalar pass recomputes exactly
+//! those with [`crate::km`] and reports the first invalid sample as an error. Results therefore
+//! never contain NaN and match the scalar path to ~1e-15 relative (measured in
+//! `docs/BENCHMARKS.md`, checked by `tests/km_reference.rs`).
+
+use crate::km::{self, KmError, LayerRt};
+
+/// An error at one sample of a batch.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum BatchError {
+    /// The input and output slices differ in length.
+    #[error("batch slices differ in length: {0}")]
+    LengthMismatch(&'static str),
+    /// Sample `index` has no solution.
+    #[error("sample {index}: {error}")]
+    Sample {
+        /// index of the first failing sample
+        index: usize,
+        /// why it fails
+        error: KmError,
+    },
+}
+
+const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
+const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+const SQRT2: f64 = std::f64::consts::SQRT_2;
+
+/// Natural logarithm of a positive, finite, normal `x`, branch-free.
+///
+/// `x = 2^e m` with `m ∈ [√½, √2)`; `ln m = 2 atanh(s)`, `s = (m−1)/(m+1)`, `|s| ≤ 0.1716`,
+/// summed to `s²⁰` (truncation below 3e-18 relative). The exponent is read from the bits without
+/// integer→float conversion so that AVX2 vectorises it. Result undefined (not UB) outside the domain.
+#[inline(always)]
+pub fn fast_ln(x: f64) -> f64 {
+    let bits = x.to_bits();
+    // Exponent as a float: put the 11 exponent bits into the mantissa of 2^52, subtract 2^52.
+    let e_biased = f64::from_bits(0x4330_0000_0000_0000 | (bits >> 52)) - 4_503_599_627_370_496.0;
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let big = m > SQRT2;
+    let m = if big { 0.5 * m } else { m };
+    let e = e_biased - 1023.0 + if big { 1.0 } else { 0.0 };
+    let f = m - 1.0;
+    let s = f / (2.0 + f);
+    let s2 = s * s;
+    // Σ_{k≥1} s2^k / (2k+1)
+    let p = s2
+        * (1.0 / 3.0
+            + s2 * (1.0 / 5.0
+                + s2 * (1.0 / 7.0
+                    + s2 * (1.0 / 9.0
+                        + s2 * (1.0 / 11.0
+                            + s2 * (1.0 / 13.0
+                                + s2 * (1.0 / 15.0
+                                    + s2 * (1.0 / 17.0 + s2 * (1.0 / 19.0 + s2 * (1.0 / 21.0))))))))));
+    // ln m = 2s + 2s·p = f − (f − 2s) + 2s·p; keep it simple: 2s(1 + p).
+    let ln_m = 2.0 * s + 2.0 * s * p;
+    e * LN2_HI + (ln_m + e * LN2_LO)
+}
+
+/// `e^{−y}` for `0 ≤ y ≤ 700`, branch-free.
+///
+/// `−y = n ln2 + r`, `|r| ≤ ln2/2`, `e^r` by its Taylor series to `r¹³` (truncation below
+/// 2e-17 relative), scaled by `2^n` through the exponent bits. Result undefined outside the domain.
+#[inline(always)]
+pub fn fast_exp_neg(y: f64) -> f64 {
+    let x = -y;
+    const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5·2^52: adding it rounds to an integer
+    let t = x * std::f64::consts::LOG2_E + SHIFT;
+    let n = t - SHIFT;
+    let r = (x - n * LN2_HI) - n * LN2_LO;
+    let mut p = 1.0 / 6_227_020_800.0; // 1/13!
+    for c in [
+        1.0 / 479_001_600.0,
+        1.0 / 39_916_800.0,
+        1.0 / 3_628_800.0,
+        1.0 / 362_880.0,
+        1.0 / 40_320.0,
+        1.0 / 5_040.0,
+        1.0 / 720.0,
+        1.0 / 120.0,
+        1.0 / 24.0,
+        1.0 / 6.0,
+        0.5,
+        1.0,
+        1.0,
+    ] {
+        p = p * r + c;
+    }
+    // t's low bits hold n in two's complement: 2^n has exponent field n + 1023.
+    let n_bits = t.to_bits().wrapping_sub(SHIFT.to_bits());
+    let scale = f64::from_bits(n_bits.wrapping_add(1023) << 52);
+    p * scale
+}
+
+/// Fast-path inversion of one sample; NaN in both outputs marks a lane for the scalar pass.
+#[inline(always)]
+fn invert_lane(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f64) {
+    let dr = r - r_inf;
+    let dg = rg - r_inf;
+    let valid = (r_inf > 0.0)
+        & (r_inf <= 1.0)
+        & (r >= 0.0)
+        & (r <= 1.0)
+        & (rg >= 0.0)
+        & (rg <= 1.0)
+        & (d > 0.0)
+        & (d < f64::INFINITY)
+        & (dg != 0.0)
+        & (dr != 0.0)
+        & ((dr > 0.0) == (dg > 0.0))
+        & (dr.abs() <= dg.abs());
+    let one_minus = 1.0 - r_inf;
+    let ratio = (rg - r) / (1.0 - rg * r_inf) / dr;
+    let z = ratio * (one_minus * (1.0 + r_inf));
+    let u = 1.0 + z;
+    // φ(z) = ln(1+z)/z computed as ln(u)/(u−1): the rounding of u cancels (Kahan's ln1p trick).
+    let phi = if u == 1.0 { 1.0 } else { fast_ln(u) / (u - 1.0) };
+    let s = r_inf * phi * ratio / d;
+    let k = s * (one_minus * one_minus / (2.0 * r_inf));
+    let ok = valid & (z < 1e300) & (s < f64::INFINITY);
+    if ok { (s, k) } else { (f64::NAN, f64::NAN) }
+}
+
+/// Fast-path layer R0, T of one sample; NaN marks a lane for the scalar pass.
+#[inline(always)]
+fn layer_lane(s: f64, k: f64, x: f64) -> (f64, f64) {
+    let sk = s + k;
+    let beta = k.sqrt() * (k + 2.0 * s).sqrt();
+    let y = beta * x;
+    let y2 = y * y;
+    // tanh(y)/y to y¹⁰ (first omitted term < 3e-17 for y < 1/16).
+    let q_small = x
+        * (1.0
+            - y2 * (1.0 / 3.0
+                - y2 * (2.0 / 15.0
+                    - y2 * (17.0 / 315.0 - y2 * (62.0 / 2835.0 - y2 * (1382.0 / 155_925.0))))));
+    let m = fast_exp_neg(y);
+    let m2 = m * m;
+    let q_big = (1.0 - m2) / (1.0 + m2) / beta;
+    let q = if y < 0.0625 { q_small } else { q_big };
+    let sech = 2.0 * m / (1.0 + m2);
+    let w = sk * q;
+    let r = s * q / (1.0 + w);
+    let t = sech / (1.0 + w);
+    let ok = (s >= 0.0) & (k >= 0.0) & (x >= 0.0) & (y <= 700.0) & (w <= 1e300);
+    if ok { (r, t) } else { (f64::NAN, f64::NAN) }
+}
+
+macro_rules! dispatch {
+    ($generic:ident, $avx2:ident, $avx512:ident, ($($arg:expr),*)) => {{
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU supports AVX-512F, checked just above.
+                unsafe { $avx512($($arg),*) }
+            } else if std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("fma")
+            {
+                // SAFETY: the CPU supports AVX2 and FMA, checked just above.
+                unsafe { $avx2($($arg),*) }
+            } else {
+                $generic($($arg),*)
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            $generic($($arg),*)
+        }
+    }};
+}
+
+#[inline(always)]
+fn invert_loop(r_inf: &[f64], r: &[f64], rg: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+    let mut bad = 0usize;
+    for (((((ri, rr), rgg), dd), so), ko) in r_inf
+        .iter()
+        .zip(r)
+        .zip(rg)
+        .zip(d)
+        .zip(s.iter_mut())
+        .zip(k.iter_mut())
+    {
+        let (sv, kv) = invert_lane(*ri, *rr, *rgg, *dd);
+        bad += usize::from(sv.is_nan());
+        *so = sv;
+        *ko = kv;
+    }
+    bad
+}
+
+#[inline(always)]
+fn layer_loop(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+    let mut bad = 0usize;
+    for ((((ss, kk), xx), ro), to) in s.iter().zip(k).zip(x).zip(r.iter_mut()).zip(t.iter_mut()) {
+        let (rv, tv) = layer_lane(*ss, *kk, *xx);
+        bad += usize::from(rv.is_nan());
+        *ro = rv;
+        *to = tv;
+    }
+    bad
+}
+
+fn invert_generic(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+    invert_loop(a, b, c, d, s, k)
+}
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn invert_avx2(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+    invert_loop(a, b, c, d, s, k)
+}
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
+fn invert_avx512(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+    invert_loop(a, b, c, d, s, k)
+}
+fn layer_generic(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+    layer_loop(s, k, x, r, t)
+}
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn layer_avx2(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+    layer_loop(s, k, x, r, t)
+}
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
+fn layer_avx512(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+    layer_loop(s, k, x, r, t)
+}
+
+/// Inverts S and K for every sample (see [`km::invert_s_k`] for the formula and domain).
+/// `thickness_mm` holds one thickness per sample. On error, outputs before the failing index
+/// are valid and the error names the index.
+pub fn invert_batch(
+    r_inf: &[f64],
+    r: &[f64],
+    rg: &[f64],
+    thickness_mm: &[f64],
+    s_out: &mut [f64],
+    k_out: &mut [f64],
+) -> Result<(), BatchError> {
+    let n = r_inf.len();
+    if [r.len(), rg.len(), thickness_mm.len(), s_out.len(), k_out.len()]
+        .iter()
+        .any(|&l| l != n)
+    {
+        return Err(BatchError::LengthMismatch("r_inf, r, rg, thickness_mm, s_out, k_out"));
+    }
+    let bad = dispatch!(
+        invert_generic,
+        invert_avx2,
+        invert_avx512,
+        (r_inf, r, rg, thickness_mm, s_out, k_out)
+    );
+    if bad > 0 {
+        for i in 0..n {
+            if s_out[i].is_nan() {
+                let c = km::invert_s_k(r_inf[i], r[i], rg[i], thickness_mm[i])
+                    .map_err(|error| BatchError::Sample { index: i, error })?;
+                s_out[i] = c.s_per_mm;
+                k_out[i] = c.k_per_mm;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// R0 and T of a layer for every sample (see [`km::layer_r_t`] for the formula and domain).
+pub fn layer_batch(
+    s_per_mm: &[f64],
+    k_per_mm: &[f64],
+    thickness_mm: &[f64],
+    r_out: &mut [f64],
+    t_out: &mut [f64],
+) -> Result<(), BatchError> {
+    let n = s_per_mm.len();
+    if [k_per_mm.len(), thickness_mm.len(), r_out.len(), t_out.len()]
+        .iter()
+        .any(|&l| l != n)
+    {
+        return Err(BatchError::LengthMismatch("s, k, thickness_mm, r_out, t_out"));
+    }
+    let bad = dispatch!(
+        layer_generic,
+        layer_avx2,
+        layer_avx512,
+        (s_per_mm, k_per_mm, thickness_mm, r_out, t_out)
+    );
+    if bad > 0 {
+        for i in 0..n {
+            if r_out[i].is_nan() {
+                let LayerRt { r, t } = km::layer_r_t(s_per_mm[i], k_per_mm[i], thickness_mm[i])
+                    .map_err(|error| BatchError::Sample { index: i, error })?;
+                r_out[i] = r;
+                t_out[i] = t;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The portable (no SIMD dispatch) variants, for benchmarks that compare them.
+pub mod portable {
+    use super::*;
+
+    /// [`super::invert_batch`] compiled for the baseline target only; returns the number of
+    /// lanes left for the scalar pass (their outputs are NaN).
+    pub fn invert_fast_only(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+        invert_generic(a, b, c, d, s, k)
+    }
+
+    /// [`super::layer_batch`] compiled for the baseline target only (see [`invert_fast_only`]).
+    pub fn layer_fast_only(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+        layer_generic(s, k, x, r, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fast_ln_matches_std() {
+        let mut worst = 0.0f64;
+        let mut x = 1e-300;
+        while x < 1e300 {
+            for m in [1.0, 1.1, 1.3, 1.414, 1.4143, 1.7, 1.99] {
+                let v = x * m;
+                let e = (fast_ln(v) - v.ln()).abs() / v.ln().abs().max(1.0);
+                worst = worst.max(e);
+            }
+            x *= 7.3;
+        }
+        assert!(worst < 4e-16, "worst {worst}");
+        for v in [1.0 + 1e-15, 1.0 - 1e-15, 0.999, 1.001] {
+            let e = ((fast_ln(v) - v.ln()) / v.ln()).abs();
+            assert!(e < 1e-15, "{v}: {e}");
+        }
+    }
+
+    #[test]
+    fn fast_exp_matches_std() {
+        let mut worst = 0.0f64;
+        let mut y = 0.0;
+        while y <= 700.0 {
+            let e = (fast_exp_neg(y) / (-y).exp() - 1.0).abs();
+            worst = worst.max(e);
+            y += 0.0137;
+        }
+        assert!(worst < 1e-15, "worst {worst}");
+        assert_eq!(fast_exp_neg(0.0), 1.0);
+    }
+
+    #[test]
+    fn batch_reports_the_failing_index_and_fixes_hard_lanes() {
+        // Lane 3: R − R∞ is subnormal, so z overflows and the scalar pass takes over.
+        let r_inf = [0.5, 0.5, 1.0, 1e-300];
+        let r = [0.3, 0.3, 0.4, 1e-300 * (1.0 + f64::EPSILON)];
+        let rg = [0.1, 0.1, 0.1, 0.1];
+        let d = [0.1; 4];
+        let (mut s, mut k) = ([0.0; 4], [0.0; 4]);
+        invert_batch(&r_inf, &r, &rg, &d, &mut s, &mut k).unwrap();
+        for i in 0..4 {
+            let c = km::invert_s_k(r_inf[i], r[i], rg[i], d[i]).unwrap();
+            assert!((s[i] / c.s_per_mm - 1.0).abs() < 1e-14, "{i}");
+            assert!(s[i].is_finite() && k[i].is_finite());
+        }
+        let bad_r = [0.3, 0.3, 1.0, 0.3]; // lane 2: R = R∞ = 1 over Rg = 0.1
+        let err = invert_batch(&r_inf, &bad_r, &rg, &d, &mut s, &mut k).unwrap_err();
+        assert!(matches!(err, BatchError::Sample { index: 2, .. }), "{err}");
+        let err = invert_batch(&r_inf, &r[..3], &rg, &d, &mut s, &mut k).unwrap_err();
+        assert!(matches!(err, BatchError::LengthMismatch(_)));
+    }
+
+    #[test]
+    fn layer_batch_handles_edges() {
+        let s = [0.0, 2.0, 0.0, 1e6, 5.0, 3.0];
+        let k = [0.0, 0.0, 3.0, 1e6, 0.5, 1.0];
+        let x = [1.0, 0.5, 0.5, 1.0, 1e-9, 1e3];
+        let (mut r, mut t) = ([0.0; 6], [0.0; 6]);
+        layer_batch(&s, &k, &x, &mut r, &mut t).unwrap();
+        for i in 0..6 {
+            let l = km::layer_r_t(s[i], k[i], x[i]).unwrap();
+            assert!((r[i] - l.r).abs() <= 1e-14 * l.r.abs(), "{i}: {} {}", r[i], l.r);
+            assert!((t[i] - l.t).abs() <= 1e-14 * l.t.abs(), "{i}: {} {}", t[i], l.t);
+        }
+    }
+}

@@ -1,0 +1,22 @@
+//! # rouge-measure
+//!
+//! The spectral core of Rouge: spectra on the 380-780 nm working grid, measurement import,
+//! numerically stable Kubelka-Munk inversion and forward model, CIE colorimetry that matches
+//! colour-science, and material presets. No GPU, no UI.
+//!
+//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* (paper 003 in
+//! `shared/papers`), sections 3.1 and 4; every function documents its equation, the corrections
+//! made to the printed forms, and its domain.
+
+pub mod colorimetry;
+pub mod import;
+pub mod km;
+pub mod km_batch;
+pub mod preset;
+pub mod spectrum;
+
+pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};
+pub use import::{ImportError, ImportOptions, Kind, Measurement, read_measurement};
+pub use km::{KmCoefficients, KmError, LayerRt, Saunderson};
+pub use preset::{Preset, PresetError};
+pub use spectrum::{Extrapolation, SampledSpectrum, Spectrum};

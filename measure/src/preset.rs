@@ -1,0 +1,541 @@
+//! Material presets: a versioned JSON document holding a cosmetic's Kubelka-Munk S and K per
+//! wavelength, the measurement they came from, specular parameters, and tables a renderer can
+//! use directly (R0 and T in linear sRGB at a table of thicknesses).
+//!
+//! Schema version 1 (`"schema": "rouge-preset", "version": 1`) is specified field by field on
+//! [`Preset`]. Loading checks the schema name, the version and every value; anything unknown or
+//! out of range is an error naming the field (and the wavelength, for spectra).
+
+use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
+use crate::import::{Kind, Measurement, WorkingMeasurement};
+use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
+use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The schema name every preset carries.
+pub const SCHEMA: &str = "rouge-preset";
+/// The schema version this build writes and reads.
+pub const VERSION: u32 = 1;
+
+/// Thicknesses (mm) of the derived tables: 0 to 0.2 mm every 5 µm (41 entries), the range of
+/// cosmetic films (foundation 10-40 µm, lipstick 10-30 µm, heavy layers up to ~0.1 mm).
+pub fn table_thicknesses_mm() -> Vec<f64> {
+    (0..=40).map(|i| i as f64 * 0.005).collect()
+}
+
+/// Specular parameters of a layer's Kelemen/Szirmay-Kalos lobe (paper 003, eq. 5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Specular {
+    /// Beckmann roughness (RMS slope), in (0, 1].
+    pub roughness: f64,
+    /// Index of refraction of the layer's binder, for Schlick's Fresnel, in [1, 3].
+    pub ior: f64,
+}
+
+impl Specular {
+    /// Defaults by kind: glossy lipstick, satin foundation, matte powders.
+    pub fn default_for(kind: Kind) -> Self {
+        match kind {
+            Kind::Lipstick => Specular { roughness: 0.15, ior: 1.50 },
+            Kind::Foundation => Specular { roughness: 0.35, ior: 1.45 },
+            Kind::Blush | Kind::Eyeshadow => Specular { roughness: 0.55, ior: 1.45 },
+            Kind::Other => Specular { roughness: 0.4, ior: 1.45 },
+        }
+    }
+}
+
+/// The measurement a preset was inverted from (on the working grid).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SourceMeasurement {
+    /// File name it was imported from (no directories).
+    pub file: String,
+    /// Instrument, if known.
+    pub instrument: Option<String>,
+    /// How the file's numbers were read (fractions or percent, declared or detected).
+    pub scale: String,
+    /// Saunderson correction applied before inversion, if any.
+    pub saunderson: Option<Saunderson>,
+    /// Measured R∞.
+    pub r_inf: Vec<f64>,
+    /// Measured R (thin layer over the background).
+    pub r: Vec<f64>,
+    /// Measured Rg (background).
+    pub rg: Vec<f64>,
+}
+
+/// Tables derived from S and K for renderers: linear sRGB (D65, 1931 observer).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Derived {
+    /// Viewing of the colours: always `"D65 / CIE 1931"` in version 1.
+    pub viewing: String,
+    /// Thicknesses of the table rows, mm.
+    pub thickness_mm: Vec<f64>,
+    /// Layer reflectance over black R0(X) as linear sRGB, one row per thickness.
+    pub r0_linear_srgb: Vec<[f64; 3]>,
+    /// Layer transmittance T(X) as linear sRGB, one row per thickness.
+    pub t_linear_srgb: Vec<[f64; 3]>,
+    /// Reflectance of an opaque layer R∞ as linear sRGB.
+    pub r_inf_linear_srgb: [f64; 3],
+    /// R∞ as an encoded sRGB hex colour (clipped), for swatches.
+    pub r_inf_srgb_hex: String,
+}
+
+/// A material preset, schema version 1.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Preset {
+    /// Always `"rouge-preset"`.
+    pub schema: String,
+    /// Schema version, [`VERSION`].
+    pub version: u32,
+    /// Display name.
+    pub name: String,
+    /// Cosmetic kind.
+    pub kind: Kind,
+    /// Thickness of the measured thin layer, mm.
+    pub thickness_mm: f64,
+    /// Wavelengths of the spectra, nm: the working grid 380-780 nm every 5 nm.
+    pub wavelengths_nm: Vec<f64>,
+    /// Scattering coefficient S per wavelength, mm⁻¹.
+    pub s_per_mm: Vec<f64>,
+    /// Absorption coefficient K per wavelength, mm⁻¹.
+    pub k_per_mm: Vec<f64>,
+    /// The measurement S and K came from (absent for presets made by hand).
+    pub measurement: Option<SourceMeasurement>,
+    /// Specular lobe parameters.
+    pub specular: Specular,
+    /// Renderer tables derived from S and K.
+    pub derived: Derived,
+}
+
+/// Errors of building, loading or saving presets.
+#[derive(Debug, thiserror::Error)]
+pub enum PresetError {
+    /// The file cannot be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// file
+        path: String,
+        /// cause
+        source: std::io::Error,
+    },
+    /// Not valid JSON for the schema.
+    #[error("{path}:{line}:{column}: {message}")]
+    Json {
+        /// file
+        path: String,
+        /// 1-based line
+        line: usize,
+        /// 1-based column
+        column: usize,
+        /// what serde says
+        message: String,
+    },
+    /// A field with a bad value.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// file (or `<preset>` when not from a file)
+        path: String,
+        /// what and where
+        message: String,
+    },
+    /// Inversion failed at a wavelength.
+    #[error("{path}: at {wavelength_nm} nm: {error}")]
+    Inversion {
+        /// the measurement file
+        path: String,
+        /// wavelength, nm
+        wavelength_nm: f64,
+        /// why
+        error: KmError,
+    },
+}
+
+fn invalid(path: &str, message: String) -> PresetError {
+    PresetError::Invalid { path: path.to_string(), message }
+}
+
+/// Per-wavelength S and K inverted from a measurement on the working grid (paper 003, eq. 6-7).
+/// An error names the first wavelength without a solution.
+pub fn invert_measurement(
+    m: &WorkingMeasurement,
+    thickness_mm: f64,
+    source: &str,
+) -> Result<(Spectrum, Spectrum), PresetError> {
+    let mut s = [0.0; WORKING_LEN];
+    let mut k = [0.0; WORKING_LEN];
+    for i in 0..WORKING_LEN {
+        let KmCoefficients { s_per_mm, k_per_mm } = km::invert_s_k(m.r_inf.0[i], m.r.0[i], m.rg.0[i], thickness_mm)
+            .map_err(|error| PresetError::Inversion {
+                path: source.to_string(),
+                wavelength_nm: working_wavelength_nm(i),
+                error,
+            })?;
+        s[i] = s_per_mm;
+        k[i] = k_per_mm;
+    }
+    Ok((Spectrum(s), Spectrum(k)))
+}
+
+/// Spectral R0 and T of a layer of thickness `x_mm`.
+pub fn layer_spectra(s: &Spectrum, k: &Spectrum, x_mm: f64) -> (Spectrum, Spectrum) {
+    let mut r = [0.0; WORKING_LEN];
+    let mut t = [0.0; WORKING_LEN];
+    for i in 0..WORKING_LEN {
+        let LayerRt { r: ri, t: ti } = km::layer_r_t_unchecked(s.0[i], k.0[i], x_mm);
+        r[i] = ri;
+        t[i] = ti;
+    }
+    (Spectrum(r), Spectrum(t))
+}
+
+fn hex(rgb_linear: [f64; 3]) -> String {
+    let [r, g, b] = rgb_linear.map(|v| (srgb_encode(v).clamp(0.0, 1.0) * 255.0).round() as u8);
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+/// Computes the renderer tables from S and K.
+pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
+    let c = Colorimeter::get(Viewing::D65_1931);
+    let thickness_mm = table_thicknesses_mm();
+    let mut r0 = Vec::with_capacity(thickness_mm.len());
+    let mut t = Vec::with_capacity(thickness_mm.len());
+    for &x in &thickness_mm {
+        let (rs, ts) = layer_spectra(s, k, x);
+        r0.push(c.srgb_linear(&c.xyz(&rs)));
+        t.push(c.srgb_linear(&c.xyz(&ts)));
+    }
+    let r_inf = Spectrum(std::array::from_fn(|i| km::r_inf_from_s_k(s.0[i], k.0[i])));
+    let r_inf_linear_srgb = c.srgb_linear(&c.xyz(&r_inf));
+    Derived {
+        viewing: Viewing::D65_1931.to_string(),
+        thickness_mm,
+        r0_linear_srgb: r0,
+        t_linear_srgb: t,
+        r_inf_linear_srgb,
+        r_inf_srgb_hex: hex(r_inf_linear_srgb),
+    }
+}
+
+/// What `rouge import` reports about a preset built from a measurement.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ImportReport {
+    /// Smallest and largest S, mm⁻¹, with their wavelengths.
+    pub s_range_per_mm: [(f64, f64); 2],
+    /// Smallest and largest K, mm⁻¹, with their wavelengths.
+    pub k_range_per_mm: [(f64, f64); 2],
+    /// Largest |R measured − R recomputed from S, K, D and Rg|, and its wavelength.
+    pub max_abs_r_error: (f64, f64),
+    /// Largest |R∞ measured − R∞ from S and K|, and its wavelength.
+    pub max_abs_r_inf_error: (f64, f64),
+    /// ΔE2000 (D65, 1931) between measured and recomputed R.
+    pub delta_e_2000_r: f64,
+    /// ΔE2000 (D65, 1931) between measured and recomputed R∞.
+    pub delta_e_2000_r_inf: f64,
+    /// sRGB hex of the measured R∞.
+    pub r_inf_srgb_hex: String,
+}
+
+fn range_with_nm(v: &Spectrum) -> [(f64, f64); 2] {
+    let mut lo = (f64::INFINITY, 0.0);
+    let mut hi = (f64::NEG_INFINITY, 0.0);
+    for (nm, x) in v.iter_nm() {
+        if x < lo.0 {
+            lo = (x, nm);
+        }
+        if x > hi.0 {
+            hi = (x, nm);
+        }
+    }
+    [lo, hi]
+}
+
+impl Preset {
+    /// Builds a preset from S and K (mm⁻¹) on the working grid.
+    pub fn from_s_k(name: &str, kind: Kind, thickness_mm: f64, s: &Spectrum, k: &Spectrum) -> Self {
+        Preset {
+            schema: SCHEMA.into(),
+            version: VERSION,
+            name: name.into(),
+            kind,
+            thickness_mm,
+            wavelengths_nm: working_wavelengths_nm().to_vec(),
+            s_per_mm: s.0.to_vec(),
+            k_per_mm: k.0.to_vec(),
+            measurement: None,
+            specular: Specular::default_for(kind),
+            derived: derive_tables(s, k),
+        }
+    }
+
+    /// Inverts a measurement into a preset and reports how well S and K reproduce it.
+    ///
+    /// `saunderson`, if given, converts the measured reflectances to internal ones before the
+    /// inversion (see [`Saunderson`]); the report then compares internal reflectances.
+    pub fn from_measurement(
+        measurement: &Measurement,
+        working: &WorkingMeasurement,
+        name: &str,
+        kind: Kind,
+        thickness_mm: f64,
+        saunderson: Option<Saunderson>,
+    ) -> Result<(Preset, ImportReport), PresetError> {
+        let source = measurement.source.display().to_string();
+        if !(thickness_mm > 0.0 && thickness_mm.is_finite()) {
+            return Err(invalid(&source, format!("thickness {thickness_mm} mm must be positive")));
+        }
+        let internal = match saunderson {
+            None => working.clone(),
+            Some(c) => WorkingMeasurement {
+                r_inf: working.r_inf.map(|v| c.to_internal(v)),
+                r: working.r.map(|v| c.to_internal(v)),
+                rg: working.rg.map(|v| c.to_internal(v)),
+                ..working.clone()
+            },
+        };
+        let (s, k) = invert_measurement(&internal, thickness_mm, &source)?;
+        let mut preset = Preset::from_s_k(name, kind, thickness_mm, &s, &k);
+        preset.measurement = Some(SourceMeasurement {
+            file: measurement.source.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned()),
+            instrument: measurement.instrument.clone(),
+            scale: measurement.scale.to_string(),
+            saunderson,
+            r_inf: working.r_inf.0.to_vec(),
+            r: working.r.0.to_vec(),
+            rg: working.rg.0.to_vec(),
+        });
+        let mut r_re = [0.0; WORKING_LEN];
+        let mut r_inf_re = [0.0; WORKING_LEN];
+        for i in 0..WORKING_LEN {
+            let layer = km::layer_r_t_unchecked(s.0[i], k.0[i], thickness_mm);
+            r_re[i] = km::compose(layer, LayerRt::opaque(internal.rg.0[i])).r;
+            r_inf_re[i] = km::r_inf_from_s_k(s.0[i], k.0[i]);
+        }
+        let max_err = |a: &Spectrum, b: &[f64; WORKING_LEN]| {
+            a.iter_nm()
+                .zip(b)
+                .map(|((nm, x), y)| ((x - y).abs(), nm))
+                .fold((0.0, working_wavelength_nm(0)), |acc, e| if e.0 > acc.0 { e } else { acc })
+        };
+        let c = Colorimeter::get(Viewing::D65_1931);
+        let de = |a: &Spectrum, b: &Spectrum| delta_e_2000_raw(c.lab(&c.xyz(a)).lab, c.lab(&c.xyz(b)).lab);
+        let report = ImportReport {
+            s_range_per_mm: range_with_nm(&s),
+            k_range_per_mm: range_with_nm(&k),
+            max_abs_r_error: max_err(&internal.r, &r_re),
+            max_abs_r_inf_error: max_err(&internal.r_inf, &r_inf_re),
+            delta_e_2000_r: de(&internal.r, &Spectrum(r_re)),
+            delta_e_2000_r_inf: de(&internal.r_inf, &Spectrum(r_inf_re)),
+            r_inf_srgb_hex: hex(c.srgb_linear(&c.xyz(&working.r_inf))),
+        };
+        Ok((preset, report))
+    }
+
+    /// S as a working-grid spectrum.
+    pub fn s(&self) -> Spectrum {
+        Spectrum::from_slice(&self.s_per_mm).unwrap_or(Spectrum::constant(0.0))
+    }
+
+    /// K as a working-grid spectrum.
+    pub fn k(&self) -> Spectrum {
+        Spectrum::from_slice(&self.k_per_mm).unwrap_or(Spectrum::constant(0.0))
+    }
+
+    /// Checks every field; `path` names the file in messages.
+    pub fn validate(&self, path: &str) -> Result<(), PresetError> {
+        if self.schema != SCHEMA {
+            return Err(invalid(path, format!("`schema` is `{}`, expected `{SCHEMA}`", self.schema)));
+        }
+        if self.version != VERSION {
+            return Err(invalid(
+                path,
+                format!("preset schema version {} is not supported: this Rouge reads version {VERSION}", self.version),
+            ));
+        }
+        if self.name.trim().is_empty() {
+            return Err(invalid(path, "`name` is empty".into()));
+        }
+        if !(self.thickness_mm > 0.0 && self.thickness_mm.is_finite()) {
+            return Err(invalid(path, format!("`thickness_mm` = {} must be positive", self.thickness_mm)));
+        }
+        let grid = working_wavelengths_nm();
+        if self.wavelengths_nm.len() != WORKING_LEN
+            || self.wavelengths_nm.iter().zip(grid).any(|(a, b)| (a - b).abs() > 1e-9)
+        {
+            return Err(invalid(path, "`wavelengths_nm` must be 380, 385, ..., 780 (81 values)".into()));
+        }
+        for (field, values) in [("s_per_mm", &self.s_per_mm), ("k_per_mm", &self.k_per_mm)] {
+            if values.len() != WORKING_LEN {
+                return Err(invalid(path, format!("`{field}` has {} values, expected {WORKING_LEN}", values.len())));
+            }
+            if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(**v >= 0.0 && v.is_finite())) {
+                return Err(invalid(
+                    path,
+                    format!("`{field}` at {} nm is {v}: must be finite and ≥ 0", working_wavelength_nm(i)),
+                ));
+            }
+        }
+        let sp = self.specular;
+        if !(sp.roughness > 0.0 && sp.roughness <= 1.0) {
+            return Err(invalid(path, format!("`specular.roughness` = {} must be in (0, 1]", sp.roughness)));
+        }
+        if !(1.0..=3.0).contains(&sp.ior) {
+            return Err(invalid(path, format!("`specular.ior` = {} must be in [1, 3]", sp.ior)));
+        }
+        if let Some(m) = &self.measurement {
+            for (field, values) in [("r_inf", &m.r_inf), ("r", &m.r), ("rg", &m.rg)] {
+                if values.len() != WORKING_LEN {
+                    return Err(invalid(path, format!("`measurement.{field}` has {} values, expected {WORKING_LEN}", values.len())));
+                }
+                if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(0.0..=1.5).contains(*v)) {
+                    return Err(invalid(
+                        path,
+                        format!("`measurement.{field}` at {} nm is {v}: outside [0, 1.5]", working_wavelength_nm(i)),
+                    ));
+                }
+            }
+        }
+        let d = &self.derived;
+        let n = d.thickness_mm.len();
+        if n < 2 || d.r0_linear_srgb.len() != n || d.t_linear_srgb.len() != n {
+            return Err(invalid(path, "`derived` tables must have one row per thickness (at least 2)".into()));
+        }
+        if d.thickness_mm.windows(2).any(|w| !(w[1] > w[0])) || d.thickness_mm[0] != 0.0 {
+            return Err(invalid(path, "`derived.thickness_mm` must start at 0 and increase".into()));
+        }
+        for (field, rows) in [("r0_linear_srgb", &d.r0_linear_srgb), ("t_linear_srgb", &d.t_linear_srgb)] {
+            if let Some((i, row)) = rows.iter().enumerate().find(|(_, r)| r.iter().any(|v| !v.is_finite() || v.abs() > 2.0)) {
+                return Err(invalid(path, format!("`derived.{field}` row {i} = {row:?} is out of range")));
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads and validates a preset file.
+    pub fn load(path: &Path) -> Result<Preset, PresetError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| PresetError::Io { path: p.clone(), source })?;
+        Self::from_json(&text, &p)
+    }
+
+    /// Parses and validates preset JSON; `path` names the source in messages.
+    pub fn from_json(text: &str, path: &str) -> Result<Preset, PresetError> {
+        // Check the version before the shape, so a future version gets the right message.
+        if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
+            if let Some(ver) = v.get("version").and_then(|x| x.as_u64()) {
+                if ver != u64::from(VERSION) {
+                    return Err(invalid(
+                        path,
+                        format!("preset schema version {ver} is not supported: this Rouge reads version {VERSION}"),
+                    ));
+                }
+            }
+        }
+        let preset: Preset = serde_json::from_str(text).map_err(|e| PresetError::Json {
+            path: path.to_string(),
+            line: e.line(),
+            column: e.column(),
+            message: e.to_string(),
+        })?;
+        preset.validate(path)?;
+        Ok(preset)
+    }
+
+    /// Serialises to pretty JSON (numbers round-trip exactly).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// Writes the preset atomically: a temporary file in the same directory, then a rename, so a
+    /// failed save never destroys an existing file.
+    pub fn save(&self, path: &Path) -> Result<(), PresetError> {
+        write_atomic(path, self.to_json().as_bytes()).map_err(|source| PresetError::Io {
+            path: path.display().to_string(),
+            source,
+        })
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary sibling file and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> Preset {
+        let s = Spectrum::from_fn(|nm| 30.0 - nm / 100.0);
+        let k = Spectrum::from_fn(|nm| if nm < 550.0 { 8.0 } else { 0.5 });
+        Preset::from_s_k("Test red", Kind::Lipstick, 0.02, &s, &k)
+    }
+
+    #[test]
+    fn json_round_trip_is_exact() {
+        let p = sample();
+        let back = Preset::from_json(&p.to_json(), "t.json").unwrap();
+        assert_eq!(p, back);
+    }
+
+    #[test]
+    fn zero_thickness_row_is_clear() {
+        let p = sample();
+        assert_eq!(p.derived.r0_linear_srgb[0], [0.0; 3]);
+        for v in p.derived.t_linear_srgb[0] {
+            assert!((v - 1.0).abs() < 2e-3);
+        }
+    }
+
+    #[test]
+    fn bad_presets_are_refused_with_the_field() {
+        let p = sample();
+        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
+        v["version"] = 2.into();
+        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
+        assert!(e.contains("version 2 is not supported"), "{e}");
+        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
+        v["k_per_mm"][4] = (-1.0).into();
+        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
+        assert!(e.contains("`k_per_mm` at 400 nm"), "{e}");
+        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
+        v["kind"] = "mascara".into();
+        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
+        assert!(e.starts_with("p.json:"), "{e}");
+        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
+        v["specular"]["ior"] = 7.0.into();
+        assert!(Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string().contains("specular.ior"));
+    }
+
+    #[test]
+    fn failed_save_keeps_the_old_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("p.json");
+        sample().save(&path).unwrap();
+        let before = std::fs::read(&path).unwrap();
+        // A directory in the way of the temporary file makes the save fail.
+        let blocker = dir.path().join(format!(".p.json.tmp-{}", std::process::id()));
+        std::fs::create_dir(&blocker).unwrap();
+        let mut other = sample();
+        other.name = "changed".into();
+        assert!(other.save(&path).is_err());
+        assert_eq!(std::fs::read(&path).unwrap(), before);
+    }
+}
