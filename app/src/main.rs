@@ -1,1 +1,73 @@
-fn main() {}
+//! `rouge`: the Rouge command line (and, later, the painting app).
+//!
+//! Every subcommand prints machine-readable JSON on stdout (numbers in the shortest form that
+//! reads back bit-for-bit) except `import` and `demo`, which print a report for people (`--json`
+//! for a machine). Errors: a message on stderr and exit status 2.
+
+mod cmd_color;
+mod cmd_import;
+mod cmd_km;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Rouge: cosmetic measurement and makeup preview.
+///
+/// Import spectroradiometer measurements of cosmetics, invert them into Kubelka-Munk
+/// scattering S and absorption K, check them in colour terms, and build material presets for
+/// the renderer.
+#[derive(Debug, Parser)]
+#[command(name = "rouge", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Import a measurement (R∞, R, Rg) into a material preset and print the inversion report.
+    ///
+    /// FILE may be a Rouge CSV, a CGATS / X-Rite / i1Profiler / ArgyllCMS .ti3 text file, or a
+    /// CS-2000 radiance export (the format is recognised from the content). Three ArgyllCMS .sp
+    /// files can be given with --r-inf, --r and --rg instead.
+    Import(cmd_import::ImportArgs),
+    /// Import the embedded sample measurement (Foundation 02 Ivory, synthetic) and print its report.
+    Demo(cmd_import::DemoArgs),
+    /// Kubelka-Munk calculations on single values.
+    #[command(subcommand)]
+    Km(cmd_km::KmCommand),
+    /// Colour of spectra: XYZ, CIELAB, linear and encoded sRGB as a JSON array.
+    ///
+    /// FILE is a CSV with a `wavelength_nm` column and one column per sample (reflectance as
+    /// fractions or percent), on any grid covering 380-780 nm (resampled with Sprague).
+    Color(cmd_color::ColorArgs),
+}
+
+/// Writes `text` and a newline to stdout. A closed pipe (`rouge ... | head`) ends the program
+/// quietly instead of panicking as `println!` would.
+pub fn emit(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(e) => Err(anyhow::anyhow!("cannot write to stdout: {e}")),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Import(args) => cmd_import::run(&args),
+        Command::Demo(args) => cmd_import::demo(&args),
+        Command::Km(cmd) => cmd_km::run(&cmd),
+        Command::Color(args) => cmd_color::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rouge: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -44,13 +44,7 @@ pub enum Illuminant {
 
 impl Illuminant {
     /// All illuminants, in table order.
-    pub const ALL: [Illuminant; 5] = [
-        Illuminant::D65,
-        Illuminant::D55,
-        Illuminant::D50,
-        Illuminant::A,
-        Illuminant::E,
-    ];
+    pub const ALL: [Illuminant; 5] = [Illuminant::D65, Illuminant::D55, Illuminant::D50, Illuminant::A, Illuminant::E];
 
     /// The name used in tables and on the command line.
     pub fn name(self) -> &'static str {
@@ -65,9 +59,7 @@ impl Illuminant {
 
     /// Parses `D65`, `d50`, `A`, ... (case-insensitive).
     pub fn parse(s: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|i| i.name().eq_ignore_ascii_case(s.trim()))
+        Self::ALL.into_iter().find(|i| i.name().eq_ignore_ascii_case(s.trim()))
     }
 
     /// Relative spectral power on the working grid (as tabulated; the scale cancels).
@@ -123,10 +115,7 @@ pub struct Viewing {
 
 impl Viewing {
     /// D65 and the 1931 2° observer: the default everywhere in Rouge.
-    pub const D65_1931: Viewing = Viewing {
-        illuminant: Illuminant::D65,
-        observer: Observer::Cie1931,
-    };
+    pub const D65_1931: Viewing = Viewing { illuminant: Illuminant::D65, observer: Observer::Cie1931 };
 }
 
 impl Default for Viewing {
@@ -197,23 +186,15 @@ const ILLUMINANTS_CSV: &str = include_str!("../../data/cie/illuminants.csv");
 /// working grid. The tables are part of the build, so a malformed one is a bug caught by the tests
 /// (`tables_are_on_the_working_grid`), never a user error.
 fn parse_table(text: &str, columns: &[&str]) -> Vec<Spectrum> {
-    let mut lines = text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'));
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let index: Vec<usize> = columns
-        .iter()
-        .map(|c| header.iter().position(|h| h.trim() == *c).unwrap_or(usize::MAX))
-        .collect();
+    let index: Vec<usize> =
+        columns.iter().map(|c| header.iter().position(|h| h.trim() == *c).unwrap_or(usize::MAX)).collect();
     let mut out = vec![[f64::NAN; WORKING_LEN]; columns.len()];
     for (row, line) in lines.enumerate().take(WORKING_LEN) {
         let cells: Vec<&str> = line.split(',').collect();
         for (c, &i) in index.iter().enumerate() {
-            out[c][row] = cells
-                .get(i)
-                .and_then(|v| v.trim().parse().ok())
-                .unwrap_or(f64::NAN);
+            out[c][row] = cells.get(i).and_then(|v| v.trim().parse().ok()).unwrap_or(f64::NAN);
         }
     }
     out.into_iter().map(Spectrum).collect()
@@ -227,31 +208,20 @@ fn tables() -> &'static Tables {
             [v[0], v[1], v[2]]
         };
         let ill = parse_table(ILLUMINANTS_CSV, &["D65", "D55", "D50", "A", "E"]);
-        Tables {
-            cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)],
-            illuminants: [ill[0], ill[1], ill[2], ill[3], ill[4]],
-        }
+        Tables { cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)], illuminants: [ill[0], ill[1], ill[2], ill[3], ill[4]] }
     })
 }
 
 type Mat3 = [[f64; 3]; 3];
 
 /// XYZ → linear sRGB, IEC 61966-2-1:1999 (the published 4-decimal matrix).
-pub const XYZ_TO_SRGB: Mat3 = [
-    [3.2406, -1.5372, -0.4986],
-    [-0.9689, 1.8758, 0.0415],
-    [0.0557, -0.2040, 1.0570],
-];
+pub const XYZ_TO_SRGB: Mat3 = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
 
 /// sRGB reference white chromaticity (D65 as IEC 61966-2-1 rounds it).
 pub const SRGB_WHITE_XY: [f64; 2] = [0.3127, 0.3290];
 
 /// Bradford cone-response matrix (Lam 1985).
-pub const BRADFORD: Mat3 = [
-    [0.8951, 0.2664, -0.1614],
-    [-0.7502, 1.7135, 0.0367],
-    [0.0389, -0.0685, 1.0296],
-];
+pub const BRADFORD: Mat3 = [[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]];
 
 fn mat_vec(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
@@ -281,11 +251,7 @@ fn xy_to_xyz_unit(xy: [f64; 2]) -> [f64; 3] {
 pub fn bradford_adaptation(src: [f64; 3], dst: [f64; 3]) -> Mat3 {
     let s = mat_vec(&BRADFORD, src);
     let d = mat_vec(&BRADFORD, dst);
-    let scale: Mat3 = [
-        [d[0] / s[0], 0.0, 0.0],
-        [0.0, d[1] / s[1], 0.0],
-        [0.0, 0.0, d[2] / s[2]],
-    ];
+    let scale: Mat3 = [[d[0] / s[0], 0.0, 0.0], [0.0, d[1] / s[1], 0.0], [0.0, 0.0, d[2] / s[2]]];
     mat_mul(&mat_inv(&BRADFORD), &mat_mul(&scale, &BRADFORD))
 }
 
@@ -318,12 +284,7 @@ impl Colorimeter {
             let dst = xy_to_xyz_unit(SRGB_WHITE_XY);
             mat_mul(&XYZ_TO_SRGB, &bradford_adaptation(src, dst))
         };
-        Colorimeter {
-            viewing,
-            weights,
-            white,
-            to_srgb,
-        }
+        Colorimeter { viewing, weights, white, to_srgb }
     }
 
     /// A shared colorimeter for `viewing`, built once.
@@ -333,12 +294,9 @@ impl Colorimeter {
             Observer::ALL
                 .into_iter()
                 .flat_map(|observer| {
-                    Illuminant::ALL.into_iter().map(move |illuminant| {
-                        Colorimeter::new(Viewing {
-                            illuminant,
-                            observer,
-                        })
-                    })
+                    Illuminant::ALL
+                        .into_iter()
+                        .map(move |illuminant| Colorimeter::new(Viewing { illuminant, observer }))
                 })
                 .collect()
         });
@@ -357,25 +315,13 @@ impl Colorimeter {
 
     /// XYZ of the perfect reflector (Y = 100).
     pub fn white(&self) -> Xyz {
-        Xyz {
-            xyz: self.white,
-            viewing: self.viewing,
-        }
+        Xyz { xyz: self.white, viewing: self.viewing }
     }
 
     /// Tristimulus values of a reflectance (or transmittance) spectrum, by summation.
     pub fn xyz(&self, spectrum: &Spectrum) -> Xyz {
-        let xyz = std::array::from_fn(|c| {
-            self.weights[c]
-                .iter()
-                .zip(&spectrum.0)
-                .map(|(w, r)| w * r)
-                .sum()
-        });
-        Xyz {
-            xyz,
-            viewing: self.viewing,
-        }
+        let xyz = std::array::from_fn(|c| self.weights[c].iter().zip(&spectrum.0).map(|(w, r)| w * r).sum());
+        Xyz { xyz, viewing: self.viewing }
     }
 
     /// CIELAB of `xyz` relative to this viewing's white.
@@ -385,17 +331,10 @@ impl Colorimeter {
     pub fn lab(&self, xyz: &Xyz) -> Lab {
         debug_assert_eq!(xyz.viewing, self.viewing);
         let f = |t: f64| {
-            if t > (24.0f64 / 116.0).powi(3) {
-                t.cbrt()
-            } else {
-                841.0 / 108.0 * t + 16.0 / 116.0
-            }
+            if t > (24.0f64 / 116.0).powi(3) { t.cbrt() } else { 841.0 / 108.0 * t + 16.0 / 116.0 }
         };
         let [fx, fy, fz] = std::array::from_fn(|c| f(xyz.xyz[c] / self.white[c]));
-        Lab {
-            lab: [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)],
-            viewing: self.viewing,
-        }
+        Lab { lab: [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)], viewing: self.viewing }
     }
 
     /// Linear sRGB (white = 1) of `xyz`; adapted to D65 by Bradford when the illuminant is not D65.
@@ -414,21 +353,13 @@ impl Colorimeter {
 /// linear below 0.0031308 (negative values included), power law above; not clipped.
 #[inline]
 pub fn srgb_encode(linear: f64) -> f64 {
-    if linear <= 0.003_130_8 {
-        12.92 * linear
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
+    if linear <= 0.003_130_8 { 12.92 * linear } else { 1.055 * linear.powf(1.0 / 2.4) - 0.055 }
 }
 
 /// Inverse of [`srgb_encode`].
 #[inline]
 pub fn srgb_decode(encoded: f64) -> f64 {
-    if encoded <= 0.040_45 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
+    if encoded <= 0.040_45 { encoded / 12.92 } else { ((encoded + 0.055) / 1.055).powf(2.4) }
 }
 
 /// CIEDE2000 colour difference (CIE 142-2001; implementation notes of Sharma, Wu & Dalal 2005:
@@ -535,10 +466,7 @@ mod tests {
     fn perfect_reflector_has_y_100_and_grey_is_neutral() {
         for obs in Observer::ALL {
             for ill in Illuminant::ALL {
-                let c = Colorimeter::get(Viewing {
-                    illuminant: ill,
-                    observer: obs,
-                });
+                let c = Colorimeter::get(Viewing { illuminant: ill, observer: obs });
                 let w = c.xyz(&Spectrum::constant(1.0));
                 assert!((w.xyz[1] - 100.0).abs() < 1e-12);
                 let lab = c.lab(&c.xyz(&Spectrum::constant(0.18)));

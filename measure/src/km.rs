@@ -105,9 +105,7 @@ pub enum KmError {
         rg: f64,
     },
     /// R = R∞ over a background of a different reflectance.
-    #[error(
-        "R = R∞ = {r_inf} while Rg = {rg}: only an infinitely thick layer hides its background completely"
-    )]
+    #[error("R = R∞ = {r_inf} while Rg = {rg}: only an infinitely thick layer hides its background completely")]
     InfinitelyThick {
         /// R∞
         r_inf: f64,
@@ -115,9 +113,7 @@ pub enum KmError {
         rg: f64,
     },
     /// The background has the layer's own R∞, so R carries no information about S.
-    #[error(
-        "Rg = R∞ = {r_inf}: over a background of its own colour a layer is invisible, so S cannot be measured"
-    )]
+    #[error("Rg = R∞ = {r_inf}: over a background of its own colour a layer is invisible, so S cannot be measured")]
     BackgroundEqualsRInf {
         /// R∞
         r_inf: f64,
@@ -149,11 +145,7 @@ pub enum KmError {
 }
 
 fn check_unit(name: &'static str, value: f64) -> Result<(), KmError> {
-    if (0.0..=1.0).contains(&value) {
-        Ok(())
-    } else {
-        Err(KmError::ReflectanceOutOfRange { name, value })
-    }
+    if (0.0..=1.0).contains(&value) { Ok(()) } else { Err(KmError::ReflectanceOutOfRange { name, value }) }
 }
 
 /// `ln(1 + z) / z` for `z ≥ 0`, accurate near 0 and finite for `z = ∞` (returns 0).
@@ -200,10 +192,7 @@ pub fn invert_s_k(r_inf: f64, r: f64, rg: f64, thickness_mm: f64) -> Result<KmCo
         return Err(KmError::BeyondBackground { r_inf, r, rg });
     }
     if r == rg {
-        return Ok(KmCoefficients {
-            s_per_mm: 0.0,
-            k_per_mm: 0.0,
-        });
+        return Ok(KmCoefficients { s_per_mm: 0.0, k_per_mm: 0.0 });
     }
     let one_minus = 1.0 - r_inf;
     let one_minus_sq = one_minus * (1.0 + r_inf); // 1 − R∞², no cancellation
@@ -220,24 +209,14 @@ pub fn invert_s_k(r_inf: f64, r: f64, rg: f64, thickness_mm: f64) -> Result<KmCo
     };
     let s_per_mm = s_times_d / thickness_mm;
     if !s_per_mm.is_finite() {
-        return Err(KmError::Overflow {
-            s_times_d,
-            thickness_mm,
-        });
+        return Err(KmError::Overflow { s_times_d, thickness_mm });
     }
     let k_per_mm = s_per_mm * (one_minus * one_minus / (2.0 * r_inf));
-    Ok(KmCoefficients {
-        s_per_mm,
-        k_per_mm,
-    })
+    Ok(KmCoefficients { s_per_mm, k_per_mm })
 }
 
 fn check_coefficient(name: &'static str, value: f64) -> Result<(), KmError> {
-    if value >= 0.0 && value.is_finite() {
-        Ok(())
-    } else {
-        Err(KmError::BadCoefficient { name, value })
-    }
+    if value >= 0.0 && value.is_finite() { Ok(()) } else { Err(KmError::BadCoefficient { name, value }) }
 }
 
 /// `sech(y)` for `y ≥ 0` without overflow: `2e^{−y}/(1 + e^{−2y})`.
@@ -258,10 +237,7 @@ pub fn layer_r_t(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64) -> Result<Laye
     check_coefficient("S", s_per_mm)?;
     check_coefficient("K", k_per_mm)?;
     if !(thickness_mm >= 0.0) {
-        return Err(KmError::BadCoefficient {
-            name: "X",
-            value: thickness_mm,
-        });
+        return Err(KmError::BadCoefficient { name: "X", value: thickness_mm });
     }
     Ok(layer_r_t_unchecked(s_per_mm, k_per_mm, thickness_mm))
 }
@@ -313,19 +289,13 @@ pub fn compose(top: LayerRt, bottom: LayerRt) -> LayerRt {
     if den <= 0.0 {
         return LayerRt { r: 1.0, t: 0.0 };
     }
-    LayerRt {
-        r: top.r + top.t * top.t * bottom.r / den,
-        t: top.t * bottom.t / den,
-    }
+    LayerRt { r: top.r + top.t * top.t * bottom.r / den, t: top.t * bottom.t / den }
 }
 
 /// Composite R and T of a stack of KM layers listed **top first**, folded from the bottom up so
 /// each step puts one symmetric layer over what lies below. An empty stack is clear.
 pub fn stack(layers_top_first: &[LayerRt]) -> LayerRt {
-    layers_top_first
-        .iter()
-        .rev()
-        .fold(LayerRt::CLEAR, |below, &layer| compose(layer, below))
+    layers_top_first.iter().rev().fold(LayerRt::CLEAR, |below, &layer| compose(layer, below))
 }
 
 /// Checks a layer given by R and T: both in [0, 1] and `R + T ≤ 1` (within 1e-12).
@@ -333,22 +303,14 @@ pub fn check_layer(layer: LayerRt) -> Result<LayerRt, KmError> {
     check_unit("R0", layer.r)?;
     check_unit("T", layer.t)?;
     if layer.r + layer.t > 1.0 + 1e-12 {
-        return Err(KmError::NotPassive {
-            r: layer.r,
-            t: layer.t,
-        });
+        return Err(KmError::NotPassive { r: layer.r, t: layer.t });
     }
     Ok(layer)
 }
 
 /// Reflectance of a KM layer (S, K per mm, thickness mm) over an opaque background of
 /// reflectance `rg`: `R = R0 + T² Rg/(1 − R0 Rg)`.
-pub fn reflectance_over_background(
-    s_per_mm: f64,
-    k_per_mm: f64,
-    thickness_mm: f64,
-    rg: f64,
-) -> Result<f64, KmError> {
+pub fn reflectance_over_background(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64, rg: f64) -> Result<f64, KmError> {
     check_unit("Rg", rg)?;
     let layer = layer_r_t(s_per_mm, k_per_mm, thickness_mm)?;
     Ok(compose(layer, LayerRt::opaque(rg)).r)
@@ -387,23 +349,13 @@ impl Saunderson {
     /// `K1` from the refractive index `n` (Fresnel at normal incidence), with the given `K2`.
     pub fn from_refractive_index(n: f64, k2: f64, specular_included: bool) -> Result<Self, KmError> {
         if !(n >= 1.0 && n.is_finite()) {
-            return Err(KmError::BadCoefficient {
-                name: "refractive index",
-                value: n,
-            });
+            return Err(KmError::BadCoefficient { name: "refractive index", value: n });
         }
         if !(0.0..1.0).contains(&k2) {
-            return Err(KmError::BadCoefficient {
-                name: "K2",
-                value: k2,
-            });
+            return Err(KmError::BadCoefficient { name: "K2", value: k2 });
         }
         let k1 = ((n - 1.0) / (n + 1.0)).powi(2);
-        Ok(Saunderson {
-            k1,
-            k2,
-            specular_included,
-        })
+        Ok(Saunderson { k1, k2, specular_included })
     }
 
     fn f_k1(&self) -> f64 {
@@ -421,8 +373,7 @@ impl Saunderson {
 
     /// Internal reflectance → measured reflectance.
     pub fn to_measured(&self, r_internal: f64) -> f64 {
-        self.f_k1()
-            + (1.0 - self.k1) * (1.0 - self.k2) * r_internal / (1.0 - self.k2 * r_internal)
+        self.f_k1() + (1.0 - self.k1) * (1.0 - self.k2) * r_internal / (1.0 - self.k2 * r_internal)
     }
 }
 

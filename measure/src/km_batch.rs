@@ -59,8 +59,7 @@ pub fn fast_ln(x: f64) -> f64 {
                     + s2 * (1.0 / 9.0
                         + s2 * (1.0 / 11.0
                             + s2 * (1.0 / 13.0
-                                + s2 * (1.0 / 15.0
-                                    + s2 * (1.0 / 17.0 + s2 * (1.0 / 19.0 + s2 * (1.0 / 21.0))))))))));
+                                + s2 * (1.0 / 15.0 + s2 * (1.0 / 17.0 + s2 * (1.0 / 19.0 + s2 * (1.0 / 21.0))))))))));
     // ln m = 2s + 2s·p = f − (f − 2s) + 2s·p; keep it simple: 2s(1 + p).
     let ln_m = 2.0 * s + 2.0 * s * p;
     e * LN2_HI + (ln_m + e * LN2_LO)
@@ -141,8 +140,7 @@ fn layer_lane(s: f64, k: f64, x: f64) -> (f64, f64) {
     let q_small = x
         * (1.0
             - y2 * (1.0 / 3.0
-                - y2 * (2.0 / 15.0
-                    - y2 * (17.0 / 315.0 - y2 * (62.0 / 2835.0 - y2 * (1382.0 / 155_925.0))))));
+                - y2 * (2.0 / 15.0 - y2 * (17.0 / 315.0 - y2 * (62.0 / 2835.0 - y2 * (1382.0 / 155_925.0))))));
     let m = fast_exp_neg(y);
     let m2 = m * m;
     let q_big = (1.0 - m2) / (1.0 + m2) / beta;
@@ -181,14 +179,7 @@ macro_rules! dispatch {
 #[inline(always)]
 fn invert_loop(r_inf: &[f64], r: &[f64], rg: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
     let mut bad = 0usize;
-    for (((((ri, rr), rgg), dd), so), ko) in r_inf
-        .iter()
-        .zip(r)
-        .zip(rg)
-        .zip(d)
-        .zip(s.iter_mut())
-        .zip(k.iter_mut())
-    {
+    for (((((ri, rr), rgg), dd), so), ko) in r_inf.iter().zip(r).zip(rg).zip(d).zip(s.iter_mut()).zip(k.iter_mut()) {
         let (sv, kv) = invert_lane(*ri, *rr, *rgg, *dd);
         bad += usize::from(sv.is_nan());
         *so = sv;
@@ -248,18 +239,10 @@ pub fn invert_batch(
     k_out: &mut [f64],
 ) -> Result<(), BatchError> {
     let n = r_inf.len();
-    if [r.len(), rg.len(), thickness_mm.len(), s_out.len(), k_out.len()]
-        .iter()
-        .any(|&l| l != n)
-    {
+    if [r.len(), rg.len(), thickness_mm.len(), s_out.len(), k_out.len()].iter().any(|&l| l != n) {
         return Err(BatchError::LengthMismatch("r_inf, r, rg, thickness_mm, s_out, k_out"));
     }
-    let bad = dispatch!(
-        invert_generic,
-        invert_avx2,
-        invert_avx512,
-        (r_inf, r, rg, thickness_mm, s_out, k_out)
-    );
+    let bad = dispatch!(invert_generic, invert_avx2, invert_avx512, (r_inf, r, rg, thickness_mm, s_out, k_out));
     if bad > 0 {
         for i in 0..n {
             if s_out[i].is_nan() {
@@ -282,18 +265,10 @@ pub fn layer_batch(
     t_out: &mut [f64],
 ) -> Result<(), BatchError> {
     let n = s_per_mm.len();
-    if [k_per_mm.len(), thickness_mm.len(), r_out.len(), t_out.len()]
-        .iter()
-        .any(|&l| l != n)
-    {
+    if [k_per_mm.len(), thickness_mm.len(), r_out.len(), t_out.len()].iter().any(|&l| l != n) {
         return Err(BatchError::LengthMismatch("s, k, thickness_mm, r_out, t_out"));
     }
-    let bad = dispatch!(
-        layer_generic,
-        layer_avx2,
-        layer_avx512,
-        (s_per_mm, k_per_mm, thickness_mm, r_out, t_out)
-    );
+    let bad = dispatch!(layer_generic, layer_avx2, layer_avx512, (s_per_mm, k_per_mm, thickness_mm, r_out, t_out));
     if bad > 0 {
         for i in 0..n {
             if r_out[i].is_nan() {

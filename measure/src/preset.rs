@@ -169,11 +169,9 @@ pub fn invert_measurement(
     let mut s = [0.0; WORKING_LEN];
     let mut k = [0.0; WORKING_LEN];
     for i in 0..WORKING_LEN {
-        let KmCoefficients { s_per_mm, k_per_mm } = km::invert_s_k(m.r_inf.0[i], m.r.0[i], m.rg.0[i], thickness_mm)
-            .map_err(|error| PresetError::Inversion {
-                path: source.to_string(),
-                wavelength_nm: working_wavelength_nm(i),
-                error,
+        let KmCoefficients { s_per_mm, k_per_mm } =
+            km::invert_s_k(m.r_inf.0[i], m.r.0[i], m.rg.0[i], thickness_mm).map_err(|error| {
+                PresetError::Inversion { path: source.to_string(), wavelength_nm: working_wavelength_nm(i), error }
             })?;
         s[i] = s_per_mm;
         k[i] = k_per_mm;
@@ -297,7 +295,28 @@ impl Preset {
                 ..working.clone()
             },
         };
-        let (s, k) = invert_measurement(&internal, thickness_mm, &source)?;
+        // Check the KM domain on the measured grid first, so an error names a wavelength that
+        // was actually measured; then invert on the working grid, where interpolation between
+        // valid measured points can still (rarely) overshoot.
+        let to_int = |v: f64| saunderson.map_or(v, |c| c.to_internal(v));
+        for (i, &nm) in measurement.r_inf.wavelengths_nm().iter().enumerate() {
+            let (a, b, c) = (measurement.r_inf.values()[i], measurement.r.values()[i], measurement.rg.values()[i]);
+            km::invert_s_k(to_int(a), to_int(b), to_int(c), thickness_mm).map_err(|error| PresetError::Inversion {
+                path: source.clone(),
+                wavelength_nm: nm,
+                error,
+            })?;
+        }
+        let (s, k) = invert_measurement(&internal, thickness_mm, &source).map_err(|e| match e {
+            PresetError::Inversion { path, wavelength_nm, error } => invalid(
+                &path,
+                format!(
+                    "at {wavelength_nm} nm (interpolated between measured wavelengths, which are all valid): {error}; \
+                     the measurement grid is too coarse for this spectrum's shape"
+                ),
+            ),
+            other => other,
+        })?;
         let mut preset = Preset::from_s_k(name, kind, thickness_mm, &s, &k);
         preset.measurement = Some(SourceMeasurement {
             file: measurement.source.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned()),
@@ -389,7 +408,10 @@ impl Preset {
         if let Some(m) = &self.measurement {
             for (field, values) in [("r_inf", &m.r_inf), ("r", &m.r), ("rg", &m.rg)] {
                 if values.len() != WORKING_LEN {
-                    return Err(invalid(path, format!("`measurement.{field}` has {} values, expected {WORKING_LEN}", values.len())));
+                    return Err(invalid(
+                        path,
+                        format!("`measurement.{field}` has {} values, expected {WORKING_LEN}", values.len()),
+                    ));
                 }
                 if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(0.0..=1.5).contains(*v)) {
                     return Err(invalid(
@@ -408,7 +430,9 @@ impl Preset {
             return Err(invalid(path, "`derived.thickness_mm` must start at 0 and increase".into()));
         }
         for (field, rows) in [("r0_linear_srgb", &d.r0_linear_srgb), ("t_linear_srgb", &d.t_linear_srgb)] {
-            if let Some((i, row)) = rows.iter().enumerate().find(|(_, r)| r.iter().any(|v| !v.is_finite() || v.abs() > 2.0)) {
+            if let Some((i, row)) =
+                rows.iter().enumerate().find(|(_, r)| r.iter().any(|v| !v.is_finite() || v.abs() > 2.0))
+            {
                 return Err(invalid(path, format!("`derived.{field}` row {i} = {row:?} is out of range")));
             }
         }
@@ -453,10 +477,8 @@ impl Preset {
     /// Writes the preset atomically: a temporary file in the same directory, then a rename, so a
     /// failed save never destroys an existing file.
     pub fn save(&self, path: &Path) -> Result<(), PresetError> {
-        write_atomic(path, self.to_json().as_bytes()).map_err(|source| PresetError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        write_atomic(path, self.to_json().as_bytes())
+            .map_err(|source| PresetError::Io { path: path.display().to_string(), source })
     }
 }
 

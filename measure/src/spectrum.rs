@@ -53,12 +53,7 @@ impl Spectrum {
     /// Builds a spectrum from exactly 81 values on the working grid.
     pub fn from_slice(values: &[f64]) -> Result<Self, SpectrumError> {
         let arr: [f64; WORKING_LEN] =
-            values
-                .try_into()
-                .map_err(|_| SpectrumError::WrongLength {
-                    expected: WORKING_LEN,
-                    found: values.len(),
-                })?;
+            values.try_into().map_err(|_| SpectrumError::WrongLength { expected: WORKING_LEN, found: values.len() })?;
         Ok(Spectrum(arr))
     }
 
@@ -69,10 +64,7 @@ impl Spectrum {
 
     /// Pairs of (wavelength nm, value).
     pub fn iter_nm(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.0
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| (working_wavelength_nm(i), v))
+        self.0.iter().enumerate().map(|(i, &v)| (working_wavelength_nm(i), v))
     }
 
     /// Applies `f` to every value.
@@ -82,11 +74,7 @@ impl Spectrum {
 
     /// Smallest and largest value.
     pub fn min_max(&self) -> (f64, f64) {
-        self.0
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                (lo.min(v), hi.max(v))
-            })
+        self.0.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)))
     }
 }
 
@@ -96,7 +84,9 @@ impl fmt::Debug for Spectrum {
         write!(
             f,
             "Spectrum(380-780 nm/5, min {lo}, max {hi}, [{}, {}, ..., {}])",
-            self.0[0], self.0[1], self.0[WORKING_LEN - 1]
+            self.0[0],
+            self.0[1],
+            self.0[WORKING_LEN - 1]
         )
     }
 }
@@ -199,42 +189,25 @@ impl SampledSpectrum {
     /// Checks the grid (finite, strictly increasing, at least 2 samples) and the values (finite).
     pub fn new(wavelengths_nm: Vec<f64>, values: Vec<f64>) -> Result<Self, SpectrumError> {
         if wavelengths_nm.len() != values.len() {
-            return Err(SpectrumError::LengthMismatch {
-                wavelengths: wavelengths_nm.len(),
-                values: values.len(),
-            });
+            return Err(SpectrumError::LengthMismatch { wavelengths: wavelengths_nm.len(), values: values.len() });
         }
         if wavelengths_nm.len() < 2 {
             return Err(SpectrumError::TooFewSamples(wavelengths_nm.len()));
         }
         for (index, (&w, &v)) in wavelengths_nm.iter().zip(&values).enumerate() {
             if !w.is_finite() {
-                return Err(SpectrumError::NonFinite {
-                    what: "wavelength",
-                    index,
-                    value: w,
-                });
+                return Err(SpectrumError::NonFinite { what: "wavelength", index, value: w });
             }
             if !v.is_finite() {
-                return Err(SpectrumError::NonFinite {
-                    what: "value",
-                    index,
-                    value: v,
-                });
+                return Err(SpectrumError::NonFinite { what: "value", index, value: v });
             }
         }
         for pair in wavelengths_nm.windows(2) {
             if pair[1] <= pair[0] {
-                return Err(SpectrumError::NotIncreasing {
-                    prev_nm: pair[0],
-                    next_nm: pair[1],
-                });
+                return Err(SpectrumError::NotIncreasing { prev_nm: pair[0], next_nm: pair[1] });
             }
         }
-        Ok(SampledSpectrum {
-            wavelengths_nm,
-            values,
-        })
+        Ok(SampledSpectrum { wavelengths_nm, values })
     }
 
     /// The measured wavelengths, nm.
@@ -251,9 +224,7 @@ impl SampledSpectrum {
     pub fn uniform_step_nm(&self) -> Option<f64> {
         let w = &self.wavelengths_nm;
         let step = (w[w.len() - 1] - w[0]) / (w.len() - 1) as f64;
-        w.windows(2)
-            .all(|p| ((p[1] - p[0]) - step).abs() <= 1e-6)
-            .then_some(step)
+        w.windows(2).all(|p| ((p[1] - p[0]) - step).abs() <= 1e-6).then_some(step)
     }
 
     /// Resamples onto the working grid (see the module documentation for the method).
@@ -265,10 +236,7 @@ impl SampledSpectrum {
         let tol = 1e-6;
         let covers = first <= WORKING_START_NM + tol && last >= working_last - tol;
         if !covers && extrapolation == Extrapolation::Refuse {
-            return Err(SpectrumError::DoesNotCover {
-                first_nm: first,
-                last_nm: last,
-            });
+            return Err(SpectrumError::DoesNotCover { first_nm: first, last_nm: last });
         }
         let step = self.uniform_step_nm();
         // Identity: exactly the working grid.
@@ -307,12 +275,7 @@ impl SampledSpectrum {
                 linear_interpolate(w, &self.values, nm)
             }
         });
-        Ok(Resampled {
-            spectrum,
-            method,
-            extrapolated_below_nm: below,
-            extrapolated_above_nm: above,
-        })
+        Ok(Resampled { spectrum, method, extrapolated_below_nm: below, extrapolated_above_nm: above })
     }
 }
 
@@ -357,11 +320,7 @@ impl Sprague {
         padded.extend_from_slice(y);
         padded.push(dot(c_inner, tail));
         padded.push(dot(c_outer, tail));
-        Sprague {
-            first_nm,
-            step_nm,
-            padded,
-        }
+        Sprague { first_nm, step_nm, padded }
     }
 
     fn eval(&self, nm: f64) -> f64 {
@@ -376,13 +335,9 @@ impl Sprague {
         let a0 = r[2];
         let a1 = (2.0 * r[0] - 16.0 * r[1] + 16.0 * r[3] - 2.0 * r[4]) / 24.0;
         let a2 = (-r[0] + 16.0 * r[1] - 30.0 * r[2] + 16.0 * r[3] - r[4]) / 24.0;
-        let a3 = (-9.0 * r[0] + 39.0 * r[1] - 70.0 * r[2] + 66.0 * r[3] - 33.0 * r[4] + 7.0 * r[5])
-            / 24.0;
-        let a4 = (13.0 * r[0] - 64.0 * r[1] + 126.0 * r[2] - 124.0 * r[3] + 61.0 * r[4]
-            - 12.0 * r[5])
-            / 24.0;
-        let a5 = (-5.0 * r[0] + 25.0 * r[1] - 50.0 * r[2] + 50.0 * r[3] - 25.0 * r[4] + 5.0 * r[5])
-            / 24.0;
+        let a3 = (-9.0 * r[0] + 39.0 * r[1] - 70.0 * r[2] + 66.0 * r[3] - 33.0 * r[4] + 7.0 * r[5]) / 24.0;
+        let a4 = (13.0 * r[0] - 64.0 * r[1] + 126.0 * r[2] - 124.0 * r[3] + 61.0 * r[4] - 12.0 * r[5]) / 24.0;
+        let a5 = (-5.0 * r[0] + 25.0 * r[1] - 50.0 * r[2] + 50.0 * r[3] - 25.0 * r[4] + 5.0 * r[5]) / 24.0;
         a0 + x * (a1 + x * (a2 + x * (a3 + x * (a4 + x * a5))))
     }
 }
@@ -400,10 +355,7 @@ mod tests {
     fn working_grid_is_identity() {
         let w = grid(380.0, 5.0, 780.0);
         let v: Vec<f64> = w.iter().map(|x| (x / 100.0).sin()).collect();
-        let r = SampledSpectrum::new(w, v.clone())
-            .unwrap()
-            .to_working_grid(Extrapolation::Refuse)
-            .unwrap();
+        let r = SampledSpectrum::new(w, v.clone()).unwrap().to_working_grid(Extrapolation::Refuse).unwrap();
         assert_eq!(r.method, ResampleMethod::Identity);
         assert_eq!(&r.spectrum.0[..], &v[..]);
     }
@@ -412,10 +364,7 @@ mod tests {
     fn one_nm_data_keeps_its_values_at_the_5nm_knots() {
         let w = grid(360.0, 1.0, 830.0);
         let v: Vec<f64> = w.iter().map(|x| 0.5 + 0.3 * (x / 37.0).sin()).collect();
-        let r = SampledSpectrum::new(w.clone(), v.clone())
-            .unwrap()
-            .to_working_grid(Extrapolation::Refuse)
-            .unwrap();
+        let r = SampledSpectrum::new(w.clone(), v.clone()).unwrap().to_working_grid(Extrapolation::Refuse).unwrap();
         assert_eq!(r.method, ResampleMethod::Sprague);
         for (i, (nm, val)) in r.spectrum.iter_nm().enumerate() {
             let j = (nm - 360.0) as usize;
@@ -432,10 +381,7 @@ mod tests {
         };
         let w = grid(360.0, 10.0, 830.0);
         let v: Vec<f64> = w.iter().map(|&x| p(x)).collect();
-        let r = SampledSpectrum::new(w, v)
-            .unwrap()
-            .to_working_grid(Extrapolation::Refuse)
-            .unwrap();
+        let r = SampledSpectrum::new(w, v).unwrap().to_working_grid(Extrapolation::Refuse).unwrap();
         for (nm, val) in r.spectrum.iter_nm() {
             assert!((val - p(nm)).abs() < 1e-13, "{nm}: {val} vs {}", p(nm));
         }
@@ -458,10 +404,7 @@ mod tests {
     fn non_uniform_grid_is_linear() {
         let w = vec![370.0, 500.0, 520.0, 800.0];
         let v = vec![0.0, 1.0, 1.0, 0.0];
-        let r = SampledSpectrum::new(w, v)
-            .unwrap()
-            .to_working_grid(Extrapolation::Refuse)
-            .unwrap();
+        let r = SampledSpectrum::new(w, v).unwrap().to_working_grid(Extrapolation::Refuse).unwrap();
         assert_eq!(r.method, ResampleMethod::Linear);
         assert!((r.spectrum.0[((435.0 - 380.0) / 5.0) as usize] - 0.5).abs() < 1e-15);
     }
@@ -476,9 +419,6 @@ mod tests {
             SampledSpectrum::new(vec![400.0, 410.0], vec![0.1, f64::NAN]),
             Err(SpectrumError::NonFinite { .. })
         ));
-        assert!(matches!(
-            SampledSpectrum::new(vec![400.0], vec![0.1]),
-            Err(SpectrumError::TooFewSamples(1))
-        ));
+        assert!(matches!(SampledSpectrum::new(vec![400.0], vec![0.1]), Err(SpectrumError::TooFewSamples(1))));
     }
 }

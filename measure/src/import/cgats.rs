@@ -11,8 +11,8 @@
 //! (`R_INF`, `R` or `RG`) in single-spectrum files.
 
 use super::{
-    Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_reflectance_range, check_wavelengths,
-    detect_scale, parse_number,
+    Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_reflectance_range, check_wavelengths, detect_scale,
+    parse_number,
 };
 use crate::spectrum::SampledSpectrum;
 use std::collections::BTreeMap;
@@ -95,11 +95,8 @@ fn spectral_field_nm(name: &str) -> Option<f64> {
 
 /// Parses a CGATS file's structure and spectra.
 pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut lines =
+        text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
     let (_, first) = lines.next().ok_or_else(|| ImportError::file(path, "the file is empty"))?;
     let identifier = tokens(first).into_iter().next().unwrap_or_default();
     let mut keywords = BTreeMap::new();
@@ -142,7 +139,14 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
     }
     match state {
         Header => return Err(ImportError::file(path, "no BEGIN_DATA_FORMAT section")),
-        Format => return Err(ImportError::at(path, format_line, None, "BEGIN_DATA_FORMAT is never closed by END_DATA_FORMAT")),
+        Format => {
+            return Err(ImportError::at(
+                path,
+                format_line,
+                None,
+                "BEGIN_DATA_FORMAT is never closed by END_DATA_FORMAT",
+            ));
+        }
         AfterFormat => return Err(ImportError::file(path, "no BEGIN_DATA section")),
         Data => return Err(ImportError::at(path, data_line, None, "BEGIN_DATA is never closed by END_DATA")),
         Done => {}
@@ -216,8 +220,9 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
     let mut samples = Vec::with_capacity(rows.len());
     for (k, ((line, row), cells)) in rows.iter().zip(&values).enumerate() {
         let name = name_field.map_or_else(|| (k + 1).to_string(), |i| row[i].clone());
-        let spectrum = SampledSpectrum::new(wavelengths.clone(), cells.iter().map(|c| c.value * scale.factor()).collect())
-            .map_err(|e| ImportError::at(path, *line, None, e.to_string()))?;
+        let spectrum =
+            SampledSpectrum::new(wavelengths.clone(), cells.iter().map(|c| c.value * scale.factor()).collect())
+                .map_err(|e| ImportError::at(path, *line, None, e.to_string()))?;
         samples.push(NamedSpectrum { name, line: *line, spectrum });
     }
     Ok(CgatsFile { path: path.to_path_buf(), identifier, keywords, scale, samples })
@@ -257,23 +262,22 @@ impl CgatsFile {
         let kw = |k: &str| self.keywords.get(k).cloned();
         let thickness_mm = match kw("ROUGE_THICKNESS_MM").or_else(|| kw("THICKNESS_MM")) {
             None => None,
-            Some(t) => Some(
-                t.trim()
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|v| *v > 0.0 && v.is_finite())
-                    .ok_or_else(|| ImportError::file(&self.path, format!("THICKNESS_MM `{t}` is not a positive number")))?,
-            ),
+            Some(t) => Some(t.trim().parse::<f64>().ok().filter(|v| *v > 0.0 && v.is_finite()).ok_or_else(|| {
+                ImportError::file(&self.path, format!("THICKNESS_MM `{t}` is not a positive number"))
+            })?),
         };
         let kind = match kw("ROUGE_KIND").or_else(|| kw("KIND")) {
             None => None,
-            Some(k) => Some(Kind::parse(&k).ok_or_else(|| ImportError::file(&self.path, format!("unknown KIND `{k}`")))?),
+            Some(k) => {
+                Some(Kind::parse(&k).ok_or_else(|| ImportError::file(&self.path, format!("unknown KIND `{k}`")))?)
+            }
         };
         Ok(Measurement {
             source: self.path.clone(),
-            name: kw("SAMPLE_SET_NAME")
-                .or_else(|| kw("DESCRIPTOR"))
-                .unwrap_or_else(|| self.path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned())),
+            format: format!("CGATS text ({})", self.identifier),
+            name: kw("ROUGE_NAME").unwrap_or_else(|| {
+                self.path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+            }),
             kind,
             thickness_mm,
             instrument: kw("INSTRUMENTATION").or_else(|| kw("TARGET_INSTRUMENT")).or_else(|| kw("ORIGINATOR")),

@@ -51,22 +51,12 @@ impl fmt::Display for ImportError {
 impl ImportError {
     /// An error about the whole file.
     pub fn file(path: &Path, message: impl Into<String>) -> Self {
-        ImportError {
-            path: path.to_path_buf(),
-            line: None,
-            column: None,
-            message: message.into(),
-        }
+        ImportError { path: path.to_path_buf(), line: None, column: None, message: message.into() }
     }
 
     /// An error at a line (and optionally a column).
     pub fn at(path: &Path, line: usize, column: Option<usize>, message: impl Into<String>) -> Self {
-        ImportError {
-            path: path.to_path_buf(),
-            line: Some(line),
-            column,
-            message: message.into(),
-        }
+        ImportError { path: path.to_path_buf(), line: Some(line), column, message: message.into() }
     }
 }
 
@@ -127,11 +117,7 @@ pub(crate) fn detect_scale(cells: &[Cell]) -> Scale {
     let mut v: Vec<f64> = cells.iter().map(|c| c.value).collect();
     v.sort_by(f64::total_cmp);
     let median = if v.is_empty() { 0.0 } else { v[v.len() / 2] };
-    if median > MAX_REFLECTANCE {
-        Scale::Percent { declared: false }
-    } else {
-        Scale::Fraction { declared: false }
-    }
+    if median > MAX_REFLECTANCE { Scale::Percent { declared: false } } else { Scale::Fraction { declared: false } }
 }
 
 /// Checks reflectances (already scaled to fractions) lie in [0, 1.5].
@@ -139,19 +125,20 @@ pub(crate) fn check_reflectance_range(path: &Path, cells: &[Cell], factor: f64) 
     for c in cells {
         let v = c.value * factor;
         if !(0.0..=MAX_REFLECTANCE).contains(&v) {
-            return Err(ImportError::at(
-                path,
-                c.line,
-                Some(c.column),
-                format!("reflectance {v} is outside [0, 1.5]"),
-            ));
+            return Err(ImportError::at(path, c.line, Some(c.column), format!("reflectance {v} is outside [0, 1.5]")));
         }
     }
     Ok(())
 }
 
 /// Parses a number cell; NaN and infinities are errors.
-pub(crate) fn parse_number(path: &Path, text: &str, line: usize, column: usize, what: &str) -> Result<f64, ImportError> {
+pub(crate) fn parse_number(
+    path: &Path,
+    text: &str,
+    line: usize,
+    column: usize,
+    what: &str,
+) -> Result<f64, ImportError> {
     let t = text.trim();
     match t.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
@@ -227,6 +214,8 @@ impl Kind {
 pub struct Measurement {
     /// Where it came from.
     pub source: PathBuf,
+    /// The file format, in words (`Rouge CSV`, `CGATS (CGATS.17)`, `CS-2000 radiance`, ...).
+    pub format: String,
     /// Name (from the file, or the file stem).
     pub name: String,
     /// Cosmetic kind, if the file says.
@@ -272,17 +261,8 @@ impl Measurement {
         let a = conv(&self.r_inf, "r_inf")?;
         let b = conv(&self.r, "r")?;
         let c = conv(&self.rg, "rg")?;
-        let extrapolated = [a.extrapolated_below_nm, a.extrapolated_above_nm]
-            .into_iter()
-            .flatten()
-            .collect();
-        Ok(WorkingMeasurement {
-            r_inf: a.spectrum,
-            r: b.spectrum,
-            rg: c.spectrum,
-            method: a.method,
-            extrapolated,
-        })
+        let extrapolated = [a.extrapolated_below_nm, a.extrapolated_above_nm].into_iter().flatten().collect();
+        Ok(WorkingMeasurement { r_inf: a.spectrum, r: b.spectrum, rg: c.spectrum, method: a.method, extrapolated })
     }
 }
 
@@ -299,11 +279,7 @@ pub struct SampleNames {
 
 impl Default for SampleNames {
     fn default() -> Self {
-        SampleNames {
-            r_inf: "R_INF".into(),
-            r: "R".into(),
-            rg: "RG".into(),
-        }
+        SampleNames { r_inf: "R_INF".into(), r: "R".into(), rg: "RG".into() }
     }
 }
 
@@ -333,9 +309,8 @@ pub fn read_measurement(path: &Path, options: &ImportOptions) -> Result<Measurem
 
 fn read_text(path: &Path) -> Result<String, ImportError> {
     let bytes = std::fs::read(path).map_err(|e| ImportError::file(path, format!("cannot read: {e}")))?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        ImportError::file(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
-    })?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| ImportError::file(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
     if text.trim().is_empty() {
         return Err(ImportError::file(path, "the file is empty"));
     }
@@ -354,7 +329,10 @@ pub fn read_single_spectrum(path: &Path) -> Result<(SampledSpectrum, Option<Stri
         [one] => Ok((one.spectrum.clone(), file.keywords.get("ROUGE_ROLE").cloned(), file.scale)),
         many => Err(ImportError::file(
             path,
-            format!("{} spectra in a file given as a single spectrum; name the samples with --samples instead", many.len()),
+            format!(
+                "{} spectra in a file given as a single spectrum; name the samples with --samples instead",
+                many.len()
+            ),
         )),
     }
 }
@@ -367,7 +345,10 @@ pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measu
         let (spectrum, declared, scale) = read_single_spectrum(path)?;
         if let Some(d) = declared {
             if !d.eq_ignore_ascii_case(role) {
-                return Err(ImportError::file(path, format!("this file says ROUGE_ROLE {d}, but it was given as {role}")));
+                return Err(ImportError::file(
+                    path,
+                    format!("this file says ROUGE_ROLE {d}, but it was given as {role}"),
+                ));
             }
         }
         spectra.push((spectrum, scale));
@@ -380,10 +361,8 @@ pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measu
         spectra.try_into().map_err(|_| ImportError::file(r_inf, "internal: three spectra expected"))?;
     Ok(Measurement {
         source: r_inf.to_path_buf(),
-        name: r_inf
-            .file_stem()
-            .map(|s| s.to_string_lossy().trim_end_matches("_r_inf").to_string())
-            .unwrap_or_default(),
+        format: "three single-spectrum CGATS files (R∞, R, Rg)".into(),
+        name: r_inf.file_stem().map(|s| s.to_string_lossy().trim_end_matches("_r_inf").to_string()).unwrap_or_default(),
         kind: None,
         thickness_mm: None,
         instrument: None,

@@ -46,9 +46,7 @@ fn is_table_header(cells: &[String]) -> bool {
 
 fn spectral_column_nm(name: &str) -> Option<f64> {
     let n = name.trim().strip_suffix("nm")?;
-    (!n.is_empty() && n.bytes().all(|b| b.is_ascii_digit() || b == b'.'))
-        .then(|| n.parse().ok())
-        .flatten()
+    (!n.is_empty() && n.bytes().all(|b| b.is_ascii_digit() || b == b'.')).then(|| n.parse().ok()).flatten()
 }
 
 /// Whether `text` is a radiance export (a table header starting with `No.` and columns `NNNnm`).
@@ -69,12 +67,8 @@ pub fn parse(
     names: &SampleNames,
     white_reflectance: Option<&SampledSpectrum>,
 ) -> Result<Measurement, ImportError> {
-    let lines: Vec<(usize, Vec<String>)> = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, l)| (i + 1, split_quoted(l)))
-        .collect();
+    let lines: Vec<(usize, Vec<String>)> =
+        text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()).map(|(i, l)| (i + 1, split_quoted(l))).collect();
     let header_at = lines
         .iter()
         .position(|(_, c)| is_table_header(c))
@@ -86,9 +80,10 @@ pub fn parse(
         }
     }
     let (header_line, header) = &lines[header_at];
-    let name_col = header.iter().position(|h| h.eq_ignore_ascii_case("Data Name")).ok_or_else(|| {
-        ImportError::at(path, *header_line, None, "the table header has no `Data Name` column")
-    })?;
+    let name_col = header
+        .iter()
+        .position(|h| h.eq_ignore_ascii_case("Data Name"))
+        .ok_or_else(|| ImportError::at(path, *header_line, None, "the table header has no `Data Name` column"))?;
     let spectral: Vec<(usize, f64)> =
         header.iter().enumerate().filter_map(|(i, h)| spectral_column_nm(h).map(|nm| (i, nm))).collect();
     if spectral.len() < 2 {
@@ -110,7 +105,12 @@ pub fn parse(
         for &(i, nm) in &spectral {
             let value = parse_number(path, &c[i], *line, i + 1, &format!("the radiance at {nm} nm"))?;
             if value < 0.0 {
-                return Err(ImportError::at(path, *line, Some(i + 1), format!("radiance {value} at {nm} nm is negative")));
+                return Err(ImportError::at(
+                    path,
+                    *line,
+                    Some(i + 1),
+                    format!("radiance {value} at {nm} nm is negative"),
+                ));
             }
             cells.push(Cell { value, line: *line, column: i + 1 });
         }
@@ -131,7 +131,9 @@ pub fn parse(
                     rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>().join(", ")
                 ),
             )),
-            [a, b, ..] => Err(ImportError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1))),
+            [a, b, ..] => {
+                Err(ImportError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1)))
+            }
         }
     };
     let white = find("WHITE_BASO4", &WHITE_NAMES, "white-standard")?;
@@ -186,6 +188,11 @@ pub fn parse(
     let thickness_mm = metadata.get("thickness_mm").and_then(|t| t.trim().parse().ok()).filter(|v: &f64| *v > 0.0);
     Ok(Measurement {
         source: path.to_path_buf(),
+        format: format!(
+            "spectroradiometer radiance export (white standard ρ = {:.3}…{:.3})",
+            rho.iter().copied().fold(f64::INFINITY, f64::min),
+            rho.iter().copied().fold(0.0, f64::max)
+        ),
         name: path.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
         kind,
         thickness_mm,

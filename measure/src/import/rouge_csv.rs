@@ -4,8 +4,7 @@
 //! `scale` (`fraction` or `percent`; `unit` is accepted too); all keys are kept in the metadata.
 
 use super::{
-    Cell, ImportError, Kind, Measurement, Scale, check_reflectance_range, check_wavelengths, detect_scale,
-    parse_number,
+    Cell, ImportError, Kind, Measurement, Scale, check_reflectance_range, check_wavelengths, detect_scale, parse_number,
 };
 use crate::spectrum::SampledSpectrum;
 use std::collections::BTreeMap;
@@ -33,14 +32,10 @@ pub(crate) fn cells(line: &str) -> Vec<&str> {
 /// Parses a Rouge CSV measurement.
 pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
     let metadata = comment_metadata(text);
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = rows
-        .next()
-        .ok_or_else(|| ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"))?;
+    let mut rows =
+        text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) =
+        rows.next().ok_or_else(|| ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"))?;
     let names: Vec<String> = cells(header).iter().map(|c| c.to_ascii_lowercase()).collect();
     let mut index = [0usize; 4];
     for (slot, want) in index.iter_mut().zip(COLUMNS) {
@@ -120,6 +115,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
     };
     Ok(Measurement {
         source: path.to_path_buf(),
+        format: "Rouge CSV".into(),
         name: metadata
             .get("name")
             .cloned()
@@ -133,6 +129,70 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
         r: spectrum(2)?,
         rg: spectrum(3)?,
     })
+}
+
+/// A table of spectra: a `wavelength_nm` column and one column per sample, the header naming
+/// the samples (the input of `rouge color`). Fractions or percent by the same rule as
+/// measurements; `#` comment lines are skipped.
+pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), ImportError> {
+    let metadata = comment_metadata(text);
+    let mut rows =
+        text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) = rows.next().ok_or_else(|| ImportError::file(path, "the file is empty"))?;
+    let names: Vec<&str> = cells(header);
+    let wl_col = names
+        .iter()
+        .position(|n| n.eq_ignore_ascii_case("wavelength_nm"))
+        .ok_or_else(|| ImportError::at(path, header_line, None, "the header has no `wavelength_nm` column"))?;
+    let sample_cols: Vec<usize> = (0..names.len()).filter(|&i| i != wl_col).collect();
+    if sample_cols.is_empty() {
+        return Err(ImportError::at(path, header_line, None, "no sample columns besides `wavelength_nm`"));
+    }
+    if let Some(i) = sample_cols.iter().find(|&&i| names[i].is_empty()) {
+        return Err(ImportError::at(path, header_line, Some(i + 1), "a sample column has no name"));
+    }
+    let mut wl = Vec::new();
+    let mut values: Vec<Vec<Cell>> = vec![Vec::new(); sample_cols.len()];
+    for (line, row) in rows {
+        let c = cells(row);
+        if c.len() != names.len() {
+            return Err(ImportError::at(
+                path,
+                line,
+                Some(c.len().min(names.len()) + 1),
+                format!("{} cells, but the header has {}", c.len(), names.len()),
+            ));
+        }
+        wl.push(Cell {
+            value: parse_number(path, c[wl_col], line, wl_col + 1, "wavelength_nm")?,
+            line,
+            column: wl_col + 1,
+        });
+        for (k, &i) in sample_cols.iter().enumerate() {
+            let value = parse_number(path, c[i], line, i + 1, names[i])?;
+            values[k].push(Cell { value, line, column: i + 1 });
+        }
+    }
+    if wl.len() < 2 {
+        return Err(ImportError::file(path, format!("{} data rows: a spectrum needs at least 2", wl.len())));
+    }
+    check_wavelengths(path, &wl)?;
+    let all: Vec<Cell> = values.iter().flatten().copied().collect();
+    let scale = match metadata.get("scale").map(|u| u.to_ascii_lowercase()) {
+        None => detect_scale(&all),
+        Some(u) if u == "percent" => Scale::Percent { declared: true },
+        Some(u) if u == "fraction" => Scale::Fraction { declared: true },
+        Some(u) => return Err(ImportError::file(path, format!("unknown `# scale: {u}`"))),
+    };
+    check_reflectance_range(path, &all, scale.factor())?;
+    let grid: Vec<f64> = wl.iter().map(|c| c.value).collect();
+    let mut out = Vec::with_capacity(sample_cols.len());
+    for (k, &i) in sample_cols.iter().enumerate() {
+        let v = values[k].iter().map(|c| c.value * scale.factor()).collect();
+        let s = SampledSpectrum::new(grid.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))?;
+        out.push((names[i].to_string(), s));
+    }
+    Ok((out, scale))
 }
 
 #[cfg(test)]

@@ -1,0 +1,54 @@
+//! `rouge color FILE.csv`: colorimetry of a table of spectra.
+
+use anyhow::{Context, Result, anyhow};
+use clap::Args;
+use rouge_measure::colorimetry::{Colorimeter, Illuminant, Observer, Viewing};
+use rouge_measure::import::rouge_csv::parse_spectra_table;
+use rouge_measure::spectrum::Extrapolation;
+use serde_json::json;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct ColorArgs {
+    /// CSV with `wavelength_nm` and one column per sample.
+    pub file: PathBuf,
+    /// Illuminant: D65, D55, D50, A or E.
+    #[arg(long, default_value = "D65", value_parser = parse_illuminant)]
+    pub illuminant: Illuminant,
+    /// Observer: 1931 (2°) or 1964 (10°).
+    #[arg(long, default_value = "1931", value_parser = parse_observer)]
+    pub observer: Observer,
+    /// Hold the end values when the grid does not cover 380-780 nm (CIE 15 constant extrapolation).
+    #[arg(long)]
+    pub extrapolate: bool,
+}
+
+pub fn parse_illuminant(s: &str) -> Result<Illuminant, String> {
+    Illuminant::parse(s).ok_or_else(|| format!("unknown illuminant `{s}` (D65, D55, D50, A or E)"))
+}
+
+pub fn parse_observer(s: &str) -> Result<Observer, String> {
+    Observer::parse(s).ok_or_else(|| format!("unknown observer `{s}` (1931 or 1964)"))
+}
+
+pub fn run(args: &ColorArgs) -> Result<()> {
+    let text = std::fs::read_to_string(&args.file).with_context(|| format!("cannot read {}", args.file.display()))?;
+    let (spectra, _scale) = parse_spectra_table(&args.file, &text)?;
+    let viewing = Viewing { illuminant: args.illuminant, observer: args.observer };
+    let c = Colorimeter::get(viewing);
+    let extrapolation = if args.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
+    let mut out = Vec::with_capacity(spectra.len());
+    for (name, s) in &spectra {
+        let w =
+            s.to_working_grid(extrapolation).map_err(|e| anyhow!("{}: sample `{name}`: {e}", args.file.display()))?;
+        let xyz = c.xyz(&w.spectrum);
+        out.push(json!({
+            "name": name,
+            "xyz": xyz.xyz,
+            "lab": c.lab(&xyz).lab,
+            "srgb_linear": c.srgb_linear(&xyz),
+            "srgb": c.srgb(&xyz),
+        }));
+    }
+    crate::emit(&serde_json::Value::Array(out).to_string())
+}

@@ -1,0 +1,209 @@
+//! `rouge import` and `rouge demo`: measurement → preset, with a report.
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames};
+use rouge_measure::km::Saunderson;
+use rouge_measure::preset::{ImportReport, Preset};
+use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct ImportArgs {
+    /// Measurement file (Rouge CSV, CGATS/X-Rite/i1Profiler/ArgyllCMS .ti3, CS-2000 radiance).
+    #[arg(required_unless_present = "r_inf")]
+    pub file: Option<PathBuf>,
+    /// Single-spectrum file (ArgyllCMS .sp) with R∞, the opaque layer.
+    #[arg(long = "r-inf", requires_all = ["r", "rg"], conflicts_with = "file")]
+    pub r_inf: Option<PathBuf>,
+    /// Single-spectrum file with R, the thin layer over the background.
+    #[arg(long, requires = "r_inf")]
+    pub r: Option<PathBuf>,
+    /// Single-spectrum file with Rg, the background.
+    #[arg(long, requires = "r_inf")]
+    pub rg: Option<PathBuf>,
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Where to write the preset (JSON; written atomically).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Also write the preset here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct CommonArgs {
+    /// Thickness of the thin layer, mm (default: the file's `thickness_mm`).
+    #[arg(long = "thickness-mm")]
+    pub thickness_mm: Option<f64>,
+    /// Preset name (default: the file's name).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Cosmetic kind: foundation, blush, eyeshadow, lipstick, other (default: the file's, else other).
+    #[arg(long, value_parser = parse_kind)]
+    pub kind: Option<Kind>,
+    /// Sample names of R∞, R and Rg in multi-sample files.
+    #[arg(long, value_delimiter = ',', num_args = 3, value_names = ["R_INF", "R", "RG"])]
+    pub samples: Option<Vec<String>>,
+    /// Hold the end values when the file does not cover 380-780 nm (CIE 15 constant extrapolation).
+    #[arg(long)]
+    pub extrapolate: bool,
+    /// Reflectance of the white standard for radiance files (flat; default: the file's, else 0.99).
+    #[arg(long = "white-reflectance")]
+    pub white_reflectance: Option<f64>,
+    /// Apply the Saunderson surface correction with this refractive index (K1 = ((n-1)/(n+1))²).
+    #[arg(long = "saunderson-ior")]
+    pub saunderson_ior: Option<f64>,
+    /// Internal diffuse reflectance K2 of the Saunderson correction.
+    #[arg(long = "saunderson-k2", default_value_t = 0.6, requires = "saunderson_ior")]
+    pub saunderson_k2: f64,
+    /// The instrument excluded the specular component (SCE, 45/0): K1 is not subtracted.
+    #[arg(long = "specular-excluded", requires = "saunderson_ior")]
+    pub specular_excluded: bool,
+    /// Print the report as JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn parse_kind(s: &str) -> Result<Kind, String> {
+    Kind::parse(s).ok_or_else(|| format!("unknown kind `{s}` (foundation, blush, eyeshadow, lipstick, other)"))
+}
+
+/// The embedded sample measurement used by `rouge demo`.
+const DEMO_NAME: &str = "foundation_02_ivory.csv";
+const DEMO_CSV: &str = include_str!("../../data/measurements/foundation_02_ivory.csv");
+
+pub fn run(args: &ImportArgs) -> Result<()> {
+    let options = options(&args.common)?;
+    let m = match (&args.file, &args.r_inf, &args.r, &args.rg) {
+        (Some(file), _, _, _) => import::read_measurement(file, &options)?,
+        (None, Some(a), Some(b), Some(c)) => import::read_measurement_files(a, b, c)?,
+        _ => bail!("give a measurement FILE, or --r-inf, --r and --rg"),
+    };
+    convert(&m, &args.common, Some(&args.out))
+}
+
+pub fn demo(args: &DemoArgs) -> Result<()> {
+    let path = Path::new("<embedded>").join(DEMO_NAME);
+    let m = import::rouge_csv::parse(&path, DEMO_CSV)?;
+    convert(&m, &args.common, args.out.as_deref())
+}
+
+fn options(common: &CommonArgs) -> Result<ImportOptions> {
+    let samples = match &common.samples {
+        None => SampleNames::default(),
+        Some(v) => SampleNames { r_inf: v[0].clone(), r: v[1].clone(), rg: v[2].clone() },
+    };
+    let white_reflectance = match common.white_reflectance {
+        None => None,
+        Some(rho) if rho > 0.0 && rho <= 1.0 => {
+            Some(SampledSpectrum::new(vec![380.0, 780.0], vec![rho, rho]).context("white reflectance")?)
+        }
+        Some(rho) => bail!("--white-reflectance {rho} must be in (0, 1]"),
+    };
+    Ok(ImportOptions { samples, white_reflectance })
+}
+
+fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<()> {
+    let extrapolation = if common.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
+    let working = m.to_working_grid(extrapolation)?;
+    let thickness_mm = match (common.thickness_mm, m.thickness_mm) {
+        (Some(t), _) | (None, Some(t)) => t,
+        (None, None) => bail!(
+            "{}: the file gives no thickness: pass --thickness-mm (the thickness of the thin layer R was measured on)",
+            m.source.display()
+        ),
+    };
+    let kind = common.kind.or(m.kind).unwrap_or(Kind::Other);
+    let name = common.name.clone().unwrap_or_else(|| m.name.clone());
+    let saunderson = match common.saunderson_ior {
+        None => None,
+        Some(n) => Some(Saunderson::from_refractive_index(n, common.saunderson_k2, !common.specular_excluded)?),
+    };
+    let (preset, report) = Preset::from_measurement(m, &working, &name, kind, thickness_mm, saunderson)?;
+    if let Some(out) = out {
+        preset.save(out)?;
+    }
+    if common.json {
+        let v = serde_json::json!({
+            "name": preset.name,
+            "kind": preset.kind,
+            "source": m.source.display().to_string(),
+            "format": m.format,
+            "scale": m.scale.to_string(),
+            "resampling": format!("{:?}", working.method),
+            "extrapolated_nm": working.extrapolated,
+            "thickness_mm": thickness_mm,
+            "saunderson": saunderson,
+            "report": report,
+            "preset": out.map(|p| p.display().to_string()),
+        });
+        crate::emit(&serde_json::to_string_pretty(&v)?)
+    } else {
+        crate::emit(&report_text(m, &working, &preset, &report, saunderson, out))
+    }
+}
+
+fn report_text(
+    m: &Measurement,
+    working: &import::WorkingMeasurement,
+    preset: &Preset,
+    r: &ImportReport,
+    saunderson: Option<Saunderson>,
+    out: Option<&Path>,
+) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    // Writing to a String cannot fail.
+    macro_rules! line { ($($a:tt)*) => {{ let _ = writeln!(s, $($a)*); }} }
+    let w = m.r_inf.wavelengths_nm();
+    line!("{} ({}) from {}", preset.name, preset.kind.name(), m.source.display());
+    line!("  format      {}; values read as {}", m.format, m.scale);
+    let grid = match working.method {
+        ResampleMethod::Identity => "the working grid itself".to_string(),
+        ResampleMethod::Sprague => "resampled to 380-780/5 nm (Sprague, CIE 167)".to_string(),
+        ResampleMethod::Linear => "resampled to 380-780/5 nm (linear: non-uniform grid)".to_string(),
+    };
+    line!("  grid        {}-{} nm, {} samples: {grid}", w[0], w[w.len() - 1], w.len());
+    for (a, b) in &working.extrapolated {
+        line!("  WARNING     {a}-{b} nm not measured: end value held constant (--extrapolate)");
+    }
+    if let Some(c) = saunderson {
+        line!(
+            "  saunderson  K1 = {:.4}, K2 = {:.3}, specular {}",
+            c.k1,
+            c.k2,
+            if c.specular_included { "included" } else { "excluded" }
+        );
+    }
+    line!("  thickness   {} mm", preset.thickness_mm);
+    let [(slo, slo_nm), (shi, shi_nm)] = r.s_range_per_mm;
+    let [(klo, klo_nm), (khi, khi_nm)] = r.k_range_per_mm;
+    line!("  S           {slo:.4} /mm at {slo_nm} nm  ..  {shi:.4} /mm at {shi_nm} nm");
+    line!("  K           {klo:.4} /mm at {klo_nm} nm  ..  {khi:.4} /mm at {khi_nm} nm");
+    line!("  R∞ colour   {} (sRGB, D65)", r.r_inf_srgb_hex);
+    line!(
+        "  check R     max |measured − from S,K| = {:.3e} at {} nm; ΔE2000 = {:.6}",
+        r.max_abs_r_error.0,
+        r.max_abs_r_error.1,
+        r.delta_e_2000_r
+    );
+    line!(
+        "  check R∞    max |measured − from S,K| = {:.3e} at {} nm; ΔE2000 = {:.6}",
+        r.max_abs_r_inf_error.0,
+        r.max_abs_r_inf_error.1,
+        r.delta_e_2000_r_inf
+    );
+    match out {
+        Some(p) => line!("  wrote       {}", p.display()),
+        None => line!("  (no preset written: add --out PRESET.json)"),
+    }
+    s.trim_end().to_string()
+}
