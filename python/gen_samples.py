@@ -639,8 +639,7 @@ def write_bad_files(sample: Sample) -> list[Path]:
     emit("negative_value.csv", f"negative reflectance -0.012000 at line {line_of(i)}, column 4 (rg)",
          replace_cell(rows, 450, 4, "-0.012000"))
     emit("header_missing_column.csv",
-         f"column header has 3 names but data rows have 4 fields: header line {n_head + 1}, "
-         f"first data row line {line_of(0)}, column 4",
+         f"column header lacks the rg column (data rows have 4 fields): header at line {n_head + 1}",
          rows, header="wavelength_nm,r_inf,r")
     i = row_at(700)
     short = list(rows)

@@ -236,7 +236,7 @@ fn sech(y: f64) -> f64 {
 pub fn layer_r_t(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64) -> Result<LayerRt, KmError> {
     check_coefficient("S", s_per_mm)?;
     check_coefficient("K", k_per_mm)?;
-    if !(thickness_mm >= 0.0) {
+    if thickness_mm.is_nan() || thickness_mm < 0.0 {
         return Err(KmError::BadCoefficient { name: "X", value: thickness_mm });
     }
     Ok(layer_r_t_unchecked(s_per_mm, k_per_mm, thickness_mm))

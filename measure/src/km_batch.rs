@@ -30,17 +30,49 @@ pub enum BatchError {
     },
 }
 
-const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
-const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+/// ln 2 split in two (fdlibm): the high part has trailing zero bits, so `n·LN2_HI` is exact.
+const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
 const SQRT2: f64 = std::f64::consts::SQRT_2;
+
+/// `a·b + c`: fused on the SIMD paths (compiled with FMA), plain on the portable one, where
+/// `mul_add` would be a slow library call.
+#[inline(always)]
+fn madd<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA { a.mul_add(b, c) } else { a * b + c }
+}
+
+/// `Σ c[i] xⁱ` by Estrin's scheme: pairs combined with x, x², x⁴, … so the dependency chain
+/// is log₂(N) multiply-adds deep instead of N (Horner), which lets the SIMD loops overlap
+/// iterations. Fully unrolled for constant `N`.
+#[inline(always)]
+fn estrin<const FMA: bool, const N: usize>(x: f64, c: [f64; N]) -> f64 {
+    let mut v = c;
+    let mut n = N;
+    let mut xp = x;
+    while n > 1 {
+        let half = n.div_ceil(2);
+        for i in 0..half {
+            v[i] = if 2 * i + 1 < n { madd::<FMA>(v[2 * i + 1], xp, v[2 * i]) } else { v[2 * i] };
+        }
+        n = half;
+        xp *= xp;
+    }
+    v[0]
+}
 
 /// Natural logarithm of a positive, finite, normal `x`, branch-free.
 ///
 /// `x = 2^e m` with `m ∈ [√½, √2)`; `ln m = 2 atanh(s)`, `s = (m−1)/(m+1)`, `|s| ≤ 0.1716`,
-/// summed to `s²⁰` (truncation below 3e-18 relative). The exponent is read from the bits without
+/// summed to `s²¹` (truncation below 4e-19 relative). The exponent is read from the bits without
 /// integer→float conversion so that AVX2 vectorises it. Result undefined (not UB) outside the domain.
 #[inline(always)]
 pub fn fast_ln(x: f64) -> f64 {
+    fast_ln_impl::<false>(x)
+}
+
+#[inline(always)]
+fn fast_ln_impl<const FMA: bool>(x: f64) -> f64 {
     let bits = x.to_bits();
     // Exponent as a float: put the 11 exponent bits into the mantissa of 2^52, subtract 2^52.
     let e_biased = f64::from_bits(0x4330_0000_0000_0000 | (bits >> 52)) - 4_503_599_627_370_496.0;
@@ -51,18 +83,27 @@ pub fn fast_ln(x: f64) -> f64 {
     let f = m - 1.0;
     let s = f / (2.0 + f);
     let s2 = s * s;
-    // Σ_{k≥1} s2^k / (2k+1)
+    // p = Σ_{k=1..10} s2^k / (2k+1)
     let p = s2
-        * (1.0 / 3.0
-            + s2 * (1.0 / 5.0
-                + s2 * (1.0 / 7.0
-                    + s2 * (1.0 / 9.0
-                        + s2 * (1.0 / 11.0
-                            + s2 * (1.0 / 13.0
-                                + s2 * (1.0 / 15.0 + s2 * (1.0 / 17.0 + s2 * (1.0 / 19.0 + s2 * (1.0 / 21.0))))))))));
-    // ln m = 2s + 2s·p = f − (f − 2s) + 2s·p; keep it simple: 2s(1 + p).
-    let ln_m = 2.0 * s + 2.0 * s * p;
-    e * LN2_HI + (ln_m + e * LN2_LO)
+        * estrin::<FMA, 10>(
+            s2,
+            [
+                1.0 / 3.0,
+                1.0 / 5.0,
+                1.0 / 7.0,
+                1.0 / 9.0,
+                1.0 / 11.0,
+                1.0 / 13.0,
+                1.0 / 15.0,
+                1.0 / 17.0,
+                1.0 / 19.0,
+                1.0 / 21.0,
+            ],
+        );
+    // ln m = 2s(1 + p)
+    let two_s = 2.0 * s;
+    let ln_m = madd::<FMA>(two_s, p, two_s);
+    madd::<FMA>(e, LN2_HI, madd::<FMA>(e, LN2_LO, ln_m))
 }
 
 /// `e^{−y}` for `0 ≤ y ≤ 700`, branch-free.
@@ -71,29 +112,35 @@ pub fn fast_ln(x: f64) -> f64 {
 /// 2e-17 relative), scaled by `2^n` through the exponent bits. Result undefined outside the domain.
 #[inline(always)]
 pub fn fast_exp_neg(y: f64) -> f64 {
+    fast_exp_neg_impl::<false>(y)
+}
+
+#[inline(always)]
+fn fast_exp_neg_impl<const FMA: bool>(y: f64) -> f64 {
     let x = -y;
     const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5·2^52: adding it rounds to an integer
-    let t = x * std::f64::consts::LOG2_E + SHIFT;
+    let t = madd::<FMA>(x, std::f64::consts::LOG2_E, SHIFT);
     let n = t - SHIFT;
-    let r = (x - n * LN2_HI) - n * LN2_LO;
-    let mut p = 1.0 / 6_227_020_800.0; // 1/13!
-    for c in [
-        1.0 / 479_001_600.0,
-        1.0 / 39_916_800.0,
-        1.0 / 3_628_800.0,
-        1.0 / 362_880.0,
-        1.0 / 40_320.0,
-        1.0 / 5_040.0,
-        1.0 / 720.0,
-        1.0 / 120.0,
-        1.0 / 24.0,
-        1.0 / 6.0,
-        0.5,
-        1.0,
-        1.0,
-    ] {
-        p = p * r + c;
-    }
+    let r = madd::<FMA>(-n, LN2_LO, madd::<FMA>(-n, LN2_HI, x));
+    let p = estrin::<FMA, 14>(
+        r,
+        [
+            1.0,
+            1.0,
+            0.5,
+            1.0 / 6.0,
+            1.0 / 24.0,
+            1.0 / 120.0,
+            1.0 / 720.0,
+            1.0 / 5_040.0,
+            1.0 / 40_320.0,
+            1.0 / 362_880.0,
+            1.0 / 3_628_800.0,
+            1.0 / 39_916_800.0,
+            1.0 / 479_001_600.0,
+            1.0 / 6_227_020_800.0,
+        ],
+    );
     // t's low bits hold n in two's complement: 2^n has exponent field n + 1023.
     let n_bits = t.to_bits().wrapping_sub(SHIFT.to_bits());
     let scale = f64::from_bits(n_bits.wrapping_add(1023) << 52);
@@ -101,8 +148,14 @@ pub fn fast_exp_neg(y: f64) -> f64 {
 }
 
 /// Fast-path inversion of one sample; NaN in both outputs marks a lane for the scalar pass.
+///
+/// The formula of [`km::invert_s_k`] rearranged to three divisions:
+/// `ratio = (Rg − R)/((1 − Rg R∞)(R − R∞))`, `z = ratio (1 − R∞²)`, `u = 1 + z`,
+/// `g = ratio · ln(u)/((u − 1) D)` (Kahan's `ln1p` trick: the rounding of `u` cancels),
+/// `S = R∞ g`, `K = g (1 − R∞)²/2` (the `R∞` of `K = S(1−R∞)²/(2R∞)` cancels).
 #[inline(always)]
-fn invert_lane(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f64) {
+#[allow(clippy::manual_range_contains)] // `&` of comparisons, not `&&`: keeps the loop branch-free
+fn invert_lane<const FMA: bool>(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f64) {
     let dr = r - r_inf;
     let dg = rg - r_inf;
     let valid = (r_inf > 0.0)
@@ -118,69 +171,61 @@ fn invert_lane(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f64) {
         & ((dr > 0.0) == (dg > 0.0))
         & (dr.abs() <= dg.abs());
     let one_minus = 1.0 - r_inf;
-    let ratio = (rg - r) / (1.0 - rg * r_inf) / dr;
+    let ratio = (rg - r) / (madd::<FMA>(-rg, r_inf, 1.0) * dr);
     let z = ratio * (one_minus * (1.0 + r_inf));
     let u = 1.0 + z;
-    // φ(z) = ln(1+z)/z computed as ln(u)/(u−1): the rounding of u cancels (Kahan's ln1p trick).
-    let phi = if u == 1.0 { 1.0 } else { fast_ln(u) / (u - 1.0) };
-    let s = r_inf * phi * ratio / d;
-    let k = s * (one_minus * one_minus / (2.0 * r_inf));
+    let at_one = u == 1.0;
+    let ln_u = if at_one { 1.0 } else { fast_ln_impl::<FMA>(u) };
+    let u_minus = if at_one { 1.0 } else { u - 1.0 };
+    let g = ratio * ln_u / (u_minus * d);
+    let s = r_inf * g;
+    let k = g * (0.5 * one_minus * one_minus);
     let ok = valid & (z < 1e300) & (s < f64::INFINITY);
     if ok { (s, k) } else { (f64::NAN, f64::NAN) }
 }
 
 /// Fast-path layer R0, T of one sample; NaN marks a lane for the scalar pass.
+///
+/// The formula of [`km::layer_r_t`] rearranged to two divisions: with `m = e^{−y}`,
+/// `tanh y = (1 − m²)/(1 + m²)` and `sech y = 2m/(1 + m²)` share one reciprocal; then
+/// `R0 = S·num/(den + (S+K)·num)`, `T = sech·den/(den + (S+K)·num)` with `(num, den) =
+/// (tanh y, β)` for `y ≥ 1/16` and `(X·tanh(y)/y, 1)` below, where `1 − m²` would cancel.
 #[inline(always)]
-fn layer_lane(s: f64, k: f64, x: f64) -> (f64, f64) {
+fn layer_lane<const FMA: bool>(s: f64, k: f64, x: f64) -> (f64, f64) {
     let sk = s + k;
     let beta = k.sqrt() * (k + 2.0 * s).sqrt();
     let y = beta * x;
     let y2 = y * y;
     // tanh(y)/y to y¹⁰ (first omitted term < 3e-17 for y < 1/16).
-    let q_small = x
-        * (1.0
-            - y2 * (1.0 / 3.0
-                - y2 * (2.0 / 15.0 - y2 * (17.0 / 315.0 - y2 * (62.0 / 2835.0 - y2 * (1382.0 / 155_925.0))))));
-    let m = fast_exp_neg(y);
+    let p = estrin::<FMA, 6>(y2, [1.0, -1.0 / 3.0, 2.0 / 15.0, -17.0 / 315.0, 62.0 / 2835.0, -1382.0 / 155_925.0]);
+    let m = fast_exp_neg_impl::<FMA>(y);
     let m2 = m * m;
-    let q_big = (1.0 - m2) / (1.0 + m2) / beta;
-    let q = if y < 0.0625 { q_small } else { q_big };
-    let sech = 2.0 * m / (1.0 + m2);
-    let w = sk * q;
-    let r = s * q / (1.0 + w);
-    let t = sech / (1.0 + w);
-    let ok = (s >= 0.0) & (k >= 0.0) & (x >= 0.0) & (y <= 700.0) & (w <= 1e300);
+    let inv = 1.0 / (1.0 + m2);
+    let tanh = (1.0 - m2) * inv;
+    let sech = 2.0 * m * inv;
+    let small = y < 0.0625;
+    let num = if small { x * p } else { tanh };
+    let den = if small { 1.0 } else { beta };
+    let total = madd::<FMA>(sk, num, den);
+    let inv_total = 1.0 / total;
+    let r = s * num * inv_total;
+    let t = sech * den * inv_total;
+    let ok = (s >= 0.0) & (k >= 0.0) & (x >= 0.0) & (y <= 700.0) & (total <= 1e300);
     if ok { (r, t) } else { (f64::NAN, f64::NAN) }
 }
 
-macro_rules! dispatch {
-    ($generic:ident, $avx2:ident, $avx512:ident, ($($arg:expr),*)) => {{
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::arch::is_x86_feature_detected!("avx512f") {
-                // SAFETY: the CPU supports AVX-512F, checked just above.
-                unsafe { $avx512($($arg),*) }
-            } else if std::arch::is_x86_feature_detected!("avx2")
-                && std::arch::is_x86_feature_detected!("fma")
-            {
-                // SAFETY: the CPU supports AVX2 and FMA, checked just above.
-                unsafe { $avx2($($arg),*) }
-            } else {
-                $generic($($arg),*)
-            }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            $generic($($arg),*)
-        }
-    }};
-}
-
 #[inline(always)]
-fn invert_loop(r_inf: &[f64], r: &[f64], rg: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
+fn invert_loop<const FMA: bool>(
+    r_inf: &[f64],
+    r: &[f64],
+    rg: &[f64],
+    d: &[f64],
+    s: &mut [f64],
+    k: &mut [f64],
+) -> usize {
     let mut bad = 0usize;
     for (((((ri, rr), rgg), dd), so), ko) in r_inf.iter().zip(r).zip(rg).zip(d).zip(s.iter_mut()).zip(k.iter_mut()) {
-        let (sv, kv) = invert_lane(*ri, *rr, *rgg, *dd);
+        let (sv, kv) = invert_lane::<FMA>(*ri, *rr, *rgg, *dd);
         bad += usize::from(sv.is_nan());
         *so = sv;
         *ko = kv;
@@ -189,10 +234,10 @@ fn invert_loop(r_inf: &[f64], r: &[f64], rg: &[f64], d: &[f64], s: &mut [f64], k
 }
 
 #[inline(always)]
-fn layer_loop(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
+fn layer_loop<const FMA: bool>(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
     let mut bad = 0usize;
     for ((((ss, kk), xx), ro), to) in s.iter().zip(k).zip(x).zip(r.iter_mut()).zip(t.iter_mut()) {
-        let (rv, tv) = layer_lane(*ss, *kk, *xx);
+        let (rv, tv) = layer_lane::<FMA>(*ss, *kk, *xx);
         bad += usize::from(rv.is_nan());
         *ro = rv;
         *to = tv;
@@ -201,30 +246,30 @@ fn layer_loop(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> 
 }
 
 fn invert_generic(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
-    invert_loop(a, b, c, d, s, k)
+    invert_loop::<false>(a, b, c, d, s, k)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn invert_avx2(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
-    invert_loop(a, b, c, d, s, k)
+    invert_loop::<true>(a, b, c, d, s, k)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
 fn invert_avx512(a: &[f64], b: &[f64], c: &[f64], d: &[f64], s: &mut [f64], k: &mut [f64]) -> usize {
-    invert_loop(a, b, c, d, s, k)
+    invert_loop::<true>(a, b, c, d, s, k)
 }
 fn layer_generic(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
-    layer_loop(s, k, x, r, t)
+    layer_loop::<false>(s, k, x, r, t)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn layer_avx2(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
-    layer_loop(s, k, x, r, t)
+    layer_loop::<true>(s, k, x, r, t)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
 fn layer_avx512(s: &[f64], k: &[f64], x: &[f64], r: &mut [f64], t: &mut [f64]) -> usize {
-    layer_loop(s, k, x, r, t)
+    layer_loop::<true>(s, k, x, r, t)
 }
 
 /// Inverts S and K for every sample (see [`km::invert_s_k`] for the formula and domain).

@@ -8,7 +8,11 @@
 //! `shared/papers`), sections 3.1 and 4; every function documents its equation, the corrections
 //! made to the printed forms, and its domain.
 
+#[macro_use]
+pub mod simd;
+
 pub mod colorimetry;
+pub mod compositing;
 pub mod import;
 pub mod km;
 pub mod km_batch;

@@ -426,7 +426,9 @@ impl Preset {
         if n < 2 || d.r0_linear_srgb.len() != n || d.t_linear_srgb.len() != n {
             return Err(invalid(path, "`derived` tables must have one row per thickness (at least 2)".into()));
         }
-        if d.thickness_mm.windows(2).any(|w| !(w[1] > w[0])) || d.thickness_mm[0] != 0.0 {
+        if d.thickness_mm.windows(2).any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+            || d.thickness_mm[0] != 0.0
+        {
             return Err(invalid(path, "`derived.thickness_mm` must start at 0 and increase".into()));
         }
         for (field, rows) in [("r0_linear_srgb", &d.r0_linear_srgb), ("t_linear_srgb", &d.t_linear_srgb)] {
@@ -449,9 +451,12 @@ impl Preset {
     /// Parses and validates preset JSON; `path` names the source in messages.
     pub fn from_json(text: &str, path: &str) -> Result<Preset, PresetError> {
         // Check the version before the shape, so a future version gets the right message.
-        if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
-            if let Some(ver) = v.get("version").and_then(|x| x.as_u64()) {
-                if ver != u64::from(VERSION) {
+        if let Ok(v) = serde_json::from_str::<serde_json::Value>(text)
+            && let Some(ver) = v.get("version").and_then(|x| x.as_u64())
+            && ver != u64::from(VERSION)
+        {
+            {
+                {
                     return Err(invalid(
                         path,
                         format!("preset schema version {ver} is not supported: this Rouge reads version {VERSION}"),

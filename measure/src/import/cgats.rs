@@ -148,11 +148,21 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
             ));
         }
         AfterFormat => return Err(ImportError::file(path, "no BEGIN_DATA section")),
-        Data => return Err(ImportError::at(path, data_line, None, "BEGIN_DATA is never closed by END_DATA")),
+        Data => {
+            let end = text.lines().count() + 1;
+            return Err(ImportError::at(
+                path,
+                end,
+                Some(1),
+                format!("the file ends without END_DATA (BEGIN_DATA is on line {data_line})"),
+            ));
+        }
         Done => {}
     }
-    if let Some(n) = keywords.get("NUMBER_OF_FIELDS") {
-        if n.trim().parse::<usize>().ok() != Some(fields.len()) {
+    if let Some(n) = keywords.get("NUMBER_OF_FIELDS")
+        && n.trim().parse::<usize>().ok() != Some(fields.len())
+    {
+        {
             return Err(ImportError::at(
                 path,
                 format_line,
@@ -161,8 +171,10 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
             ));
         }
     }
-    if let Some(n) = keywords.get("NUMBER_OF_SETS") {
-        if n.trim().parse::<usize>().ok() != Some(rows.len()) {
+    if let Some(n) = keywords.get("NUMBER_OF_SETS")
+        && n.trim().parse::<usize>().ok() != Some(rows.len())
+    {
+        {
             return Err(ImportError::at(
                 path,
                 data_line,
@@ -323,7 +335,7 @@ NUMBER_OF_SETS 3\nBEGIN_DATA\n1 R_INF 50.0 52.0 54.0\n2 R 30.0 31.0 32.0\n3 RG 4
     fn structural_errors() {
         let no_end = XRITE.replace("END_DATA\n", "");
         let e = parse(Path::new("x.txt"), &no_end).unwrap_err();
-        assert!(e.to_string().contains("never closed by END_DATA"), "{e}");
+        assert!(e.to_string().contains("ends without END_DATA (BEGIN_DATA is on line 10)"), "{e}");
         let short_row = XRITE.replace("2 R 30.0 31.0 32.0", "2 R 30.0 31.0");
         assert_eq!(parse(Path::new("x.txt"), &short_row).unwrap_err().line, Some(12));
         let bad = XRITE.replace("31.0", "x1");

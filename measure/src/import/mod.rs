@@ -343,8 +343,10 @@ pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measu
     let mut spectra = Vec::with_capacity(3);
     for (path, role) in [(r_inf, "R_INF"), (r, "R"), (rg, "RG")] {
         let (spectrum, declared, scale) = read_single_spectrum(path)?;
-        if let Some(d) = declared {
-            if !d.eq_ignore_ascii_case(role) {
+        if let Some(d) = declared
+            && !d.eq_ignore_ascii_case(role)
+        {
+            {
                 return Err(ImportError::file(
                     path,
                     format!("this file says ROUGE_ROLE {d}, but it was given as {role}"),

@@ -73,7 +73,12 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
         }
     }
     if columns[0].len() < 2 {
-        return Err(ImportError::file(path, format!("{} data rows: a spectrum needs at least 2", columns[0].len())));
+        return Err(ImportError::at(
+            path,
+            header_line,
+            None,
+            format!("{} data rows after the header: a spectrum needs at least 2", columns[0].len()),
+        ));
     }
     check_wavelengths(path, &columns[0])?;
     let reflectances: Vec<Cell> = columns[1..].iter().flatten().copied().collect();
