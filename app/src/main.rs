@@ -4,6 +4,7 @@
 //! reads back bit-for-bit) except `import` and `demo`, which print a report for people (`--json`
 //! for a machine). Errors: a message on stderr and exit status 2.
 
+mod cmd_bench;
 mod cmd_color;
 mod cmd_import;
 mod cmd_km;
@@ -41,6 +42,9 @@ enum Command {
     /// FILE is a CSV with a `wavelength_nm` column and one column per sample (reflectance as
     /// fractions or percent), on any grid covering 380-780 nm (resampled with Sprague).
     Color(cmd_color::ColorArgs),
+    /// Speed-against-error studies (figures for docs/BENCHMARKS.md).
+    #[command(subcommand)]
+    Bench(cmd_bench::BenchCommand),
 }
 
 /// Writes `text` and a newline to stdout. A closed pipe (`rouge ... | head`) ends the program
@@ -62,6 +66,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => cmd_import::demo(&args),
         Command::Km(cmd) => cmd_km::run(&cmd),
         Command::Color(args) => cmd_color::run(&args),
+        Command::Bench(cmd) => cmd_bench::run(&cmd),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
