@@ -45,8 +45,10 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
 fn load_presets(dir: &Path) -> Result<Vec<Preset>> {
     let entries = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read the preset directory {} (use --presets DIR)", dir.display()))?;
-    let mut paths: Vec<PathBuf> =
-        entries.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "json")).collect();
+    let mut paths: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
     paths.sort();
     let presets = paths.iter().map(|p| Preset::load(p)).collect::<Result<Vec<_>, _>>()?;
     if presets.len() < 2 {

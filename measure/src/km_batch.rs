@@ -158,19 +158,6 @@ fn fast_exp_neg_impl<const FMA: bool>(y: f64) -> f64 {
 #[allow(clippy::manual_range_contains)] // `&` of comparisons, not `&&`: keeps the loop branch-free
 fn invert_lane<const FMA: bool>(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f64) {
     let dr = r - r_inf;
-    let dg = rg - r_inf;
-    let valid = (r_inf > 0.0)
-        & (r_inf <= 1.0)
-        & (r >= 0.0)
-        & (r <= 1.0)
-        & (rg >= 0.0)
-        & (rg <= 1.0)
-        & (d > 0.0)
-        & (d < f64::INFINITY)
-        & (dg != 0.0)
-        & (dr != 0.0)
-        & ((dr > 0.0) == (dg > 0.0))
-        & (dr.abs() <= dg.abs());
     let one_minus = 1.0 - r_inf;
     let ratio = (rg - r) / (madd::<FMA>(-rg, r_inf, 1.0) * dr);
     let z = ratio * (one_minus * (1.0 + r_inf));
@@ -179,9 +166,22 @@ fn invert_lane<const FMA: bool>(r_inf: f64, r: f64, rg: f64, d: f64) -> (f64, f6
     let ln_u = if at_one { 1.0 } else { fast_ln_impl::<FMA>(u) };
     let u_minus = if at_one { 1.0 } else { u - 1.0 };
     let g = ratio * ln_u / (u_minus * d);
-    let s = r_inf * g;
-    let k = g * (0.5 * one_minus * one_minus);
-    let ok = valid & (z < 1e300) & (s < f64::INFINITY);
+    // `+ 0.0` turns the −0 of R = Rg with R < R∞ into the +0 the scalar path returns.
+    let s = r_inf * g + 0.0;
+    let k = g * (0.5 * one_minus * one_minus) + 0.0;
+    // The domain of km::invert_s_k in nine comparisons: with R∞ ∈ (0, 1] and Rg ∈ [0, 1],
+    // `ratio ≥ 0` (NaN fails) holds exactly when R lies between Rg and R∞ with R ≠ R∞
+    // ((Rg − R)/(R − R∞) = (Rg − R∞)/(R − R∞) − 1 ≥ 0), which also puts R in [0, 1]; R = R∞
+    // makes `ratio` infinite or NaN, caught by `z < 1e300`.
+    let ok = (r_inf > 0.0)
+        & (r_inf <= 1.0)
+        & (rg >= 0.0)
+        & (rg <= 1.0)
+        & (d > 0.0)
+        & (d < f64::INFINITY)
+        & (ratio >= 0.0)
+        & (z < 1e300)
+        & (s < f64::INFINITY);
     if ok { (s, k) } else { (f64::NAN, f64::NAN) }
 }
 

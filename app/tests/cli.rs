@@ -1,0 +1,126 @@
+//! The `rouge` binary end to end: outputs, exit statuses, error messages, files written.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn rouge(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rouge")).args(args).current_dir(root()).output().expect("run rouge")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn demo_prints_a_report() {
+    let o = rouge(&["demo"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = stdout(&o);
+    assert!(s.contains("Foundation 02 Ivory"), "{s}");
+    assert!(s.contains("check R     max |measured − from S,K|"), "{s}");
+}
+
+#[test]
+fn km_invert_prints_numbers_that_read_back_bit_for_bit() {
+    let o = rouge(&["km", "invert", "--r-inf", "0.5", "--r", "0.3", "--rg", "0.05", "--thickness-mm", "0.02"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("json");
+    let c = rouge_measure::km::invert_s_k(0.5, 0.3, 0.05, 0.02).expect("valid");
+    assert_eq!(v["s_per_mm"].as_f64().map(f64::to_bits), Some(c.s_per_mm.to_bits()));
+    assert_eq!(v["k_per_mm"].as_f64().map(f64::to_bits), Some(c.k_per_mm.to_bits()));
+}
+
+#[test]
+fn errors_exit_2_with_a_message() {
+    for args in [
+        &["km", "invert", "--r-inf", "1.2", "--r", "0.3", "--rg", "0.05", "--thickness-mm", "0.02"][..],
+        &["km", "layer", "--s", "-1", "--k", "1", "--thickness-mm", "1"],
+        &["km", "stack", "--r", "0.1,0.2", "--t", "0.5"],
+        &["km", "stack", "--r", "0.7", "--t", "0.5"],
+        &["color", "does/not/exist.csv"],
+        &["color", "data/skin/colorchecker_skin.csv", "--illuminant", "F2"],
+    ] {
+        let o = rouge(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stdout(&o));
+        assert!(!stderr(&o).trim().is_empty(), "{args:?}: no message");
+    }
+}
+
+#[test]
+fn import_writes_a_loadable_preset_and_a_failed_import_keeps_the_old_one() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("p.json");
+    let out_s = out.to_str().expect("utf-8 path");
+    let o = rouge(&["import", "data/measurements/lipstick_02_red.csv", "--out", out_s]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let preset = rouge_measure::Preset::load(&out).expect("loads");
+    assert_eq!(preset.kind, rouge_measure::Kind::Lipstick);
+    let before = std::fs::read(&out).expect("read");
+
+    let o = rouge(&["import", "data/measurements/bad/non_numeric.csv", "--out", out_s]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("non_numeric.csv:27:3"), "{e}");
+    assert_eq!(std::fs::read(&out).expect("read"), before, "a failed import must not touch the old preset");
+
+    let o = rouge(&["import", "data/measurements/bad/r_outside_bounds.csv", "--out", out_s]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("at 550 nm"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&out).expect("read"), before);
+}
+
+#[test]
+fn import_json_report_and_color_output() {
+    let o = rouge(&[
+        "import",
+        "data/measurements/formats/foundation_02_ivory.ti3",
+        "--thickness-mm",
+        "0.02",
+        "--json",
+        "--out",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "--out needs a value");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("t.json");
+    let o = rouge(&[
+        "import",
+        "data/measurements/formats/foundation_02_ivory.ti3",
+        "--thickness-mm",
+        "0.02",
+        "--json",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("json");
+    assert!(v["report"]["delta_e_2000_r"].as_f64().is_some_and(|d| d < 1e-6), "{v}");
+    assert_eq!(v["scale"], "percent (detected: median value above 1.5)");
+
+    let o = rouge(&["color", "data/skin/colorchecker_skin.csv"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("json");
+    let names: Vec<&str> = v.as_array().expect("array").iter().filter_map(|x| x["name"].as_str()).collect();
+    assert_eq!(names, ["dark_skin", "light_skin"]);
+    let lab = &v[1]["lab"];
+    // Light skin is a light, warm colour: L* about 66, a* and b* positive.
+    assert!(lab[0].as_f64().is_some_and(|l| (60.0..72.0).contains(&l)), "{lab}");
+    assert!(lab[1].as_f64().is_some_and(|a| a > 5.0) && lab[2].as_f64().is_some_and(|b| b > 5.0), "{lab}");
+}
+
+#[test]
+fn help_names_every_subcommand() {
+    let o = rouge(&["--help"]);
+    assert!(o.status.success());
+    let s = stdout(&o);
+    for sub in ["import", "demo", "km", "color", "bench"] {
+        assert!(s.contains(sub), "--help lacks {sub}: {s}");
+    }
+}
