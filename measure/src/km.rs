@@ -242,6 +242,18 @@ pub fn layer_r_t(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64) -> Result<Laye
     Ok(layer_r_t_unchecked(s_per_mm, k_per_mm, thickness_mm))
 }
 
+/// `β = bS = √(K(K + 2S))`: one square root of the product (as the batch path computes it, so
+/// both round alike), or the product of two roots where the product would overflow or underflow.
+#[inline]
+pub(crate) fn beta(s: f64, k: f64) -> f64 {
+    let prod = k * (k + 2.0 * s);
+    if prod.is_finite() && (prod == 0.0 || prod >= f64::MIN_POSITIVE) {
+        prod.sqrt()
+    } else {
+        k.sqrt() * (k + 2.0 * s).sqrt()
+    }
+}
+
 /// [`layer_r_t`] without the argument checks (the caller guarantees the domain).
 #[inline]
 pub(crate) fn layer_r_t_unchecked(s: f64, k: f64, x: f64) -> LayerRt {
@@ -249,7 +261,7 @@ pub(crate) fn layer_r_t_unchecked(s: f64, k: f64, x: f64) -> LayerRt {
     if x == 0.0 || sk == 0.0 {
         return LayerRt::CLEAR;
     }
-    let beta = k.sqrt() * (k + 2.0 * s).sqrt();
+    let beta = beta(s, k);
     let (y, q) = if beta == 0.0 {
         (0.0, x)
     } else {
