@@ -150,6 +150,8 @@ def check_output(out, names, ref, label):
             f"{label} {key}: max |error| {worst[key]:.3g} > {ATOL} at sample {names[i]!r}: "
             f"got {got[i].tolist()}, colour {ref[key][i].tolist()}"
         )
+    # Visible with `pytest -s`: the figures quoted in docs/BENCHMARKS.md.
+    print(f"\nACCURACY {label}: " + ", ".join(f"{k} {v:.2e}" for k, v in worst.items()))
     return worst
 
 
