@@ -56,8 +56,12 @@ pub struct CommonArgs {
     #[arg(long)]
     pub extrapolate: bool,
     /// Reflectance of the white standard for radiance files (flat; default: the file's, else 0.99).
-    #[arg(long = "white-reflectance")]
+    #[arg(long = "white-reflectance", conflicts_with = "white_spectrum")]
     pub white_reflectance: Option<f64>,
+    /// Reflectance spectrum of the white standard for radiance files: a CSV with
+    /// `wavelength_nm` and one reflectance column (e.g. from its calibration certificate).
+    #[arg(long = "white-spectrum")]
+    pub white_spectrum: Option<PathBuf>,
     /// Apply the Saunderson surface correction with this refractive index (K1 = ((n-1)/(n+1))²).
     #[arg(long = "saunderson-ior")]
     pub saunderson_ior: Option<f64>,
@@ -101,12 +105,28 @@ fn options(common: &CommonArgs) -> Result<ImportOptions> {
         None => SampleNames::default(),
         Some(v) => SampleNames { r_inf: v[0].clone(), r: v[1].clone(), rg: v[2].clone() },
     };
-    let white_reflectance = match common.white_reflectance {
-        None => None,
-        Some(rho) if rho > 0.0 && rho <= 1.0 => {
+    let white_reflectance = match (common.white_reflectance, &common.white_spectrum) {
+        (_, Some(path)) => {
+            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let (mut spectra, _) = import::rouge_csv::parse_spectra_table(path, &text)?;
+            if spectra.len() != 1 {
+                bail!(
+                    "{}: expected one reflectance column besides wavelength_nm, found {}",
+                    path.display(),
+                    spectra.len()
+                );
+            }
+            let (_, s) = spectra.remove(0);
+            if let Some((nm, v)) = s.wavelengths_nm().iter().zip(s.values()).find(|(_, v)| !(**v > 0.0 && **v <= 1.0)) {
+                bail!("{}: white reflectance {v} at {nm} nm must be in (0, 1]", path.display());
+            }
+            Some(s)
+        }
+        (None, None) => None,
+        (Some(rho), None) if rho > 0.0 && rho <= 1.0 => {
             Some(SampledSpectrum::new(vec![380.0, 780.0], vec![rho, rho]).context("white reflectance")?)
         }
-        Some(rho) => bail!("--white-reflectance {rho} must be in (0, 1]"),
+        (Some(rho), None) => bail!("--white-reflectance {rho} must be in (0, 1]"),
     };
     Ok(ImportOptions { samples, white_reflectance })
 }

@@ -124,3 +124,42 @@ fn help_names_every_subcommand() {
         assert!(s.contains(sub), "--help lacks {sub}: {s}");
     }
 }
+
+#[test]
+fn radiance_white_standard_and_saunderson_options_change_the_result() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("c.json");
+    let out_s = out.to_str().expect("utf-8");
+    let cs = "data/measurements/formats/foundation_02_ivory_cs2000.csv";
+    let s_max = |extra: &[&str]| {
+        let mut args = vec!["import", cs, "--thickness-mm", "0.02", "--json", "--out", out_s];
+        args.extend_from_slice(extra);
+        let o = rouge(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("json");
+        v["report"]["s_range_per_mm"][1][0].as_f64().expect("S max")
+    };
+    let default = s_max(&[]);
+    let flat = s_max(&["--white-reflectance", "0.97"]);
+    let white = dir.path().join("white.csv");
+    std::fs::write(&white, "wavelength_nm,baso4\n380,0.97\n780,0.97\n").expect("write");
+    let spectrum = s_max(&["--white-spectrum", white.to_str().expect("utf-8")]);
+    assert_ne!(default, flat, "the white standard's reflectance must matter");
+    assert!((flat - spectrum).abs() <= 1e-9 * flat, "flat 0.97 and a flat 0.97 spectrum agree: {flat} {spectrum}");
+    let saunderson = s_max(&["--saunderson-ior", "1.5"]);
+    assert_ne!(default, saunderson);
+
+    std::fs::write(&white, "wavelength_nm,baso4\n380,0.97\n780,1.2\n").expect("write");
+    let o = rouge(&[
+        "import",
+        cs,
+        "--thickness-mm",
+        "0.02",
+        "--out",
+        out_s,
+        "--white-spectrum",
+        white.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("at 780 nm"), "{}", stderr(&o));
+}

@@ -212,7 +212,8 @@ fn tables() -> &'static Tables {
     })
 }
 
-type Mat3 = [[f64; 3]; 3];
+/// A 3×3 matrix, rows first.
+pub(crate) type Mat3 = [[f64; 3]; 3];
 
 /// XYZ → linear sRGB, IEC 61966-2-1:1999 (the published 4-decimal matrix).
 pub const XYZ_TO_SRGB: Mat3 = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]];
@@ -232,7 +233,7 @@ fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
 }
 
 /// Inverse of a 3×3 matrix by the adjugate (the matrices here are well conditioned).
-fn mat_inv(m: &Mat3) -> Mat3 {
+pub(crate) fn mat_inv(m: &Mat3) -> Mat3 {
     let c = |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
     let cof: Mat3 = [
         [c(1, 2, 1, 2), -c(1, 2, 0, 2), c(1, 2, 0, 1)],

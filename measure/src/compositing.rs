@@ -15,7 +15,7 @@
 //! The error is CIEDE2000 between the reference and each method. `rouge bench compositing`
 //! prints the table; docs/BENCHMARKS.md records it.
 
-use crate::colorimetry::{Colorimeter, Viewing, XYZ_TO_SRGB, delta_e_2000_raw};
+use crate::colorimetry::{Colorimeter, Viewing, XYZ_TO_SRGB, delta_e_2000_raw, mat_inv};
 use crate::km::{self, LayerRt};
 use crate::preset::{Preset, layer_spectra};
 use crate::spectrum::{Spectrum, WORKING_LEN};
@@ -71,18 +71,6 @@ struct LayerAt {
     spectral: (Spectrum, Spectrum),
 }
 
-fn inverse_srgb() -> [[f64; 3]; 3] {
-    let m = XYZ_TO_SRGB;
-    let c = |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
-    let cof = [
-        [c(1, 2, 1, 2), -c(1, 2, 0, 2), c(1, 2, 0, 1)],
-        [-c(0, 2, 1, 2), c(0, 2, 0, 2), -c(0, 2, 0, 1)],
-        [c(0, 1, 1, 2), -c(0, 1, 0, 2), c(0, 1, 0, 1)],
-    ];
-    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
-    std::array::from_fn(|i| std::array::from_fn(|j| cof[j][i] / det))
-}
-
 fn band_average(s: &Spectrum, n: usize) -> Vec<f64> {
     let mut sum = vec![0.0; n];
     let mut count = vec![0usize; n];
@@ -107,8 +95,7 @@ pub fn compositing_error(
     methods: &[Method],
 ) -> Vec<ErrorStats> {
     let c = Colorimeter::get(Viewing::D65_1931);
-    let white = c.white().xyz;
-    let inv = inverse_srgb();
+    let inv = mat_inv(&XYZ_TO_SRGB);
     let lab_of_xyz = |xyz: [f64; 3]| {
         let x = crate::colorimetry::Xyz { xyz, viewing: Viewing::D65_1931 };
         c.lab(&x).lab
@@ -181,7 +168,6 @@ pub fn compositing_error(
             }
         }
     }
-    let _ = white;
     methods
         .iter()
         .zip(errors)

@@ -279,8 +279,8 @@ impl SampledSpectrum {
     }
 }
 
-/// Linear interpolation on a strictly increasing grid; `x` must lie within it (clamped otherwise).
-fn linear_interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+/// Linear interpolation on a strictly increasing grid; outside it the end values are held.
+pub(crate) fn linear_interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     let i = xs.partition_point(|&v| v <= x);
     if i == 0 {
         return ys[0];

@@ -12,7 +12,7 @@
 //! `BACKGROUND_RG`), spectral columns named `380nm`, `381nm`, ….
 
 use super::{Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_wavelengths, parse_number};
-use crate::spectrum::SampledSpectrum;
+use crate::spectrum::{SampledSpectrum, linear_interpolate};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -139,7 +139,9 @@ pub fn parse(
     let white = find("WHITE_BASO4", &WHITE_NAMES, "white-standard")?;
     let wavelengths: Vec<f64> = spectral.iter().map(|&(_, nm)| nm).collect();
     let rho: Vec<f64> = match white_reflectance {
-        Some(spec) => wavelengths.iter().map(|&nm| interpolate_clamped(spec, nm)).collect(),
+        Some(spec) => {
+            wavelengths.iter().map(|&nm| linear_interpolate(spec.wavelengths_nm(), spec.values(), nm)).collect()
+        }
         None => {
             let line_rho = lines[..header_at]
                 .iter()
@@ -203,20 +205,6 @@ pub fn parse(
         rg,
         metadata,
     })
-}
-
-/// Linear interpolation in a spectrum, holding the end values outside it.
-fn interpolate_clamped(spec: &SampledSpectrum, nm: f64) -> f64 {
-    let (w, v) = (spec.wavelengths_nm(), spec.values());
-    let i = w.partition_point(|&x| x <= nm);
-    if i == 0 {
-        v[0]
-    } else if i >= w.len() {
-        v[v.len() - 1]
-    } else {
-        let t = (nm - w[i - 1]) / (w[i] - w[i - 1]);
-        v[i - 1] + t * (v[i] - v[i - 1])
-    }
 }
 
 #[cfg(test)]
