@@ -29,34 +29,37 @@ pub(crate) fn cells(line: &str) -> Vec<&str> {
     line.split(',').map(str::trim).collect()
 }
 
-/// Parses a Rouge CSV measurement.
-pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
-    let metadata = comment_metadata(text);
+/// A CSV table of numbers: the header line, its names, and every column's cells.
+struct NumericTable {
+    header_line: usize,
+    header: String,
+    names: Vec<String>,
+    columns: Vec<Vec<Cell>>,
+}
+
+impl NumericTable {
+    /// The index of the column named `name` (case-insensitive).
+    fn column(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n.eq_ignore_ascii_case(name))
+    }
+}
+
+/// Reads the header, lets `check_header` refuse it before any row is read (so a bad header is
+/// reported at the header), then every data row (`#` comments and blank lines skipped), parsing
+/// each cell as a finite number; errors name the line and column.
+fn read_numeric_table(
+    path: &Path,
+    text: &str,
+    check_header: impl FnOnce(&NumericTable) -> Result<(), ImportError>,
+) -> Result<NumericTable, ImportError> {
     let mut rows =
         text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) =
-        rows.next().ok_or_else(|| ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"))?;
-    let names: Vec<String> = cells(header).iter().map(|c| c.to_ascii_lowercase()).collect();
-    let mut index = [0usize; 4];
-    for (slot, want) in index.iter_mut().zip(COLUMNS) {
-        *slot = names.iter().position(|n| n == want).ok_or_else(|| {
-            ImportError::at(
-                path,
-                header_line,
-                None,
-                format!("the header has no `{want}` column (expected `wavelength_nm,r_inf,r,rg`, found `{header}`)"),
-            )
-        })?;
-    }
-    if let Some((col, extra)) = names.iter().enumerate().find(|(_, n)| !COLUMNS.contains(&n.as_str())) {
-        return Err(ImportError::at(
-            path,
-            header_line,
-            Some(col + 1),
-            format!("unknown column `{extra}` (Rouge CSV has exactly wavelength_nm, r_inf, r, rg)"),
-        ));
-    }
-    let mut columns: [Vec<Cell>; 4] = Default::default();
+    let (header_line, header) = rows.next().ok_or_else(|| ImportError::file(path, "no header line"))?;
+    let names: Vec<String> = cells(header).iter().map(|c| c.to_string()).collect();
+    let mut table =
+        NumericTable { header_line, header: header.to_string(), columns: vec![Vec::new(); names.len()], names };
+    check_header(&table)?;
+    let names = &table.names;
     for (line, row) in rows {
         let c = cells(row);
         if c.len() != names.len() {
@@ -67,30 +70,73 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
                 format!("{} cells, but the header has {}", c.len(), names.len()),
             ));
         }
-        for (k, &i) in index.iter().enumerate() {
-            let value = parse_number(path, c[i], line, i + 1, COLUMNS[k])?;
-            columns[k].push(Cell { value, line, column: i + 1 });
+        for (i, (text, column)) in c.iter().zip(table.columns.iter_mut()).enumerate() {
+            let value = parse_number(path, text, line, i + 1, &names[i])?;
+            column.push(Cell { value, line, column: i + 1 });
         }
     }
-    if columns[0].len() < 2 {
+    let data_rows = table.columns.first().map_or(0, Vec::len);
+    if data_rows < 2 {
         return Err(ImportError::at(
             path,
             header_line,
             None,
-            format!("{} data rows after the header: a spectrum needs at least 2", columns[0].len()),
+            format!("{data_rows} data rows after the header: a spectrum needs at least 2"),
         ));
     }
+    Ok(table)
+}
+
+/// Fraction or percent: the `# scale:` comment (or `# unit:`) if present, else detected.
+fn resolve_scale(path: &Path, metadata: &BTreeMap<String, String>, cells: &[Cell]) -> Result<Scale, ImportError> {
+    match metadata.get("scale").or_else(|| metadata.get("unit")).map(|u| u.to_ascii_lowercase()) {
+        None => Ok(detect_scale(cells)),
+        Some(u) if u == "percent" || u == "%" => Ok(Scale::Percent { declared: true }),
+        Some(u) if u == "fraction" => Ok(Scale::Fraction { declared: true }),
+        Some(u) => Err(ImportError::file(path, format!("unknown `# scale: {u}` (use `fraction` or `percent`)"))),
+    }
+}
+
+/// Parses a Rouge CSV measurement.
+pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
+    let metadata = comment_metadata(text);
+    if text.lines().all(|l| l.trim().is_empty() || l.trim().starts_with('#')) {
+        return Err(ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"));
+    }
+    let header_index = |t: &NumericTable| -> Result<[usize; 4], ImportError> {
+        let mut index = [0usize; 4];
+        for (slot, want) in index.iter_mut().zip(COLUMNS) {
+            *slot = t.column(want).ok_or_else(|| {
+                ImportError::at(
+                    path,
+                    t.header_line,
+                    None,
+                    format!(
+                        "the header has no `{want}` column (expected `wavelength_nm,r_inf,r,rg`, found `{}`)",
+                        t.header
+                    ),
+                )
+            })?;
+        }
+        if let Some((col, extra)) =
+            t.names.iter().enumerate().find(|(_, n)| !COLUMNS.contains(&n.to_ascii_lowercase().as_str()))
+        {
+            return Err(ImportError::at(
+                path,
+                t.header_line,
+                Some(col + 1),
+                format!("unknown column `{extra}` (Rouge CSV has exactly wavelength_nm, r_inf, r, rg)"),
+            ));
+        }
+        Ok(index)
+    };
+    let table = read_numeric_table(path, text, |t| header_index(t).map(|_| ()))?;
+    let index = header_index(&table)?;
+    let mut all = table.columns;
+    let columns: [Vec<Cell>; 4] = index.map(|i| std::mem::take(&mut all[i]));
     check_wavelengths(path, &columns[0])?;
     let reflectances: Vec<Cell> = columns[1..].iter().flatten().copied().collect();
-    let declared = metadata.get("scale").or_else(|| metadata.get("unit"));
-    let scale = match declared.map(|u| u.to_ascii_lowercase()) {
-        None => detect_scale(&reflectances),
-        Some(u) if u == "percent" || u == "%" => Scale::Percent { declared: true },
-        Some(u) if u == "fraction" => Scale::Fraction { declared: true },
-        Some(u) => {
-            return Err(ImportError::file(path, format!("unknown `# scale: {u}` (use `fraction` or `percent`)")));
-        }
-    };
+    let scale = resolve_scale(path, &metadata, &reflectances)?;
     let factor = scale.factor();
     check_reflectance_range(path, &reflectances, factor)?;
     let kind = match metadata.get("kind") {
@@ -141,54 +187,27 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
 /// measurements; `#` comment lines are skipped.
 pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), ImportError> {
     let metadata = comment_metadata(text);
-    let mut rows =
-        text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = rows.next().ok_or_else(|| ImportError::file(path, "the file is empty"))?;
-    let names: Vec<&str> = cells(header);
-    let wl_col = names
-        .iter()
-        .position(|n| n.eq_ignore_ascii_case("wavelength_nm"))
-        .ok_or_else(|| ImportError::at(path, header_line, None, "the header has no `wavelength_nm` column"))?;
-    let sample_cols: Vec<usize> = (0..names.len()).filter(|&i| i != wl_col).collect();
-    if sample_cols.is_empty() {
-        return Err(ImportError::at(path, header_line, None, "no sample columns besides `wavelength_nm`"));
-    }
-    if let Some(i) = sample_cols.iter().find(|&&i| names[i].is_empty()) {
-        return Err(ImportError::at(path, header_line, Some(i + 1), "a sample column has no name"));
-    }
-    let mut wl = Vec::new();
-    let mut values: Vec<Vec<Cell>> = vec![Vec::new(); sample_cols.len()];
-    for (line, row) in rows {
-        let c = cells(row);
-        if c.len() != names.len() {
-            return Err(ImportError::at(
-                path,
-                line,
-                Some(c.len().min(names.len()) + 1),
-                format!("{} cells, but the header has {}", c.len(), names.len()),
-            ));
+    let check = |t: &NumericTable| -> Result<(), ImportError> {
+        if t.column("wavelength_nm").is_none() {
+            return Err(ImportError::at(path, t.header_line, None, "the header has no `wavelength_nm` column"));
         }
-        wl.push(Cell {
-            value: parse_number(path, c[wl_col], line, wl_col + 1, "wavelength_nm")?,
-            line,
-            column: wl_col + 1,
-        });
-        for (k, &i) in sample_cols.iter().enumerate() {
-            let value = parse_number(path, c[i], line, i + 1, names[i])?;
-            values[k].push(Cell { value, line, column: i + 1 });
+        if t.names.len() < 2 {
+            return Err(ImportError::at(path, t.header_line, None, "no sample columns besides `wavelength_nm`"));
         }
-    }
-    if wl.len() < 2 {
-        return Err(ImportError::file(path, format!("{} data rows: a spectrum needs at least 2", wl.len())));
-    }
+        if let Some(i) = t.names.iter().position(String::is_empty) {
+            return Err(ImportError::at(path, t.header_line, Some(i + 1), "a column has no name"));
+        }
+        Ok(())
+    };
+    let mut table = read_numeric_table(path, text, check)?;
+    let wl_col = table.column("wavelength_nm").unwrap_or(0);
+    let wl = std::mem::take(&mut table.columns[wl_col]);
+    let sample_cols: Vec<usize> = (0..table.names.len()).filter(|&i| i != wl_col).collect();
+    let names: Vec<&str> = table.names.iter().map(String::as_str).collect();
+    let values: Vec<Vec<Cell>> = sample_cols.iter().map(|&i| std::mem::take(&mut table.columns[i])).collect();
     check_wavelengths(path, &wl)?;
     let all: Vec<Cell> = values.iter().flatten().copied().collect();
-    let scale = match metadata.get("scale").map(|u| u.to_ascii_lowercase()) {
-        None => detect_scale(&all),
-        Some(u) if u == "percent" => Scale::Percent { declared: true },
-        Some(u) if u == "fraction" => Scale::Fraction { declared: true },
-        Some(u) => return Err(ImportError::file(path, format!("unknown `# scale: {u}`"))),
-    };
+    let scale = resolve_scale(path, &metadata, &all)?;
     check_reflectance_range(path, &all, scale.factor())?;
     let grid: Vec<f64> = wl.iter().map(|c| c.value).collect();
     let mut out = Vec::with_capacity(sample_cols.len());
