@@ -50,7 +50,7 @@ pub struct CommonArgs {
     #[arg(long, value_parser = parse_kind)]
     pub kind: Option<Kind>,
     /// Sample names of R∞, R and Rg in multi-sample files.
-    #[arg(long, value_delimiter = ',', num_args = 3, value_names = ["R_INF", "R", "RG"])]
+    #[arg(long, value_delimiter = ',', value_name = "R_INF,R,RG")]
     pub samples: Option<Vec<String>>,
     /// Hold the end values when the file does not cover 380-780 nm (CIE 15 constant extrapolation).
     #[arg(long)]
@@ -103,7 +103,10 @@ pub fn demo(args: &DemoArgs) -> Result<()> {
 fn options(common: &CommonArgs) -> Result<ImportOptions> {
     let samples = match &common.samples {
         None => SampleNames::default(),
-        Some(v) => SampleNames { r_inf: v[0].clone(), r: v[1].clone(), rg: v[2].clone() },
+        Some(v) => match v.as_slice() {
+            [a, b, c] => SampleNames { r_inf: a.clone(), r: b.clone(), rg: c.clone() },
+            _ => bail!("--samples needs three names, R∞, R and Rg, separated by commas (got {})", v.len()),
+        },
     };
     let white_reflectance = match (common.white_reflectance, &common.white_spectrum) {
         (_, Some(path)) => {

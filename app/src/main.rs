@@ -18,7 +18,7 @@ use std::process::ExitCode;
 /// scattering S and absorption K, check them in colour terms, and build material presets for
 /// the renderer.
 #[derive(Debug, Parser)]
-#[command(name = "rouge", version, about, long_about = None, propagate_version = true)]
+#[command(name = "rouge", version, propagate_version = true)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -163,3 +163,24 @@ fn radiance_white_standard_and_saunderson_options_change_the_result() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("at 780 nm"), "{}", stderr(&o));
 }
+
+#[test]
+fn samples_are_chosen_by_name() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = std::fs::read_to_string(root().join("data/measurements/formats/foundation_02_ivory_xrite.txt"))
+        .expect("read")
+        .replace("\tR_INF\t", "\tOPAQUE\t")
+        .replace("\tRG\t", "\tCARD\t");
+    let file = dir.path().join("renamed.txt");
+    std::fs::write(&file, text).expect("write");
+    let (file, out) = (file.to_str().expect("utf-8"), dir.path().join("p.json"));
+    let out = out.to_str().expect("utf-8");
+    let o = rouge(&["import", file, "--out", out]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no sample named `R_INF` (samples: OPAQUE, R, CARD)"), "{}", stderr(&o));
+    let o = rouge(&["import", file, "--samples", "OPAQUE,R,CARD", "--out", out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rouge(&["import", file, "--samples", "OPAQUE,R", "--out", out]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("three names"), "{}", stderr(&o));
+}
