@@ -1,0 +1,290 @@
+//! Polygon and triangle meshes: types, loading, subdivision, triangulation, tangents.
+//!
+//! Units: positions are millimetres. Loaders take a declared `scale_to_mm` factor because
+//! scans come in arbitrary units (metres, centimetres, millimetres).
+
+mod gltf;
+mod obj;
+mod subdivide;
+mod tangents;
+
+use std::collections::HashMap;
+use std::ops::Range;
+use std::path::PathBuf;
+
+use glam::{Vec2, Vec3, Vec4};
+
+pub use self::gltf::load_gltf;
+pub use self::obj::load_obj;
+
+/// Errors from loading or preparing a mesh.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshError {
+    /// The file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// File that failed.
+        path: PathBuf,
+        /// Underlying I/O error.
+        source: std::io::Error,
+    },
+    /// A syntax or index error in an OBJ file, with its 1-based line and column.
+    #[error("{path}:{line}:{column}: {message}")]
+    Parse {
+        /// File being parsed.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// 1-based column (in characters) of the offending token.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A glTF file that could not be read or interpreted.
+    #[error("{path}: glTF: {message}")]
+    Gltf {
+        /// File being loaded.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// The mesh has no texture coordinates (TEXCOORD_0 for glTF), which the renderer needs.
+    #[error("{path}: mesh has no texture coordinates")]
+    MissingUvs {
+        /// File being loaded.
+        path: PathBuf,
+    },
+    /// The declared unit scale is not a finite positive number.
+    #[error("invalid scale_to_mm {0}: must be finite and > 0")]
+    InvalidScale(f32),
+    /// The mesh contains no faces.
+    #[error("mesh has no faces")]
+    Empty,
+    /// MikkTSpace could not generate tangents.
+    #[error("tangent generation failed: {0}")]
+    Tangents(String),
+}
+
+/// One corner of a polygon: indices into [`Mesh::positions`], [`Mesh::uvs`] and [`Mesh::normals`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Corner {
+    /// Index into [`Mesh::positions`].
+    pub position: u32,
+    /// Index into [`Mesh::uvs`].
+    pub uv: u32,
+    /// Index into [`Mesh::normals`].
+    pub normal: u32,
+}
+
+/// A polygon face (at least three corners, counter-clockwise seen from outside).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Face {
+    /// Corners in winding order.
+    pub corners: Vec<Corner>,
+}
+
+/// A named range of consecutive faces sharing a group name and material (OBJ `g` / `usemtl`,
+/// glTF mesh / material).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Group {
+    /// Group name (OBJ `g`, or glTF mesh name).
+    pub name: String,
+    /// Material name (OBJ `usemtl`, or glTF material name), if any.
+    pub material: Option<String>,
+    /// Range of indices into [`Mesh::faces`].
+    pub faces: Range<usize>,
+}
+
+/// Axis-aligned bounding box in millimetres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// Minimum corner.
+    pub min: Vec3,
+    /// Maximum corner.
+    pub max: Vec3,
+}
+
+impl Bounds {
+    /// Extent along each axis (`max - min`).
+    pub fn size(&self) -> Vec3 {
+        self.max - self.min
+    }
+
+    /// Centre of the box.
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// A polygon mesh with face-varying UVs and normals, in millimetres.
+///
+/// Faces stay polygons (the default head is all quads) until [`Mesh::triangulate`].
+/// Positions, UVs and normals are indexed separately per corner, so UV seams are explicit.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mesh {
+    /// Vertex positions in millimetres.
+    pub positions: Vec<Vec3>,
+    /// Unit normals, referenced by [`Corner::normal`].
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates, referenced by [`Corner::uv`].
+    pub uvs: Vec<Vec2>,
+    /// Polygon faces.
+    pub faces: Vec<Face>,
+    /// Named face ranges, in face order, covering every face.
+    pub groups: Vec<Group>,
+}
+
+impl Mesh {
+    /// Axis-aligned bounds of the positions used by faces, or `None` if there are no faces.
+    pub fn bounds(&self) -> Option<Bounds> {
+        let mut it = self.faces.iter().flat_map(|f| f.corners.iter()).map(|c| self.positions[c.position as usize]);
+        let first = it.next()?;
+        let (min, max) = it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        Some(Bounds { min, max })
+    }
+
+    /// The first group with this name, if any.
+    pub fn group(&self, name: &str) -> Option<&Group> {
+        self.groups.iter().find(|g| g.name == name)
+    }
+
+    /// Number of corners over all faces.
+    pub fn corner_count(&self) -> usize {
+        self.faces.iter().map(|f| f.corners.len()).sum()
+    }
+
+    /// Replaces the normals by area-weighted smooth vertex normals, one per position
+    /// (`Corner::normal == Corner::position`). Vertices with no area get +Z instead of NaN.
+    pub fn recompute_normals(&mut self) {
+        let mut acc = vec![Vec3::ZERO; self.positions.len()];
+        for face in &self.faces {
+            // Newell's method: the vector area (twice the area times the unit normal).
+            let n = polygon_vector_area(&self.positions, &face.corners);
+            if !n.is_finite() {
+                continue;
+            }
+            for c in &face.corners {
+                acc[c.position as usize] += n;
+            }
+        }
+        self.normals = acc.into_iter().map(|n| n.try_normalize().unwrap_or(Vec3::Z)).collect();
+        for face in &mut self.faces {
+            for c in &mut face.corners {
+                c.normal = c.position;
+            }
+        }
+    }
+
+    /// Triangulates every polygon (fan from its first corner; quads split along the shorter
+    /// diagonal) into an indexed triangle mesh with one vertex per unique
+    /// (position, uv, normal) triple. Faces whose corners are all the same point are dropped.
+    pub fn triangulate(&self) -> TriangleMesh {
+        let mut out = TriangleMesh::default();
+        let mut map: HashMap<Corner, u32> = HashMap::new();
+        let mut vertex = |c: Corner, out: &mut TriangleMesh| -> u32 {
+            *map.entry(c).or_insert_with(|| {
+                out.positions.push(self.positions[c.position as usize]);
+                out.uvs.push(self.uvs[c.uv as usize]);
+                out.normals.push(self.normals[c.normal as usize].try_normalize().unwrap_or(Vec3::Z));
+                (out.positions.len() - 1) as u32
+            })
+        };
+        for group in &self.groups {
+            let start = out.indices.len() / 3;
+            for face in &self.faces[group.faces.clone()] {
+                let cs = &face.corners;
+                if cs.len() < 3 {
+                    continue;
+                }
+                let mut tris: Vec<[Corner; 3]> = Vec::with_capacity(cs.len() - 2);
+                if cs.len() == 4 {
+                    let p = |i: usize| self.positions[cs[i].position as usize];
+                    if p(0).distance_squared(p(2)) <= p(1).distance_squared(p(3)) {
+                        tris.push([cs[0], cs[1], cs[2]]);
+                        tris.push([cs[0], cs[2], cs[3]]);
+                    } else {
+                        tris.push([cs[0], cs[1], cs[3]]);
+                        tris.push([cs[1], cs[2], cs[3]]);
+                    }
+                } else {
+                    for i in 1..cs.len() - 1 {
+                        tris.push([cs[0], cs[i], cs[i + 1]]);
+                    }
+                }
+                for t in tris {
+                    if t[0].position == t[1].position && t[1].position == t[2].position {
+                        continue;
+                    }
+                    for c in t {
+                        let v = vertex(c, &mut out);
+                        out.indices.push(v);
+                    }
+                }
+            }
+            out.groups.push(TriangleGroup {
+                name: group.name.clone(),
+                material: group.material.clone(),
+                triangles: start..out.indices.len() / 3,
+            });
+        }
+        out
+    }
+}
+
+/// A named range of triangles of a [`TriangleMesh`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TriangleGroup {
+    /// Group name.
+    pub name: String,
+    /// Material name, if any.
+    pub material: Option<String>,
+    /// Range of triangle indices (triangle `t` uses `indices[3t..3t+3]`).
+    pub triangles: Range<usize>,
+}
+
+/// An indexed triangle mesh ready for a vertex buffer: every attribute is per vertex.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TriangleMesh {
+    /// Positions in millimetres.
+    pub positions: Vec<Vec3>,
+    /// Unit normals.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates.
+    pub uvs: Vec<Vec2>,
+    /// Tangents (`xyz` unit, orthogonal to the normal; `w` = ±1 bitangent sign), once
+    /// [`TriangleMesh::generate_tangents`] has run.
+    pub tangents: Option<Vec<Vec4>>,
+    /// Triangle list, three vertex indices per triangle, counter-clockwise.
+    pub indices: Vec<u32>,
+    /// Named triangle ranges.
+    pub groups: Vec<TriangleGroup>,
+}
+
+impl TriangleMesh {
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+}
+
+/// Newell's vector area of a polygon: its direction is the normal, its length twice the area.
+pub(crate) fn polygon_vector_area(positions: &[Vec3], corners: &[Corner]) -> Vec3 {
+    let n = corners.len();
+    let mut acc = Vec3::ZERO;
+    for i in 0..n {
+        let a = positions[corners[i].position as usize];
+        let b = positions[corners[(i + 1) % n].position as usize];
+        acc += a.cross(b);
+    }
+    acc
+}
+
+/// Rejects a scale that is not finite and positive.
+pub(crate) fn check_scale(scale_to_mm: f32) -> Result<(), MeshError> {
+    if scale_to_mm.is_finite() && scale_to_mm > 0.0 { Ok(()) } else { Err(MeshError::InvalidScale(scale_to_mm)) }
+}
