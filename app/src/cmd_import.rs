@@ -3,7 +3,7 @@
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames};
-use rouge_measure::km::Saunderson;
+use rouge_measure::km::{self, Saunderson};
 use rouge_measure::preset::{ImportReport, Preset};
 use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum};
 use std::path::{Path, PathBuf};
@@ -71,6 +71,9 @@ pub struct CommonArgs {
     /// The instrument excluded the specular component (SCE, 45/0): K1 is not subtracted.
     #[arg(long = "specular-excluded", requires = "saunderson_ior")]
     pub specular_excluded: bool,
+    /// Also draw the measured reflectances, R re-computed from S and K, and S and K as an SVG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
     /// Print the report as JSON instead of text.
     #[arg(long)]
     pub json: bool,
@@ -154,6 +157,11 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
     if let Some(out) = out {
         preset.save(out)?;
     }
+    if let Some(path) = &common.plot {
+        let r_re = recomputed_r(&preset, &working, saunderson);
+        rouge_measure::preset::write_atomic(path, crate::plot::preset_svg(&preset, &r_re).as_bytes())
+            .with_context(|| format!("cannot write the plot {}", path.display()))?;
+    }
     if common.json {
         let v = serde_json::json!({
             "name": preset.name,
@@ -172,6 +180,20 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
     } else {
         crate::emit(&report_text(m, &working, &preset, &report, saunderson, out))
     }
+}
+
+/// R of the measured layer over its background, re-computed from the preset's S and K, in the
+/// measurement's terms (back through Saunderson when it was applied).
+fn recomputed_r(preset: &Preset, working: &import::WorkingMeasurement, saunderson: Option<Saunderson>) -> Vec<f64> {
+    let (s, k) = (preset.s(), preset.k());
+    (0..s.0.len())
+        .map(|i| {
+            let rg = saunderson.map_or(working.rg.0[i], |c| c.to_internal(working.rg.0[i]));
+            let layer = km::layer_r_t(s.0[i], k.0[i], preset.thickness_mm).unwrap_or(km::LayerRt::CLEAR);
+            let r = km::compose(layer, km::LayerRt::opaque(rg)).r;
+            saunderson.map_or(r, |c| c.to_measured(r))
+        })
+        .collect()
 }
 
 fn report_text(

@@ -8,6 +8,7 @@ mod cmd_bench;
 mod cmd_color;
 mod cmd_import;
 mod cmd_km;
+mod plot;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -184,3 +184,23 @@ fn samples_are_chosen_by_name() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("three names"), "{}", stderr(&o));
 }
+
+#[test]
+fn plot_writes_an_svg_with_every_curve() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (out, svg) = (dir.path().join("p.json"), dir.path().join("p.svg"));
+    let o = rouge(&[
+        "import",
+        "data/measurements/blush_01_petal.csv",
+        "--out",
+        out.to_str().expect("utf-8"),
+        "--plot",
+        svg.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&svg).expect("svg written");
+    assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+    // R∞, R, R from S and K, Rg, S, K.
+    assert_eq!(text.matches("<polyline").count(), 6, "{text}");
+    assert!(!text.contains("NaN"));
+}
