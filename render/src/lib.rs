@@ -1,11 +1,16 @@
-//! Rouge renderer, CPU side: loading and preparing head meshes for rendering.
+//! Rouge renderer: real-time skin with layered cosmetics (paper 003, section 3, figure 1) on wgpu.
 //!
-//! This first piece holds no GPU code. It loads polygon meshes from OBJ and glTF
-//! ([`mesh::load_obj`], [`mesh::load_gltf`]), subdivides them with Catmull-Clark
-//! ([`mesh::Mesh::catmull_clark`]), triangulates them into indexed vertex buffers
-//! ([`mesh::Mesh::triangulate`]) and generates MikkTSpace tangents
-//! ([`mesh::TriangleMesh::generate_tangents`]).
+//! Headless first: [`gpu::Gpu`] opens a device without a window (Mesa lavapipe where there is no
+//! GPU), and the painting app hands in its own device. Modules:
+//! - [`mesh`]: OBJ/glTF loading with a unit scale, Catmull-Clark, triangulation, MikkTSpace.
+//! - [`look`]: the look document (cosmetic layers bottom to top, each a preset and a thickness).
+//! - [`env`]: HDR environment maps and their spherical-harmonics irradiance (paper 000, 4.1.2).
+//! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
 
+pub mod env;
+pub mod error;
+pub mod look;
 pub mod mesh;
 
+pub use error::{RenderError, Result};
 pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};
