@@ -8,6 +8,7 @@ mod cmd_bench;
 mod cmd_color;
 mod cmd_import;
 mod cmd_km;
+mod cmd_render;
 mod plot;
 
 use clap::{Parser, Subcommand};
@@ -43,6 +44,11 @@ enum Command {
     /// FILE is a CSV with a `wavelength_nm` column and one column per sample (reflectance as
     /// fractions or percent), on any grid covering 380-780 nm (resampled with Sprague).
     Color(cmd_color::ColorArgs),
+    /// Render the face with makeup: one frame to a PNG (tone-mapped) or an EXR (linear).
+    ///
+    /// Defaults: the embedded head, foundation + blush + lipstick, a studio light rig, 1280×720.
+    /// Runs on any wgpu adapter, Mesa's lavapipe included when there is no GPU.
+    Render(cmd_render::RenderArgs),
     /// Speed-against-error studies (figures for docs/BENCHMARKS.md).
     #[command(subcommand)]
     Bench(cmd_bench::BenchCommand),
@@ -67,6 +73,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => cmd_import::demo(&args),
         Command::Km(cmd) => cmd_km::run(&cmd),
         Command::Color(args) => cmd_color::run(&args),
+        Command::Render(args) => cmd_render::run(&args),
         Command::Bench(cmd) => cmd_bench::run(&cmd),
     };
     match result {

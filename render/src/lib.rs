@@ -9,8 +9,16 @@
 
 pub mod env;
 pub mod error;
+pub mod gpu;
+pub mod job;
 pub mod look;
 pub mod mesh;
+pub mod renderer;
+pub mod scene;
+pub mod sss;
 
 pub use error::{RenderError, Result};
+pub use gpu::Gpu;
+pub use renderer::Renderer;
+pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings};
 pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};

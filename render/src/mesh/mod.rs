@@ -15,7 +15,19 @@ use std::path::PathBuf;
 use glam::{Vec2, Vec3, Vec4};
 
 pub use self::gltf::load_gltf;
-pub use self::obj::load_obj;
+pub use self::obj::{load_obj, parse_obj};
+
+/// The default head (MakeHuman hm08 head and neck, CC0; see data/SOURCES.md), embedded so the
+/// renderer works from any directory on a fresh machine. Millimetres, +Y up, facing +Z.
+pub const DEFAULT_HEAD_OBJ: &str = include_str!("../../../data/heads/hm08_head.obj");
+
+/// Loads the embedded default head (not yet subdivided).
+///
+/// # Errors
+/// Only if the embedded file were corrupt (a build error in practice).
+pub fn default_head() -> Result<Mesh, MeshError> {
+    parse_obj(DEFAULT_HEAD_OBJ, std::path::Path::new("<embedded data/heads/hm08_head.obj>"), 1.0)
+}
 
 /// Errors from loading or preparing a mesh.
 #[derive(Debug, thiserror::Error)]
@@ -113,6 +125,12 @@ impl Bounds {
     /// Centre of the box.
     pub fn center(&self) -> Vec3 {
         (self.min + self.max) * 0.5
+    }
+
+    /// Bounds of a point set; `None` when it is empty.
+    pub fn of(points: &[Vec3]) -> Option<Bounds> {
+        let first = *points.first()?;
+        Some(points.iter().fold(Bounds { min: first, max: first }, |b, &p| Bounds { min: b.min.min(p), max: b.max.max(p) }))
     }
 }
 

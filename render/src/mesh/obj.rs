@@ -74,7 +74,12 @@ fn tokens(line: &str) -> Vec<(usize, &str)> {
     out
 }
 
-fn parse_obj(text: &str, path: &Path, scale: f32) -> Result<Mesh, MeshError> {
+/// Parses OBJ text already in memory (an embedded mesh); `path` names it in error messages.
+///
+/// # Errors
+/// As [`load_obj`], except I/O.
+pub fn parse_obj(text: &str, path: &Path, scale: f32) -> Result<Mesh, MeshError> {
+    check_scale(scale)?;
     let mut mesh = Mesh::default();
     let mut p = Parser { path, line: 0 };
     let mut missing_normal = false;

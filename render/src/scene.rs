@@ -1,0 +1,256 @@
+//! What a frame shows besides the mesh and the look: camera, lights, environment, skin, SSS
+//! settings, exposure. Units are millimetres; +Y up, the face looks toward +Z.
+
+use crate::env::ShIrradiance;
+use crate::error::{RenderError, Result};
+use crate::mesh::Bounds;
+use crate::sss::DiffusionProfile;
+use glam::{Mat4, Vec3};
+use rouge_measure::colorimetry::{Colorimeter, Viewing};
+use rouge_measure::{Extrapolation, Spectrum};
+use std::path::Path;
+
+/// An orbit camera around the mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Point looked at, mm.
+    pub target: Vec3,
+    /// Distance from the target, mm.
+    pub distance: f32,
+    /// Rotation about +Y, degrees; 0 looks at the face from +Z, positive turns the camera to the
+    /// face's left (the viewer sees more of the right cheek).
+    pub yaw_deg: f32,
+    /// Elevation, degrees; positive looks from above.
+    pub pitch_deg: f32,
+    /// Vertical field of view, degrees.
+    pub fov_y_deg: f32,
+}
+
+impl Camera {
+    /// A portrait framing of `bounds`: a 25° lens at a distance where the bounding sphere's
+    /// height fits the frame, looking at the upper part of the bounds (the face, not the neck).
+    pub fn framing(bounds: &Bounds, yaw_deg: f32, pitch_deg: f32) -> Camera {
+        let size = bounds.size();
+        let centre = bounds.center();
+        let fov_y_deg = 25.0f32;
+        let half_height = 0.5 * size.y.max(size.x) * 0.95;
+        let distance = half_height / (0.5 * fov_y_deg.to_radians()).tan() + 0.5 * size.z;
+        Camera { target: centre + Vec3::new(0.0, 0.05 * size.y, 0.0), distance, yaw_deg, pitch_deg, fov_y_deg }
+    }
+
+    /// Camera position, mm.
+    pub fn position(&self) -> Vec3 {
+        let (yaw, pitch) = (self.yaw_deg.to_radians(), self.pitch_deg.to_radians());
+        self.target + self.distance * Vec3::new(yaw.sin() * pitch.cos(), pitch.sin(), yaw.cos() * pitch.cos())
+    }
+
+    /// View matrix (right-handed, looking down −Z in view space).
+    pub fn view(&self) -> Mat4 {
+        glam::camera::rh::view::look_at_mat4(self.position(), self.target, Vec3::Y)
+    }
+
+    /// Near and far planes that enclose a sphere of `radius` around the target.
+    pub fn clip_planes(&self, radius: f32) -> (f32, f32) {
+        let near = (self.distance - 1.5 * radius).max(self.distance * 0.05).max(1.0);
+        (near, self.distance + 1.5 * radius)
+    }
+
+    /// Perspective projection for `aspect` (width / height), depth in [0, 1].
+    pub fn projection(&self, aspect: f32, near: f32, far: f32) -> Mat4 {
+        glam::camera::rh::proj::directx::perspective(self.fov_y_deg.to_radians(), aspect, near, far)
+    }
+
+    /// Focal length in pixels for an image `height` pixels tall.
+    pub fn focal_px(&self, height: u32) -> f32 {
+        0.5 * height as f32 / (0.5 * self.fov_y_deg.to_radians()).tan()
+    }
+}
+
+/// Where a light is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// Infinitely far, along `toward` (unit vector from the scene toward the light).
+    Directional {
+        /// Unit vector toward the light.
+        toward: Vec3,
+    },
+    /// At `position` (mm); irradiance falls off with the squared distance.
+    Point {
+        /// Position, mm.
+        position: Vec3,
+    },
+}
+
+/// A light. `irradiance` is linear RGB irradiance at normal incidence: everywhere for a
+/// directional light, at the scene centre for a point light. A white Lambertian surface facing a
+/// light of irradiance π has radiance 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Directional or point.
+    pub kind: LightKind,
+    /// Irradiance at normal incidence, linear RGB.
+    pub irradiance: [f32; 3],
+    /// Whether the light casts shadows (one shadow map each).
+    pub shadows: bool,
+}
+
+/// Skin: albedo, specular and scattering.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Skin {
+    /// Total diffuse reflectance, linear sRGB.
+    pub albedo: [f32; 3],
+    /// Beckmann roughness of the skin's specular lobe.
+    pub roughness: f32,
+    /// Index of refraction of the skin surface (Schlick F0 from it).
+    pub ior: f32,
+    /// Diffusion profile.
+    pub profile: DiffusionProfile,
+}
+
+/// Light skin of the ColorChecker (N. Ohta's measurement), embedded.
+const COLORCHECKER_SKIN: &str = include_str!("../../data/skin/colorchecker_skin.csv");
+
+impl Skin {
+    /// Skin whose albedo is the linear sRGB (D65, CIE 1931) of a reflectance spectrum; d'Eon's
+    /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke.
+    pub fn from_spectrum(reflectance: &Spectrum) -> Skin {
+        let c = Colorimeter::get(Viewing::D65_1931);
+        let rgb = c.srgb_linear(&c.xyz(reflectance));
+        Skin {
+            albedo: rgb.map(|v| v.clamp(0.0, 1.0) as f32),
+            roughness: 0.35,
+            ior: 1.4,
+            profile: DiffusionProfile::skin(),
+        }
+    }
+
+    /// The ColorChecker's "light skin" or "dark skin" patch.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for another patch name.
+    pub fn colorchecker(patch: &str) -> Result<Skin> {
+        let path = Path::new("<embedded data/skin/colorchecker_skin.csv>");
+        let (columns, _) = rouge_measure::import::rouge_csv::parse_spectra_table(path, COLORCHECKER_SKIN)
+            .map_err(|e| RenderError::Invalid(e.to_string()))?;
+        let (_, sampled) = columns
+            .iter()
+            .find(|(name, _)| name == patch)
+            .ok_or_else(|| RenderError::Invalid(format!("no skin patch {patch:?}: use light_skin or dark_skin")))?;
+        let spectrum = sampled
+            .to_working_grid(Extrapolation::Refuse)
+            .map_err(|e| RenderError::Invalid(format!("{}: {e}", path.display())))?
+            .spectrum;
+        Ok(Skin::from_spectrum(&spectrum))
+    }
+
+    /// Schlick's F0 for the skin's IOR.
+    pub fn f0(&self) -> f32 {
+        fresnel_f0(self.ior)
+    }
+}
+
+impl Default for Skin {
+    fn default() -> Self {
+        // The embedded table always has the patch; fall back to its known colour regardless.
+        Skin::colorchecker("light_skin").unwrap_or(Skin {
+            albedo: [0.40, 0.26, 0.20],
+            roughness: 0.35,
+            ior: 1.4,
+            profile: DiffusionProfile::skin(),
+        })
+    }
+}
+
+/// Schlick's normal-incidence reflectance for a dielectric of index `ior` in air.
+pub fn fresnel_f0(ior: f32) -> f32 {
+    let r = (ior - 1.0) / (ior + 1.0);
+    r * r
+}
+
+/// Screen-space scattering settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SssSettings {
+    /// Scale of the diffusion profile's distances: 1 is the measured profile, 0 no scattering
+    /// (the pass is then skipped unless `run_at_zero_width`).
+    pub width: f32,
+    /// Kernel samples per direction: odd, 3 to 33.
+    pub samples: u32,
+    /// Depth difference (mm) over which a sample is replaced by the centre value.
+    pub follow_mm: f32,
+    /// Kernel range in σ of the widest Gaussian.
+    pub range_sigmas: f32,
+    /// Run the passes even at width 0 (for testing that they are then the identity).
+    pub run_at_zero_width: bool,
+}
+
+impl Default for SssSettings {
+    fn default() -> Self {
+        SssSettings { width: 1.0, samples: 17, follow_mm: 3.0, range_sigmas: 3.0, run_at_zero_width: false }
+    }
+}
+
+/// Everything about a frame but the mesh and the look.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Up to [`crate::renderer::MAX_LIGHTS`] lights.
+    pub lights: Vec<Light>,
+    /// Environment irradiance, if any (no environment term without one).
+    pub environment: Option<ShIrradiance>,
+    /// Skin material.
+    pub skin: Skin,
+    /// Scattering.
+    pub sss: SssSettings,
+    /// Specular lobes on (skin and layers).
+    pub specular: bool,
+    /// Exposure applied before tone mapping (display output only).
+    pub exposure: f32,
+    /// Background colour at the top of the frame, linear RGB (darkens toward the bottom).
+    pub background: [f32; 3],
+}
+
+impl Scene {
+    /// The default studio: a warm key light from the upper left with shadows, a cool fill point
+    /// light from the right, a rim light from behind, and a soft studio environment.
+    pub fn studio() -> Scene {
+        Scene {
+            lights: vec![
+                Light {
+                    kind: LightKind::Directional { toward: Vec3::new(-0.5, 0.45, 0.75).normalize() },
+                    irradiance: [2.9, 2.75, 2.55],
+                    shadows: true,
+                },
+                Light {
+                    kind: LightKind::Point { position: Vec3::new(450.0, -20.0, 500.0) },
+                    irradiance: [0.55, 0.6, 0.68],
+                    shadows: false,
+                },
+                Light {
+                    kind: LightKind::Directional { toward: Vec3::new(0.35, 0.55, -0.75).normalize() },
+                    irradiance: [1.3, 1.3, 1.35],
+                    shadows: false,
+                },
+            ],
+            environment: Some(ShIrradiance::studio()),
+            skin: Skin::default(),
+            sss: SssSettings::default(),
+            specular: true,
+            exposure: 1.0,
+            background: [0.16, 0.17, 0.19],
+        }
+    }
+
+    /// One white directional light of irradiance π along `toward`, nothing else: a white
+    /// Lambertian surface facing it has radiance 1, so linear output reads as reflectance.
+    pub fn white_light(toward: Vec3) -> Scene {
+        Scene {
+            lights: vec![Light {
+                kind: LightKind::Directional { toward: toward.normalize() },
+                irradiance: [std::f32::consts::PI; 3],
+                shadows: false,
+            }],
+            environment: None,
+            background: [0.0; 3],
+            ..Scene::studio()
+        }
+    }
+}

@@ -1,0 +1,51 @@
+// Composition (figure 1, step 6): the scattered skin radiance leaving through the stack (× T),
+// plus what left at the surface, over the background; then either linear radiance (for EXR) or
+// exposure and Khronos PBR Neutral tone mapping into an sRGB target (for PNG and the app).
+
+@group(1) @binding(0) var diffuse: texture_2d<f32>;
+@group(1) @binding(1) var surface: texture_2d<f32>;
+@group(1) @binding(2) var exit_t: texture_2d<f32>;
+@group(1) @binding(3) var coverage: texture_2d<f32>;
+
+// Khronos PBR Neutral: hue-preserving, linear below ~0.76, so product colours stay true.
+fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
+    let start = 0.76;
+    let desat = 0.15;
+    var color = color_in;
+    let x = min(color.r, min(color.g, color.b));
+    var offset = 0.04;
+    if x < 0.08 {
+        offset = x - 6.25 * x * x;
+    }
+    color -= offset;
+    let peak = max(color.r, max(color.g, color.b));
+    if peak < start {
+        return color;
+    }
+    let d = 1.0 - start;
+    let new_peak = 1.0 - d * d / (peak + d - start);
+    color *= new_peak / peak;
+    let g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0);
+    return mix(color, vec3<f32>(new_peak), g);
+}
+
+@fragment
+fn fs_composite(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(frag.xy);
+    var c: vec3<f32>;
+    if textureLoad(coverage, p, 0).w == 0.0 {
+        let y = frag.y * frame.viewport.w;
+        c = frame.background.rgb * (1.0 - 0.6 * y);
+    } else {
+        var t = vec3<f32>(1.0);
+//#if LAYERS_A
+        t = textureLoad(exit_t, p, 0).rgb;
+//#endif
+        c = textureLoad(diffuse, p, 0).rgb * t + textureLoad(surface, p, 0).rgb;
+    }
+//#if DISPLAY
+    return vec4<f32>(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0))), 1.0);
+//#else
+    return vec4<f32>(c, 1.0);
+//#endif
+}

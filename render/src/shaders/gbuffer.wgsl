@@ -1,0 +1,77 @@
+// G-buffer pass (figure 1, step 1): world normal, albedo, and the thickness of every cosmetic
+// layer at each pixel, read from the look's thickness maps in the mesh's UV space. Depth comes
+// from the depth attachment.
+
+@group(1) @binding(0) var thickness_maps: texture_2d_array<f32>;
+@group(1) @binding(1) var map_sampler: sampler;
+
+struct VsIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    // rgb: linear albedo, a: 1 for skin (scatters, takes cosmetics), 0 otherwise (eyes)
+    @location(3) albedo: vec4<f32>,
+}
+
+struct VsOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) albedo: vec4<f32>,
+}
+
+@vertex
+fn vs_gbuffer(v: VsIn) -> VsOut {
+    var out: VsOut;
+    out.clip = frame.view_proj * vec4<f32>(v.position, 1.0);
+    out.normal = v.normal;
+    out.uv = v.uv;
+    out.albedo = v.albedo;
+    return out;
+}
+
+struct GbufferOut {
+    // xyz: world normal, w: 1 where the mesh covers the pixel
+    @location(0) normal: vec4<f32>,
+    // rgb: albedo (stored sRGB-encoded, read back linear), a: skin flag
+    @location(1) albedo: vec4<f32>,
+//#if LAYERS_A
+    // thickness (mm) of layers 0-3
+    @location(2) thickness_a: vec4<f32>,
+//#endif
+//#if LAYERS_B
+    // thickness (mm) of layers 4-7
+    @location(3) thickness_b: vec4<f32>,
+//#endif
+}
+
+// Thickness of layer `i` at `uv`. Maps are stored like textures: image row 0 is v = 1.
+fn layer_thickness(uv: vec2<f32>, i: u32) -> f32 {
+    return max(textureSampleLevel(thickness_maps, map_sampler, vec2<f32>(uv.x, 1.0 - uv.y), i32(i), 0.0).r, 0.0);
+}
+
+@fragment
+fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
+    var n = normalize(in.normal);
+    if !front {
+        n = -n;
+    }
+    var out: GbufferOut;
+    out.normal = vec4<f32>(n, 1.0);
+    out.albedo = in.albedo;
+//#if LAYERS_A
+    var a = vec4<f32>(0.0);
+    for (var i = 0u; i < min(LAYERS, 4u); i++) {
+        a[i] = layer_thickness(in.uv, i) * in.albedo.a;
+    }
+    out.thickness_a = a;
+//#endif
+//#if LAYERS_B
+    var b = vec4<f32>(0.0);
+    for (var i = 4u; i < LAYERS; i++) {
+        b[i - 4u] = layer_thickness(in.uv, i) * in.albedo.a;
+    }
+    out.thickness_b = b;
+//#endif
+    return out;
+}

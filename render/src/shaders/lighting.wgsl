@@ -1,0 +1,216 @@
+// Lighting pass (figure 1, steps 2, 3 and 5). Per pixel:
+// - the cosmetic stack's R (from above and from below) and T, from each layer's table of R0 and
+//   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas (paper 003,
+//   eq 3-4, with T1²R2 in the numerator) in linear RGB;
+// - the irradiance of every light (shadowed where the light casts shadows) and of the
+//   environment's spherical harmonics;
+// - the skin radiance before scattering: light that crossed the stack (× T), with the
+//   inter-reflections between skin and the stack's underside (1 / (1 − R_below·albedo));
+// - what leaves at the surface without scattering: the stack's diffuse reflectance and the
+//   Kelemen/Szirmay-Kalos specular lobes of the skin and of each layer, bottom to top, each lower
+//   lobe attenuated by the layers above it (T² for the way in and the way out).
+
+@group(1) @binding(0) var gb_normal: texture_2d<f32>;
+@group(1) @binding(1) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(2) var gb_depth: texture_depth_2d;
+@group(1) @binding(3) var gb_thickness_a: texture_2d<f32>;
+@group(1) @binding(4) var gb_thickness_b: texture_2d<f32>;
+// Per layer two rows of `frame.counts.z` entries: R0 (rgb), then T (rgb), at thickness
+// X = X0·u/(1 − u) for u = i/(n − 1) (the last entry is the opaque limit: R∞, T = 0).
+@group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
+@group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(7) var shadow_sampler: sampler_comparison;
+
+// X0 of the table parameterisation, mm (the Rust side: renderer::TABLE_X0_MM).
+const TABLE_X0_MM: f32 = 0.02;
+
+struct LightingOut {
+    // rgb: skin radiance before scattering, a: 1 on skin
+    @location(0) diffuse: vec4<f32>,
+    // rgb: radiance that leaves at the surface (stack reflectance, specular, non-skin diffuse)
+    @location(1) surface: vec4<f32>,
+//#if LAYERS_A
+    // rgb: T of the stack, for the scattered light on its way out
+    @location(2) exit_t: vec4<f32>,
+//#endif
+}
+
+// Beckmann distribution of half vectors, normalised so that ∫ D (n·h) dω = 1.
+fn beckmann(n_dot_h: f32, m: f32) -> f32 {
+    let c2 = max(n_dot_h * n_dot_h, 1e-6);
+    let m2 = m * m;
+    return exp((c2 - 1.0) / (m2 * c2)) / (PI * m2 * c2 * c2);
+}
+
+// Kelemen/Szirmay-Kalos specular BRDF (paper 003, eq 5): P_H(H) F(H·L) / (2 (1 + L·V)),
+// Schlick's Fresnel from F0.
+fn kelemen(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, m: f32, f0: f32) -> f32 {
+    let h_un = l + v;
+    let len2 = dot(h_un, h_un);
+    if len2 < 1e-8 {
+        return 0.0;
+    }
+    let h = h_un * inverseSqrt(len2);
+    let n_dot_h = dot(n, h);
+    if n_dot_h <= 0.0 {
+        return 0.0;
+    }
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, l), 0.0), 5.0);
+    return beckmann(n_dot_h, m) * fresnel / (2.0 * (1.0 + dot(l, v)));
+}
+
+//#if LAYERS_A
+struct Rt {
+    r: vec3<f32>,
+    t: vec3<f32>,
+}
+
+fn layer_rt(layer: u32, x_mm: f32) -> Rt {
+    let n = frame.counts.z;
+    let u = x_mm / (x_mm + TABLE_X0_MM);
+    let f = u * f32(n - 1u);
+    let i = min(u32(f), n - 2u);
+    let w = f - f32(i);
+    let r_row = 2u * layer * n;
+    let t_row = r_row + n;
+    var out: Rt;
+    out.r = mix(tables[r_row + i].rgb, tables[r_row + i + 1u].rgb, w);
+    out.t = mix(tables[t_row + i].rgb, tables[t_row + i + 1u].rgb, w);
+    return out;
+}
+//#endif
+
+//#if SHADOWS
+fn shadow_factor(light: Light, world: vec3<f32>, n: vec3<f32>) -> f32 {
+    if light.shadow.x < 0.0 {
+        return 1.0;
+    }
+    let p = light.shadow_view_proj * vec4<f32>(world + n * light.shadow.z, 1.0);
+    let ndc = p.xyz / p.w;
+    let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
+    let depth = ndc.z - light.shadow.y;
+    if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || depth > 1.0 {
+        return 1.0;
+    }
+    let layer = i32(light.shadow.x);
+    var sum = 0.0;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let o = vec2<f32>(f32(dx), f32(dy)) * light.shadow.w;
+            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, depth);
+        }
+    }
+    return sum / 9.0;
+}
+//#endif
+
+//#if ENV
+SH_EVAL
+//#endif
+
+@fragment
+fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
+    let p = vec2<i32>(frag.xy);
+    var out: LightingOut;
+    let nd = textureLoad(gb_normal, p, 0);
+    if nd.w == 0.0 {
+        out.diffuse = vec4<f32>(0.0);
+        out.surface = vec4<f32>(0.0);
+//#if LAYERS_A
+        out.exit_t = vec4<f32>(1.0);
+//#endif
+        return out;
+    }
+    let n = normalize(nd.xyz);
+    let albedo_skin = textureLoad(gb_albedo, p, 0);
+    let albedo = albedo_skin.rgb;
+    let is_skin = albedo_skin.a > 0.5;
+    let depth = textureLoad(gb_depth, p, 0);
+    let ndc = vec2<f32>(frag.x * frame.viewport.z * 2.0 - 1.0, 1.0 - frag.y * frame.viewport.w * 2.0);
+    let world_h = frame.inv_view_proj * vec4<f32>(ndc, depth, 1.0);
+    let world = world_h.xyz / world_h.w;
+    let v = normalize(frame.camera_pos.xyz - world);
+
+    // Cosmetic stack, bottom to top: R seen from above, R seen from below (from the skin), T.
+    var r_top = vec3<f32>(0.0);
+    var r_below = vec3<f32>(0.0);
+    var t = vec3<f32>(1.0);
+//#if LAYERS_A
+    var layer_t: array<vec3<f32>, 8>;
+    var thickness: array<f32, 8>;
+    let ta = textureLoad(gb_thickness_a, p, 0);
+    for (var i = 0u; i < min(LAYERS, 4u); i++) {
+        thickness[i] = ta[i];
+    }
+//#endif
+//#if LAYERS_B
+    let tb = textureLoad(gb_thickness_b, p, 0);
+    for (var i = 4u; i < LAYERS; i++) {
+        thickness[i] = tb[i - 4u];
+    }
+//#endif
+//#if LAYERS_A
+    for (var i = 0u; i < LAYERS; i++) {
+        let l = layer_rt(i, thickness[i]);
+        let inter = 1.0 / (1.0 - l.r * r_top);
+        r_below = r_below + t * t * l.r * inter;
+        r_top = l.r + l.t * l.t * r_top * inter;
+        t = l.t * t * inter;
+        layer_t[i] = l.t;
+    }
+//#endif
+
+    // Irradiance and specular of every light.
+    var irradiance = vec3<f32>(0.0);
+    var specular = vec3<f32>(0.0);
+    for (var li = 0u; li < frame.counts.x; li++) {
+        let light = frame.lights[li];
+        var l: vec3<f32>;
+        var e = light.color.rgb;
+        if light.position.w == 0.0 {
+            l = light.position.xyz;
+        } else {
+            let d = light.position.xyz - world;
+            let d2 = max(dot(d, d), 1e-6);
+            l = d * inverseSqrt(d2);
+            e = e * (light.color.w / d2);
+        }
+        let n_dot_l = dot(n, l);
+        if n_dot_l <= 0.0 {
+            continue;
+        }
+        var visible = 1.0;
+//#if SHADOWS
+        visible = shadow_factor(light, world, n);
+//#endif
+        let e_n = e * (n_dot_l * visible);
+        irradiance += e_n;
+        if frame.skin.z > 0.0 {
+            var s = kelemen(n, l, v, frame.skin.x, frame.skin.y);
+            var lobes = vec3<f32>(s);
+//#if LAYERS_A
+            for (var i = 0u; i < LAYERS; i++) {
+                let q = frame.layers[i].params;
+                let coverage = clamp(thickness[i] / q.z, 0.0, 1.0);
+                lobes = lobes * layer_t[i] * layer_t[i] + vec3<f32>(coverage * kelemen(n, l, v, q.x, q.y));
+            }
+//#endif
+            specular += e_n * lobes;
+        }
+    }
+//#if ENV
+    irradiance += max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
+//#endif
+
+    if is_skin {
+        out.diffuse = vec4<f32>(albedo * irradiance * t / (1.0 - r_below * albedo) / PI, 1.0);
+        out.surface = vec4<f32>(r_top * irradiance / PI + specular, 1.0);
+    } else {
+        out.diffuse = vec4<f32>(0.0);
+        out.surface = vec4<f32>(albedo * irradiance / PI + specular, 1.0);
+    }
+//#if LAYERS_A
+    out.exit_t = vec4<f32>(t, 1.0);
+//#endif
+    return out;
+}

@@ -1,0 +1,49 @@
+// Separable screen-space subsurface scattering (figure 1, step 4; Jimenez et al. 2015), one
+// direction per pass. Kernel and rules: see the Rust module `sss` (its `separable_pass_cpu` is
+// this shader on the CPU).
+
+struct SssPass {
+    // xy: direction in pixels (1, 0) or (0, 1); z: width (profile scale); w: depth follow (mm)
+    dir: vec4<f32>,
+    // x: sample count
+    count: vec4<u32>,
+    // x: offset (mm), yzw: weight per channel
+    samples: array<vec4<f32>, 33>,
+}
+
+@group(1) @binding(0) var<uniform> sss_pass: SssPass;
+@group(1) @binding(1) var src: texture_2d<f32>;
+@group(1) @binding(2) var src_depth: texture_depth_2d;
+@group(1) @binding(3) var linear_sampler: sampler;
+
+@fragment
+fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(frag.xy);
+    let centre = textureLoad(src, p, 0);
+    if centre.a < 0.5 {
+        return centre;
+    }
+    let size = vec2<f32>(textureDimensions(src));
+    let max_p = vec2<i32>(size) - 1;
+    let z = max(linear_depth(textureLoad(src_depth, p, 0)), 1e-3);
+    let px_per_mm = frame.projection.x / z;
+    let dir = sss_pass.dir.xy;
+    let scale = sss_pass.dir.z * px_per_mm;
+    let follow = sss_pass.dir.w;
+    var sum = vec3<f32>(0.0);
+    for (var j = 0u; j < sss_pass.count.x; j++) {
+        let k = sss_pass.samples[j];
+        let pos = frag.xy + dir * (k.x * scale);
+        let c = textureSampleLevel(src, linear_sampler, pos / size, 0.0);
+        var s = c.rgb + (1.0 - c.a) * centre.rgb;
+        let q = clamp(vec2<i32>(floor(pos)), vec2<i32>(0), max_p);
+        let dz = linear_depth(textureLoad(src_depth, q, 0)) - z;
+        var w = 1.0;
+        if follow > 0.0 {
+            w = clamp(abs(dz) / follow, 0.0, 1.0);
+        }
+        s = mix(s, centre.rgb, w);
+        sum += s * k.yzw;
+    }
+    return vec4<f32>(sum, centre.a);
+}
