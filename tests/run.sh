@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs every Rouge test from a fresh machine (this is what CI runs, through .ci/run):
-#   1. installs what the tests need: a Python venv with the pinned packages of python/requirements.txt
-#      (colour-science, mpmath, numpy, pytest) in .venv/;
+#   1. installs what the tests need: Mesa's software Vulkan driver (lavapipe) for the renderer's
+#      GPU tests, through apt-get when it is missing (sudo is used when not root), and a Python
+#      venv with the pinned packages of python/requirements.txt (colour-science, mpmath, numpy,
+#      pytest) in .venv/;
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests);
 #   4. runs the Python cross-checks against colour-science and 50-digit mpmath references,
@@ -11,6 +13,20 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 step() { printf '\n==> %s\n' "$*"; }
+
+step "System packages: Mesa Vulkan drivers (lavapipe), Vulkan loader, Xvfb"
+APT_PACKAGES="mesa-vulkan-drivers libvulkan1 xvfb"
+missing=""
+for p in $APT_PACKAGES; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing
+fi
+ls /usr/share/vulkan/icd.d/
 
 step "Python venv (.venv) with python/requirements.txt"
 PY=${PYTHON:-python3}

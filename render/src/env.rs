@@ -75,7 +75,8 @@ const BAND_FACTOR: [f64; 9] = [A0, A1, A1, A1, A2, A2, A2, A2, A2];
 
 /// WGSL for [`ShIrradiance::eval`]: the same formula, constants and clamp. Paste it into shaders
 /// and upload [`ShIrradiance::to_gpu`] as a `array<vec4<f32>, 9>` uniform.
-pub const WGSL_SH_EVAL: &str = r"// Irradiance from 9 SH coefficients (rgb in .xyz), already convolved with the clamped cosine.
+pub const WGSL_SH_EVAL: &str = r"
+// Irradiance from 9 SH coefficients (rgb in .xyz), already convolved with the clamped cosine.
 // Keep in sync with rouge_render::env::ShIrradiance::eval (same basis order and constants).
 fn sh_irradiance(c: array<vec4<f32>, 9>, n: vec3<f32>) -> vec3<f32> {
     let e = c[0].xyz * 0.2820948
@@ -342,9 +343,9 @@ impl ShIrradiance {
     /// The default ambient of the default scene: the studio dome [`studio_radiance`],
     /// `L = (a + b y + c y²)·tint` with a = 0.1, b = 0.1, c = 0.05, projected analytically:
     /// `y² = 1/3 − (3z² − 1)/6 − (x² − y²)/2`, so `L_0 = (a + c/3)/Y_0`, `L_1 = b/Y_1`,
-    /// `L_6 = −(c/6)/K_20`, `L_8 = −(c/2)/K_22`, each times Â_l. `E(n) = π(a + c/3) + (2π/3) b n_y + (π/4) c (n_y² − 1/3)`: 0.602 facing up, 0.353 facing
-    /// the horizon, 0.183 facing down
-    /// (times the tint).
+    /// `L_6 = −(c/6)/K_20`, `L_8 = −(c/2)/K_22`, each times Â_l. Hence
+    /// `E(n) = π(a + c/3) + (2π/3) b n_y + (π/4) c (n_y² − 1/3)`, times the tint: 0.602 facing up,
+    /// 0.353 facing the horizon, 0.183 facing down.
     pub fn studio() -> Self {
         let (a, b, c) = (0.1, 0.1, 0.05);
         let mut s = Self::zero();

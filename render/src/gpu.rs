@@ -67,7 +67,10 @@ impl Gpu {
     /// "name (backend, device type)", for reports and benchmark tables.
     pub fn describe(&self) -> String {
         let info = self.adapter.get_info();
-        format!("{} ({:?}, {:?}, driver {} {})", info.name, info.backend, info.device_type, info.driver, info.driver_info)
+        format!(
+            "{} ({:?}, {:?}, driver {} {})",
+            info.name, info.backend, info.device_type, info.driver, info.driver_info
+        )
     }
 
     /// Whether per-pass GPU timestamps can be taken.

@@ -193,6 +193,8 @@ pub fn render_to_file(prepared: &mut Prepared, path: &Path) -> Result<()> {
             let pixels = prepared.render_linear()?;
             write_exr(path, w, h, &pixels)
         }
-        _ => Err(RenderError::file(path, "unknown output format: use .png (tone-mapped sRGB) or .exr (linear radiance)")),
+        _ => {
+            Err(RenderError::file(path, "unknown output format: use .png (tone-mapped sRGB) or .exr (linear radiance)"))
+        }
     }
 }

@@ -19,6 +19,6 @@ pub mod sss;
 
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
+pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};
 pub use renderer::Renderer;
 pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings};
-pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};

@@ -114,8 +114,11 @@ pub struct SssUniform {
     pub samples: [[f32; 4]; MAX_SAMPLES as usize],
 }
 
+/// A uniform struct's WGSL name, size in bytes, and (field, offset) pairs.
+pub type UniformLayout = (&'static str, usize, Vec<(&'static str, usize)>);
+
 /// Field offsets of the uniforms, for the layout test against naga's view of the WGSL.
-pub fn uniform_layouts() -> Vec<(&'static str, usize, Vec<(&'static str, usize)>)> {
+pub fn uniform_layouts() -> Vec<UniformLayout> {
     use std::mem::{offset_of, size_of};
     vec![
         (
@@ -207,7 +210,12 @@ impl Variant {
     /// Every variant, for validating all shader sources.
     pub fn all() -> impl Iterator<Item = Variant> {
         (0..=MAX_LAYERS as u32).flat_map(|layers| {
-            (0..8u32).map(move |bits| Variant { layers, shadows: bits & 1 != 0, env: bits & 2 != 0, display: bits & 4 != 0 })
+            (0..8u32).map(move |bits| Variant {
+                layers,
+                shadows: bits & 1 != 0,
+                env: bits & 2 != 0,
+                display: bits & 4 != 0,
+            })
         })
     }
 }
@@ -269,6 +277,8 @@ pub struct FrameCapture {
     pub surface: Vec<[f32; 4]>,
     /// Stack transmittance (1 without layers).
     pub exit_t: Vec<[f32; 4]>,
+    /// Thickness (mm) of layers 0-3 as the G-buffer read it (0 without layers).
+    pub thickness: Vec<[f32; 4]>,
     /// View depth, mm (far plane for the background).
     pub depth_mm: Vec<f32>,
     /// Focal length in pixels.
@@ -358,7 +368,15 @@ impl std::fmt::Debug for Renderer {
     }
 }
 
-fn texture(device: &wgpu::Device, label: &str, w: u32, h: u32, layers: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+fn texture(
+    device: &wgpu::Device,
+    label: &str,
+    w: u32,
+    h: u32,
+    layers: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: layers },
@@ -376,10 +394,17 @@ fn view(t: &wgpu::Texture) -> wgpu::TextureView {
 }
 
 fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
-    t.create_view(&wgpu::TextureViewDescriptor { dimension: Some(wgpu::TextureViewDimension::D2Array), ..Default::default() })
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
 }
 
-fn tex_entry(binding: u32, sample_type: wgpu::TextureSampleType, dim: wgpu::TextureViewDimension) -> wgpu::BindGroupLayoutEntry {
+fn tex_entry(
+    binding: u32,
+    sample_type: wgpu::TextureSampleType,
+    dim: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -396,13 +421,22 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
-        ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
         count: None,
     }
 }
 
 fn sampler_entry(binding: u32, ty: wgpu::SamplerBindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry { binding, visibility: wgpu::ShaderStages::FRAGMENT, ty: wgpu::BindingType::Sampler(ty), count: None }
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(ty),
+        count: None,
+    }
 }
 
 fn buffer_init(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -435,7 +469,8 @@ pub fn layer_tables(preset: &Preset) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
         let u = i as f64 / (TABLE_ENTRIES - 1) as f64;
         let x = TABLE_X0_MM * u / (1.0 - u);
         let (rs, ts) = layer_spectra(&s, &k, x);
-        let (r_rgb, t_rgb) = if i == 0 { ([0.0; 3], [1.0; 3]) } else { (c.srgb_linear(&c.xyz(&rs)), c.srgb_linear(&c.xyz(&ts))) };
+        let (r_rgb, t_rgb) =
+            if i == 0 { ([0.0; 3], [1.0; 3]) } else { (c.srgb_linear(&c.xyz(&rs)), c.srgb_linear(&c.xyz(&ts))) };
         r0.push(r_rgb.map(|v| v as f32));
         t.push(t_rgb.map(|v| v as f32));
     }
@@ -511,7 +546,11 @@ impl Renderer {
             mk(
                 "gbuffer",
                 &[
-                    tex_entry(0, wgpu::TextureSampleType::Float { filterable: true }, wgpu::TextureViewDimension::D2Array),
+                    tex_entry(
+                        0,
+                        wgpu::TextureSampleType::Float { filterable: true },
+                        wgpu::TextureViewDimension::D2Array,
+                    ),
                     sampler_entry(1, wgpu::SamplerBindingType::Filtering),
                 ],
             ),
@@ -553,7 +592,10 @@ impl Renderer {
                 ],
             ),
         );
-        layouts.insert(Pass::Composite, mk("composite", &[unfilterable(0), unfilterable(1), unfilterable(2), unfilterable(3)]));
+        layouts.insert(
+            Pass::Composite,
+            mk("composite", &[unfilterable(0), unfilterable(1), unfilterable(2), unfilterable(3)]),
+        );
 
         let linear_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("linear clamp"),
@@ -578,17 +620,27 @@ impl Renderer {
             })
         });
         let shadow_buffers = (0..MAX_LIGHTS as u32)
-            .map(|i| {
-                buffer_init(device, "shadow pass", bytemuck::bytes_of(&[i, 0, 0, 0]), wgpu::BufferUsages::UNIFORM)
-            })
+            .map(|i| buffer_init(device, "shadow pass", bytemuck::bytes_of(&[i, 0, 0, 0]), wgpu::BufferUsages::UNIFORM))
             .collect();
-        let shadow_maps = texture(device, "shadow maps (none)", 1, 1, 1, DEPTH_FORMAT, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let shadow_maps = texture(
+            device,
+            "shadow maps (none)",
+            1,
+            1,
+            1,
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
         let dummy_2d = texture(device, "dummy", 1, 1, 1, HDR_FORMAT, wgpu::TextureUsages::TEXTURE_BINDING);
         let look = empty_look(device);
         let profiler = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| {
             let count = MAX_TIMED_PASSES * 2;
             Profiler {
-                queries: device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass times"), ty: wgpu::QueryType::Timestamp, count }),
+                queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                    label: Some("pass times"),
+                    ty: wgpu::QueryType::Timestamp,
+                    count,
+                }),
                 resolve: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("timestamps"),
                     size: count as u64 * 8,
@@ -637,7 +689,8 @@ impl Renderer {
     /// # Errors
     /// [`RenderError::Invalid`] for an empty mesh.
     pub fn set_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
-        let bounds = Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("the mesh has no vertices".into()))?;
+        let bounds =
+            Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("the mesh has no vertices".into()))?;
         if mesh.indices.is_empty() {
             return Err(RenderError::Invalid("the mesh has no triangles".into()));
         }
@@ -651,8 +704,18 @@ impl Renderer {
             })
             .collect();
         self.mesh = Some(GpuMesh {
-            vertices: buffer_init(&self.device, "vertices", bytemuck::cast_slice(&vertices), wgpu::BufferUsages::VERTEX),
-            indices: buffer_init(&self.device, "indices", bytemuck::cast_slice(&mesh.indices), wgpu::BufferUsages::INDEX),
+            vertices: buffer_init(
+                &self.device,
+                "vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer_init(
+                &self.device,
+                "indices",
+                bytemuck::cast_slice(&mesh.indices),
+                wgpu::BufferUsages::INDEX,
+            ),
             index_count: mesh.indices.len() as u32,
             bounds,
         });
@@ -674,7 +737,11 @@ impl Renderer {
         Ok(())
     }
 
-    fn upload_look_layers(device: &wgpu::Device, queue: &wgpu::Queue, layers: &[&crate::look::LookLayer]) -> Result<GpuLook> {
+    fn upload_look_layers(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layers: &[&crate::look::LookLayer],
+    ) -> Result<GpuLook> {
         if layers.len() > MAX_LAYERS {
             return Err(RenderError::Invalid(format!(
                 "the look has {} visible layers; the renderer takes at most {MAX_LAYERS}",
@@ -683,11 +750,20 @@ impl Renderer {
         }
         let (w, h) = layers.iter().fold((1, 1), |(w, h), l| (w.max(l.map.width), h.max(l.map.height)));
         let count = layers.len().max(1) as u32;
-        let maps = texture(device, "thickness maps", w, h, count, wgpu::TextureFormat::R16Float, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+        let maps = texture(
+            device,
+            "thickness maps",
+            w,
+            h,
+            count,
+            wgpu::TextureFormat::R16Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
         let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 2 * TABLE_ENTRIES);
         let mut params = [LayerUniform::default(); MAX_LAYERS];
         for (i, layer) in layers.iter().enumerate() {
-            let map = if (layer.map.width, layer.map.height) == (w, h) { layer.map.clone() } else { layer.map.resized(w, h) };
+            let map =
+                if (layer.map.width, layer.map.height) == (w, h) { layer.map.clone() } else { layer.map.resized(w, h) };
             let texels: Vec<u16> = map.mm.iter().map(|&v| half::f16::from_f32(v).to_bits()).collect();
             queue.write_texture(
                 wgpu::TexelCopyTextureInfo {
@@ -772,7 +848,13 @@ impl Renderer {
                 attributes: &vertex_attrs,
             })];
             let hdr = |f| Some(wgpu::ColorTargetState { format: f, blend: None, write_mask: wgpu::ColorWrites::ALL });
-            let (vs, buffers, fs, targets, depth): (_, &[Option<wgpu::VertexBufferLayout>], _, Vec<Option<wgpu::ColorTargetState>>, _) = match pass {
+            let (vs, buffers, fs, targets, depth): (
+                _,
+                &[Option<wgpu::VertexBufferLayout>],
+                _,
+                Vec<Option<wgpu::ColorTargetState>>,
+                _,
+            ) = match pass {
                 Pass::Shadow => ("vs_shadow", &mesh_buffers[..], None, vec![], true),
                 Pass::Gbuffer => {
                     let mut t = vec![hdr(NORMAL_FORMAT), hdr(ALBEDO_FORMAT)];
@@ -808,7 +890,12 @@ impl Renderer {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&format!("{pass:?}")),
                 layout: Some(&layout),
-                vertex: wgpu::VertexState { module: &module, entry_point: Some(vs), compilation_options: Default::default(), buffers },
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
                 depth_stencil: depth.then(|| wgpu::DepthStencilState {
                     format: DEPTH_FORMAT,
@@ -860,7 +947,9 @@ impl Renderer {
     }
 
     fn ensure_shadow_maps(&mut self, count: u32) {
-        if count == 0 || self.shadow_maps.depth_or_array_layers() >= count && self.shadow_maps.width() == SHADOW_MAP_SIZE {
+        if count == 0
+            || self.shadow_maps.depth_or_array_layers() >= count && self.shadow_maps.width() == SHADOW_MAP_SIZE
+        {
             return;
         }
         self.shadow_maps = texture(
@@ -882,13 +971,23 @@ impl Renderer {
     /// # Errors
     /// [`RenderError::Invalid`] without a mesh, for a zero size, too many lights or a bad SSS
     /// sample count.
-    pub fn render(&mut self, scene: &Scene, camera: &Camera, width: u32, height: u32, display: bool) -> Result<wgpu::Texture> {
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+        display: bool,
+    ) -> Result<wgpu::Texture> {
         let max_dim = self.device.limits().max_texture_dimension_2d;
         if width == 0 || height == 0 || width > max_dim || height > max_dim {
             return Err(RenderError::Invalid(format!("image size {width}×{height}: each side must be 1 to {max_dim}")));
         }
         if scene.lights.len() > MAX_LIGHTS {
-            return Err(RenderError::Invalid(format!("{} lights: the renderer takes at most {MAX_LIGHTS}", scene.lights.len())));
+            return Err(RenderError::Invalid(format!(
+                "{} lights: the renderer takes at most {MAX_LIGHTS}",
+                scene.lights.len()
+            )));
         }
         let Some(bounds) = self.mesh.as_ref().map(|m| m.bounds) else {
             return Err(RenderError::Invalid("no mesh to render: call set_mesh first".into()));
@@ -901,7 +1000,8 @@ impl Renderer {
         self.ensure_targets(width, height);
         let shadow_count = scene.lights.iter().filter(|l| l.shadows).count() as u32;
         self.ensure_shadow_maps(shadow_count);
-        let variant = Variant { layers: self.look.layers, shadows: shadow_count > 0, env: scene.environment.is_some(), display };
+        let variant =
+            Variant { layers: self.look.layers, shadows: shadow_count > 0, env: scene.environment.is_some(), display };
 
         // Frame uniform.
         let centre = bounds.center();
@@ -923,12 +1023,24 @@ impl Renderer {
                     ([position.x, position.y, position.z, 1.0], d2, position, Some(d2.sqrt()))
                 }
             };
-            let mut u = LightUniform { position, color: [l.irradiance[0], l.irradiance[1], l.irradiance[2], d2], shadow: [-1.0, 0.0, 0.0, 0.0], ..Default::default() };
+            let mut u = LightUniform {
+                position,
+                color: [l.irradiance[0], l.irradiance[1], l.irradiance[2], d2],
+                shadow: [-1.0, 0.0, 0.0, 0.0],
+                ..Default::default()
+            };
             if l.shadows {
                 let up = if (light_pos - centre).normalize_or_zero().abs().y > 0.95 { Vec3::Z } else { Vec3::Y };
                 let light_view = glam::camera::rh::view::look_at_mat4(light_pos, centre, up);
                 let proj = match to_centre {
-                    None => glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, 0.5 * radius, 4.5 * radius),
+                    None => glam::camera::rh::proj::directx::orthographic(
+                        -radius,
+                        radius,
+                        -radius,
+                        radius,
+                        0.5 * radius,
+                        4.5 * radius,
+                    ),
                     Some(d) => {
                         let half = (radius / d).clamp(0.05, 0.99).asin() * 1.05;
                         glam::camera::rh::proj::directx::perspective(2.0 * half, 1.0, (d - radius).max(1.0), d + radius)
@@ -988,8 +1100,10 @@ impl Renderer {
         };
         let d = &self.device;
         let views = |tex: &wgpu::Texture| view(tex);
-        let (normal_v, albedo_v, ta_v, tb_v, depth_v) = (views(&t.normal), views(&t.albedo), views(&t.thickness_a), views(&t.thickness_b), views(&t.depth));
-        let (diffuse_v, scratch_v, scattered_v, surface_v, exit_v) = (views(&t.diffuse), views(&t.scratch), views(&t.scattered), views(&t.surface), views(&t.exit_t));
+        let (normal_v, albedo_v, ta_v, tb_v, depth_v) =
+            (views(&t.normal), views(&t.albedo), views(&t.thickness_a), views(&t.thickness_b), views(&t.depth));
+        let (diffuse_v, scratch_v, scattered_v, surface_v, exit_v) =
+            (views(&t.diffuse), views(&t.scratch), views(&t.scattered), views(&t.surface), views(&t.exit_t));
         let out_tex = if display { t.display.clone() } else { t.linear.clone() };
         let out_v = view(&out_tex);
         let dummy_v = view(&self.dummy_2d);
@@ -1002,7 +1116,11 @@ impl Renderer {
             let p = profiler?;
             let i = labels.len() as u32;
             labels.push(label);
-            Some(wgpu::RenderPassTimestampWrites { query_set: &p.queries, beginning_of_pass_write_index: Some(2 * i), end_of_pass_write_index: Some(2 * i + 1) })
+            Some(wgpu::RenderPassTimestampWrites {
+                query_set: &p.queries,
+                beginning_of_pass_write_index: Some(2 * i),
+                end_of_pass_write_index: Some(2 * i + 1),
+            })
         };
         let zero = wgpu::Color::TRANSPARENT;
 
@@ -1117,7 +1235,11 @@ impl Renderer {
 
         // 4. SSS, horizontal then vertical.
         if run_sss {
-            for (i, (src, dst, label)) in [(&diffuse_v, &scratch_v, "sss horizontal"), (&scratch_v, &scattered_v, "sss vertical")].into_iter().enumerate() {
+            for (i, (src, dst, label)) in
+                [(&diffuse_v, &scratch_v, "sss horizontal"), (&scratch_v, &scattered_v, "sss vertical")]
+                    .into_iter()
+                    .enumerate()
+            {
                 let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(label),
                     layout: &self.layouts[&Pass::Sss],
@@ -1125,7 +1247,10 @@ impl Renderer {
                         wgpu::BindGroupEntry { binding: 0, resource: self.sss_buffers[i].as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(src) },
                         wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&depth_v) },
-                        wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.linear_sampler) },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: wgpu::BindingResource::Sampler(&self.linear_sampler),
+                        },
                     ],
                 });
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -1239,6 +1364,7 @@ impl Renderer {
         let scattered = if self.last_sss_ran { half4(&t.scattered)? } else { diffuse.clone() };
         let layers = self.last_variant.map_or(0, |v| v.layers);
         let exit_t = if layers > 0 { half4(&t.exit_t)? } else { vec![[1.0; 4]; diffuse.len()] };
+        let thickness = if layers > 0 { half4(&t.thickness_a)? } else { vec![[0.0; 4]; diffuse.len()] };
         let depth_bytes = read_texture(&self.device, &self.queue, &t.depth, 4)?;
         let depth: Vec<f32> = bytemuck::pod_collect_to_vec(&depth_bytes);
         let (n, f) = (self.last_near, self.last_far);
@@ -1250,6 +1376,7 @@ impl Renderer {
             scattered,
             surface: half4(&t.surface)?,
             exit_t,
+            thickness,
             depth_mm,
             focal_px: self.last_focal_px,
         })
@@ -1270,7 +1397,8 @@ fn tex(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
 }
 
 fn empty_look(device: &wgpu::Device) -> GpuLook {
-    let maps = texture(device, "thickness maps", 1, 1, 1, wgpu::TextureFormat::R16Float, wgpu::TextureUsages::TEXTURE_BINDING);
+    let maps =
+        texture(device, "thickness maps", 1, 1, 1, wgpu::TextureFormat::R16Float, wgpu::TextureUsages::TEXTURE_BINDING);
     GpuLook {
         layers: 0,
         maps: array_view(&maps),
@@ -1295,7 +1423,12 @@ fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer, size: u64) -> Resul
 }
 
 /// Copies a 2D texture (one layer, `bytes_per_texel`) into tightly packed rows.
-fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, tex: &wgpu::Texture, bytes_per_texel: u32) -> Result<Vec<u8>> {
+fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    tex: &wgpu::Texture,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>> {
     let (w, h) = (tex.width(), tex.height());
     let row = w * bytes_per_texel;
     let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
@@ -1306,10 +1439,14 @@ fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, tex: &wgpu::Texture,
         mapped_at_creation: false,
     });
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-    let aspect = if tex.format().is_depth_stencil_format() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
+    let aspect =
+        if tex.format().is_depth_stencil_format() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo { texture: tex, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect },
-        wgpu::TexelCopyBufferInfo { buffer: &buffer, layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(h) } },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(h) },
+        },
         wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);

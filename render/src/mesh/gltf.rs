@@ -1,4 +1,5 @@
 //! glTF 2.0 reader (.gltf with data-URI or external buffers, .glb with embedded buffer).
+//! UVs are converted to the OBJ convention (v up): v = 1 − v_glTF.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -112,7 +113,9 @@ pub fn load_gltf(path: impl AsRef<Path>, scale_to_mm: f32) -> Result<Mesh, MeshE
                 .read_tex_coords(0)
                 .ok_or_else(|| MeshError::MissingUvs { path: path.to_owned() })?
                 .into_f32()
-                .map(Vec2::from_array)
+                // glTF puts the UV origin at the top left (v down); Rouge uses the OBJ
+                // convention (v up) everywhere, so maps and masks line up on both.
+                .map(|[u, v]| Vec2::new(u, 1.0 - v))
                 .collect();
             let normals: Option<Vec<Vec3>> = reader
                 .read_normals()

@@ -130,7 +130,11 @@ impl Bounds {
     /// Bounds of a point set; `None` when it is empty.
     pub fn of(points: &[Vec3]) -> Option<Bounds> {
         let first = *points.first()?;
-        Some(points.iter().fold(Bounds { min: first, max: first }, |b, &p| Bounds { min: b.min.min(p), max: b.max.max(p) }))
+        Some(
+            points
+                .iter()
+                .fold(Bounds { min: first, max: first }, |b, &p| Bounds { min: b.min.min(p), max: b.max.max(p) }),
+        )
     }
 }
 

@@ -33,7 +33,13 @@ fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < sss_pass.count.x; j++) {
         let k = sss_pass.samples[j];
-        let pos = frag.xy + dir * (k.x * scale);
+        let o = k.x * scale;
+        if o == 0.0 {
+            // The centre sample (and every sample at width 0): exact, no filtering.
+            sum += centre.rgb * k.yzw;
+            continue;
+        }
+        let pos = frag.xy + dir * o;
         let c = textureSampleLevel(src, linear_sampler, pos / size, 0.0);
         var s = c.rgb + (1.0 - c.a) * centre.rgb;
         let q = clamp(vec2<i32>(floor(pos)), vec2<i32>(0), max_p);

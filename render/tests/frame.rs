@@ -1,0 +1,296 @@
+//! Whole frames on a real wgpu device (Mesa lavapipe on CI): physics checks and golden images.
+//!
+//! `UPDATE_SNAPSHOTS=1 cargo test -p rouge-render --test frame` rewrites the golden PNGs in
+//! render/tests/golden/ (look at them before committing).
+
+#![allow(clippy::needless_range_loop)] // RGB channels are indexed by number.
+
+use glam::{Vec2, Vec3};
+use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_decode};
+use rouge_render::job::load_mesh;
+use rouge_render::look::{Look, builtin_preset};
+use rouge_render::mesh::TriangleMesh;
+use rouge_render::renderer::FrameCapture;
+use rouge_render::sss::{SeparableKernel, SkinImage, separable_pass_cpu};
+use rouge_render::{Camera, Gpu, Renderer, Scene};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+fn head() -> &'static TriangleMesh {
+    static HEAD: OnceLock<TriangleMesh> = OnceLock::new();
+    HEAD.get_or_init(|| load_mesh(None, 1.0, 1).expect("default head"))
+}
+
+fn renderer(mesh: &TriangleMesh, look: &Look, scene: &Scene) -> (Gpu, Renderer) {
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(mesh, scene.skin.albedo).expect("mesh");
+    r.set_look(look).expect("look");
+    (gpu, r)
+}
+
+fn camera(r: &Renderer) -> Camera {
+    Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0)
+}
+
+fn look(json_layers: &str) -> Look {
+    let text = format!(r#"{{"schema": "rouge-look", "version": 1, "name": "test", "layers": [{json_layers}]}}"#);
+    Look::from_json(&text, Path::new("test-look.json")).expect("look")
+}
+
+fn render_display(mesh: &TriangleMesh, look: &Look, scene: &Scene, w: u32, h: u32) -> Vec<u8> {
+    let (_gpu, mut r) = renderer(mesh, look, scene);
+    let cam = camera(&r);
+    r.render(scene, &cam, w, h, true).expect("render");
+    r.read_display().expect("read")
+}
+
+fn render_linear(mesh: &TriangleMesh, look: &Look, scene: &Scene, w: u32, h: u32) -> (Vec<[f32; 4]>, FrameCapture) {
+    let (_gpu, mut r) = renderer(mesh, look, scene);
+    let cam = camera(&r);
+    r.render(scene, &cam, w, h, false).expect("render");
+    (r.read_linear().expect("read"), r.capture().expect("capture"))
+}
+
+/// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
+fn plane() -> TriangleMesh {
+    let p = [(-100.0, -100.0), (100.0, -100.0), (100.0, 100.0), (-100.0, 100.0)];
+    TriangleMesh {
+        positions: p.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
+        normals: vec![Vec3::Z; 4],
+        uvs: p.iter().map(|&(x, y)| Vec2::new(x / 200.0 + 0.5, y / 200.0 + 0.5)).collect(),
+        tangents: None,
+        indices: vec![0, 1, 2, 0, 2, 3],
+        groups: vec![],
+    }
+}
+
+#[test]
+fn layers_of_zero_thickness_render_exactly_as_bare_skin() {
+    let scene = Scene::studio();
+    let zero = look(
+        r#"{"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0}},
+           {"preset": "builtin:blush_01_petal", "thickness": {"region": "cheeks", "thickness_mm": 0}},
+           {"preset": "builtin:lipstick_02_red", "thickness": {"uniform_mm": 0}}"#,
+    );
+    let bare = render_display(head(), &Look::bare(), &scene, 256, 192);
+    let zeroed = render_display(head(), &zero, &scene, 256, 192);
+    let differing = bare.chunks(4).zip(zeroed.chunks(4)).filter(|(a, b)| a != b).count();
+    assert_eq!(differing, 0, "{differing} pixels differ between bare skin and zero-thickness layers");
+    // And the layers do show once they have thickness.
+    let thick = look(r#"{"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0.02}}"#);
+    let covered = render_display(head(), &thick, &scene, 256, 192);
+    assert!(bare.chunks(4).zip(covered.chunks(4)).filter(|(a, b)| a != b).count() > 5000);
+}
+
+#[test]
+fn thick_opaque_layer_under_white_light_shows_its_r_inf() {
+    let c = Colorimeter::get(Viewing::D65_1931);
+    let mut scene = Scene::white_light(Vec3::Z);
+    scene.specular = false;
+    for name in
+        ["foundation_02_ivory", "foundation_05_espresso", "lipstick_02_red", "eyeshadow_02_sapphire", "blush_01_petal"]
+    {
+        let preset = builtin_preset(name).expect("builtin preset");
+        let one = look(&format!(r#"{{"preset": "builtin:{name}", "thickness": {{"uniform_mm": 5}}}}"#));
+        let (linear, _) = render_linear(&plane(), &one, &scene, 64, 64);
+        let centre = linear[32 * 64 + 32];
+        let rendered = linear_srgb_to_lab(c, [centre[0] as f64, centre[1] as f64, centre[2] as f64]);
+        let expected = linear_srgb_to_lab(c, preset.derived.r_inf_linear_srgb);
+        let de = delta_e_2000_raw(rendered, expected);
+        assert!(de < 2.0, "{name}: rendered {centre:?} vs R∞ {:?}: ΔE2000 {de:.3}", preset.derived.r_inf_linear_srgb);
+        eprintln!("{name}: ΔE2000 {de:.4}");
+    }
+}
+
+fn linear_srgb_to_lab(c: &Colorimeter, rgb: [f64; 3]) -> [f64; 3] {
+    // IEC 61966-2-1 matrix, D65 white Y = 100 (the colorimeter's white).
+    let m = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
+    let xyz: [f64; 3] = std::array::from_fn(|i| 100.0 * (m[i][0] * rgb[0] + m[i][1] * rgb[1] + m[i][2] * rgb[2]));
+    let _ = c;
+    // The matrix's own white (linear RGB 1, 1, 1).
+    let white: [f64; 3] = std::array::from_fn(|i| 100.0 * (m[i][0] + m[i][1] + m[i][2]));
+    let f =
+        |t: f64| if t > (6.0f64 / 29.0).powi(3) { t.cbrt() } else { t / (3.0 * (6.0f64 / 29.0).powi(2)) + 4.0 / 29.0 };
+    let (fx, fy, fz) = (f(xyz[0] / white[0]), f(xyz[1] / white[1]), f(xyz[2] / white[2]));
+    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
+}
+
+fn srgb8_to_lab(c: &Colorimeter, p: &[u8]) -> [f64; 3] {
+    linear_srgb_to_lab(c, [0, 1, 2].map(|i| srgb_decode(p[i] as f64 / 255.0)))
+}
+
+#[test]
+fn sss_at_width_zero_is_the_identity() {
+    let mut scene = Scene::studio();
+    scene.sss.width = 0.0;
+    scene.sss.run_at_zero_width = true;
+    let (_, cap) = render_linear(head(), &Look::default_look(), &scene, 256, 192);
+    // The weights sum to 1 within f32 rounding, and the passes store half floats, which the
+    // driver may round toward zero: each pass may move a value by one f16 step.
+    let mut worst_steps = 0.0f32;
+    for (a, b) in cap.diffuse.iter().zip(&cap.scattered) {
+        for ch in 0..3 {
+            let step = 2f32.powi(a[ch].abs().max(6.1e-5).log2().floor() as i32 - 10);
+            worst_steps = worst_steps.max((a[ch] - b[ch]).abs() / step);
+        }
+    }
+    assert!(worst_steps <= 2.0, "a value moved by {worst_steps} half-float steps");
+}
+
+#[test]
+fn gpu_blur_matches_its_cpu_twin() {
+    let scene = Scene::studio();
+    let (_, cap) = render_linear(head(), &Look::default_look(), &scene, 256, 192);
+    let (w, h) = (cap.width, cap.height);
+    let rgb: Vec<[f32; 3]> = cap.diffuse.iter().map(|p| [p[0], p[1], p[2]]).collect();
+    let skin: Vec<bool> = cap.diffuse.iter().map(|p| p[3] > 0.5).collect();
+    let img =
+        SkinImage { width: w, height: h, rgb: &rgb, skin: &skin, depth_mm: &cap.depth_mm, focal_px: cap.focal_px };
+    let kernel =
+        SeparableKernel::new(&scene.skin.profile, scene.sss.samples, scene.sss.range_sigmas as f64).expect("kernel");
+    let hpass = separable_pass_cpu(&img, &kernel, scene.sss.width, scene.sss.follow_mm, true);
+    let hpass_img = SkinImage { rgb: &hpass, ..img };
+    let cpu = separable_pass_cpu(&hpass_img, &kernel, scene.sss.width, scene.sss.follow_mm, false);
+    let (mut sum, mut n, mut worst) = (0.0f64, 0usize, 0.0f32);
+    for i in 0..w * h {
+        if !skin[i] {
+            continue;
+        }
+        for ch in 0..3 {
+            let d = (cap.scattered[i][ch] - cpu[i][ch]).abs();
+            sum += d as f64;
+            worst = worst.max(d);
+            n += 1;
+        }
+    }
+    let mean = sum / n as f64;
+    let peak = rgb.iter().flat_map(|p| p.iter().copied()).fold(0.0f32, f32::max);
+    // Half-float storage of the intermediate and the hardware's bilinear weights (8 bits of
+    // sub-texel precision on lavapipe) account for the difference.
+    assert!(mean < 2e-3 * peak as f64, "mean |GPU − CPU| {mean} (peak radiance {peak})");
+    assert!(worst < 0.05 * peak, "worst |GPU − CPU| {worst} (peak radiance {peak})");
+    // And the blur does something: it changes skin pixels.
+    let changed = (0..w * h).filter(|&i| skin[i] && (cap.scattered[i][0] - rgb[i][0]).abs() > 1e-3 * peak).count();
+    assert!(changed > 1000, "{changed} pixels changed by the blur");
+}
+
+#[test]
+fn lipstick_changes_pixels_only_inside_the_lip_mask() {
+    let lipstick =
+        look(r#"{"preset": "builtin:lipstick_02_red", "thickness": {"region": "lips", "thickness_mm": 0.02}}"#);
+    for sss_on in [false, true] {
+        let mut scene = Scene::studio();
+        if !sss_on {
+            scene.sss.width = 0.0;
+        }
+        let (w, h) = (320, 240);
+        let (bare, _) = render_linear(head(), &Look::bare(), &scene, w, h);
+        let (lips, cap) = render_linear(head(), &lipstick, &scene, w, h);
+        let in_mask: Vec<bool> = cap.thickness.iter().map(|t| t[0] > 0.0).collect();
+        let mask_pixels = in_mask.iter().filter(|&&m| m).count();
+        assert!(mask_pixels > 150, "the lip mask covers only {mask_pixels} pixels");
+        // Scattered light may leave the skin up to the profile's support away from the lips.
+        let support_px = if sss_on {
+            let z = cap.depth_mm[in_mask.iter().position(|&m| m).expect("mask pixel")];
+            (3.0 * scene.skin.profile.max_sigma_mm() as f32 * cap.focal_px / z).ceil() as i64
+        } else {
+            1
+        };
+        let near_mask = dilate(&in_mask, w as usize, h as usize, support_px);
+        let (mut inside_changed, mut outside_changed) = (0, 0);
+        for i in 0..(w * h) as usize {
+            let changed = (0..3).any(|c| bare[i][c] != lips[i][c]);
+            if changed && near_mask[i] {
+                inside_changed += 1;
+            } else if changed {
+                outside_changed += 1;
+            }
+        }
+        assert_eq!(outside_changed, 0, "sss {sss_on}: {outside_changed} pixels changed away from the lips");
+        assert!(inside_changed > mask_pixels / 2, "sss {sss_on}: only {inside_changed} pixels changed");
+        // The lips sit below the middle of the face: the mask's centroid is in the lower half.
+        let cy = (0..(w * h) as usize).filter(|&i| in_mask[i]).map(|i| i / w as usize).sum::<usize>() / mask_pixels;
+        assert!(cy > h as usize / 2, "lip centroid row {cy}");
+    }
+}
+
+fn dilate(mask: &[bool], w: usize, h: usize, r: i64) -> Vec<bool> {
+    let mut out = vec![false; mask.len()];
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            if !mask[(y * w as i64 + x) as usize] {
+                continue;
+            }
+            for dy in -r..=r {
+                for dx in -r..=r {
+                    let (qx, qy) = (x + dx, y + dy);
+                    if qx >= 0 && qy >= 0 && qx < w as i64 && qy < h as i64 {
+                        out[(qy * w as i64 + qx) as usize] = true;
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+fn golden_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
+}
+
+/// Compares a frame with its golden PNG by ΔE2000 per pixel: mean < 0.5 and 99th percentile
+/// < 3 (rasterisation and driver differences move edges, not colours).
+fn check_golden(name: &str, rgba: &[u8], w: u32, h: u32) {
+    let path = golden_dir().join(format!("{name}.png"));
+    if std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| v == "1") {
+        std::fs::create_dir_all(golden_dir()).expect("golden dir");
+        rouge_render::job::write_png(&path, w, h, rgba).expect("write golden");
+        eprintln!("updated {}", path.display());
+        return;
+    }
+    let golden = image::open(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (run with UPDATE_SNAPSHOTS=1 to create it)", path.display()))
+        .to_rgba8();
+    assert_eq!((golden.width(), golden.height()), (w, h), "{name}: golden size");
+    let c = Colorimeter::get(Viewing::D65_1931);
+    let mut de: Vec<f64> = rgba
+        .chunks(4)
+        .zip(golden.as_raw().chunks(4))
+        .map(|(a, b)| delta_e_2000_raw(srgb8_to_lab(c, a), srgb8_to_lab(c, b)))
+        .collect();
+    de.sort_by(f64::total_cmp);
+    let mean = de.iter().sum::<f64>() / de.len() as f64;
+    let p99 = de[de.len() * 99 / 100];
+    if mean >= 0.5 || p99 >= 3.0 {
+        let out = std::env::temp_dir().join(format!("rouge-{name}-actual.png"));
+        let _ = rouge_render::job::write_png(&out, w, h, rgba);
+        panic!("{name}: mean ΔE2000 {mean:.3}, p99 {p99:.3} against {}; this frame: {}", path.display(), out.display());
+    }
+}
+
+#[test]
+fn golden_default_look_and_bare_skin() {
+    let scene = Scene::studio();
+    let (w, h) = (320, 240);
+    check_golden("default_look", &render_display(head(), &Look::default_look(), &scene, w, h), w, h);
+    check_golden("bare", &render_display(head(), &Look::bare(), &scene, w, h), w, h);
+}
+
+#[test]
+fn bad_requests_are_errors_not_panics() {
+    let scene = Scene::studio();
+    let (_gpu, mut r) = renderer(head(), &Look::bare(), &scene);
+    let cam = camera(&r);
+    assert!(r.render(&scene, &cam, 0, 10, true).is_err());
+    let mut even = scene.clone();
+    even.sss.samples = 16;
+    let e = r.render(&even, &cam, 32, 32, true).expect_err("even sample count");
+    assert!(e.to_string().contains("odd"), "{e}");
+    let mut many = scene.clone();
+    many.lights = vec![scene.lights[0]; 5];
+    assert!(r.render(&many, &cam, 32, 32, true).is_err());
+    let gpu = Gpu::headless().expect("gpu");
+    let mut empty = Renderer::new(&gpu.device, &gpu.queue);
+    assert!(empty.render(&scene, &cam, 32, 32, true).is_err(), "no mesh");
+}

@@ -1,0 +1,65 @@
+//! Every WGSL shader variant validates with naga, and the Rust uniform structs have exactly the
+//! layout naga computes for their WGSL twins.
+
+use rouge_render::renderer::{Pass, Variant, shader_source, uniform_layouts};
+
+fn parse(pass: Pass, variant: Variant) -> naga::Module {
+    let src = shader_source(pass, variant);
+    naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{pass:?} {variant:?}:\n{}", e.emit_to_string(&src)))
+}
+
+#[test]
+fn every_shader_variant_validates() {
+    let mut count = 0;
+    for variant in Variant::all() {
+        for pass in Pass::ALL {
+            let module = parse(pass, variant);
+            let mut validator =
+                naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default());
+            if let Err(e) = validator.validate(&module) {
+                panic!("{pass:?} {variant:?}: {}", e.emit_to_string(&shader_source(pass, variant)));
+            }
+            count += 1;
+        }
+    }
+    assert_eq!(count, 9 * 8 * 5);
+}
+
+#[test]
+fn variants_compile_only_what_the_scene_uses() {
+    let bare = Variant { layers: 0, shadows: false, env: false, display: true };
+    let src = shader_source(Pass::Lighting, bare);
+    assert!(!src.contains("layer_rt"), "a bare look must not carry the layer tables");
+    assert!(!src.contains("shadow_factor"), "no shadow code without a shadowing light");
+    assert!(!src.contains("fn sh_irradiance"), "no SH code without an environment");
+    let full = Variant { layers: 5, shadows: true, env: true, display: true };
+    let src = shader_source(Pass::Lighting, full);
+    assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
+    assert!(shader_source(Pass::Gbuffer, full).contains("thickness_b"));
+    assert!(!shader_source(Pass::Gbuffer, Variant { layers: 4, ..full }).contains("thickness_b"));
+}
+
+#[test]
+fn rust_and_wgsl_uniform_layouts_match() {
+    let variant = Variant { layers: 8, shadows: true, env: true, display: true };
+    // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
+    let lighting = parse(Pass::Lighting, variant);
+    let sss = parse(Pass::Sss, variant);
+    for (name, size, fields) in uniform_layouts() {
+        let module = if name == "SssPass" { &sss } else { &lighting };
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("layout");
+        let (handle, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        let naga::TypeInner::Struct { members, span } = &ty.inner else { panic!("{name} is not a struct") };
+        assert_eq!(*span as usize, size, "{name}: WGSL size {span} vs Rust {size}");
+        assert_eq!(layouter[handle].size as usize, size);
+        let wgsl: Vec<(String, usize)> =
+            members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize)).collect();
+        let rust: Vec<(String, usize)> = fields.iter().map(|(n, o)| (n.to_string(), *o)).collect();
+        assert_eq!(wgsl, rust, "{name}: member names and offsets");
+    }
+}
