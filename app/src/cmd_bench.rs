@@ -16,6 +16,33 @@ pub enum BenchCommand {
     /// Compositing cosmetic layers in linear RGB or a few bands against spectral compositing:
     /// ΔE2000 over all ordered pairs of presets, thicknesses 0-0.2 mm, both ColorChecker skins.
     Compositing(CompositingArgs),
+    /// Renderer: per-pass GPU times of a 1280×720 frame (timestamp queries where the adapter has
+    /// them) for the bare head, the default look (3 layers) and a 4-layer look; then the SSS
+    /// sample count against a brute-force reference (RMSE, mean/p95 ΔE2000), and the error of
+    /// the layer tables.
+    Render(RenderBenchArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RenderBenchArgs {
+    /// Image width.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Image height.
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Frames averaged per configuration.
+    #[arg(long, default_value_t = 10)]
+    pub frames: u32,
+    /// SSS sample counts to study (odd, 3-33).
+    #[arg(long, value_delimiter = ',', default_values_t = [5u32, 7, 9, 11, 13, 17, 21, 25, 33])]
+    pub sss_samples: Vec<u32>,
+    /// Skip the SSS study (its CPU reference takes tens of seconds at 1280×720).
+    #[arg(long)]
+    pub no_sss_study: bool,
+    /// Also write every table as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -39,6 +66,7 @@ const SKIN_CSV: &str = include_str!("../../data/skin/colorchecker_skin.csv");
 pub fn run(cmd: &BenchCommand) -> Result<()> {
     match cmd {
         BenchCommand::Compositing(args) => compositing(args),
+        BenchCommand::Render(args) => render(args),
     }
 }
 
@@ -130,4 +158,100 @@ fn compositing(args: &CompositingArgs) -> Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// The 4-layer look of the frame-time table: foundation, eyeshadow, blush, lipstick.
+const FOUR_LAYERS: &str = r#"{"schema": "rouge-look", "version": 1, "name": "four layers", "layers": [
+  {"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0.015}},
+  {"preset": "builtin:eyeshadow_01_smoky", "thickness": {"region": "eyelids", "thickness_mm": 0.006}},
+  {"preset": "builtin:blush_01_petal", "thickness": {"region": "cheeks", "thickness_mm": 0.008}},
+  {"preset": "builtin:lipstick_02_red", "thickness": {"region": "lips", "thickness_mm": 0.02}}]}"#;
+
+fn render(args: &RenderBenchArgs) -> Result<()> {
+    use rouge_render::job::{LookChoice, RenderJob};
+    use rouge_render::study;
+    let dir = tempfile_dir()?;
+    let four = dir.join("four-layers.json");
+    std::fs::write(&four, FOUR_LAYERS).with_context(|| format!("cannot write {}", four.display()))?;
+    let mut json = serde_json::Map::new();
+    let mut out = String::new();
+    let mut frame_rows = Vec::new();
+    for (label, look) in [("bare", LookChoice::Bare), ("default look (3 layers)", LookChoice::Default), ("4 layers", LookChoice::File(four.clone()))] {
+        eprintln!("rouge bench render: {label}");
+        let job = RenderJob { look, width: args.width, height: args.height, ..RenderJob::default() };
+        let mut p = job.prepare()?;
+        let t = study::frame_times(&mut p, args.frames)?;
+        frame_rows.push((label, t));
+    }
+    let adapter = frame_rows.first().map(|(_, t)| t.adapter.clone()).unwrap_or_default();
+    out.push_str(&format!("Frame at {}×{} on {adapter}, mean of {} frames (ms)\n", args.width, args.height, args.frames));
+    let mut pass_names: Vec<String> = Vec::new();
+    for (_, t) in &frame_rows {
+        for (p, _) in &t.passes {
+            if !pass_names.contains(p) {
+                pass_names.push(p.clone());
+            }
+        }
+    }
+    out.push_str("| scene | ");
+    for p in &pass_names {
+        out.push_str(&format!("{p} | "));
+    }
+    out.push_str("GPU sum | wall (mean) | wall (min) |\n|---|");
+    out.push_str(&"---:|".repeat(pass_names.len() + 3));
+    out.push('\n');
+    for (label, t) in &frame_rows {
+        out.push_str(&format!("| {label} | "));
+        for p in &pass_names {
+            match t.passes.iter().find(|(n, _)| n == p) {
+                Some((_, ms)) => out.push_str(&format!("{ms:.3} | ")),
+                None => out.push_str("- | "),
+            }
+        }
+        let gpu = t.gpu_frame_ms.map_or("n/a".to_string(), |v| format!("{v:.3}"));
+        out.push_str(&format!("{gpu} | {:.2} | {:.2} |\n", t.wall_frame_ms, t.wall_frame_min_ms));
+    }
+    json.insert("frames".into(), serde_json::to_value(frame_rows.iter().map(|(l, t)| serde_json::json!({"scene": l, "times": t})).collect::<Vec<_>>())?);
+
+    let presets: Vec<_> = rouge_render::look::builtin_preset_names().iter().filter_map(|n| rouge_render::look::builtin_preset(n)).collect();
+    let table = study::table_study(&presets);
+    out.push_str(&format!(
+        "\nLayer tables ({} entries, X = {} mm·u/(1−u)) against exact spectral R0 and T, {} presets × {} thicknesses 0.1 µm-2 mm:\nR0 mean ΔE2000 {:.4}, max {:.4}; T max |error| {:.2e}\n",
+        table.entries, table.x0_mm, presets.len(), table.thicknesses, table.mean_de_r0, table.max_de_r0, table.max_abs_t
+    ));
+    json.insert("tables".into(), serde_json::to_value(&table)?);
+
+    if !args.no_sss_study {
+        let job = RenderJob { look: LookChoice::Default, width: args.width, height: args.height, ..RenderJob::default() };
+        let mut p = job.prepare()?;
+        let s = study::sss_study(&mut p, &args.sss_samples, &mut |m| eprintln!("rouge bench render: SSS study: {m}"))?;
+        out.push_str(&format!(
+            "\nSSS samples against the brute-force reference ({}×{}, {} skin pixels, reference {:.1} s on the CPU); final image, skin pixels\n",
+            s.width, s.height, s.skin_pixels, s.reference_seconds
+        ));
+        out.push_str("| samples/direction | SSS passes GPU ms | frame wall ms | RMSE (linear) | mean ΔE2000 | p95 ΔE2000 | max ΔE2000 |\n|---:|---:|---:|---:|---:|---:|---:|\n");
+        let r = &s.no_sss;
+        out.push_str(&format!("| no SSS | 0 | - | {:.5} | {:.3} | {:.3} | {:.3} |\n", r.rmse, r.mean_de, r.p95_de, r.max_de));
+        for r in &s.rows {
+            let g = r.sss_ms.map_or("n/a".to_string(), |v| format!("{v:.3}"));
+            out.push_str(&format!(
+                "| {} | {g} | {:.1} | {:.5} | {:.3} | {:.3} | {:.3} |\n",
+                r.samples, r.frame_ms, r.rmse, r.mean_de, r.p95_de, r.max_de
+            ));
+        }
+        json.insert("sss".into(), serde_json::to_value(&s)?);
+    }
+    crate::emit(out.trim_end())?;
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))?;
+        rouge_measure::preset::write_atomic(path, text.as_bytes()).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(())
+}
+
+fn tempfile_dir() -> Result<PathBuf> {
+    let dir = std::env::temp_dir().join(format!("rouge-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    Ok(dir)
 }

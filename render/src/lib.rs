@@ -16,6 +16,7 @@ pub mod mesh;
 pub mod renderer;
 pub mod scene;
 pub mod sss;
+pub mod study;
 
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;

@@ -185,7 +185,7 @@ pub struct SssSettings {
 
 impl Default for SssSettings {
     fn default() -> Self {
-        SssSettings { width: 1.0, samples: 17, follow_mm: 3.0, range_sigmas: 3.0, run_at_zero_width: false }
+        SssSettings { width: 1.0, samples: 11, follow_mm: 3.0, range_sigmas: 3.0, run_at_zero_width: false }
     }
 }
 
