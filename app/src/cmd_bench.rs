@@ -176,7 +176,11 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     let mut json = serde_json::Map::new();
     let mut out = String::new();
     let mut frame_rows = Vec::new();
-    for (label, look) in [("bare", LookChoice::Bare), ("default look (3 layers)", LookChoice::Default), ("4 layers", LookChoice::File(four.clone()))] {
+    for (label, look) in [
+        ("bare", LookChoice::Bare),
+        ("default look (3 layers)", LookChoice::Default),
+        ("4 layers", LookChoice::File(four.clone())),
+    ] {
         eprintln!("rouge bench render: {label}");
         let job = RenderJob { look, width: args.width, height: args.height, ..RenderJob::default() };
         let mut p = job.prepare()?;
@@ -184,7 +188,10 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         frame_rows.push((label, t));
     }
     let adapter = frame_rows.first().map(|(_, t)| t.adapter.clone()).unwrap_or_default();
-    out.push_str(&format!("Frame at {}×{} on {adapter}, mean of {} frames (ms)\n", args.width, args.height, args.frames));
+    out.push_str(&format!(
+        "Frame at {}×{} on {adapter}, mean of {} frames (ms)\n",
+        args.width, args.height, args.frames
+    ));
     let mut pass_names: Vec<String> = Vec::new();
     for (_, t) in &frame_rows {
         for (p, _) in &t.passes {
@@ -211,9 +218,17 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         let gpu = t.gpu_frame_ms.map_or("n/a".to_string(), |v| format!("{v:.3}"));
         out.push_str(&format!("{gpu} | {:.2} | {:.2} |\n", t.wall_frame_ms, t.wall_frame_min_ms));
     }
-    json.insert("frames".into(), serde_json::to_value(frame_rows.iter().map(|(l, t)| serde_json::json!({"scene": l, "times": t})).collect::<Vec<_>>())?);
+    json.insert(
+        "frames".into(),
+        serde_json::to_value(
+            frame_rows.iter().map(|(l, t)| serde_json::json!({"scene": l, "times": t})).collect::<Vec<_>>(),
+        )?,
+    );
 
-    let presets: Vec<_> = rouge_render::look::builtin_preset_names().iter().filter_map(|n| rouge_render::look::builtin_preset(n)).collect();
+    let presets: Vec<_> = rouge_render::look::builtin_preset_names()
+        .iter()
+        .filter_map(|n| rouge_render::look::builtin_preset(n))
+        .collect();
     let table = study::table_study(&presets);
     out.push_str(&format!(
         "\nLayer tables ({} entries, X = {} mm·u/(1−u)) against exact spectral R0 and T, {} presets × {} thicknesses 0.1 µm-2 mm:\nR0 mean ΔE2000 {:.4}, max {:.4}; T max |error| {:.2e}\n",
@@ -222,7 +237,8 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     json.insert("tables".into(), serde_json::to_value(&table)?);
 
     if !args.no_sss_study {
-        let job = RenderJob { look: LookChoice::Default, width: args.width, height: args.height, ..RenderJob::default() };
+        let job =
+            RenderJob { look: LookChoice::Default, width: args.width, height: args.height, ..RenderJob::default() };
         let mut p = job.prepare()?;
         let s = study::sss_study(&mut p, &args.sss_samples, &mut |m| eprintln!("rouge bench render: SSS study: {m}"))?;
         out.push_str(&format!(
@@ -231,7 +247,10 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         ));
         out.push_str("| samples/direction | SSS passes GPU ms | frame wall ms | RMSE (linear) | mean ΔE2000 | p95 ΔE2000 | max ΔE2000 |\n|---:|---:|---:|---:|---:|---:|---:|\n");
         let r = &s.no_sss;
-        out.push_str(&format!("| no SSS | 0 | - | {:.5} | {:.3} | {:.3} | {:.3} |\n", r.rmse, r.mean_de, r.p95_de, r.max_de));
+        out.push_str(&format!(
+            "| no SSS | 0 | - | {:.5} | {:.3} | {:.3} | {:.3} |\n",
+            r.rmse, r.mean_de, r.p95_de, r.max_de
+        ));
         for r in &s.rows {
             let g = r.sss_ms.map_or("n/a".to_string(), |v| format!("{v:.3}"));
             out.push_str(&format!(
@@ -244,7 +263,8 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     crate::emit(out.trim_end())?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes()).with_context(|| format!("cannot write {}", path.display()))?;
+        rouge_measure::preset::write_atomic(path, text.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     let _ = std::fs::remove_dir_all(&dir);
     Ok(())

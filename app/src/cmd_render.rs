@@ -3,6 +3,7 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use rouge_render::job::{LookChoice, RenderJob, render_to_file};
+use rouge_render::look::{Look, ThicknessSource};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -80,6 +81,21 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     job.scene.sss.samples = args.sss_samples;
     job.scene.exposure = args.exposure;
     job.scene.specular = !args.no_specular;
+    if let Some(mesh) = &args.mesh {
+        let regions = |l: &Look| l.layers.iter().any(|l| matches!(l.thickness, ThicknessSource::Region { .. }));
+        let uses_regions = match &job.look {
+            LookChoice::Default => true,
+            LookChoice::Bare => false,
+            LookChoice::File(p) => Look::load(p).is_ok_and(|l| regions(&l)),
+        };
+        if uses_regions {
+            eprintln!(
+                "rouge: note: the look uses region masks drawn for the default head's UVs; on {} they land \
+                 wherever its UVs put them (use thickness maps painted for this mesh, or --look bare)",
+                mesh.display()
+            );
+        }
+    }
     let start = Instant::now();
     let mut prepared = job.prepare()?;
     let loaded = start.elapsed();

@@ -204,3 +204,60 @@ fn plot_writes_an_svg_with_every_curve() {
     assert_eq!(text.matches("<polyline").count(), 6, "{text}");
     assert!(!text.contains("NaN"));
 }
+
+#[test]
+fn render_writes_png_and_exr_and_bad_inputs_name_their_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("face.png");
+    let png_s = png.to_str().expect("utf-8 path");
+    let o = rouge(&["render", "--width", "96", "--height", "64", "--subdiv", "1", "--out", png_s]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).expect("a PNG").to_rgba8();
+    assert_eq!((img.width(), img.height()), (96, 64));
+    // The face is in the middle and is not background grey.
+    let p = img.get_pixel(48, 28).0;
+    assert!(p[0] > p[2] + 20, "skin at the centre: {p:?}");
+    let before = std::fs::read(&png).expect("read");
+
+    let exr = dir.path().join("face.exr");
+    let o = rouge(&[
+        "render",
+        "--width",
+        "32",
+        "--height",
+        "24",
+        "--subdiv",
+        "0",
+        "--look",
+        "bare",
+        "--out",
+        exr.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::metadata(&exr).expect("exr written").len() > 1000);
+
+    let text = dir.path().join("not-an-exr.exr");
+    std::fs::write(&text, "hello").expect("write");
+    let bad_look = dir.path().join("look.json");
+    std::fs::write(&bad_look, r#"{"schema": "rouge-look", "version": 1, "layers": [{"preset": "nowhere.json", "thickness": {"uniform_mm": 0.01}}]}"#)
+        .expect("write");
+    for (args, names) in [
+        (vec!["--mesh", "does/not/exist.obj"], "does/not/exist.obj"),
+        (vec!["--mesh", "data/skin/colorchecker_skin.csv"], "colorchecker_skin.csv"),
+        (vec!["--look", "does/not/exist.json"], "does/not/exist.json"),
+        (vec!["--look", bad_look.to_str().expect("utf-8")], "nowhere.json"),
+        (vec!["--env", text.to_str().expect("utf-8")], "not-an-exr.exr"),
+        (vec!["--sss-samples", "16"], "odd"),
+    ] {
+        let mut all = vec!["render", "--width", "16", "--height", "16", "--subdiv", "0"];
+        all.extend(args.iter().copied());
+        all.extend(["--out", png_s]);
+        let o = rouge(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&o).contains(names), "{args:?}: {}", stderr(&o));
+        assert_eq!(std::fs::read(&png).expect("read"), before, "{args:?}: a failed render must keep the old image");
+    }
+    let o = rouge(&["render", "--width", "16", "--height", "16", "--subdiv", "0", "--out", "face.bmp"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("face.bmp"), "{}", stderr(&o));
+}

@@ -193,8 +193,14 @@ pub fn sss_study(p: &mut Prepared, sample_counts: &[u32], progress: &mut dyn FnM
     let cap = p.renderer.capture()?;
     let rgb: Vec<[f32; 3]> = cap.diffuse.iter().map(|v| [v[0], v[1], v[2]]).collect();
     let skin: Vec<bool> = cap.diffuse.iter().map(|v| v[3] > 0.5).collect();
-    let img =
-        SkinImage { width: cap.width, height: cap.height, rgb: &rgb, skin: &skin, depth_mm: &cap.depth_mm, focal_px: cap.focal_px };
+    let img = SkinImage {
+        width: cap.width,
+        height: cap.height,
+        rgb: &rgb,
+        skin: &skin,
+        depth_mm: &cap.depth_mm,
+        focal_px: cap.focal_px,
+    };
     progress("brute-force reference on the CPU");
     let t = Instant::now();
     let reference = reference_blur(&img, &p.scene.skin.profile, saved.width, saved.follow_mm);
@@ -227,7 +233,14 @@ pub fn sss_study(p: &mut Prepared, sample_counts: &[u32], progress: &mut dyn FnM
     }
     p.renderer.set_profiling(false);
     p.scene.sss = saved;
-    Ok(SssStudy { width: w, height: h, skin_pixels: skin.iter().filter(|&&s| s).count(), reference_seconds, no_sss, rows })
+    Ok(SssStudy {
+        width: w,
+        height: h,
+        skin_pixels: skin.iter().filter(|&&s| s).count(),
+        reference_seconds,
+        no_sss,
+        rows,
+    })
 }
 
 /// Interpolation error of the layer tables against exact spectral R0 and T.

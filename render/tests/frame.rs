@@ -239,8 +239,9 @@ fn golden_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
 }
 
-/// Compares a frame with its golden PNG by ΔE2000 per pixel: mean < 0.5 and 99th percentile
-/// < 3 (rasterisation and driver differences move edges, not colours).
+/// Compares a frame with its golden PNG by ΔE2000 per pixel: mean < 0.5, 99th percentile < 3,
+/// and at most 0.2% of pixels over 5 (rasterisation and driver differences move a few edge
+/// pixels, not colours; a missing lipstick alone is ~0.5% of the pixels at ΔE > 20).
 fn check_golden(name: &str, rgba: &[u8], w: u32, h: u32) {
     let path = golden_dir().join(format!("{name}.png"));
     if std::env::var_os("UPDATE_SNAPSHOTS").is_some_and(|v| v == "1") {
@@ -262,10 +263,15 @@ fn check_golden(name: &str, rgba: &[u8], w: u32, h: u32) {
     de.sort_by(f64::total_cmp);
     let mean = de.iter().sum::<f64>() / de.len() as f64;
     let p99 = de[de.len() * 99 / 100];
-    if mean >= 0.5 || p99 >= 3.0 {
+    let large = de.iter().filter(|&&d| d > 5.0).count();
+    if mean >= 0.5 || p99 >= 3.0 || large * 500 > de.len() {
         let out = std::env::temp_dir().join(format!("rouge-{name}-actual.png"));
         let _ = rouge_render::job::write_png(&out, w, h, rgba);
-        panic!("{name}: mean ΔE2000 {mean:.3}, p99 {p99:.3} against {}; this frame: {}", path.display(), out.display());
+        panic!(
+            "{name}: mean ΔE2000 {mean:.3}, p99 {p99:.3}, {large} pixels over 5, against {}; this frame: {}",
+            path.display(),
+            out.display()
+        );
     }
 }
 
