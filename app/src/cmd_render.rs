@@ -26,6 +26,13 @@ pub struct RenderArgs {
     /// without it, a built-in soft studio dome.
     #[arg(long)]
     pub env: Option<PathBuf>,
+    /// Skin albedo texture (PNG, sRGB) in the mesh's UV space; replaces the skin colour.
+    #[arg(long)]
+    pub albedo_map: Option<PathBuf>,
+    /// Tangent-space normal map (PNG, OpenGL convention: green = +V); MikkTSpace tangents are
+    /// generated for the mesh.
+    #[arg(long)]
+    pub normal_map: Option<PathBuf>,
     /// Image width, pixels.
     #[arg(long, default_value_t = 1280)]
     pub width: u32,
@@ -71,6 +78,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         subdivision: args.subdiv,
         look,
         env: args.env.clone(),
+        albedo_map: args.albedo_map.clone(),
+        normal_map: args.normal_map.clone(),
         width: args.width,
         height: args.height,
         yaw_deg: args.yaw,

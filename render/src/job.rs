@@ -39,6 +39,10 @@ pub struct RenderJob {
     pub look: LookChoice,
     /// Equirectangular HDR environment (EXR); `None` for the studio's built-in ambient.
     pub env: Option<PathBuf>,
+    /// Skin albedo texture (PNG, sRGB, the mesh's UV space); `None` for the scene's skin colour.
+    pub albedo_map: Option<PathBuf>,
+    /// Tangent-space normal map (PNG, OpenGL convention, +Y up); tangents are generated.
+    pub normal_map: Option<PathBuf>,
     /// Image width.
     pub width: u32,
     /// Image height.
@@ -59,6 +63,8 @@ impl Default for RenderJob {
             subdivision: 2,
             look: LookChoice::Default,
             env: None,
+            albedo_map: None,
+            normal_map: None,
             width: 1280,
             height: 720,
             yaw_deg: 0.0,
@@ -83,6 +89,17 @@ pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result
     };
     let mesh = if subdivision > 0 { mesh.catmull_clark(subdivision) } else { mesh };
     Ok(mesh.triangulate())
+}
+
+/// Reads a PNG texture as RGBA8.
+///
+/// # Errors
+/// [`RenderError::File`] naming the file when it is missing or not a readable PNG.
+pub fn load_texture(path: &Path) -> Result<image::RgbaImage> {
+    let bytes = std::fs::read(path).map_err(|e| RenderError::file(path, format!("cannot read: {e}")))?;
+    let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png)
+        .map_err(|e| RenderError::file(path, format!("not a readable PNG texture: {e}")))?;
+    Ok(img.to_rgba8())
 }
 
 /// A job loaded onto the GPU, ready to draw frames.
@@ -117,10 +134,16 @@ impl RenderJob {
         if let Some(env) = &self.env {
             scene.environment = Some(EnvMap::load_exr(env)?.sh_irradiance());
         }
-        let mesh = load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?;
+        let mut mesh = load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?;
+        let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
+        let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
+        if normal.is_some() {
+            mesh.generate_tangents()?;
+        }
         let gpu = Gpu::headless()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
         renderer.set_mesh(&mesh, scene.skin.albedo)?;
+        renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
         renderer.set_look(&look)?;
         let bounds = renderer.mesh_bounds().ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
         let camera = Camera::framing(&bounds, self.yaw_deg, self.pitch_deg);

@@ -204,19 +204,39 @@ pub struct Variant {
     pub env: bool,
     /// Tone-mapped sRGB output (else linear radiance).
     pub display: bool,
+    /// The skin albedo comes from a texture.
+    pub albedo_map: bool,
+    /// A tangent-space normal map perturbs the normals.
+    pub normal_map: bool,
 }
 
 impl Variant {
     /// Every variant, for validating all shader sources.
     pub fn all() -> impl Iterator<Item = Variant> {
         (0..=MAX_LAYERS as u32).flat_map(|layers| {
-            (0..8u32).map(move |bits| Variant {
+            (0..32u32).map(move |bits| Variant {
                 layers,
                 shadows: bits & 1 != 0,
                 env: bits & 2 != 0,
                 display: bits & 4 != 0,
+                albedo_map: bits & 8 != 0,
+                normal_map: bits & 16 != 0,
             })
         })
+    }
+
+    /// The part of the variant a pass depends on (passes share pipelines across the rest).
+    pub fn for_pass(self, pass: Pass) -> Variant {
+        let none =
+            Variant { layers: 0, shadows: false, env: false, display: false, albedo_map: false, normal_map: false };
+        match pass {
+            Pass::Shadow | Pass::Sss => none,
+            Pass::Gbuffer => {
+                Variant { layers: self.layers, albedo_map: self.albedo_map, normal_map: self.normal_map, ..none }
+            }
+            Pass::Lighting => Variant { layers: self.layers, shadows: self.shadows, env: self.env, ..none },
+            Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
+        }
     }
 }
 
@@ -229,6 +249,8 @@ pub fn shader_source(pass: Pass, variant: Variant) -> String {
         ("SHADOWS", variant.shadows),
         ("ENV", variant.env),
         ("DISPLAY", variant.display),
+        ("ALBEDO_MAP", variant.albedo_map),
+        ("NORMAL_MAP", variant.normal_map),
     ];
     let mut out = format!("const LAYERS: u32 = {}u;\n", variant.layers);
     out.push_str(include_str!("shaders/common.wgsl"));
@@ -292,6 +314,7 @@ struct Vertex {
     normal: [f32; 3],
     uv: [f32; 2],
     albedo: [f32; 4],
+    tangent: [f32; 4],
 }
 
 struct GpuMesh {
@@ -299,6 +322,7 @@ struct GpuMesh {
     indices: wgpu::Buffer,
     index_count: u32,
     bounds: Bounds,
+    has_tangents: bool,
 }
 
 struct GpuLook {
@@ -350,6 +374,8 @@ pub struct Renderer {
     shadow_maps: wgpu::Texture,
     dummy_2d: wgpu::Texture,
     mesh: Option<GpuMesh>,
+    albedo_map: Option<wgpu::TextureView>,
+    normal_map: Option<wgpu::TextureView>,
     look: GpuLook,
     targets: Option<Targets>,
     profiler: Option<Profiler>,
@@ -552,6 +578,8 @@ impl Renderer {
                         wgpu::TextureViewDimension::D2Array,
                     ),
                     sampler_entry(1, wgpu::SamplerBindingType::Filtering),
+                    float_tex(2, true),
+                    float_tex(3, true),
                 ],
             ),
         );
@@ -671,6 +699,8 @@ impl Renderer {
             shadow_maps,
             dummy_2d,
             mesh: None,
+            albedo_map: None,
+            normal_map: None,
             look,
             targets: None,
             profiler,
@@ -701,6 +731,7 @@ impl Renderer {
                 normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
                 uv: mesh.uvs.get(i).map_or([0.0; 2], |uv| uv.to_array()),
                 albedo: albedo[i],
+                tangent: mesh.tangents.as_ref().and_then(|t| t.get(i)).map_or([0.0; 4], |t| t.to_array()),
             })
             .collect();
         self.mesh = Some(GpuMesh {
@@ -718,7 +749,50 @@ impl Renderer {
             ),
             index_count: mesh.indices.len() as u32,
             bounds,
+            has_tangents: mesh.tangents.is_some(),
         });
+        Ok(())
+    }
+
+    /// Sets or clears the skin albedo texture (sRGB-encoded RGBA8, in the mesh's UV space, row 0
+    /// at v = 1) and the tangent-space normal map (RGBA8, +Y up, OpenGL convention). A normal map
+    /// needs a mesh uploaded with tangents ([`TriangleMesh::generate_tangents`]).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a normal map on a mesh without tangents, or an empty image.
+    pub fn set_textures(&mut self, albedo: Option<&image::RgbaImage>, normal: Option<&image::RgbaImage>) -> Result<()> {
+        if normal.is_some() && !self.mesh.as_ref().is_some_and(|m| m.has_tangents) {
+            return Err(RenderError::Invalid("a normal map needs a mesh with tangents (generate them first)".into()));
+        }
+        let upload = |img: &image::RgbaImage, format: wgpu::TextureFormat, label: &str| -> Result<wgpu::TextureView> {
+            let (w, h) = img.dimensions();
+            if w == 0 || h == 0 {
+                return Err(RenderError::Invalid(format!("{label}: empty image")));
+            }
+            let t = texture(
+                &self.device,
+                label,
+                w,
+                h,
+                1,
+                format,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            );
+            self.queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &t,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                img.as_raw(),
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
+            Ok(view(&t))
+        };
+        self.albedo_map = albedo.map(|a| upload(a, wgpu::TextureFormat::Rgba8UnormSrgb, "albedo map")).transpose()?;
+        self.normal_map = normal.map(|n| upload(n, wgpu::TextureFormat::Rgba8Unorm, "normal map")).transpose()?;
         Ok(())
     }
 
@@ -821,12 +895,7 @@ impl Renderer {
 
     fn pipeline(&mut self, pass: Pass, variant: Variant) -> &wgpu::RenderPipeline {
         // Passes that do not depend on a flag share one pipeline.
-        let key_variant = match pass {
-            Pass::Shadow | Pass::Sss => Variant { layers: 0, shadows: false, env: false, display: false },
-            Pass::Gbuffer => Variant { shadows: false, env: false, display: false, ..variant },
-            Pass::Lighting => Variant { display: false, ..variant },
-            Pass::Composite => Variant { layers: variant.layers.min(1), shadows: false, env: false, ..variant },
-        };
+        let key_variant = variant.for_pass(pass);
         let device = &self.device;
         let frame_layout = &self.frame_layout;
         let pass_layout = &self.layouts[&pass];
@@ -841,7 +910,7 @@ impl Renderer {
                 bind_group_layouts: &[Some(frame_layout), Some(pass_layout)],
                 immediate_size: 0,
             });
-            let vertex_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4];
+            let vertex_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x4];
             let mesh_buffers = [Some(wgpu::VertexBufferLayout {
                 array_stride: std::mem::size_of::<Vertex>() as u64,
                 step_mode: wgpu::VertexStepMode::Vertex,
@@ -1000,8 +1069,14 @@ impl Renderer {
         self.ensure_targets(width, height);
         let shadow_count = scene.lights.iter().filter(|l| l.shadows).count() as u32;
         self.ensure_shadow_maps(shadow_count);
-        let variant =
-            Variant { layers: self.look.layers, shadows: shadow_count > 0, env: scene.environment.is_some(), display };
+        let variant = Variant {
+            layers: self.look.layers,
+            shadows: shadow_count > 0,
+            env: scene.environment.is_some(),
+            display,
+            albedo_map: self.albedo_map.is_some(),
+            normal_map: self.normal_map.is_some(),
+        };
 
         // Frame uniform.
         let centre = bounds.center();
@@ -1084,14 +1159,7 @@ impl Renderer {
         for pass in Pass::ALL {
             self.pipeline(pass, variant);
         }
-        let key = |pass: Pass| -> Variant {
-            match pass {
-                Pass::Shadow | Pass::Sss => Variant { layers: 0, shadows: false, env: false, display: false },
-                Pass::Gbuffer => Variant { shadows: false, env: false, display: false, ..variant },
-                Pass::Lighting => Variant { display: false, ..variant },
-                Pass::Composite => Variant { layers: variant.layers.min(1), shadows: false, env: false, ..variant },
-            }
-        };
+        let key = |pass: Pass| variant.for_pass(pass);
         let Some(t) = self.targets.as_ref() else {
             return Err(RenderError::Gpu("render targets were not created".into()));
         };
@@ -1170,6 +1238,8 @@ impl Renderer {
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&self.look.maps) },
                     wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&self.linear_sampler) },
+                    tex(2, self.albedo_map.as_ref().unwrap_or(&dummy_v)),
+                    tex(3, self.normal_map.as_ref().unwrap_or(&dummy_v)),
                 ],
             });
             let mut attachments = vec![color(&normal_v, zero), color(&albedo_v, zero)];

@@ -300,3 +300,40 @@ fn bad_requests_are_errors_not_panics() {
     let mut empty = Renderer::new(&gpu.device, &gpu.queue);
     assert!(empty.render(&scene, &cam, 32, 32, true).is_err(), "no mesh");
 }
+
+#[test]
+fn albedo_texture_and_normal_map_reach_the_frame() {
+    let mut scene = Scene::white_light(Vec3::Z);
+    scene.specular = false;
+    scene.sss.width = 0.0;
+    let mut mesh = plane();
+    mesh.generate_tangents().expect("tangents");
+    let gpu = Gpu::headless().expect("gpu");
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&mesh, [0.5; 3]).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    let cam = camera(&r);
+    // Left half of the texture red, right half green (sRGB 255 = linear 1).
+    let albedo = image::RgbaImage::from_fn(2, 1, |x, _| {
+        if x == 0 { image::Rgba([255, 0, 0, 255]) } else { image::Rgba([0, 255, 0, 255]) }
+    });
+    r.set_textures(Some(&albedo), None).expect("textures");
+    r.render(&scene, &cam, 64, 64, false).expect("render");
+    let flat = r.read_linear().expect("read");
+    let (left, right) = (flat[32 * 64 + 8], flat[32 * 64 + 56]);
+    assert!(left[0] > 0.9 && left[1] < 0.05, "left {left:?}");
+    assert!(right[1] > 0.9 && right[0] < 0.05, "right {right:?}");
+    // A normal map tilting every normal 30° about V: n·l = cos 30° under the frontal light.
+    let tilt = image::RgbaImage::from_pixel(4, 4, image::Rgba([191, 128, 238, 255]));
+    r.set_textures(Some(&albedo), Some(&tilt)).expect("textures");
+    r.render(&scene, &cam, 64, 64, false).expect("render");
+    let tilted = r.read_linear().expect("read");
+    let ratio = tilted[32 * 64 + 8][0] / left[0];
+    let m = [191.0f32, 128.0, 238.0].map(|c| c / 255.0 * 2.0 - 1.0);
+    let expected = m[2] / (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+    assert!((ratio - expected).abs() < 0.02, "lit by n·l {ratio} vs {expected}");
+    // Without tangents a normal map is refused.
+    let mut plain = Renderer::new(&gpu.device, &gpu.queue);
+    plain.set_mesh(&plane(), [0.5; 3]).expect("mesh");
+    assert!(plain.set_textures(None, Some(&tilt)).is_err());
+}

@@ -22,26 +22,29 @@ fn every_shader_variant_validates() {
             count += 1;
         }
     }
-    assert_eq!(count, 9 * 8 * 5);
+    assert_eq!(count, 9 * 32 * 5);
 }
 
 #[test]
 fn variants_compile_only_what_the_scene_uses() {
-    let bare = Variant { layers: 0, shadows: false, env: false, display: true };
+    let bare = Variant { layers: 0, shadows: false, env: false, display: true, albedo_map: false, normal_map: false };
     let src = shader_source(Pass::Lighting, bare);
     assert!(!src.contains("layer_rt"), "a bare look must not carry the layer tables");
     assert!(!src.contains("shadow_factor"), "no shadow code without a shadowing light");
     assert!(!src.contains("fn sh_irradiance"), "no SH code without an environment");
-    let full = Variant { layers: 5, shadows: true, env: true, display: true };
+    let full = Variant { layers: 5, shadows: true, env: true, display: true, albedo_map: true, normal_map: true };
     let src = shader_source(Pass::Lighting, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
     assert!(shader_source(Pass::Gbuffer, full).contains("thickness_b"));
     assert!(!shader_source(Pass::Gbuffer, Variant { layers: 4, ..full }).contains("thickness_b"));
+    assert!(shader_source(Pass::Gbuffer, full).contains("textureSampleLevel(normal_map"));
+    assert!(!shader_source(Pass::Gbuffer, bare).contains("textureSampleLevel(normal_map"));
+    assert!(!shader_source(Pass::Gbuffer, bare).contains("textureSampleLevel(albedo_map"));
 }
 
 #[test]
 fn rust_and_wgsl_uniform_layouts_match() {
-    let variant = Variant { layers: 8, shadows: true, env: true, display: true };
+    let variant = Variant { layers: 8, shadows: true, env: true, display: true, albedo_map: true, normal_map: true };
     // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
     let lighting = parse(Pass::Lighting, variant);
     let sss = parse(Pass::Sss, variant);

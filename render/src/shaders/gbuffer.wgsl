@@ -4,6 +4,9 @@
 
 @group(1) @binding(0) var thickness_maps: texture_2d_array<f32>;
 @group(1) @binding(1) var map_sampler: sampler;
+// Skin albedo texture (sRGB, read linear) and tangent-space normal map, when the scene has them.
+@group(1) @binding(2) var albedo_map: texture_2d<f32>;
+@group(1) @binding(3) var normal_map: texture_2d<f32>;
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -11,6 +14,8 @@ struct VsIn {
     @location(2) uv: vec2<f32>,
     // rgb: linear albedo, a: 1 for skin (scatters, takes cosmetics), 0 otherwise (eyes)
     @location(3) albedo: vec4<f32>,
+    // xyz: MikkTSpace tangent, w: bitangent sign (zero when the mesh has no tangents)
+    @location(4) tangent: vec4<f32>,
 }
 
 struct VsOut {
@@ -18,6 +23,7 @@ struct VsOut {
     @location(0) normal: vec3<f32>,
     @location(1) uv: vec2<f32>,
     @location(2) albedo: vec4<f32>,
+    @location(3) tangent: vec4<f32>,
 }
 
 @vertex
@@ -27,6 +33,7 @@ fn vs_gbuffer(v: VsIn) -> VsOut {
     out.normal = v.normal;
     out.uv = v.uv;
     out.albedo = v.albedo;
+    out.tangent = v.tangent;
     return out;
 }
 
@@ -53,12 +60,26 @@ fn layer_thickness(uv: vec2<f32>, i: u32) -> f32 {
 @fragment
 fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
     var n = normalize(in.normal);
+    let tex_uv = vec2<f32>(in.uv.x, 1.0 - in.uv.y);
+//#if NORMAL_MAP
+    if dot(in.tangent.xyz, in.tangent.xyz) > 0.0 {
+        let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
+        let b = cross(n, t) * select(1.0, -1.0, in.tangent.w < 0.0);
+        let m = textureSampleLevel(normal_map, map_sampler, tex_uv, 0.0).xyz * 2.0 - 1.0;
+        n = normalize(t * m.x + b * m.y + n * m.z);
+    }
+//#endif
     if !front {
         n = -n;
     }
     var out: GbufferOut;
     out.normal = vec4<f32>(n, 1.0);
     out.albedo = in.albedo;
+//#if ALBEDO_MAP
+    if in.albedo.a > 0.5 {
+        out.albedo = vec4<f32>(textureSampleLevel(albedo_map, map_sampler, tex_uv, 0.0).rgb, 1.0);
+    }
+//#endif
 //#if LAYERS_A
     var a = vec4<f32>(0.0);
     for (var i = 0u; i < min(LAYERS, 4u); i++) {
