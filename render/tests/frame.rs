@@ -337,3 +337,49 @@ fn albedo_texture_and_normal_map_reach_the_frame() {
     plain.set_mesh(&plane(), [0.5; 3]).expect("mesh");
     assert!(plain.set_textures(None, Some(&tilt)).is_err());
 }
+
+#[test]
+fn point_light_shadows_and_an_exr_environment_render() {
+    use rouge_render::{Light, LightKind};
+    let mut scene = Scene::studio();
+    scene.lights = vec![Light {
+        kind: LightKind::Point { position: Vec3::new(-300.0, 200.0, 400.0) },
+        irradiance: [3.0; 3],
+        shadows: true,
+    }];
+    // An environment from an EXR file: bright above, dark below.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let exr = dir.path().join("sky.exr");
+    let (w, h) = (32, 16);
+    let texels: Vec<[f32; 4]> =
+        (0..w * h).map(|i| if i / w < h / 2 { [0.4, 0.45, 0.5, 1.0] } else { [0.02, 0.02, 0.02, 1.0] }).collect();
+    rouge_render::job::write_exr(&exr, w as u32, h as u32, &texels).expect("write exr");
+    scene.environment = Some(rouge_render::env::EnvMap::load_exr(&exr).expect("load exr").sh_irradiance());
+    let (linear, cap) = render_linear(head(), &Look::default_look(), &scene, 160, 120);
+    let skin = cap.diffuse.iter().filter(|p| p[3] > 0.5).count();
+    assert!(skin > 2000, "{skin} skin pixels");
+    assert!(linear.iter().all(|p| p.iter().all(|v| v.is_finite())), "non-finite radiance");
+    // The point light at the upper left casts the nose's shadow to the lower right: the face's
+    // left (image right) is darker than its right (image left) on average.
+    let mean_x = |lo: usize, hi: usize| {
+        let px: Vec<f32> = (0..160 * 120)
+            .filter(|i| (lo..hi).contains(&(i % 160)) && cap.diffuse[*i][3] > 0.5)
+            .map(|i| linear[i][1])
+            .collect();
+        px.iter().sum::<f32>() / px.len().max(1) as f32
+    };
+    assert!(mean_x(50, 80) > mean_x(80, 110), "lit side {} vs far side {}", mean_x(50, 80), mean_x(80, 110));
+}
+
+#[test]
+fn the_scanned_head_renders_when_available() {
+    let Some(path) = std::env::var_os("ROUGE_SCAN_HEAD") else {
+        eprintln!("skipped: set ROUGE_SCAN_HEAD to ../shared/data/heads/LeePerrySmith.glb to render the scanned head");
+        return;
+    };
+    let scale: f32 = std::env::var("ROUGE_SCAN_SCALE_TO_MM").ok().and_then(|s| s.parse().ok()).unwrap_or(25.0);
+    let mesh = load_mesh(Some(Path::new(&path)), scale, 0).expect("scan loads");
+    let (_, cap) = render_linear(&mesh, &Look::bare(), &Scene::studio(), 160, 120);
+    let skin = cap.diffuse.iter().filter(|p| p[3] > 0.5).count();
+    assert!(skin > 3000, "{skin} skin pixels of the scan");
+}
