@@ -21,6 +21,25 @@ pub enum BenchCommand {
     /// sample count against a brute-force reference (RMSE, mean/p95 ΔE2000), and the error of
     /// the layer tables.
     Render(RenderBenchArgs),
+    /// Painting: brush dab to updated frame at 1280×720 with 2048² maps (apply the dab on the
+    /// CPU, upload the changed rectangle, render, wait), on the default head.
+    Paint(PaintBenchArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct PaintBenchArgs {
+    /// Frame width.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Frame height.
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Dabs to time.
+    #[arg(long, default_value_t = 20)]
+    pub dabs: usize,
+    /// Also write the result as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -67,6 +86,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
     match cmd {
         BenchCommand::Compositing(args) => compositing(args),
         BenchCommand::Render(args) => render(args),
+        BenchCommand::Paint(args) => paint(args),
     }
 }
 
@@ -274,4 +294,37 @@ fn tempfile_dir() -> Result<PathBuf> {
     let dir = std::env::temp_dir().join(format!("rouge-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     Ok(dir)
+}
+
+fn paint(args: &PaintBenchArgs) -> Result<()> {
+    use rouge_render::job::{LookChoice, RenderJob, load_mesh};
+    let job = RenderJob { look: LookChoice::Bare, width: args.width, height: args.height, ..RenderJob::default() };
+    let mut p = job.prepare()?;
+    let mesh = load_mesh(None, 1.0, job.subdivision)?;
+    let t = rouge_render::study::dab_to_frame(&mut p, &mesh, args.dabs)?;
+    let out = format!(
+        "Dab to frame at {}×{}, {}² maps, radius {} mm, {} dabs on {}\n\
+         | surface map build (once) | dab (CPU) | upload | frame (render + wait) | dab → frame mean | max |\n\
+         |---:|---:|---:|---:|---:|---:|\n\
+         | {:.0} ms | {:.2} ms | {:.2} ms | {:.1} ms | {:.1} ms | {:.1} ms |",
+        t.width,
+        t.height,
+        t.map_size,
+        t.radius_mm,
+        t.dabs,
+        t.adapter,
+        t.surface_build_ms,
+        t.dab_cpu_ms,
+        t.upload_ms,
+        t.frame_ms,
+        t.total_ms,
+        t.total_max_ms
+    );
+    crate::emit(&out)?;
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&t)?;
+        rouge_measure::preset::write_atomic(path, text.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
 }

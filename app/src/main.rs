@@ -1,4 +1,4 @@
-//! `rouge`: the Rouge command line (and, later, the painting app).
+//! `rouge`: the painting app (no arguments) and the Rouge command line.
 //!
 //! Every subcommand prints machine-readable JSON on stdout (numbers in the shortest form that
 //! reads back bit-for-bit) except `import` and `demo`, which print a report for people (`--json`
@@ -16,14 +16,18 @@ use std::process::ExitCode;
 
 /// Rouge: cosmetic measurement and makeup preview.
 ///
-/// Import spectroradiometer measurements of cosmetics, invert them into Kubelka-Munk
-/// scattering S and absorption K, check them in colour terms, and build material presets for
-/// the renderer.
+/// Without arguments, opens the painting app: paint foundation, blush, eyeshadow and lipstick
+/// on a 3D face and see it rendered live. With a subcommand: import spectroradiometer
+/// measurements of cosmetics, invert them into Kubelka-Munk scattering S and absorption K,
+/// check them in colour terms, build material presets, render frames and run benchmarks.
 #[derive(Debug, Parser)]
 #[command(name = "rouge", version, propagate_version = true)]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    /// Project folder to open in the app (look.json + maps/).
+    #[arg(long)]
+    project: Option<std::path::PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -68,7 +72,21 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
+    let Some(command) = cli.command else {
+        let options = rouge_app::gui::Options {
+            data_dir: rouge_app::gui::Options::default_data_dir(),
+            project: cli.project,
+            autosave: true,
+        };
+        return match rouge_app::gui::run(options) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("rouge: {e:#}");
+                ExitCode::from(2)
+            }
+        };
+    };
+    let result = match command {
         Command::Import(args) => cmd_import::run(&args),
         Command::Demo(args) => cmd_import::demo(&args),
         Command::Km(cmd) => cmd_km::run(&cmd),

@@ -7,12 +7,14 @@
 //! - [`env`]: HDR environment maps and their spherical-harmonics irradiance (paper 000, 4.1.2).
 //! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
 
+pub mod document;
 pub mod env;
 pub mod error;
 pub mod gpu;
 pub mod job;
 pub mod look;
 pub mod mesh;
+pub mod paint;
 pub mod renderer;
 pub mod scene;
 pub mod sss;

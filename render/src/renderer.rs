@@ -45,6 +45,15 @@ const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Format of the tone-mapped output.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// A view of a display frame for egui, which wants sRGB-encoded values read as they are
+/// (`Rgba8Unorm`), not decoded to linear.
+pub fn egui_view(display: &wgpu::Texture) -> wgpu::TextureView {
+    display.create_view(&wgpu::TextureViewDescriptor {
+        format: Some(wgpu::TextureFormat::Rgba8Unorm),
+        ..Default::default()
+    })
+}
+
 /// Format of the linear output.
 pub const LINEAR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
@@ -325,9 +334,22 @@ struct GpuMesh {
     has_tangents: bool,
 }
 
+/// One cosmetic layer for [`Renderer::set_layers`].
+#[derive(Clone, Copy, Debug)]
+pub struct LayerInput<'a> {
+    /// The material.
+    pub preset: &'a Preset,
+    /// Thickness in mm over the mesh's UV space.
+    pub map: &'a crate::look::ThicknessMap,
+    /// Multiplier applied to the map.
+    pub multiplier: f32,
+}
+
 struct GpuLook {
     layers: u32,
     maps: wgpu::TextureView,
+    texture: wgpu::Texture,
+    size: (u32, u32),
     tables: wgpu::Buffer,
     params: [LayerUniform; MAX_LAYERS],
 }
@@ -384,6 +406,8 @@ pub struct Renderer {
     last_variant: Option<Variant>,
     last_sss_ran: bool,
     last_focal_px: f32,
+    last_view_proj: glam::Mat4,
+    depth_cache: std::sync::Mutex<Option<Vec<f32>>>,
     last_near: f32,
     last_far: f32,
 }
@@ -411,7 +435,9 @@ fn texture(
         dimension: wgpu::TextureDimension::D2,
         format,
         usage,
-        view_formats: &[],
+        // The display target is also viewable as plain RGBA8 (the sRGB-encoded bytes as they
+        // are), which is what egui expects of the textures it shows.
+        view_formats: if format == DISPLAY_FORMAT { &[wgpu::TextureFormat::Rgba8Unorm] } else { &[] },
     })
 }
 
@@ -709,6 +735,8 @@ impl Renderer {
             last_variant: None,
             last_sss_ran: false,
             last_focal_px: 1.0,
+            last_view_proj: glam::Mat4::IDENTITY,
+            depth_cache: std::sync::Mutex::new(None),
             last_near: 1.0,
             last_far: 1.0,
         }
@@ -806,16 +834,111 @@ impl Renderer {
     /// # Errors
     /// [`RenderError::Invalid`] for more than [`MAX_LAYERS`] visible layers.
     pub fn set_look(&mut self, look: &Look) -> Result<()> {
-        let layers: Vec<_> = look.visible_layers().collect();
-        self.look = Self::upload_look_layers(&self.device, &self.queue, &layers)?;
+        let layers: Vec<_> =
+            look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
+        self.set_layers(&layers)
+    }
+
+    /// Uploads cosmetic layers bottom to top (the painting app's path: its maps carry a
+    /// multiplier).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for more than [`MAX_LAYERS`] layers.
+    pub fn set_layers(&mut self, layers: &[LayerInput<'_>]) -> Result<()> {
+        self.look = Self::upload_look_layers(&self.device, &self.queue, layers)?;
         Ok(())
     }
 
-    fn upload_look_layers(
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        layers: &[&crate::look::LookLayer],
-    ) -> Result<GpuLook> {
+    /// Re-uploads the texels `rect` = (x0, y0, x1, y1) (half-open) of layer `layer`'s thickness
+    /// map after painting; `map` must have the size the layers were uploaded at.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a layer or size that does not match the uploaded look.
+    pub fn update_thickness(
+        &mut self,
+        layer: usize,
+        map: &crate::look::ThicknessMap,
+        multiplier: f32,
+        rect: (u32, u32, u32, u32),
+    ) -> Result<()> {
+        let (w, h) = self.look.size;
+        if layer >= self.look.layers as usize || (map.width, map.height) != (w, h) {
+            return Err(RenderError::Invalid(format!(
+                "thickness update of layer {layer} ({}×{}) does not match the uploaded look ({} layers at {w}×{h})",
+                map.width, map.height, self.look.layers
+            )));
+        }
+        let (x0, y0) = (rect.0.min(w), rect.1.min(h));
+        let (x1, y1) = (rect.2.min(w), rect.3.min(h));
+        if x0 >= x1 || y0 >= y1 {
+            return Ok(());
+        }
+        let mut texels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+        for y in y0..y1 {
+            let row = &map.mm[(y * w + x0) as usize..(y * w + x1) as usize];
+            texels.extend(row.iter().map(|&v| half::f16::from_f32(v * multiplier).to_bits()));
+        }
+        self.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.look.texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: x0, y: y0, z: layer as u32 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(2 * (x1 - x0)),
+                rows_per_image: Some(y1 - y0),
+            },
+            wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 },
+        );
+        Ok(())
+    }
+
+    /// The surface point under pixel (`x`, `y`) of the last frame, read from the GPU depth
+    /// buffer; `None` over the background.
+    ///
+    /// # Errors
+    /// Without a frame, or if the GPU fails.
+    pub fn pick(&self, x: u32, y: u32) -> Result<Option<Vec3>> {
+        let t = self.targets.as_ref().ok_or_else(|| RenderError::Invalid("no frame rendered yet".into()))?;
+        if x >= t.width || y >= t.height {
+            return Ok(None);
+        }
+        // Depth textures cannot be copied in part: read the whole depth buffer once per frame
+        // (3.7 MB at 1280×720) and answer every pick of that frame from the copy.
+        let mut cache = self.depth_cache.lock().map_err(|_| RenderError::Gpu("depth cache poisoned".into()))?;
+        if cache.is_none() {
+            let bytes = read_texture(&self.device, &self.queue, &t.depth, 4)?;
+            *cache = Some(bytemuck::pod_collect_to_vec(&bytes));
+        }
+        let depth = cache.as_ref().and_then(|d| d.get((y * t.width + x) as usize).copied()).unwrap_or(1.0);
+        if depth >= 1.0 {
+            return Ok(None);
+        }
+        let ndc = glam::Vec4::new(
+            (x as f32 + 0.5) / t.width as f32 * 2.0 - 1.0,
+            1.0 - (y as f32 + 0.5) / t.height as f32 * 2.0,
+            depth,
+            1.0,
+        );
+        let world = self.last_view_proj.inverse() * ndc;
+        Ok((world.w != 0.0).then(|| world.truncate() / world.w))
+    }
+
+    /// Pixel coordinates of a world point in the last frame (for tests and overlays).
+    pub fn project(&self, world: Vec3) -> Option<(f32, f32)> {
+        let t = self.targets.as_ref()?;
+        let clip = self.last_view_proj * world.extend(1.0);
+        if clip.w <= 0.0 {
+            return None;
+        }
+        let ndc = clip.truncate() / clip.w;
+        Some(((ndc.x + 1.0) * 0.5 * t.width as f32, (1.0 - ndc.y) * 0.5 * t.height as f32))
+    }
+
+    fn upload_look_layers(device: &wgpu::Device, queue: &wgpu::Queue, layers: &[LayerInput<'_>]) -> Result<GpuLook> {
         if layers.len() > MAX_LAYERS {
             return Err(RenderError::Invalid(format!(
                 "the look has {} visible layers; the renderer takes at most {MAX_LAYERS}",
@@ -823,6 +946,9 @@ impl Renderer {
             )));
         }
         let (w, h) = layers.iter().fold((1, 1), |(w, h), l| (w.max(l.map.width), h.max(l.map.height)));
+        if layers.iter().any(|l| !(l.multiplier.is_finite() && l.multiplier >= 0.0)) {
+            return Err(RenderError::Invalid("layer thickness multipliers must be finite and ≥ 0".into()));
+        }
         let count = layers.len().max(1) as u32;
         let maps = texture(
             device,
@@ -838,7 +964,8 @@ impl Renderer {
         for (i, layer) in layers.iter().enumerate() {
             let map =
                 if (layer.map.width, layer.map.height) == (w, h) { layer.map.clone() } else { layer.map.resized(w, h) };
-            let texels: Vec<u16> = map.mm.iter().map(|&v| half::f16::from_f32(v).to_bits()).collect();
+            let m = layer.multiplier;
+            let texels: Vec<u16> = map.mm.iter().map(|&v| half::f16::from_f32(v * m).to_bits()).collect();
             queue.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture: &maps,
@@ -850,7 +977,7 @@ impl Renderer {
                 wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(2 * w), rows_per_image: Some(h) },
                 wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
             );
-            let (r0, t) = layer_tables(&layer.preset);
+            let (r0, t) = layer_tables(layer.preset);
             tables.extend(r0.iter().map(|v| [v[0], v[1], v[2], 0.0]));
             tables.extend(t.iter().map(|v| [v[0], v[1], v[2], 0.0]));
             params[i] = LayerUniform {
@@ -868,6 +995,8 @@ impl Renderer {
         Ok(GpuLook {
             layers: layers.len() as u32,
             maps: array_view(&maps),
+            texture: maps,
+            size: (w, h),
             tables: buffer_init(device, "layer tables", bytemuck::cast_slice(&tables), wgpu::BufferUsages::STORAGE),
             params,
         })
@@ -1374,6 +1503,10 @@ impl Renderer {
         self.last_sss_ran = run_sss;
         self.last_focal_px = focal_px;
         self.last_near = near;
+        self.last_view_proj = view_proj;
+        if let Ok(mut cache) = self.depth_cache.lock() {
+            *cache = None;
+        }
         self.last_far = far;
         self.timings.clear();
         if let Some(p) = profiler.filter(|_| timed > 0) {
@@ -1472,6 +1605,8 @@ fn empty_look(device: &wgpu::Device) -> GpuLook {
     GpuLook {
         layers: 0,
         maps: array_view(&maps),
+        texture: maps.clone(),
+        size: (1, 1),
         tables: buffer_init(device, "layer tables", &[0u8; 16], wgpu::BufferUsages::STORAGE),
         params: [LayerUniform::default(); MAX_LAYERS],
     }

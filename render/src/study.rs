@@ -293,3 +293,105 @@ pub fn table_study(presets: &[Preset]) -> TableStudy {
         max_abs_t: max_t,
     }
 }
+
+/// Brush dab to updated frame, end to end.
+#[derive(Clone, Debug, Serialize)]
+pub struct DabTimes {
+    /// Adapter description.
+    pub adapter: String,
+    /// Frame size.
+    pub width: u32,
+    /// Frame size.
+    pub height: u32,
+    /// Thickness map size (square).
+    pub map_size: u32,
+    /// Brush radius, mm.
+    pub radius_mm: f32,
+    /// Dabs timed.
+    pub dabs: usize,
+    /// Building the surface map of the mesh (once per mesh), ms.
+    pub surface_build_ms: f64,
+    /// CPU time to apply one dab to the map, ms (mean).
+    pub dab_cpu_ms: f64,
+    /// Uploading the changed rectangle, ms (mean; the GPU copy itself runs with the frame).
+    pub upload_ms: f64,
+    /// Rendering and waiting for the frame, ms (mean).
+    pub frame_ms: f64,
+    /// Dab to finished frame, ms (mean).
+    pub total_ms: f64,
+    /// Slowest dab to frame, ms.
+    pub total_max_ms: f64,
+}
+
+/// Paints `dabs` dabs along a line across the face's right cheek of the default head on the
+/// default project's foundation layer (2048² maps) and times each from dab to finished frame.
+///
+/// # Errors
+/// As [`crate::Renderer::render`].
+pub fn dab_to_frame(p: &mut Prepared, mesh: &crate::mesh::TriangleMesh, dabs: usize) -> Result<DabTimes> {
+    use crate::document::{Document, MAP_SIZE};
+    use crate::paint::{Brush, SurfaceMap, apply_dab};
+    use crate::renderer::LayerInput;
+    let (w, h) = p.size;
+    let t = Instant::now();
+    let surface = SurfaceMap::build(mesh, MAP_SIZE, MAP_SIZE);
+    let surface_build_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut doc = Document::default_project();
+    {
+        let inputs: Vec<LayerInput<'_>> = doc
+            .layers
+            .iter()
+            .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: l.multiplier })
+            .collect();
+        p.renderer.set_layers(&inputs)?;
+    }
+    p.renderer.render(&p.scene, &p.camera, w, h, true)?;
+    p.renderer.wait()?;
+    let brush = Brush { mirror: false, ..Brush::default() };
+    // Centres: pick the frame at points across the right cheek (image left of centre).
+    let mut centres = Vec::new();
+    for i in 0..dabs {
+        let f = i as f32 / dabs.max(1) as f32;
+        let (x, y) = ((w as f32 * (0.42 + 0.05 * f)) as u32, (h as f32 * (0.58 + 0.04 * f)) as u32);
+        if let Some(c) = p.renderer.pick(x, y)? {
+            centres.push(c);
+        }
+    }
+    let (mut cpu, mut up, mut frame, mut total, mut worst) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
+    let _ = doc.begin_stroke(0);
+    for &c in &centres {
+        let t0 = Instant::now();
+        let rect = match doc.stroke_map(0) {
+            Some(map) => apply_dab(map, &surface, &brush, c),
+            None => break,
+        };
+        let t1 = Instant::now();
+        let layer = &doc.layers[0];
+        p.renderer.update_thickness(0, &layer.map, layer.multiplier, (rect.x0, rect.y0, rect.x1, rect.y1))?;
+        let t2 = Instant::now();
+        p.renderer.render(&p.scene, &p.camera, w, h, true)?;
+        p.renderer.wait()?;
+        let t3 = Instant::now();
+        cpu += (t1 - t0).as_secs_f64() * 1e3;
+        up += (t2 - t1).as_secs_f64() * 1e3;
+        frame += (t3 - t2).as_secs_f64() * 1e3;
+        let all = (t3 - t0).as_secs_f64() * 1e3;
+        total += all;
+        worst = worst.max(all);
+    }
+    let n = centres.len().max(1) as f64;
+    Ok(DabTimes {
+        adapter: p.gpu.describe(),
+        width: w,
+        height: h,
+        map_size: MAP_SIZE,
+        radius_mm: brush.radius_mm,
+        dabs: centres.len(),
+        surface_build_ms,
+        dab_cpu_ms: cpu / n,
+        upload_ms: up / n,
+        frame_ms: frame / n,
+        total_ms: total / n,
+        total_max_ms: worst,
+    })
+}

@@ -1,0 +1,263 @@
+//! The material library (built-in presets, user presets, imports) and its panel: list, import
+//! from a measurement file in the background, plots of the selected material.
+
+use egui_plot::{Legend, Line, Plot};
+use rouge_measure::import::{self, ImportOptions};
+use rouge_measure::preset::{ImportReport, Preset, layer_spectra, table_thicknesses_mm};
+use rouge_measure::{Extrapolation, Kind};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc;
+
+/// Where a material came from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    /// Embedded in the binary (data/presets).
+    Builtin,
+    /// A JSON file in the user's preset folder.
+    User(PathBuf),
+}
+
+/// One material of the library.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// How a look refers to it: `builtin:NAME` or a path.
+    pub preset_ref: String,
+    /// The preset.
+    pub preset: Preset,
+    /// Origin.
+    pub source: Source,
+    /// The import report, for materials imported in this session.
+    pub report: Option<ImportReport>,
+}
+
+/// A finished import: the new material, or why it failed.
+pub type ImportResult = Result<Material, String>;
+
+/// The library and the state of its panel.
+#[derive(Debug)]
+pub struct Library {
+    /// Every material, built-in first.
+    pub materials: Vec<Material>,
+    /// Index of the material shown in the plots.
+    pub selected: usize,
+    /// Folder of user presets (imports are saved there).
+    pub user_dir: PathBuf,
+    /// Thickness (mm) of the thin layer, for files that do not give it.
+    pub import_thickness_mm: f64,
+    /// Hold the ends constant for measurements that stop short of 380-780 nm.
+    pub import_extrapolate: bool,
+    /// Path typed into the panel (for machines without a file dialog).
+    pub import_path: String,
+    /// The running import, if any.
+    pending: Option<mpsc::Receiver<ImportResult>>,
+    /// Message of the last import (report or error).
+    pub last_message: Option<(bool, String)>,
+}
+
+impl Library {
+    /// The built-in presets plus every readable preset in `user_dir`.
+    pub fn load(user_dir: PathBuf) -> Library {
+        let mut materials: Vec<Material> = rouge_render::look::builtin_preset_names()
+            .iter()
+            .filter_map(|n| {
+                rouge_render::look::builtin_preset(n).map(|preset| Material {
+                    preset_ref: format!("builtin:{n}"),
+                    preset,
+                    source: Source::Builtin,
+                    report: None,
+                })
+            })
+            .collect();
+        if let Ok(entries) = std::fs::read_dir(&user_dir) {
+            let mut paths: Vec<PathBuf> = entries
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect();
+            paths.sort();
+            for path in paths {
+                if let Ok(preset) = Preset::load(&path) {
+                    materials.push(Material {
+                        preset_ref: path.display().to_string(),
+                        preset,
+                        source: Source::User(path),
+                        report: None,
+                    });
+                }
+            }
+        }
+        Library {
+            materials,
+            selected: 0,
+            user_dir,
+            import_thickness_mm: 0.02,
+            import_extrapolate: false,
+            import_path: String::new(),
+            pending: None,
+            last_message: None,
+        }
+    }
+
+    /// Whether an import is running.
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// Starts importing `path` on a background thread.
+    pub fn start_import(&mut self, path: PathBuf) {
+        let (tx, rx) = mpsc::channel();
+        let user_dir = self.user_dir.clone();
+        let thickness = self.import_thickness_mm;
+        let extrapolate = self.import_extrapolate;
+        std::thread::spawn(move || {
+            let _ = tx.send(import_file(&path, thickness, extrapolate, &user_dir));
+        });
+        self.pending = Some(rx);
+        self.last_message = None;
+    }
+
+    /// Collects a finished import; returns true when one finished.
+    pub fn poll(&mut self) -> bool {
+        let Some(rx) = &self.pending else { return false };
+        let result = match rx.try_recv() {
+            Ok(r) => r,
+            Err(mpsc::TryRecvError::Empty) => return false,
+            Err(mpsc::TryRecvError::Disconnected) => Err("the import thread stopped unexpectedly".into()),
+        };
+        self.pending = None;
+        match result {
+            Ok(m) => {
+                self.last_message = Some((true, import_summary(&m)));
+                self.materials.push(m);
+                self.selected = self.materials.len() - 1;
+            }
+            Err(e) => self.last_message = Some((false, e)),
+        }
+        true
+    }
+
+    /// Waits for a running import (tests).
+    pub fn wait(&mut self) {
+        while self.busy() {
+            if !self.poll() {
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+        }
+    }
+}
+
+fn import_summary(m: &Material) -> String {
+    let mut s = format!("Imported {} ({:?})", m.preset.name, m.preset.kind);
+    if let Some(r) = &m.report {
+        s.push_str(&format!(
+            "\nR_inf {}; reconstruction ΔE2000: R {:.3}, R_inf {:.3}\nmax |R - R(S,K)| {:.2e} at {} nm",
+            r.r_inf_srgb_hex, r.delta_e_2000_r, r.delta_e_2000_r_inf, r.max_abs_r_error.1, r.max_abs_r_error.0
+        ));
+    }
+    if let Source::User(p) = &m.source {
+        s.push_str(&format!("\nsaved as {}", p.display()));
+    }
+    s
+}
+
+/// Imports one measurement file into a preset saved in `user_dir`.
+pub fn import_file(path: &Path, thickness_mm: f64, extrapolate: bool, user_dir: &Path) -> ImportResult {
+    let m = import::read_measurement(path, &ImportOptions::default()).map_err(|e| e.to_string())?;
+    let working = m
+        .to_working_grid(if extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse })
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let thickness = m.thickness_mm.unwrap_or(thickness_mm);
+    let kind = m.kind.unwrap_or(Kind::Other);
+    let (preset, report) =
+        Preset::from_measurement(&m, &working, &m.name, kind, thickness, None).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(user_dir).map_err(|e| format!("{}: cannot create: {e}", user_dir.display()))?;
+    let stem: String =
+        preset.name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' }).collect();
+    let out = user_dir.join(format!("{stem}.json"));
+    preset.save(&out).map_err(|e| e.to_string())?;
+    Ok(Material { preset_ref: out.display().to_string(), preset, source: Source::User(out), report: Some(report) })
+}
+
+fn srgb_hex_to_color(hex: &str) -> egui::Color32 {
+    let v = u32::from_str_radix(hex.trim_start_matches('#'), 16).unwrap_or(0x808080);
+    egui::Color32::from_rgb((v >> 16) as u8, (v >> 8) as u8, v as u8)
+}
+
+/// Colour swatch of a preset's R∞.
+pub fn swatch(ui: &mut egui::Ui, preset: &Preset, size: f32) -> egui::Response {
+    let (rect, response) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
+    ui.painter().rect_filled(rect, 3.0, srgb_hex_to_color(&preset.derived.r_inf_srgb_hex));
+    response
+}
+
+/// Plots of the selected material: measured R∞, R, Rg (when the preset has its measurement),
+/// S and K per wavelength, and R0(X), T(X) against thickness.
+pub fn plots(ui: &mut egui::Ui, m: &Material) {
+    let p = &m.preset;
+    let wl = &p.wavelengths_nm;
+    let series = |v: &[f64]| -> Vec<[f64; 2]> { wl.iter().zip(v).map(|(&x, &y)| [x, y]).collect() };
+    ui.horizontal(|ui| {
+        swatch(ui, p, 28.0);
+        ui.vertical(|ui| {
+            ui.strong(&p.name);
+            ui.label(format!("{:?} · measured at {} mm · R_inf {}", p.kind, p.thickness_mm, p.derived.r_inf_srgb_hex));
+        });
+    });
+    if let Some(r) = &m.report {
+        ui.label(format!(
+            "Reconstruction from S, K: ΔE2000 R {:.3}, R_inf {:.3} (max |ΔR| {:.1e})",
+            r.delta_e_2000_r, r.delta_e_2000_r_inf, r.max_abs_r_error.1
+        ));
+    } else if let Some(meas) = &p.measurement
+        && let Some(de) = reconstruction_delta_e(p, &meas.r, &meas.rg)
+    {
+        ui.label(format!("Reconstruction from S, K: ΔE2000 R {de:.3}"));
+    }
+    ui.label("Reflectance");
+    Plot::new(("refl", &p.name)).height(130.0).legend(Legend::default()).x_axis_label("nm").show(ui, |pu| {
+        if let Some(meas) = &p.measurement {
+            pu.line(Line::new("R_inf measured", series(&meas.r_inf)));
+            pu.line(Line::new("R measured", series(&meas.r)));
+            pu.line(Line::new("Rg", series(&meas.rg)));
+        }
+        let (s, k) = (p.s(), p.k());
+        let r_inf: Vec<f64> =
+            s.values().iter().zip(k.values()).map(|(&s, &k)| rouge_measure::km::r_inf_from_s_k(s, k)).collect();
+        pu.line(Line::new("R_inf from S, K", series(&r_inf)));
+    });
+    ui.label("S and K (per mm)");
+    Plot::new(("sk", &p.name)).height(110.0).legend(Legend::default()).x_axis_label("nm").show(ui, |pu| {
+        pu.line(Line::new("S", series(&p.s_per_mm)));
+        pu.line(Line::new("K", series(&p.k_per_mm)));
+    });
+    ui.label("R0(X) and T(X), linear sRGB");
+    let xs = table_thicknesses_mm();
+    Plot::new(("rt", &p.name)).height(110.0).legend(Legend::default()).x_axis_label("mm").show(ui, |pu| {
+        let names = ["R", "G", "B"];
+        for c in 0..3 {
+            let r0: Vec<[f64; 2]> = xs.iter().zip(&p.derived.r0_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
+            let t: Vec<[f64; 2]> = xs.iter().zip(&p.derived.t_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
+            pu.line(Line::new(format!("R0 {}", names[c]), r0));
+            pu.line(Line::new(format!("T {}", names[c]), t));
+        }
+    });
+}
+
+/// ΔE2000 between the measured R and R re-computed from S and K over the measured background.
+fn reconstruction_delta_e(p: &Preset, r: &[f64], rg: &[f64]) -> Option<f64> {
+    use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw};
+    use rouge_measure::spectrum::Spectrum;
+    let (s, k) = (p.s(), p.k());
+    let (r0, t) = layer_spectra(&s, &k, p.thickness_mm);
+    let recomputed = Spectrum::from_fn({
+        let mut i = 0;
+        move |_| {
+            let (r0i, ti, g) = (r0.values()[i], t.values()[i], rg.get(i).copied().unwrap_or(0.0));
+            i += 1;
+            r0i + ti * ti * g / (1.0 - r0i * g)
+        }
+    });
+    let measured = Spectrum::from_slice(r).ok()?;
+    let c = Colorimeter::get(Viewing::D65_1931);
+    let lab = |s: &Spectrum| c.lab(&c.xyz(s)).lab;
+    Some(delta_e_2000_raw(lab(&measured), lab(&recomputed)))
+}

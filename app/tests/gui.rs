@@ -1,0 +1,138 @@
+//! The painting app driven through egui_kittest with the wgpu renderer (lavapipe on CI): a
+//! stroke across a cheek, undo and redo bit for bit, save and reopen, a malformed import, and a
+//! snapshot of the window. `UPDATE_SNAPSHOTS=1` rewrites app/tests/snapshots/.
+
+use egui::{Modifiers, Pos2};
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, SnapshotOptions};
+use glam::Vec3;
+use rouge_app::gui::{Options, RougeApp};
+use std::path::Path;
+
+fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
+    let dir = data_dir.to_owned();
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
+        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false }).expect("the app opens")
+    });
+    h.state_mut().wait_ready();
+    h.run_steps(4);
+    h
+}
+
+/// Screen points across the face's right cheek (image left of the nose), found by projecting
+/// surface points of the mesh: the nose tip is the frontmost covered point.
+fn cheek_stroke(app: &RougeApp) -> Vec<Pos2> {
+    let surface = app.surface().expect("surface map");
+    let mut tip = Vec3::new(0.0, 0.0, f32::MIN);
+    for y in (0..surface.height).step_by(8) {
+        for x in (0..surface.width).step_by(8) {
+            if let Some(p) = surface.position(x, y)
+                && p.z > tip.z
+                && p.x.abs() < 10.0
+            {
+                tip = p;
+            }
+        }
+    }
+    let a = app.screen_pos_of(tip + Vec3::new(-45.0, -15.0, -25.0)).expect("on screen");
+    let b = app.screen_pos_of(tip + Vec3::new(-30.0, -30.0, -20.0)).expect("on screen");
+    (0..=6).map(|i| a + (b - a) * (i as f32 / 6.0)).collect()
+}
+
+#[test]
+fn paint_a_stroke_undo_redo_save_and_reopen() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let layer = 0; // the foundation, bottom layer
+    h.state_mut().set_active_layer(layer);
+    {
+        let b = h.state_mut().brush_mut();
+        b.radius_mm = 6.0;
+        b.mirror = false;
+        b.thickness_mm = 0.05;
+        b.flow = 0.8;
+    }
+    let before = h.state().document().layers[layer].map.clone();
+    let points = cheek_stroke(h.state());
+
+    // Drag through the viewport as a user would.
+    h.drag_at(points[0]);
+    h.run_steps(2);
+    for p in &points[1..] {
+        h.hover_at(*p);
+        h.run_steps(2);
+    }
+    h.drop_at(*points.last().expect("points"));
+    h.run_steps(3);
+
+    let after = h.state().document().layers[layer].map.clone();
+    let dabs = h.state().last_stroke_dabs().to_vec();
+    assert!(dabs.len() >= 3, "the stroke made {} dabs", dabs.len());
+    let surface = h.state().surface().expect("surface");
+    let (mut changed, mut far) = (0usize, 0usize);
+    for y in 0..after.height {
+        for x in 0..after.width {
+            let i = (y * after.width + x) as usize;
+            if after.mm[i] != before.mm[i] {
+                changed += 1;
+                let near = surface.position(x, y).is_some_and(|p| dabs.iter().any(|d| (p - *d).length() <= 6.0 + 0.5));
+                if !near {
+                    far += 1;
+                }
+            }
+        }
+    }
+    assert!(changed > 200, "only {changed} texels changed");
+    assert_eq!(far, 0, "{far} of {changed} changed texels are farther than the brush radius from every dab");
+    // Other layers are untouched.
+    assert_eq!(h.state().document().layers.len(), 3);
+
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert!(h.state().document().layers[layer].map.mm == before.mm, "undo restores the map bit for bit");
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, egui::Key::Z);
+    h.run_steps(2);
+    assert!(h.state().document().layers[layer].map.mm == after.mm, "redo re-applies the stroke bit for bit");
+
+    let project = tempfile::tempdir().expect("tempdir");
+    h.state_mut().save_project_to(project.path()).expect("save");
+    let saved: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    h.state_mut().open_project_from(project.path()).expect("open");
+    h.run_steps(2);
+    let reopened: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    assert!(saved == reopened, "reopened maps equal the saved ones bit for bit");
+}
+
+#[test]
+fn a_malformed_import_shows_an_error_and_changes_nothing() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let count = h.state_mut().library_mut().materials.len();
+    let bad = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements/bad/non_numeric.csv");
+    h.state_mut().library_mut().import_path = bad.display().to_string();
+    h.get_by_label("Import").click();
+    h.run_steps(2);
+    h.state_mut().library_mut().wait();
+    h.run_steps(2);
+    let lib = h.state_mut().library_mut();
+    assert_eq!(lib.materials.len(), count, "a failed import adds nothing");
+    let (ok, msg) = lib.last_message.clone().expect("a message");
+    assert!(!ok && msg.contains("non_numeric.csv:27:3"), "{msg}");
+    // And a good one adds a material, saved into the user preset folder.
+    let good = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements/blush_02_coral.csv");
+    lib.import_path = good.display().to_string();
+    h.get_by_label("Import").click();
+    h.run_steps(2);
+    h.state_mut().library_mut().wait();
+    let lib = h.state_mut().library_mut();
+    assert_eq!(lib.materials.len(), count + 1);
+    assert!(std::fs::read_dir(data.path().join("presets")).expect("user presets").count() == 1);
+}
+
+#[test]
+fn window_snapshot() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    h.run_steps(2);
+    h.snapshot_options("app_default", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(4000));
+}

@@ -1,0 +1,861 @@
+//! 3D painting of cosmetic thickness maps (paper 003, future work: "paint the film on the face").
+//!
+//! A designer paints thickness in millimetres directly on the head. The brush is a ball in 3D:
+//! its radius is millimetres on the surface (straight-line distance in 3D, not distance in UV),
+//! so a stroke carries on across UV seams and every UV island is painted at the same size
+//! whatever its texel density.
+//!
+//! - [`SurfaceMap`] says where each texel of a UV map lies on the surface. It is built once per
+//!   mesh and map size: every triangle is rasterised in UV space, the 3D position interpolated
+//!   barycentrically at each texel centre, then the covered area is dilated by two texels so
+//!   bilinear sampling at island edges (UV seams) reads painted values. Covered texels are
+//!   bucketed in a uniform 3D grid (cells of about 2 mm) for radius queries.
+//! - [`apply_dab`] paints, erases or smooths the texels within the brush radius of a surface
+//!   point, and of its mirror image across the face's midplane when the brush says so.
+//! - [`StrokeSpacer`] turns mouse moves into evenly spaced dab centres on the surface, so a fast
+//!   move leaves no gaps; [`stroke`] applies a whole polyline.
+//!
+//! Pixel convention as in [`crate::look`]: row 0 is the top of the image; pixel (x, y) has its
+//! centre at u = (x + 0.5) / w, v = 1 − (y + 0.5) / h (OBJ UVs, v up).
+//!
+//! Wiring into the app: each dab returns the [`DirtyRect`] of texels it changed; hand it to
+//! `Renderer::update_thickness(layer, &map, multiplier, rect.into())`, which re-uploads only
+//! those rows (wgpu's `Queue::write_texture` needs no row alignment).
+
+use std::fmt;
+use std::sync::Mutex;
+
+use glam::{Vec2, Vec3};
+
+use crate::look::{MAX_THICKNESS_MM, ThicknessMap};
+use crate::mesh::{Bounds, TriangleMesh};
+
+/// Edge of a [`SurfaceMap`] grid cell, mm: a 10 mm brush visits about 11³ cells.
+const GRID_CELL_MM: f32 = 2.0;
+/// Most cells a grid may have (about 64 MiB of cell offsets); beyond it the cells grow.
+const MAX_GRID_CELLS: usize = 1 << 24;
+/// Texels the covered area grows by, so bilinear sampling at island edges reads paint.
+const DILATE_TEXELS: usize = 2;
+/// Marks a texel that no triangle covers.
+const UNCOVERED: u32 = u32::MAX;
+/// Most dabs one [`StrokeSpacer::move_to`] returns (a 1 m move of a 0.4 mm brush at spacing 0.25).
+const MAX_DABS_PER_MOVE: usize = 1 << 16;
+/// Rows of texels handed to a rasterising thread at a time.
+const RASTER_BAND_ROWS: usize = 32;
+
+// ------------------------------------------------------------------------------------------
+// Surface map
+
+/// Where each texel of a UV map lies on the surface: built once per mesh and map size.
+///
+/// A texel is *covered* when a triangle covers its centre in UV space or when it lies in the
+/// two-texel dilation ring around such texels (it then takes the position of the nearest
+/// covered texel). Only covered texels are ever painted.
+#[derive(Clone)]
+pub struct SurfaceMap {
+    /// Map width in texels.
+    pub width: u32,
+    /// Map height in texels.
+    pub height: u32,
+    /// Per texel (row-major, row 0 at the top): its index into `points`, or [`UNCOVERED`].
+    slot: Vec<u32>,
+    /// Positions of the covered texels, mm, grouped by grid cell (cells in x-fastest order).
+    points: Vec<Vec3>,
+    /// Texel index (y · width + x) of each entry of `points`.
+    texels: Vec<u32>,
+    /// The uniform grid over `points`.
+    grid: Grid,
+    /// x of the symmetry plane, mm.
+    mirror_x: f32,
+}
+
+impl fmt::Debug for SurfaceMap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SurfaceMap")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("covered", &self.points.len())
+            .field("grid", &self.grid)
+            .field("mirror_x", &self.mirror_x)
+            .finish()
+    }
+}
+
+/// A uniform grid of cells; cell (i, j, k) holds `points[starts[c]..starts[c + 1]]` with
+/// c = i + dims[0]·(j + dims[1]·k), so a run of cells along x is one contiguous slice.
+#[derive(Clone)]
+struct Grid {
+    origin: Vec3,
+    cell_mm: f32,
+    dims: [usize; 3],
+    starts: Vec<u32>,
+}
+
+impl fmt::Debug for Grid {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Grid")
+            .field("origin", &self.origin)
+            .field("cell_mm", &self.cell_mm)
+            .field("dims", &self.dims)
+            .finish()
+    }
+}
+
+impl Grid {
+    /// An empty grid: every query finds nothing.
+    fn empty() -> Grid {
+        Grid { origin: Vec3::ZERO, cell_mm: GRID_CELL_MM, dims: [0; 3], starts: vec![0] }
+    }
+
+    /// A grid over the box `bounds`, cells of `GRID_CELL_MM` grown until there are at most
+    /// `MAX_GRID_CELLS`.
+    fn over(bounds: Bounds) -> Grid {
+        let size = bounds.size().max(Vec3::ZERO);
+        let mut cell_mm = GRID_CELL_MM;
+        loop {
+            let dims = [0, 1, 2].map(|i| (size[i] / cell_mm).floor() as usize + 1);
+            let cells = dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]);
+            if cells <= MAX_GRID_CELLS {
+                return Grid { origin: bounds.min, cell_mm, dims, starts: Vec::new() };
+            }
+            cell_mm *= ((cells as f64 / MAX_GRID_CELLS as f64).cbrt() as f32).max(1.01);
+        }
+    }
+
+    /// Linear cell index of a point inside the grid's box (clamped to the grid).
+    fn cell_of(&self, p: Vec3) -> usize {
+        let c = ((p - self.origin) / self.cell_mm).floor();
+        let [i, j, k] = [0, 1, 2].map(|a| (c[a].max(0.0) as usize).min(self.dims[a].saturating_sub(1)));
+        i + self.dims[0] * (j + self.dims[1] * k)
+    }
+
+    /// Unclamped cell coordinates of a point (saturating for points far away).
+    fn coords(&self, p: Vec3) -> [i64; 3] {
+        let c = ((p - self.origin) / self.cell_mm).floor();
+        [0, 1, 2].map(|a| c[a].clamp(-1.0e9, 1.0e9) as i64)
+    }
+
+    /// Inclusive cell ranges covering the box [lo, hi], clipped to the grid; `None` when the
+    /// box misses the grid (or holds NaN).
+    fn range(&self, lo: Vec3, hi: Vec3) -> Option<CellBox> {
+        if !(lo.is_finite() && hi.is_finite()) || self.dims.contains(&0) {
+            return None;
+        }
+        let (a, b) = (self.coords(lo), self.coords(hi));
+        let mut out = CellBox { lo: [0; 3], hi: [0; 3] };
+        for axis in 0..3 {
+            let last = self.dims[axis] as i64 - 1;
+            if b[axis] < 0 || a[axis] > last {
+                return None;
+            }
+            out.lo[axis] = a[axis].max(0) as usize;
+            out.hi[axis] = b[axis].min(last) as usize;
+        }
+        Some(out)
+    }
+
+    /// The index range into `points` of cells x0..=x1 in row (j, k).
+    fn run(&self, x0: usize, x1: usize, j: usize, k: usize) -> std::ops::Range<usize> {
+        let base = self.dims[0] * (j + self.dims[1] * k);
+        self.starts[base + x0] as usize..self.starts[base + x1 + 1] as usize
+    }
+
+    /// Calls `f` with the index range into `points` of every row of cells in `cells`.
+    fn for_each_run(&self, cells: CellBox, mut f: impl FnMut(std::ops::Range<usize>)) {
+        for k in cells.lo[2]..=cells.hi[2] {
+            for j in cells.lo[1]..=cells.hi[1] {
+                f(self.run(cells.lo[0], cells.hi[0], j, k));
+            }
+        }
+    }
+}
+
+/// An inclusive box of grid cells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct CellBox {
+    lo: [usize; 3],
+    hi: [usize; 3],
+}
+
+impl CellBox {
+    /// Whether two boxes overlap or touch (then one query over their union visits each cell once).
+    fn touches(&self, other: &CellBox) -> bool {
+        (0..3).all(|a| self.lo[a] <= other.hi[a] + 1 && other.lo[a] <= self.hi[a] + 1)
+    }
+
+    fn union(&self, other: &CellBox) -> CellBox {
+        CellBox {
+            lo: [0, 1, 2].map(|a| self.lo[a].min(other.lo[a])),
+            hi: [0, 1, 2].map(|a| self.hi[a].max(other.hi[a])),
+        }
+    }
+}
+
+/// A triangle prepared for rasterising: UVs in pixel space (y down), 3D corners, pixel bounds.
+struct RasterTriangle {
+    uv: [Vec2; 3],
+    position: [Vec3; 3],
+    /// Half-open texel bounds (x0, y0, x1, y1) of the texel centres it may cover.
+    bounds: [usize; 4],
+}
+
+impl SurfaceMap {
+    /// Rasterises every triangle of `mesh` into a `width` × `height` UV map (barycentric
+    /// interpolation of the 3D positions at texel centres), dilates the covered area by two
+    /// texels, and buckets the covered texels in a 3D grid. Triangles with indices out of range,
+    /// non-finite data or no area in UV space are skipped; where UV islands overlap, the later
+    /// triangle wins. An empty mesh or a zero size gives a map that covers nothing.
+    ///
+    /// Uses all available cores (`std::thread::scope`) for rasterising and dilating.
+    pub fn build(mesh: &TriangleMesh, width: u32, height: u32) -> SurfaceMap {
+        let (w, h) = (width as usize, height as usize);
+        let mirror_x = Bounds::of(&mesh.positions).map_or(0.0, |b| b.center().x);
+        let mirror_x = if mirror_x.is_finite() { mirror_x } else { 0.0 };
+        let empty = || SurfaceMap {
+            width,
+            height,
+            slot: vec![UNCOVERED; w * h],
+            points: Vec::new(),
+            texels: Vec::new(),
+            grid: Grid::empty(),
+            mirror_x,
+        };
+        if w == 0 || h == 0 || w.checked_mul(h).is_none_or(|n| n >= UNCOVERED as usize) {
+            return SurfaceMap { slot: Vec::new(), ..empty() };
+        }
+        let (covered, mut grid) = {
+            let texel_pos = rasterise(mesh, w, h);
+            let covered = dilate_and_collect(&texel_pos, w, h);
+            let bounds = covered.iter().fold(None, |b: Option<Bounds>, &(_, p)| {
+                Some(b.map_or(Bounds { min: p, max: p }, |b| Bounds { min: b.min.min(p), max: b.max.max(p) }))
+            });
+            let Some(bounds) = bounds else { return empty() };
+            (covered, Grid::over(bounds))
+        };
+        // Counting sort of the covered texels by grid cell (stable: texel order within a cell).
+        let cell: Vec<u32> = covered.iter().map(|&(_, p)| grid.cell_of(p) as u32).collect();
+        let cells = grid.dims[0] * grid.dims[1] * grid.dims[2];
+        let mut starts = vec![0u32; cells + 1];
+        for &c in &cell {
+            starts[c as usize + 1] += 1;
+        }
+        for c in 0..cells {
+            starts[c + 1] += starts[c];
+        }
+        let mut cursor = starts.clone();
+        let (mut points, mut texels) = (vec![Vec3::ZERO; covered.len()], vec![0u32; covered.len()]);
+        let mut slot = vec![UNCOVERED; w * h];
+        for (&(i, p), &c) in covered.iter().zip(&cell) {
+            let s = cursor[c as usize];
+            cursor[c as usize] += 1;
+            points[s as usize] = p;
+            texels[s as usize] = i;
+            slot[i as usize] = s;
+        }
+        grid.starts = starts;
+        SurfaceMap { width, height, slot, points, texels, grid, mirror_x }
+    }
+
+    /// Number of covered texels (rasterised or in the dilation ring).
+    pub fn covered(&self) -> usize {
+        self.points.len()
+    }
+
+    /// The surface position of texel (x, y), mm; `None` outside the map or where the texel is
+    /// not covered (no triangle covers its centre and it lies outside the dilation ring).
+    pub fn position(&self, x: u32, y: u32) -> Option<Vec3> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let s = *self.slot.get(y as usize * self.width as usize + x as usize)?;
+        self.points.get(s as usize).copied()
+    }
+
+    /// x of the symmetry plane (the mesh bounds' centre x), mm: 0 for the default head.
+    pub fn mirror_x(&self) -> f32 {
+        self.mirror_x
+    }
+
+    /// The mirror image of `p` across the plane x = [`SurfaceMap::mirror_x`].
+    pub fn mirror(&self, p: Vec3) -> Vec3 {
+        Vec3::new(2.0 * self.mirror_x - p.x, p.y, p.z)
+    }
+
+    /// The position of the covered texel closest to `p` within `max_mm` (3D distance), for
+    /// projecting interpolated stroke points back onto the surface; `None` when there is none
+    /// or `p` is not finite.
+    ///
+    /// Searches grid cells in growing shells around `p` and stops once no closer point can
+    /// remain, so the cost depends on the distance to the answer, not on `max_mm`.
+    pub fn nearest_on_surface(&self, p: Vec3, max_mm: f32) -> Option<Vec3> {
+        if !p.is_finite() || max_mm.is_nan() || max_mm < 0.0 || self.points.is_empty() {
+            return None;
+        }
+        let max_mm = max_mm.min(1.0e6);
+        let grid = &self.grid;
+        let c = grid.coords(p);
+        let dims = grid.dims.map(|d| d as i64);
+        let mut best: Option<Vec3> = None;
+        let mut best_d2 = max_mm * max_mm;
+        let shells = (max_mm / grid.cell_mm).ceil() as i64 + 1;
+        for k in 0..=shells {
+            // Every point in shell k is at least (k − 1) cells from p (p lies in cell c).
+            let reach = (k - 1).max(0) as f32 * grid.cell_mm;
+            if reach * reach > best_d2 {
+                break;
+            }
+            let (z0, z1) = ((c[2] - k).max(0), (c[2] + k).min(dims[2] - 1));
+            let (y0, y1) = ((c[1] - k).max(0), (c[1] + k).min(dims[1] - 1));
+            let (x0, x1) = ((c[0] - k).max(0), (c[0] + k).min(dims[0] - 1));
+            if z0 > z1 || y0 > y1 || x0 > x1 {
+                continue;
+            }
+            let mut visit = |xa: i64, xb: i64, y: i64, z: i64| {
+                for i in grid.run(xa as usize, xb as usize, y as usize, z as usize) {
+                    let d2 = self.points[i].distance_squared(p);
+                    if d2 <= best_d2 {
+                        best_d2 = d2;
+                        best = Some(self.points[i]);
+                    }
+                }
+            };
+            for z in z0..=z1 {
+                for y in y0..=y1 {
+                    if (z - c[2]).abs() == k || (y - c[1]).abs() == k {
+                        visit(x0, x1, y, z);
+                    } else {
+                        // Only the two end cells of this row lie on the shell.
+                        if c[0] - k >= 0 && c[0] - k < dims[0] {
+                            visit(c[0] - k, c[0] - k, y, z);
+                        }
+                        if k > 0 && c[0] + k >= 0 && c[0] + k < dims[0] {
+                            visit(c[0] + k, c[0] + k, y, z);
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Positions per texel (NaN where no triangle covers the texel centre), rasterised in bands of
+/// rows on all cores.
+fn rasterise(mesh: &TriangleMesh, w: usize, h: usize) -> Vec<Vec3> {
+    let nan = Vec3::splat(f32::NAN);
+    let triangles: Vec<RasterTriangle> =
+        mesh.indices.chunks_exact(3).filter_map(|t| raster_triangle(mesh, [t[0], t[1], t[2]], w, h)).collect();
+    // Bin the triangles by the bands of rows they touch.
+    let bands = h.div_ceil(RASTER_BAND_ROWS);
+    let mut binned: Vec<Vec<u32>> = vec![Vec::new(); bands];
+    for (i, t) in triangles.iter().enumerate() {
+        for bin in &mut binned[t.bounds[1] / RASTER_BAND_ROWS..=(t.bounds[3] - 1) / RASTER_BAND_ROWS] {
+            bin.push(i as u32);
+        }
+    }
+    let mut out = vec![nan; w * h];
+    let work: Mutex<Vec<(usize, &mut [Vec3])>> =
+        Mutex::new(out.chunks_mut(RASTER_BAND_ROWS * w).enumerate().rev().collect());
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(bands);
+    let job = || {
+        loop {
+            let next = match work.lock() {
+                Ok(mut queue) => queue.pop(),
+                Err(_) => None,
+            };
+            let Some((band, rows)) = next else { break };
+            let y_band = band * RASTER_BAND_ROWS;
+            for &t in &binned[band] {
+                raster_into(&triangles[t as usize], rows, w, y_band);
+            }
+        }
+    };
+    if threads <= 1 {
+        job();
+    } else {
+        std::thread::scope(|s| {
+            for _ in 0..threads {
+                s.spawn(job);
+            }
+        });
+    }
+    out
+}
+
+/// Prepares triangle `t` for rasterising; `None` when it is unusable or covers no texel centre.
+fn raster_triangle(mesh: &TriangleMesh, t: [u32; 3], w: usize, h: usize) -> Option<RasterTriangle> {
+    let mut uv = [Vec2::ZERO; 3];
+    let mut position = [Vec3::ZERO; 3];
+    for k in 0..3 {
+        let i = t[k] as usize;
+        let (p, q) = (*mesh.positions.get(i)?, *mesh.uvs.get(i)?);
+        if !(p.is_finite() && q.is_finite()) {
+            return None;
+        }
+        position[k] = p;
+        uv[k] = Vec2::new(q.x * w as f32, (1.0 - q.y) * h as f32);
+    }
+    let area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]);
+    if area.is_nan() || area.abs() <= 1.0e-9 {
+        return None;
+    }
+    let lo = uv[0].min(uv[1]).min(uv[2]);
+    let hi = uv[0].max(uv[1]).max(uv[2]);
+    // Texel centres x + 0.5 within [lo, hi] (a hair wider so shared edges leave no cracks).
+    let first = |v: f32, n: usize| ((v - 0.5 - 1.0e-3).ceil().max(0.0) as usize).min(n);
+    let end = |v: f32, n: usize| (((v - 0.5 + 1.0e-3).floor() + 1.0).max(0.0) as usize).min(n);
+    let bounds = [first(lo.x, w), first(lo.y, h), end(hi.x, w), end(hi.y, h)];
+    (bounds[0] < bounds[2] && bounds[1] < bounds[3]).then_some(RasterTriangle { uv, position, bounds })
+}
+
+/// Writes the interpolated positions of the texels of `rows` (texel rows from `y_band`) that
+/// triangle `t` covers. Edges are inclusive (a tiny tolerance), so neighbours leave no cracks;
+/// a texel on a shared edge gets the same position from either triangle.
+fn raster_into(t: &RasterTriangle, rows: &mut [Vec3], w: usize, y_band: usize) {
+    let [a, b, c] = t.uv;
+    let area = (b - a).perp_dot(c - a);
+    let (sign, tolerance) = (area.signum(), -1.0e-5 * area.abs());
+    let band_rows = rows.len() / w;
+    let (y0, y1) = (t.bounds[1].max(y_band), t.bounds[3].min(y_band + band_rows));
+    for y in y0..y1 {
+        let row = &mut rows[(y - y_band) * w..(y - y_band + 1) * w];
+        let py = y as f32 + 0.5;
+        for (x, texel) in row.iter_mut().enumerate().take(t.bounds[2]).skip(t.bounds[0]) {
+            let p = Vec2::new(x as f32 + 0.5, py);
+            let la = (c - b).perp_dot(p - b) * sign;
+            let lb = (a - c).perp_dot(p - c) * sign;
+            let lc = (b - a).perp_dot(p - a) * sign;
+            if la >= tolerance && lb >= tolerance && lc >= tolerance {
+                let sum = la + lb + lc;
+                *texel = (t.position[0] * la + t.position[1] * lb + t.position[2] * lc) / sum;
+            }
+        }
+    }
+}
+
+/// The covered texels after dilating by [`DILATE_TEXELS`], in texel order: (index, position).
+/// A texel no triangle covers (NaN) within the (2·DILATE_TEXELS + 1)² window around a covered
+/// one takes the position of the nearest covered texel in that window (Euclidean distance in
+/// texels, ties in a fixed order). Bands of rows on all cores.
+fn dilate_and_collect(src: &[Vec3], w: usize, h: usize) -> Vec<(u32, Vec3)> {
+    const R: i64 = DILATE_TEXELS as i64;
+    let mut offsets: Vec<(i64, i64)> = (-R..=R).flat_map(|dy| (-R..=R).map(move |dx| (dx, dy))).collect();
+    offsets.retain(|&o| o != (0, 0));
+    offsets.sort_by_key(|&(dx, dy)| dx * dx + dy * dy);
+    let covered: Vec<bool> = par_rows(h, |rows| {
+        rows.flat_map(|y| src[y * w..(y + 1) * w].iter().map(|p| !p.x.is_nan())).collect::<Vec<bool>>()
+    })
+    .concat();
+    // Whether any texel within DILATE_TEXELS columns in the same row is covered.
+    let near_in_row: Vec<bool> = par_rows(h, |rows| {
+        rows.flat_map(|y| {
+            let row = &covered[y * w..(y + 1) * w];
+            (0..w).map(move |x| row[x.saturating_sub(DILATE_TEXELS)..(x + DILATE_TEXELS + 1).min(w)].contains(&true))
+        })
+        .collect::<Vec<bool>>()
+    })
+    .concat();
+    par_rows(h, |rows| {
+        let mut out = Vec::new();
+        for y in rows {
+            let (ya, yb) = (y.saturating_sub(DILATE_TEXELS), (y + DILATE_TEXELS + 1).min(h));
+            for x in 0..w {
+                let i = y * w + x;
+                if covered[i] {
+                    out.push((i as u32, src[i]));
+                    continue;
+                }
+                if !(ya..yb).any(|yy| near_in_row[yy * w + x]) {
+                    continue;
+                }
+                let nearest = offsets.iter().find_map(|&(dx, dy)| {
+                    let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                    let inside = nx >= 0 && ny >= 0 && nx < w as i64 && ny < h as i64;
+                    let j = ny * w as i64 + nx;
+                    (inside && covered[j as usize]).then(|| src[j as usize])
+                });
+                if let Some(p) = nearest {
+                    out.push((i as u32, p));
+                }
+            }
+        }
+        out
+    })
+    .concat()
+}
+
+/// Runs `f` on contiguous bands of the rows 0..h, one band per core, and returns the results in
+/// row order.
+fn par_rows<T: Send>(h: usize, f: impl Fn(std::ops::Range<usize>) -> T + Sync) -> Vec<T> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, h.max(1));
+    let band = h.div_ceil(threads);
+    if threads == 1 {
+        return vec![f(0..h)];
+    }
+    std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                let f = &f;
+                s.spawn(move || f((t * band).min(h)..((t + 1) * band).min(h)))
+            })
+            .collect();
+        // A worker can only panic on a bug here; pass it on rather than lose its rows.
+        handles.into_iter().map(|handle| handle.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
+    })
+}
+
+// ------------------------------------------------------------------------------------------
+// Brush
+
+/// What a dab does to the thickness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BrushMode {
+    /// Moves the thickness toward the brush's `thickness_mm`.
+    Paint,
+    /// Moves the thickness toward 0.
+    Erase,
+    /// Moves the thickness toward the mean of the covered texels within the radius.
+    Smooth,
+}
+
+/// A brush for [`apply_dab`]: all lengths in millimetres on the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Brush {
+    /// What a dab does.
+    pub mode: BrushMode,
+    /// Radius, mm of 3D distance, in (0, 100].
+    pub radius_mm: f32,
+    /// Target thickness of [`BrushMode::Paint`], mm, in [0, 10].
+    pub thickness_mm: f32,
+    /// Fraction of the way to the target one dab goes at the centre, in [0, 1].
+    pub flow: f32,
+    /// Falloff, in [0, 1]: the weight is 1 within `hardness · radius` and falls to 0 at the
+    /// radius along a smoothstep (see [`Brush::weight`]); 1 = flat to the edge, 0 = smooth
+    /// falloff from the centre.
+    pub hardness: f32,
+    /// Also paints the mirror image across the face's midplane ([`SurfaceMap::mirror_x`]).
+    pub mirror: bool,
+    /// Distance between dabs along a stroke, as a fraction of the radius, in [0.05, 2].
+    pub spacing: f32,
+}
+
+impl Default for Brush {
+    /// Paint, 6 mm, 15 µm (a foundation film), flow 0.35, hardness 0.3, mirrored, spacing 0.25.
+    fn default() -> Self {
+        Brush {
+            mode: BrushMode::Paint,
+            radius_mm: 6.0,
+            thickness_mm: 0.015,
+            flow: 0.35,
+            hardness: 0.3,
+            mirror: true,
+            spacing: 0.25,
+        }
+    }
+}
+
+impl Brush {
+    /// The weight of a texel `distance_mm` from the dab centre, in [0, 1]: with r the radius and
+    /// h the hardness, 1 for d ≤ h·r, 1 − smoothstep(h·r, r, d) between (smoothstep(t) =
+    /// t²(3 − 2t) with t = (d − h·r)/(r − h·r)), and 0 for d ≥ r. Never NaN (0 for a NaN
+    /// distance or radius).
+    pub fn weight(&self, distance_mm: f32) -> f32 {
+        let (d, r) = (distance_mm.abs(), self.radius_mm);
+        if d.is_nan() || r.is_nan() || d >= r {
+            return 0.0;
+        }
+        let inner = self.hardness.clamp(0.0, 1.0) * r;
+        if d <= inner {
+            return 1.0;
+        }
+        let t = ((d - inner) / (r - inner)).clamp(0.0, 1.0);
+        1.0 - t * t * (3.0 - 2.0 * t)
+    }
+
+    /// Checks every field against its range.
+    ///
+    /// # Errors
+    /// A message naming the field, its value and its range.
+    pub fn validate(&self) -> Result<(), String> {
+        let check = |name: &str, v: f32, ok: bool, range: &str| {
+            if ok { Ok(()) } else { Err(format!("brush {name} {v} is out of range: must be in {range}")) }
+        };
+        let r = self.radius_mm;
+        check("radius_mm", r, r > 0.0 && r <= 100.0, "(0, 100] mm")?;
+        let t = self.thickness_mm;
+        check("thickness_mm", t, (0.0..=MAX_THICKNESS_MM).contains(&t), "[0, 10] mm")?;
+        check("flow", self.flow, (0.0..=1.0).contains(&self.flow), "[0, 1]")?;
+        check("hardness", self.hardness, (0.0..=1.0).contains(&self.hardness), "[0, 1]")?;
+        check("spacing", self.spacing, (0.05..=2.0).contains(&self.spacing), "[0.05, 2] (fraction of the radius)")
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Dirty rectangles
+
+/// A rectangle of texels, half-open: x0..x1 × y0..y1 (row 0 at the top).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DirtyRect {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// One past the last column.
+    pub x1: u32,
+    /// One past the last row.
+    pub y1: u32,
+}
+
+impl DirtyRect {
+    /// The empty rectangle.
+    pub const EMPTY: DirtyRect = DirtyRect { x0: 0, y0: 0, x1: 0, y1: 0 };
+
+    /// The smallest rectangle holding both (an empty one adds nothing).
+    pub fn union(self, other: DirtyRect) -> DirtyRect {
+        if self.is_empty() {
+            return other;
+        }
+        if other.is_empty() {
+            return self;
+        }
+        DirtyRect {
+            x0: self.x0.min(other.x0),
+            y0: self.y0.min(other.y0),
+            x1: self.x1.max(other.x1),
+            y1: self.y1.max(other.y1),
+        }
+    }
+
+    /// Whether it holds no texel.
+    pub fn is_empty(&self) -> bool {
+        self.x1 <= self.x0 || self.y1 <= self.y0
+    }
+
+    /// Number of texels it holds.
+    pub fn area(&self) -> usize {
+        if self.is_empty() { 0 } else { (self.x1 - self.x0) as usize * (self.y1 - self.y0) as usize }
+    }
+
+    /// Grows the rectangle to hold texel (x, y).
+    fn include(&mut self, x: u32, y: u32) {
+        *self = self.union(DirtyRect { x0: x, y0: y, x1: x + 1, y1: y + 1 });
+    }
+}
+
+impl Default for DirtyRect {
+    fn default() -> Self {
+        DirtyRect::EMPTY
+    }
+}
+
+/// `(x0, y0, x1, y1)`, the form `Renderer::update_thickness` takes.
+impl From<DirtyRect> for (u32, u32, u32, u32) {
+    fn from(r: DirtyRect) -> Self {
+        (r.x0, r.y0, r.x1, r.y1)
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Dabs and strokes
+
+/// One dab at surface point `centre` (plus its mirror image when `brush.mirror`).
+///
+/// Each covered texel within the radius of a centre gets a = flow · w(d), with d its 3D distance
+/// to the nearer centre and w [`Brush::weight`] (overlapping mirror dabs near the midplane count
+/// once), then: Paint t += (target − t)·a; Erase t −= t·a; Smooth t += (m − t)·a with m the mean
+/// thickness of the covered texels within the radius of that centre. Results are clamped to
+/// [0, 10] mm and never NaN (a non-finite texel counts as 0). Only covered texels change.
+///
+/// Returns the rectangle of texels whose value changed (empty if none). Nothing changes for a
+/// brush that fails [`Brush::validate`], a non-finite centre, or a map whose size differs from
+/// the surface map's.
+///
+/// With the mirror on, the two sides usually lie far apart in UV, so this rectangle spans much
+/// texture that did not change; [`apply_dab_split`] gives one rectangle per side.
+pub fn apply_dab(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> DirtyRect {
+    let [a, b] = apply_dab_split(map, surface, brush, centre);
+    a.union(b)
+}
+
+/// [`apply_dab`], returning the rectangles of changed texels nearer `centre` and nearer its
+/// mirror image (empty without the mirror), for uploading the two sides separately.
+pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> [DirtyRect; 2] {
+    let n = surface.width as usize * surface.height as usize;
+    if (map.width, map.height) != (surface.width, surface.height)
+        || map.mm.len() != n
+        || surface.slot.len() != n
+        || !centre.is_finite()
+        || brush.validate().is_err()
+    {
+        return [DirtyRect::EMPTY; 2];
+    }
+    let r = brush.radius_mm;
+    let r2 = r * r;
+    let mirrored = surface.mirror(centre);
+    let centres: &[Vec3] =
+        if brush.mirror && mirrored.distance_squared(centre) > 1.0e-8 { &[centre, mirrored] } else { &[centre] };
+
+    // The cell boxes to visit, merged when they touch so no texel is visited twice.
+    let grid = &surface.grid;
+    let mut boxes: Vec<CellBox> =
+        centres.iter().filter_map(|c| grid.range(*c - Vec3::splat(r), *c + Vec3::splat(r))).collect();
+    if boxes.len() == 2 && boxes[0].touches(&boxes[1]) {
+        boxes = vec![boxes[0].union(&boxes[1])];
+    }
+
+    // Texels within the radius: (slot, weight, index of the nearer centre).
+    let mut hits: Vec<(u32, f32, u8)> = Vec::new();
+    let (mut sum, mut count) = ([0.0f64; 2], [0usize; 2]);
+    let smooth = brush.mode == BrushMode::Smooth;
+    let texel = |t: f32| if t.is_finite() { t } else { 0.0 };
+    for cells in boxes {
+        grid.for_each_run(cells, |run| {
+            for s in run {
+                let p = surface.points[s];
+                let mut nearest = (f32::INFINITY, 0u8);
+                for (k, c) in centres.iter().enumerate() {
+                    let d2 = p.distance_squared(*c);
+                    if d2 < r2 {
+                        if smooth {
+                            sum[k] += f64::from(texel(map.mm[surface.texels[s] as usize]));
+                            count[k] += 1;
+                        }
+                        if d2 < nearest.0 {
+                            nearest = (d2, k as u8);
+                        }
+                    }
+                }
+                if nearest.0 < r2 {
+                    let w = brush.weight(nearest.0.sqrt());
+                    if w > 0.0 {
+                        hits.push((s as u32, w, nearest.1));
+                    }
+                }
+            }
+        });
+    }
+
+    let mean = [0, 1].map(|k| if count[k] > 0 { (sum[k] / count[k] as f64) as f32 } else { 0.0 });
+    let mut dirty = [DirtyRect::EMPTY; 2];
+    let width = surface.width as usize;
+    for (s, w, k) in hits {
+        let i = surface.texels[s as usize] as usize;
+        let old = map.mm[i];
+        let t = texel(old);
+        let target = match brush.mode {
+            BrushMode::Paint => brush.thickness_mm,
+            BrushMode::Erase => 0.0,
+            BrushMode::Smooth => mean[k as usize],
+        };
+        let step = t + (target - t) * (brush.flow * w);
+        // Between t and the target whatever the rounding, so repeated dabs never overshoot.
+        let new = if target >= t { step.min(target) } else { step.max(target) }.clamp(0.0, MAX_THICKNESS_MM);
+        // Bitwise comparison: a NaN texel that gets a weight is replaced.
+        if new.to_bits() != old.to_bits() {
+            map.mm[i] = new;
+            dirty[k as usize].include((i % width) as u32, (i / width) as u32);
+        }
+    }
+    dirty
+}
+
+/// Turns mouse moves into evenly spaced dab centres on the surface.
+///
+/// Dabs lie `brush.spacing · brush.radius_mm` apart along the polyline of input points, the
+/// distance carried over from one move to the next so that many small moves space dabs the same
+/// as one long move. Each dab point on the straight segment between two input points is projected
+/// back onto the surface ([`SurfaceMap::nearest_on_surface`] within the radius) and skipped
+/// where there is no surface that close.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StrokeSpacer {
+    spacing_mm: f32,
+    radius_mm: f32,
+    /// The last input point.
+    last: Option<Vec3>,
+    /// Distance along the polyline from the last dab to `last`, mm.
+    travelled_mm: f32,
+}
+
+impl StrokeSpacer {
+    /// A spacer for `brush` (its radius and spacing clamped to their valid ranges).
+    pub fn new(brush: &Brush) -> Self {
+        let radius_mm = if brush.radius_mm.is_finite() { brush.radius_mm.clamp(1.0e-3, 100.0) } else { 6.0 };
+        let spacing = if brush.spacing.is_finite() { brush.spacing.clamp(0.05, 2.0) } else { 0.25 };
+        StrokeSpacer { spacing_mm: spacing * radius_mm, radius_mm, last: None, travelled_mm: 0.0 }
+    }
+
+    /// Starts a stroke at surface point `p` (mouse down): returns `[p]`, the first dab (nothing
+    /// for a non-finite point).
+    pub fn start(&mut self, p: Vec3) -> Vec<Vec3> {
+        self.travelled_mm = 0.0;
+        if !p.is_finite() {
+            self.last = None;
+            return Vec::new();
+        }
+        self.last = Some(p);
+        vec![p]
+    }
+
+    /// Continues the stroke to surface point `p` (mouse drag): the dab centres on the segment
+    /// from the last point, excluding that point and including `p` when a dab falls on it
+    /// (otherwise the remainder carries over to the next move). Without a started stroke this
+    /// starts one. At most 65 536 dabs per move; a non-finite point is ignored.
+    pub fn move_to(&mut self, p: Vec3, surface: &SurfaceMap) -> Vec<Vec3> {
+        let Some(from) = self.last else { return self.start(p) };
+        if !p.is_finite() {
+            return Vec::new();
+        }
+        let length = from.distance(p);
+        let direction = (p - from).normalize_or_zero();
+        let mut dabs = Vec::new();
+        // Distance along this segment of dab k: first + k·spacing (no drift over long moves).
+        let first = self.spacing_mm - self.travelled_mm;
+        let mut last_dab = -self.travelled_mm;
+        for k in 0..MAX_DABS_PER_MOVE {
+            let s = first + k as f32 * self.spacing_mm;
+            if s > length {
+                break;
+            }
+            if let Some(q) = surface.nearest_on_surface(from + direction * s, self.radius_mm) {
+                dabs.push(q);
+            }
+            last_dab = s;
+        }
+        self.travelled_mm = (length - last_dab).clamp(0.0, self.spacing_mm);
+        self.last = Some(p);
+        dabs
+    }
+
+    /// Ends the stroke (mouse up): a last dab at the final point when more than half a spacing
+    /// has passed since the last dab, so the stroke reaches where the mouse let go; the spacer
+    /// is then ready for [`StrokeSpacer::start`].
+    pub fn finish(&mut self, surface: &SurfaceMap) -> Vec<Vec3> {
+        let end = self.last.take();
+        let travelled = std::mem::replace(&mut self.travelled_mm, 0.0);
+        match end {
+            Some(p) if travelled > 0.5 * self.spacing_mm => {
+                surface.nearest_on_surface(p, self.radius_mm).into_iter().collect()
+            }
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// Dabs along the polyline `points` (surface points) with a [`StrokeSpacer`]: start, a move to
+/// each further point, finish. Returns the union of the dabs' rectangles.
+pub fn stroke(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, points: &[Vec3]) -> DirtyRect {
+    let Some((&first, rest)) = points.split_first() else { return DirtyRect::EMPTY };
+    let mut spacer = StrokeSpacer::new(brush);
+    let mut dirty = DirtyRect::EMPTY;
+    let mut dab = |centres: Vec<Vec3>, map: &mut ThicknessMap| {
+        for c in centres {
+            dirty = dirty.union(apply_dab(map, surface, brush, c));
+        }
+    };
+    dab(spacer.start(first), map);
+    for &p in rest {
+        dab(spacer.move_to(p, surface), map);
+    }
+    dab(spacer.finish(surface), map);
+    dirty
+}
