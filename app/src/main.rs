@@ -28,6 +28,12 @@ struct Cli {
     /// Project folder to open in the app (look.json + maps/).
     #[arg(long)]
     project: Option<std::path::PathBuf>,
+    /// Mesh to paint in the app instead of the default head (.obj, .gltf, .glb).
+    #[arg(long)]
+    mesh: Option<std::path::PathBuf>,
+    /// Millimetres per unit of --mesh (25 fits the LeePerrySmith scan).
+    #[arg(long, default_value_t = 1.0)]
+    mesh_scale: f32,
 }
 
 #[derive(Debug, Subcommand)]
@@ -77,6 +83,7 @@ fn main() -> ExitCode {
             data_dir: rouge_app::gui::Options::default_data_dir(),
             project: cli.project,
             autosave: true,
+            mesh: cli.mesh.map(|m| (m, cli.mesh_scale)),
         };
         return match rouge_app::gui::run(options) {
             Ok(()) => ExitCode::SUCCESS,

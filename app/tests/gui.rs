@@ -10,32 +10,46 @@ use rouge_app::gui::{Options, RougeApp};
 use std::path::Path;
 
 fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
+    harness_with_mesh(data_dir, None)
+}
+
+fn harness_with_mesh(data_dir: &Path, mesh: Option<(std::path::PathBuf, f32)>) -> Harness<'static, RougeApp> {
     let dir = data_dir.to_owned();
     let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false }).expect("the app opens")
+        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false, mesh }).expect("the app opens")
     });
     h.state_mut().wait_ready();
     h.run_steps(4);
     h
 }
 
-/// Screen points across the face's right cheek (image left of the nose), found by projecting
-/// surface points of the mesh: the nose tip is the frontmost covered point.
+/// Screen points across the face's right cheek (image left of the nose), found from surface
+/// points of the mesh: the nose tip is the frontmost point near the midplane, and the cheek
+/// points are the frontmost surface points beside and below it.
 fn cheek_stroke(app: &RougeApp) -> Vec<Pos2> {
     let surface = app.surface().expect("surface map");
-    let mut tip = Vec3::new(0.0, 0.0, f32::MIN);
-    for y in (0..surface.height).step_by(8) {
-        for x in (0..surface.width).step_by(8) {
-            if let Some(p) = surface.position(x, y)
-                && p.z > tip.z
-                && p.x.abs() < 10.0
-            {
-                tip = p;
+    let mid = surface.mirror_x();
+    let frontmost = |keep: &dyn Fn(Vec3) -> bool| {
+        let mut best: Option<Vec3> = None;
+        for y in (0..surface.height).step_by(4) {
+            for x in (0..surface.width).step_by(4) {
+                if let Some(p) = surface.position(x, y)
+                    && keep(p)
+                    && best.is_none_or(|b| p.z > b.z)
+                {
+                    best = Some(p);
+                }
             }
         }
-    }
-    let a = app.screen_pos_of(tip + Vec3::new(-45.0, -15.0, -25.0)).expect("on screen");
-    let b = app.screen_pos_of(tip + Vec3::new(-30.0, -30.0, -20.0)).expect("on screen");
+        best.expect("a surface point")
+    };
+    let tip = frontmost(&|p| (p.x - mid).abs() < 10.0);
+    let near = |dx: f32, dy: f32| {
+        let (tx, ty) = (tip.x + dx, tip.y + dy);
+        frontmost(&move |p: Vec3| (p.x - tx).abs() < 4.0 && (p.y - ty).abs() < 4.0)
+    };
+    let a = app.screen_pos_of(near(-42.0, -5.0)).expect("on screen");
+    let b = app.screen_pos_of(near(-32.0, -28.0)).expect("on screen");
     (0..=6).map(|i| a + (b - a) * (i as f32 / 6.0)).collect()
 }
 
@@ -135,4 +149,33 @@ fn window_snapshot() {
     let mut h = harness(data.path());
     h.run_steps(2);
     h.snapshot_options("app_default", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(4000));
+}
+
+#[test]
+fn paint_on_the_scanned_head_when_available() {
+    let Some(path) = std::env::var_os("ROUGE_SCAN_HEAD") else {
+        eprintln!(
+            "skipped: set ROUGE_SCAN_HEAD to ../shared/data/heads/LeePerrySmith.glb to paint on the scanned head"
+        );
+        return;
+    };
+    let scale: f32 = std::env::var("ROUGE_SCAN_SCALE_TO_MM").ok().and_then(|s| s.parse().ok()).unwrap_or(25.0);
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness_with_mesh(data.path(), Some((path.into(), scale)));
+    assert!(h.state().ready(), "{:?}", h.state().message());
+    h.state_mut().set_active_layer(0);
+    // The default project's foundation is already 15 µm everywhere: paint 50 µm.
+    h.state_mut().brush_mut().thickness_mm = 0.05;
+    let before = h.state().document().layers[0].map.clone();
+    let points = cheek_stroke(h.state());
+    h.state_mut().paint_stroke_screen(&points);
+    h.run_steps(2);
+    let after = &h.state().document().layers[0].map;
+    let changed = before.mm.iter().zip(&after.mm).filter(|(a, b)| a != b).count();
+    let dabs = h.state().last_stroke_dabs().len();
+    assert!(
+        changed > 100,
+        "{changed} texels painted on the scan ({dabs} dabs, stroke {points:?}, message {:?})",
+        h.state().message()
+    );
 }

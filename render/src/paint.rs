@@ -20,7 +20,9 @@
 //!
 //! Wiring into the app: each dab returns the [`DirtyRect`] of texels it changed; hand it to
 //! `Renderer::update_thickness(layer, &map, multiplier, rect.into())`, which re-uploads only
-//! those rows (wgpu's `Queue::write_texture` needs no row alignment).
+//! that rectangle (wgpu's `Queue::write_texture` needs no row alignment). With the mirror on,
+//! [`apply_dab_split`] gives one rectangle per side: the two sides lie far apart in UV, and
+//! their union is mostly texture that did not change.
 
 use std::fmt;
 use std::sync::Mutex;

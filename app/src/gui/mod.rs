@@ -19,7 +19,7 @@ use materials::Library;
 use rouge_render::document::{Change, Document};
 use rouge_render::job::{load_mesh, write_png};
 use rouge_render::mesh::TriangleMesh;
-use rouge_render::paint::{Brush, BrushMode, StrokeSpacer, SurfaceMap, apply_dab};
+use rouge_render::paint::{Brush, BrushMode, DirtyRect, StrokeSpacer, SurfaceMap, apply_dab_split};
 use rouge_render::renderer::LayerInput;
 use rouge_render::{Camera, LightKind, Renderer, Scene};
 use std::path::{Path, PathBuf};
@@ -38,6 +38,8 @@ pub struct Options {
     pub project: Option<PathBuf>,
     /// Write autosaves (off in tests that do not want them).
     pub autosave: bool,
+    /// A mesh to paint instead of the default head, with its millimetres per unit.
+    pub mesh: Option<(PathBuf, f32)>,
 }
 
 impl Options {
@@ -171,7 +173,12 @@ impl RougeApp {
             options,
         };
         app.active = app.doc.layers.len().saturating_sub(1);
-        app.start_mesh(None, 1.0);
+        app.rename_buffer = app.doc.layers.last().map(|l| l.name.clone()).unwrap_or_default();
+        let mesh = app.options.mesh.clone();
+        match mesh {
+            Some((path, scale)) => app.start_mesh(Some(path), scale),
+            None => app.start_mesh(None, 1.0),
+        }
         Ok(app)
     }
 
@@ -394,6 +401,12 @@ impl RougeApp {
                 d
             }
         };
+        self.apply_dabs(&dabs, &surface);
+    }
+
+    /// Applies dabs to the active layer and uploads what changed: one rectangle per side of the
+    /// face (the two sides of a mirrored dab are far apart in UV, their union mostly unchanged).
+    fn apply_dabs(&mut self, dabs: &[Vec3], surface: &SurfaceMap) {
         if dabs.is_empty() {
             return;
         }
@@ -404,21 +417,16 @@ impl RougeApp {
             return;
         };
         let brush = self.brush;
-        let mut changed: Option<(u32, u32, u32, u32)> = None;
+        let mut sides = [DirtyRect::EMPTY; 2];
         if let Some(map) = self.doc.stroke_map(layer) {
-            for &c in &dabs {
-                let r = apply_dab(map, &surface, &brush, c);
-                if !r.is_empty() {
-                    let rect = (r.x0, r.y0, r.x1, r.y1);
-                    changed = Some(match changed {
-                        None => rect,
-                        Some(u) => (u.0.min(rect.0), u.1.min(rect.1), u.2.max(rect.2), u.3.max(rect.3)),
-                    });
-                }
+            for &c in dabs {
+                let [a, b] = apply_dab_split(map, surface, &brush, c);
+                sides = [sides[0].union(a), sides[1].union(b)];
             }
         }
-        self.stroke_dabs.extend(dabs);
-        if let Some(rect) = changed {
+        self.stroke_dabs.extend_from_slice(dabs);
+        for side in sides.into_iter().filter(|r| !r.is_empty()) {
+            let rect: (u32, u32, u32, u32) = side.into();
             self.doc.note_dirty(rect);
             if let Some(l) = self.doc.layers.get(layer)
                 && let Err(e) = self.renderer.update_thickness(ri, &l.map, multiplier, rect)
@@ -447,7 +455,10 @@ impl RougeApp {
     }
 
     fn end_stroke(&mut self) {
-        self.spacer = None;
+        if let (Some(mut spacer), Some(surface)) = (self.spacer.take(), self.surface.clone()) {
+            let last = spacer.finish(&surface);
+            self.apply_dabs(&last, &surface);
+        }
         let c = self.doc.end_stroke();
         self.apply_change(c);
     }
@@ -460,7 +471,13 @@ impl RougeApp {
         }
         let x = ((pos.x - r.min.x) / r.width() * w as f32) as u32;
         let y = ((pos.y - r.min.y) / r.height() * h as f32) as u32;
-        self.renderer.pick(x, y).ok().flatten()
+        match self.renderer.pick(x, y) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("rouge: pick failed: {e}");
+                None
+            }
+        }
     }
 
     // ---- frames ----
@@ -894,7 +911,7 @@ impl RougeApp {
         ui.painter().text(
             rect.left_bottom() + Vec2::new(8.0, -8.0),
             egui::Align2::LEFT_BOTTOM,
-            format!("frame {:.0} ms · {}×{}", self.last_frame_ms, self.frame_size.0, self.frame_size.1),
+            format!("frame submitted in {:.0} ms · {}×{}", self.last_frame_ms, self.frame_size.0, self.frame_size.1),
             egui::FontId::monospace(11.0),
             Color32::from_white_alpha(150),
         );
