@@ -34,6 +34,10 @@ struct Cli {
     /// Millimetres per unit of --mesh (25 fits the LeePerrySmith scan).
     #[arg(long, default_value_t = 1.0)]
     mesh_scale: f32,
+    /// Open the app, wait until the face is drawn, save a screenshot of the window to this PNG
+    /// and quit (checks a real window, e.g. under Xvfb).
+    #[arg(long)]
+    window_screenshot: Option<std::path::PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -84,6 +88,7 @@ fn main() -> ExitCode {
             project: cli.project,
             autosave: true,
             mesh: cli.mesh.map(|m| (m, cli.mesh_scale)),
+            window_screenshot: cli.window_screenshot,
         };
         return match rouge_app::gui::run(options) {
             Ok(()) => ExitCode::SUCCESS,

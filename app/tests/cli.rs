@@ -261,3 +261,37 @@ fn render_writes_png_and_exr_and_bad_inputs_name_their_file() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("face.bmp"), "{}", stderr(&o));
 }
+
+#[test]
+fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        eprintln!("skipped: xvfb-run is not installed (tests/run.sh installs xvfb)");
+        return;
+    }
+    let dir = tempfile::tempdir().expect("tempdir");
+    let shot = dir.path().join("window.png");
+    let o = Command::new("timeout")
+        .args(["180", "xvfb-run", "-a", "-s", "-screen 0 1280x800x24"])
+        .arg(env!("CARGO_BIN_EXE_rouge"))
+        .arg("--window-screenshot")
+        .arg(&shot)
+        .env("XDG_DATA_HOME", dir.path())
+        .env("WINIT_UNIX_BACKEND", "x11")
+        .env_remove("WAYLAND_DISPLAY")
+        .current_dir(root())
+        .output()
+        .expect("run xvfb-run");
+    assert!(o.status.success(), "status {:?}\n{}", o.status, stderr(&o));
+    let img = image::open(&shot).expect("the window screenshot").to_rgba8();
+    assert!(img.width() >= 800 && img.height() >= 500, "{}×{}", img.width(), img.height());
+    // Skin-coloured pixels in the middle of the window: the face was drawn.
+    let (w, h) = (img.width(), img.height());
+    let skin = (h / 4..3 * h / 4)
+        .flat_map(|y| (w / 3..2 * w / 3).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let p = img.get_pixel(x, y).0;
+            p[0] > 120 && p[0] > p[2] + 30 && p[1] > 60
+        })
+        .count();
+    assert!(skin > 20_000, "{skin} skin-coloured pixels in the window's centre");
+}

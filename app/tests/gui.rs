@@ -16,7 +16,8 @@ fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
 fn harness_with_mesh(data_dir: &Path, mesh: Option<(std::path::PathBuf, f32)>) -> Harness<'static, RougeApp> {
     let dir = data_dir.to_owned();
     let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false, mesh }).expect("the app opens")
+        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false, mesh, window_screenshot: None })
+            .expect("the app opens")
     });
     h.state_mut().wait_ready();
     h.run_steps(4);

@@ -40,6 +40,9 @@ pub struct Options {
     pub autosave: bool,
     /// A mesh to paint instead of the default head, with its millimetres per unit.
     pub mesh: Option<(PathBuf, f32)>,
+    /// Take a screenshot of the whole window once the face is drawn, write it here as a PNG,
+    /// and close (for checking the real window under Xvfb, and for the README's picture).
+    pub window_screenshot: Option<PathBuf>,
 }
 
 impl Options {
@@ -114,6 +117,8 @@ pub struct RougeApp {
     message: Option<(bool, String)>,
     rename_buffer: String,
     last_frame_ms: f64,
+    frames_shown: u32,
+    screenshot_state: Option<mpsc::Receiver<Result<(), String>>>,
 }
 
 impl std::fmt::Debug for RougeApp {
@@ -170,6 +175,8 @@ impl RougeApp {
             message: None,
             rename_buffer: String::new(),
             last_frame_ms: 0.0,
+            frames_shown: 0,
+            screenshot_state: None,
             options,
         };
         app.active = app.doc.layers.len().saturating_sub(1);
@@ -944,6 +951,37 @@ impl RougeApp {
         });
     }
 
+    /// With `Options::window_screenshot`: once the face has been shown for a few frames, asks
+    /// the window for a screenshot, writes it, and closes the window.
+    fn window_screenshot(&mut self, ctx: &egui::Context) {
+        let Some(path) = self.options.window_screenshot.clone() else { return };
+        if self.ready() && self.texture.is_some() {
+            self.frames_shown += 1;
+        }
+        ctx.request_repaint_after(Duration::from_millis(100));
+        if let Some(rx) = &self.screenshot_state {
+            if let Ok(result) = rx.try_recv() {
+                if let Err(e) = result {
+                    eprintln!("rouge: {e}");
+                }
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+            return;
+        }
+        if self.frames_shown >= 3 {
+            let (tx, rx) = mpsc::channel();
+            let repaint = ctx.clone();
+            ctx.request_screenshot(move |image| {
+                let [w, h] = image.size;
+                let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+                let r = write_png(&path, w as u32, h as u32, &bytes).map_err(|e| e.to_string());
+                let _ = tx.send(r);
+                repaint.request_repaint();
+            });
+            self.screenshot_state = Some(rx);
+        }
+    }
+
     fn autosave(&mut self) {
         if !self.options.autosave || self.last_autosave.elapsed() < AUTOSAVE_EVERY || !self.doc.is_modified() {
             return;
@@ -985,6 +1023,7 @@ impl eframe::App for RougeApp {
         egui::Panel::right("materials").default_size(320.0).show(ui, |ui| self.materials_panel(ui));
         egui::CentralPanel::default().show(ui, |ui| self.viewport_ui(ui));
         self.recovery_ui(ui);
+        self.window_screenshot(ui.ctx());
     }
 
     fn on_exit(&mut self) {
