@@ -45,5 +45,7 @@ step "cargo test (workspace)"
 cargo test --workspace --locked
 
 step "pytest python/ (cross-checks against colour-science and mpmath)"
-cargo build -p rouge-app --locked
+# `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into
+# target/debug/rouge; a separate `cargo build` would rebuild everything in the dev profile.
+test -x target/debug/rouge || cargo build -p rouge-app --locked
 ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q

@@ -133,15 +133,19 @@ fn a_malformed_import_shows_an_error_and_changes_nothing() {
     assert_eq!(lib.materials.len(), count, "a failed import adds nothing");
     let (ok, msg) = lib.last_message.clone().expect("a message");
     assert!(!ok && msg.contains("non_numeric.csv:27:3"), "{msg}");
-    // And a good one adds a material, saved into the user preset folder.
-    let good = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements/blush_02_coral.csv");
-    lib.import_path = good.display().to_string();
+    // Several good files at once (as the file dialog gives them) add one material each, saved
+    // into the user preset folder, with progress.
+    let m = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements");
+    lib.import_path =
+        format!("{}; {}", m.join("blush_02_coral.csv").display(), m.join("lipstick_03_berry.csv").display());
     h.get_by_label("Import").click();
     h.run_steps(2);
     h.state_mut().library_mut().wait();
     let lib = h.state_mut().library_mut();
-    assert_eq!(lib.materials.len(), count + 1);
-    assert!(std::fs::read_dir(data.path().join("presets")).expect("user presets").count() == 1);
+    assert_eq!(lib.materials.len(), count + 2);
+    assert_eq!(lib.progress(), (2, 2));
+    assert!(lib.last_message.as_ref().is_some_and(|(ok, _)| *ok));
+    assert_eq!(std::fs::read_dir(data.path().join("presets")).expect("user presets").count(), 2);
 }
 
 #[test]
@@ -150,6 +154,36 @@ fn window_snapshot() {
     let mut h = harness(data.path());
     h.run_steps(2);
     h.snapshot_options("app_default", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(4000));
+}
+
+#[test]
+fn before_after_split_shows_bare_skin_left_of_the_line() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    h.state_mut().set_split(true, 0.5);
+    h.run_steps(3);
+    let image = h.render().expect("render");
+    let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
+    // The lips straddle the midline: left of the split line bare, right of it lipstick.
+    let ppp = 1.0;
+    let px = |x: f32, y: f32| image.get_pixel((x * ppp) as u32, (y * ppp) as u32).0;
+    let redness = |p: [u8; 4]| p[0] as i32 - p[1] as i32;
+    // The reddest pixel in a window around the mouth on each side of the line.
+    let reddest = |x0: f32, x1: f32| {
+        let mut best = [0u8; 4];
+        for dy in -30..=30 {
+            for dx in 0..=((x1 - x0) as i32) {
+                let p = px(x0 + dx as f32, lips.y + dy as f32);
+                if redness(p) > redness(best) {
+                    best = p;
+                }
+            }
+        }
+        best
+    };
+    let (left, right) = (reddest(lips.x - 45.0, lips.x - 8.0), reddest(lips.x + 8.0, lips.x + 45.0));
+    assert!(redness(right) > redness(left) + 40, "left {left:?} right {right:?}");
+    h.snapshot_options("app_split", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(4000));
 }
 
 #[test]

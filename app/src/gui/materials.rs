@@ -46,10 +46,14 @@ pub struct Library {
     pub import_thickness_mm: f64,
     /// Hold the ends constant for measurements that stop short of 380-780 nm.
     pub import_extrapolate: bool,
-    /// Path typed into the panel (for machines without a file dialog).
+    /// Paths typed into the panel, separated by `;` (for machines without a file dialog).
     pub import_path: String,
     /// The running import, if any.
     pending: Option<mpsc::Receiver<ImportResult>>,
+    /// Files done and files in the running import.
+    progress: (usize, usize),
+    /// Whether every file of the current import so far succeeded.
+    last_message_ok: bool,
     /// Message of the last import (report or error).
     pub last_message: Option<(bool, String)>,
 }
@@ -93,6 +97,8 @@ impl Library {
             import_extrapolate: false,
             import_path: String::new(),
             pending: None,
+            progress: (0, 0),
+            last_message_ok: true,
             last_message: None,
         }
     }
@@ -102,37 +108,68 @@ impl Library {
         self.pending.is_some()
     }
 
-    /// Starts importing `path` on a background thread.
-    pub fn start_import(&mut self, path: PathBuf) {
+    /// Files imported so far and files in the running import.
+    pub fn progress(&self) -> (usize, usize) {
+        self.progress
+    }
+
+    /// Starts importing `paths` one after the other on a background thread.
+    pub fn start_import(&mut self, paths: Vec<PathBuf>) {
         let (tx, rx) = mpsc::channel();
         let user_dir = self.user_dir.clone();
         let thickness = self.import_thickness_mm;
         let extrapolate = self.import_extrapolate;
+        self.progress = (0, paths.len());
         std::thread::spawn(move || {
-            let _ = tx.send(import_file(&path, thickness, extrapolate, &user_dir));
+            for path in paths {
+                if tx.send(import_file(&path, thickness, extrapolate, &user_dir)).is_err() {
+                    return;
+                }
+            }
         });
         self.pending = Some(rx);
         self.last_message = None;
+        self.last_message_ok = true;
     }
 
-    /// Collects a finished import; returns true when one finished.
+    /// Collects finished imports; returns true when something changed.
     pub fn poll(&mut self) -> bool {
         let Some(rx) = &self.pending else { return false };
-        let result = match rx.try_recv() {
-            Ok(r) => r,
-            Err(mpsc::TryRecvError::Empty) => return false,
-            Err(mpsc::TryRecvError::Disconnected) => Err("the import thread stopped unexpectedly".into()),
-        };
-        self.pending = None;
-        match result {
-            Ok(m) => {
-                self.last_message = Some((true, import_summary(&m)));
-                self.materials.push(m);
-                self.selected = self.materials.len() - 1;
+        let mut changed = false;
+        let mut messages: Vec<(bool, String)> = Vec::new();
+        loop {
+            match rx.try_recv() {
+                Ok(result) => {
+                    changed = true;
+                    self.progress.0 += 1;
+                    match result {
+                        Ok(m) => {
+                            messages.push((true, import_summary(&m)));
+                            self.materials.push(m);
+                            self.selected = self.materials.len() - 1;
+                        }
+                        Err(e) => messages.push((false, e)),
+                    }
+                }
+                Err(mpsc::TryRecvError::Empty) => break,
+                Err(mpsc::TryRecvError::Disconnected) => {
+                    if self.progress.0 < self.progress.1 {
+                        messages.push((false, "the import thread stopped unexpectedly".into()));
+                    }
+                    self.pending = None;
+                    changed = true;
+                    break;
+                }
             }
-            Err(e) => self.last_message = Some((false, e)),
         }
-        true
+        if !messages.is_empty() {
+            let mut all = self.last_message.take().map(|(_, m)| vec![m]).unwrap_or_default();
+            let ok = messages.iter().all(|(ok, _)| *ok) && self.last_message_ok;
+            all.extend(messages.into_iter().map(|(_, m)| m));
+            self.last_message_ok = ok;
+            self.last_message = Some((ok, all.join("\n")));
+        }
+        changed
     }
 
     /// Waits for a running import (tests).

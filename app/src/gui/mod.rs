@@ -118,6 +118,7 @@ pub struct RougeApp {
     rename_buffer: String,
     last_frame_ms: f64,
     frames_shown: u32,
+    project_path: String,
     screenshot_state: Option<mpsc::Receiver<Result<(), String>>>,
 }
 
@@ -176,11 +177,13 @@ impl RougeApp {
             rename_buffer: String::new(),
             last_frame_ms: 0.0,
             frames_shown: 0,
+            project_path: String::new(),
             screenshot_state: None,
             options,
         };
         app.active = app.doc.layers.len().saturating_sub(1);
         app.rename_buffer = app.doc.layers.last().map(|l| l.name.clone()).unwrap_or_default();
+        app.project_path = app.options.project.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
         let mesh = app.options.mesh.clone();
         match mesh {
             Some((path, scale)) => app.start_mesh(Some(path), scale),
@@ -214,6 +217,31 @@ impl RougeApp {
     /// Surface points of the dabs of the last stroke.
     pub fn last_stroke_dabs(&self) -> &[Vec3] {
         &self.stroke_dabs
+    }
+
+    /// Turns the before/after split on or off, with the line at `at` (0-1) of the viewport.
+    pub fn set_split(&mut self, on: bool, at: f32) {
+        self.split = on;
+        self.split_at = at.clamp(0.0, 1.0);
+        self.needs_render = true;
+    }
+
+    /// A point on the lips of the default head (the centre of the lipstick layer's texels).
+    pub fn lip_point(&self) -> Option<Vec3> {
+        let surface = self.surface.as_deref()?;
+        let lips = self.doc.layers.iter().find(|l| l.preset.kind == rouge_measure::Kind::Lipstick)?;
+        let (mut sum, mut n) = (Vec3::ZERO, 0.0f32);
+        for y in (0..lips.map.height).step_by(4) {
+            for x in (0..lips.map.width).step_by(4) {
+                if lips.map.mm[(y * lips.map.width + x) as usize] > 0.0
+                    && let Some(p) = surface.position(x, y)
+                {
+                    sum += p;
+                    n += 1.0;
+                }
+            }
+        }
+        (n > 0.0).then(|| sum / n)
     }
 
     /// The material library.
@@ -258,6 +286,7 @@ impl RougeApp {
     pub fn save_project_to(&mut self, dir: &Path) -> Result<()> {
         self.doc.save_project(dir)?;
         self.options.project = Some(dir.to_owned());
+        self.project_path = dir.display().to_string();
         if self.options.autosave {
             let _ = Document::clear_recovery(&self.options.recovery_dir());
         }
@@ -271,6 +300,7 @@ impl RougeApp {
     pub fn open_project_from(&mut self, dir: &Path) -> Result<()> {
         self.doc = Document::open_project(dir)?;
         self.options.project = Some(dir.to_owned());
+        self.project_path = dir.display().to_string();
         self.active = self.doc.layers.len().saturating_sub(1);
         self.sync_layers();
         Ok(())
@@ -754,6 +784,24 @@ impl RougeApp {
         ui.checkbox(&mut self.brush.mirror, "Mirror across the face's midplane");
 
         ui.separator();
+        egui::CollapsingHeader::new("Project folder").default_open(false).show(ui, |ui| {
+            ui.label("Typed path, for machines without a file dialog");
+            ui.text_edit_singleline(&mut self.project_path);
+            ui.horizontal(|ui| {
+                let dir = PathBuf::from(self.project_path.trim());
+                let has = !self.project_path.trim().is_empty();
+                if ui.add_enabled(has, egui::Button::new("Open")).clicked() {
+                    let r = self.open_project_from(&dir).map(|()| format!("opened {}", dir.display()));
+                    self.report(r);
+                }
+                if ui.add_enabled(has, egui::Button::new("Save")).clicked() {
+                    let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
+                    self.report(r);
+                }
+            });
+        });
+
+        ui.separator();
         ui.heading("Light");
         let mut changed = ui.add(egui::Slider::new(&mut self.light_yaw, -180.0..=180.0).text("key yaw °")).changed();
         changed |= ui.add(egui::Slider::new(&mut self.light_pitch, -60.0..=85.0).text("key pitch °")).changed();
@@ -785,9 +833,10 @@ impl RougeApp {
         ui.horizontal(|ui| {
             ui.text_edit_singleline(&mut self.library.import_path);
             if ui.button("Browse…").clicked()
-                && let Some(p) = rfd::FileDialog::new().pick_file()
+                && let Some(files) = rfd::FileDialog::new().pick_files()
             {
-                self.library.import_path = p.display().to_string();
+                let paths: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
+                self.library.import_path = paths.join("; ");
             }
         });
         ui.add(
@@ -798,11 +847,22 @@ impl RougeApp {
         ui.horizontal(|ui| {
             let can = !self.library.busy() && !self.library.import_path.trim().is_empty();
             if ui.add_enabled(can, egui::Button::new("Import")).clicked() {
-                self.library.start_import(PathBuf::from(self.library.import_path.trim()));
+                let paths: Vec<PathBuf> = self
+                    .library
+                    .import_path
+                    .split(';')
+                    .map(str::trim)
+                    .filter(|p| !p.is_empty())
+                    .map(PathBuf::from)
+                    .collect();
+                self.library.start_import(paths);
             }
             if self.library.busy() {
+                let (done, total) = self.library.progress();
                 ui.spinner();
-                ui.label("importing…");
+                ui.add(
+                    egui::ProgressBar::new(done as f32 / total.max(1) as f32).text(format!("importing {done}/{total}")),
+                );
             }
         });
         if let Some((ok, msg)) = &self.library.last_message {
