@@ -112,6 +112,11 @@ fn paint_a_stroke_undo_redo_save_and_reopen() {
     let project = tempfile::tempdir().expect("tempdir");
     h.state_mut().save_project_to(project.path()).expect("save");
     let saved: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    // Clearing a layer is one undo step too.
+    h.state_mut().clear_layer(2);
+    assert!(h.state().document().layers[2].map.mm.iter().all(|&v| v == 0.0));
+    h.state_mut().undo();
+    assert!(h.state().document().layers[2].map.mm == saved[2]);
     h.state_mut().open_project_from(project.path()).expect("open");
     h.run_steps(2);
     let reopened: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();

@@ -388,6 +388,18 @@ impl RougeApp {
         }
     }
 
+    /// Sets layer `i`'s whole map to zero thickness, as one undo step (e.g. to repaint the
+    /// default look's region-based layers on another mesh).
+    pub fn clear_layer(&mut self, i: usize) {
+        if let Some(map) = self.doc.begin_stroke(i) {
+            map.mm.fill(0.0);
+            let rect = (0, 0, map.width, map.height);
+            self.doc.note_dirty(rect);
+        }
+        let c = self.doc.end_stroke();
+        self.apply_change(c);
+    }
+
     /// Undoes the last stroke or layer edit.
     pub fn undo(&mut self) {
         let c = self.doc.undo();
@@ -745,6 +757,9 @@ impl RougeApp {
                     self.apply_change(c);
                 }
             });
+            if ui.button("Clear layer").on_hover_text("set the whole map to 0 mm (one undo step)").clicked() {
+                self.clear_layer(i);
+            }
             let mut m = multiplier;
             if ui.add(egui::Slider::new(&mut m, 0.0..=4.0).text("thickness ×")).drag_stopped() {
                 let c = self.doc.set_multiplier(i, m);
