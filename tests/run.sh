@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Runs every Rouge test from a fresh machine (this is what CI runs, through .ci/run):
-#   1. installs what the tests need: Mesa's software Vulkan driver (lavapipe) for the renderer's
-#      GPU tests, through apt-get when it is missing (sudo is used when not root), and a Python
+#   1. installs what the tests need: Mesa's software Vulkan driver (lavapipe) and its OpenGL
+#      driver (llvmpipe through EGL, for wgpu's GL backend) for the renderer's GPU tests, through
+#      apt-get when it is missing (sudo is used when not root), and a Python
 #      venv with the pinned packages of python/requirements.txt (colour-science, mpmath, numpy,
 #      pytest) in .venv/;
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
-#   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests);
+#   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
+#      the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
 #   4. runs the Python cross-checks against colour-science and 50-digit mpmath references,
 #      driving the real `rouge` binary.
 # Usage: bash tests/run.sh            (from anywhere; about 5-10 minutes on 2 cores from scratch)
@@ -14,8 +16,8 @@ cd "$(dirname "$0")/.."
 
 step() { printf '\n==> %s\n' "$*"; }
 
-step "System packages: Mesa Vulkan drivers (lavapipe), Vulkan loader, Xvfb"
-APT_PACKAGES="mesa-vulkan-drivers libvulkan1 xvfb"
+step "System packages: Mesa Vulkan (lavapipe) and EGL/GL (llvmpipe) drivers, Vulkan loader, Xvfb"
+APT_PACKAGES="mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb"
 missing=""
 for p in $APT_PACKAGES; do
   dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
@@ -43,6 +45,9 @@ cargo clippy --workspace --all-targets --locked -- -D warnings
 
 step "cargo test (workspace)"
 cargo test --workspace --locked
+
+step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
+WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame golden_default_look_and_bare_skin
 
 step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into

@@ -2,6 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
+use rouge_render::SubsurfaceModel;
 use rouge_render::job::{LookChoice, RenderJob, render_to_file};
 use rouge_render::look::{Look, ThicknessSource};
 use std::path::PathBuf;
@@ -58,9 +59,26 @@ pub struct RenderArgs {
     /// Turn off every specular lobe.
     #[arg(long)]
     pub no_specular: bool,
-    /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance, for analysis).
+    /// Subsurface model of the skin: the screen-space separable kernel of d'Eon's skin profile,
+    /// or none (the diffuse light stays where it entered).
+    #[arg(long, value_enum, default_value_t = Subsurface::ScreenSpace)]
+    pub subsurface: Subsurface,
+    /// Print the frame plan (the passes that run, in order, with what each reads and writes, and
+    /// what is skipped and why) on stdout; renders too when --out is given.
     #[arg(long)]
-    pub out: PathBuf,
+    pub explain: bool,
+    /// Output image: .png (tone-mapped sRGB) or .exr (linear radiance, for analysis).
+    #[arg(long, required_unless_present = "explain")]
+    pub out: Option<PathBuf>,
+}
+
+/// `--subsurface` values (more join with the translucency models).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Subsurface {
+    /// No subsurface scattering.
+    None,
+    /// Separable screen-space kernel (Jimenez et al. 2015).
+    ScreenSpace,
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -90,6 +108,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     job.scene.sss.samples = args.sss_samples;
     job.scene.exposure = args.exposure;
     job.scene.specular = !args.no_specular;
+    job.scene.skin.subsurface = match args.subsurface {
+        Subsurface::None => SubsurfaceModel::None,
+        Subsurface::ScreenSpace => SubsurfaceModel::skin_screen_space(),
+    };
     if let Some(mesh) = &args.mesh {
         let regions = |l: &Look| l.layers.iter().any(|l| matches!(l.thickness, ThicknessSource::Region { .. }));
         let uses_regions = match &job.look {
@@ -108,10 +130,18 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let mut prepared = job.prepare()?;
     let loaded = start.elapsed();
-    render_to_file(&mut prepared, &args.out)?;
+    let display = args.out.as_ref().is_none_or(|out| !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")));
+    if args.explain {
+        let plan = prepared.renderer.plan(&prepared.scene, args.width, args.height, display)?;
+        crate::emit(plan.explain().trim_end())?;
+    }
+    let Some(out) = &args.out else {
+        return Ok(());
+    };
+    render_to_file(&mut prepared, out)?;
     eprintln!(
         "rouge: wrote {} ({}×{}, {} triangles, {} layers) on {} in {:.2} s (loading {:.2} s)",
-        args.out.display(),
+        out.display(),
         args.width,
         args.height,
         prepared.triangles,

@@ -81,6 +81,8 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
+    // RUST_LOG=info shows the adapter and wgpu's warnings; by default only errors.
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("error")).init();
     let cli = Cli::parse();
     let Some(command) = cli.command else {
         let options = rouge_app::gui::Options {

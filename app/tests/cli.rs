@@ -295,3 +295,39 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
         .count();
     assert!(skin > 20_000, "{skin} skin-coloured pixels in the window's centre");
 }
+
+#[test]
+fn without_a_gpu_driver_render_exits_2_with_the_package_to_install() {
+    // Only Vulkan, and a Vulkan loader that finds no driver: no adapter at all.
+    let out = std::env::temp_dir().join(format!("rouge-no-driver-{}.png", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_rouge"))
+        .args(["render", "--width", "64", "--height", "48", "--out"])
+        .arg(&out)
+        .env("WGPU_BACKEND", "vulkan")
+        .env("VK_ICD_FILENAMES", "/nonexistent/rouge-test-icd.json")
+        .env("VK_DRIVER_FILES", "/nonexistent/rouge-test-icd.json")
+        .current_dir(root())
+        .output()
+        .expect("run rouge");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("apt-get install mesa-vulkan-drivers"), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("stack backtrace"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line, not a trace: {err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn explain_prints_the_frame_plan_and_what_is_skipped() {
+    let o =
+        rouge(&["render", "--explain", "--look", "bare", "--subsurface", "none", "--width", "64", "--height", "48"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = stdout(&o);
+    for line in ["1. shadow 0", "gbuffer", "lighting", "composite", "the look is bare", "subsurface model is none"] {
+        assert!(s.contains(line), "{line:?} missing:\n{s}");
+    }
+    assert!(!s.contains("sss horizontal ") && !s.contains(". sss"), "{s}");
+    let o = rouge(&["render", "--explain", "--width", "64", "--height", "48"]);
+    let s = stdout(&o);
+    assert!(s.contains("sss horizontal") && s.contains("3 layer(s)"), "{s}");
+}

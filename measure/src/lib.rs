@@ -16,6 +16,7 @@ pub mod compositing;
 pub mod import;
 pub mod km;
 pub mod km_batch;
+pub mod layer_table;
 pub mod preset;
 pub mod spectrum;
 

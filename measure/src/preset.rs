@@ -196,17 +196,12 @@ fn hex(rgb_linear: [f64; 3]) -> String {
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
-/// Computes the renderer tables from S and K.
+/// Computes the interchange tables of preset JSON v1 from S and K (the colour conversion lives
+/// in [`crate::layer_table::layer_rgb_at`], shared with the render table).
 pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
     let c = Colorimeter::get(Viewing::D65_1931);
     let thickness_mm = table_thicknesses_mm();
-    let mut r0 = Vec::with_capacity(thickness_mm.len());
-    let mut t = Vec::with_capacity(thickness_mm.len());
-    for &x in &thickness_mm {
-        let (rs, ts) = layer_spectra(s, k, x);
-        r0.push(c.srgb_linear(&c.xyz(&rs)));
-        t.push(c.srgb_linear(&c.xyz(&ts)));
-    }
+    let (r0, t) = crate::layer_table::layer_rgb_at(s, k, &thickness_mm);
     let r_inf = Spectrum(std::array::from_fn(|i| km::r_inf_from_s_k(s.0[i], k.0[i])));
     let r_inf_linear_srgb = c.srgb_linear(&c.xyz(&r_inf));
     Derived {

@@ -23,6 +23,9 @@ pub enum RenderError {
     /// The GPU could not be set up or a GPU operation failed.
     #[error("GPU: {0}")]
     Gpu(String),
+    /// A shader source breaks a rule of the `//#if` preprocessor (file and line named).
+    #[error("shader: {0}")]
+    Shader(String),
     /// A parameter is out of its domain (the message says which and why).
     #[error("{0}")]
     Invalid(String),

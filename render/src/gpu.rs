@@ -25,26 +25,23 @@ impl Gpu {
     /// drivers) or the device cannot be opened.
     pub fn headless() -> Result<Gpu> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .or_else(|_| {
+        let request = |force_fallback_adapter| {
             pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: true,
+                force_fallback_adapter,
                 compatible_surface: None,
                 apply_limit_buckets: false,
             }))
-        })
-        .map_err(|e| {
+        };
+        let adapter = request(false).or_else(|_| request(true)).map_err(|e| {
+            let asked = std::env::var("WGPU_BACKEND").map(|b| format!(" (WGPU_BACKEND={b})")).unwrap_or_default();
             RenderError::Gpu(format!(
-                "no GPU adapter found ({e}); without a GPU, install Mesa's software Vulkan driver \
-                 (Debian/Ubuntu: apt-get install mesa-vulkan-drivers)"
+                "no GPU adapter found{asked}: {}. Without a GPU driver, install Mesa's software Vulkan \
+                 driver (Debian/Ubuntu: apt-get install mesa-vulkan-drivers)",
+                e.to_string().replace('\n', " ")
             ))
         })?;
+        log::info!("adapter: {}", describe(&adapter.get_info()));
         Self::from_adapter(adapter)
     }
 
@@ -57,7 +54,10 @@ impl Gpu {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rouge"),
             required_features,
-            required_limits: wgpu::Limits::default().using_resolution(adapter.limits()),
+            // WebGPU's defaults, lowered where the adapter has less (wgpu's GL backend on Mesa has
+            // fewer storage buffers per stage, for instance); the texture sizes of the adapter.
+            required_limits:
+                wgpu::Limits::default().using_resolution(adapter.limits()).or_worse_values_from(&adapter.limits()),
             ..Default::default()
         }))
         .map_err(|e| RenderError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
@@ -66,15 +66,16 @@ impl Gpu {
 
     /// "name (backend, device type)", for reports and benchmark tables.
     pub fn describe(&self) -> String {
-        let info = self.adapter.get_info();
-        format!(
-            "{} ({:?}, {:?}, driver {} {})",
-            info.name, info.backend, info.device_type, info.driver, info.driver_info
-        )
+        describe(&self.adapter.get_info())
     }
 
     /// Whether per-pass GPU timestamps can be taken.
     pub fn has_timestamps(&self) -> bool {
         self.device.features().contains(wgpu::Features::TIMESTAMP_QUERY)
     }
+}
+
+/// "name (backend, device type, driver …)" of an adapter.
+pub fn describe(info: &wgpu::AdapterInfo) -> String {
+    format!("{} ({:?}, {:?}, driver {} {})", info.name, info.backend, info.device_type, info.driver, info.driver_info)
 }

@@ -6,22 +6,35 @@
 //! - [`look`]: the look document (cosmetic layers bottom to top, each a preset and a thickness).
 //! - [`env`]: HDR environment maps and their spherical-harmonics irradiance (paper 000, 4.1.2).
 //! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
+//! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
+//! - [`passes`]: one module per pass, each with its pipelines, layouts and uniforms.
+//! - [`renderer`]: uploads and the frame itself; [`targets`], [`shader`], [`uniforms`],
+//!   [`profiler`] and [`wgpu_util`] serve it.
 
 pub mod document;
 pub mod env;
 pub mod error;
+pub mod frame;
 pub mod gpu;
+pub mod gpu_look;
+pub mod gpu_mesh;
 pub mod job;
 pub mod look;
 pub mod mesh;
 pub mod paint;
+pub mod passes;
+pub mod profiler;
 pub mod renderer;
 pub mod scene;
+pub mod shader;
 pub mod sss;
 pub mod study;
+pub mod targets;
+pub mod uniforms;
+pub mod wgpu_util;
 
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
 pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};
 pub use renderer::Renderer;
-pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings};
+pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings, SubsurfaceModel};

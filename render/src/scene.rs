@@ -103,8 +103,46 @@ pub struct Skin {
     pub roughness: f32,
     /// Index of refraction of the skin surface (Schlick F0 from it).
     pub ior: f32,
-    /// Diffusion profile.
-    pub profile: DiffusionProfile,
+    /// How light scatters under the surface (the subsurface model of the skin material).
+    pub subsurface: SubsurfaceModel,
+}
+
+/// A material's subsurface scattering model: which technique the frame plan runs for it, with
+/// its parameters. Each model adds only the passes and G-buffer channels it needs; `None` adds
+/// nothing. The translucency models of the later issues (local thickness, cube-map atlas dipole,
+/// directional and standard dipole) join here as variants with their physical medium.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SubsurfaceModel {
+    /// No scattering: the skin's diffuse radiance is used where it enters.
+    None,
+    /// The separable screen-space kernel ([Jimenez2015]) of a diffusion profile (two passes).
+    ScreenSpace {
+        /// The diffusion profile the kernel is built from.
+        profile: DiffusionProfile,
+    },
+}
+
+impl SubsurfaceModel {
+    /// The screen-space kernel of d'Eon's six-Gaussian skin profile, today's default.
+    pub fn skin_screen_space() -> SubsurfaceModel {
+        SubsurfaceModel::ScreenSpace { profile: DiffusionProfile::skin() }
+    }
+
+    /// The name used on the command line and in `--explain`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SubsurfaceModel::None => "none",
+            SubsurfaceModel::ScreenSpace { .. } => "screen-space",
+        }
+    }
+
+    /// The diffusion profile of the screen-space model, if that is the model.
+    pub fn profile(&self) -> Option<&DiffusionProfile> {
+        match self {
+            SubsurfaceModel::ScreenSpace { profile } => Some(profile),
+            SubsurfaceModel::None => None,
+        }
+    }
 }
 
 /// Light skin of the ColorChecker (N. Ohta's measurement), embedded.
@@ -120,7 +158,7 @@ impl Skin {
             albedo: rgb.map(|v| v.clamp(0.0, 1.0) as f32),
             roughness: 0.35,
             ior: 1.4,
-            profile: DiffusionProfile::skin(),
+            subsurface: SubsurfaceModel::skin_screen_space(),
         }
     }
 
@@ -156,7 +194,7 @@ impl Default for Skin {
             albedo: [0.40, 0.26, 0.20],
             roughness: 0.35,
             ior: 1.4,
-            profile: DiffusionProfile::skin(),
+            subsurface: SubsurfaceModel::skin_screen_space(),
         })
     }
 }

@@ -7,9 +7,10 @@
 
 use crate::error::Result;
 use crate::job::Prepared;
-use crate::renderer::{FrameCapture, TABLE_ENTRIES, TABLE_X0_MM, layer_tables, table_lookup};
+use crate::renderer::FrameCapture;
 use crate::sss::{SkinImage, reference_blur};
 use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw};
+use rouge_measure::layer_table::{TABLE_ENTRIES, TABLE_X0_MM, lookup, render_table};
 use rouge_measure::preset::{Preset, layer_spectra};
 use serde::Serialize;
 use std::time::Instant;
@@ -189,6 +190,10 @@ fn compare(a: &[[f32; 3]], b: &[[f32; 3]], skin: &[bool], exposure: f32) -> (f64
 pub fn sss_study(p: &mut Prepared, sample_counts: &[u32], progress: &mut dyn FnMut(&str)) -> Result<SssStudy> {
     let (w, h) = p.size;
     let saved = p.scene.sss;
+    let profile =
+        p.scene.skin.subsurface.profile().cloned().ok_or_else(|| {
+            crate::RenderError::Invalid("the SSS study needs the screen-space subsurface model".into())
+        })?;
     p.renderer.render(&p.scene, &p.camera, w, h, false)?;
     let cap = p.renderer.capture()?;
     let rgb: Vec<[f32; 3]> = cap.diffuse.iter().map(|v| [v[0], v[1], v[2]]).collect();
@@ -203,7 +208,7 @@ pub fn sss_study(p: &mut Prepared, sample_counts: &[u32], progress: &mut dyn FnM
     };
     progress("brute-force reference on the CPU");
     let t = Instant::now();
-    let reference = reference_blur(&img, &p.scene.skin.profile, saved.width, saved.follow_mm);
+    let reference = reference_blur(&img, &profile, saved.width, saved.follow_mm);
     let reference_seconds = t.elapsed().as_secs_f64();
     let ref_final = final_image(&cap, &reference);
     let exposure = p.scene.exposure;
@@ -267,14 +272,15 @@ pub fn table_study(presets: &[Preset]) -> TableStudy {
     let xs: Vec<f64> = (0..200).map(|i| 1e-4 * (2e4f64).powf(i as f64 / 199.0)).collect();
     let (mut sum, mut n, mut max_de, mut max_t) = (0.0, 0usize, 0.0f64, 0.0f64);
     for preset in presets {
-        let (r_row, t_row) = layer_tables(preset);
+        let table = render_table(preset);
+        let (r_row, t_row) = (table.r0, table.t);
         let (s, k) = (preset.s(), preset.k());
         for &x in &xs {
             let (rs, ts) = layer_spectra(&s, &k, x);
             let exact_r = c.srgb_linear(&c.xyz(&rs));
             let exact_t = c.srgb_linear(&c.xyz(&ts));
-            let r = table_lookup(&r_row, x as f32).map(f64::from);
-            let t = table_lookup(&t_row, x as f32).map(f64::from);
+            let r = lookup(&r_row, x as f32).map(f64::from);
+            let t = lookup(&t_row, x as f32).map(f64::from);
             let de = delta_e_2000_raw(linear_srgb_to_lab(r), linear_srgb_to_lab(exact_r));
             sum += de;
             n += 1;

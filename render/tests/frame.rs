@@ -23,6 +23,10 @@ fn head() -> &'static TriangleMesh {
 
 fn renderer(mesh: &TriangleMesh, look: &Look, scene: &Scene) -> (Gpu, Renderer) {
     let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    // tests/run.sh runs the golden test again with WGPU_BACKEND=gl: make sure it got GL.
+    if std::env::var("WGPU_BACKEND").is_ok_and(|b| b.eq_ignore_ascii_case("gl")) {
+        assert_eq!(gpu.adapter.get_info().backend, wgpu::Backend::Gl, "WGPU_BACKEND=gl gave {}", gpu.describe());
+    }
     let mut r = Renderer::new(&gpu.device, &gpu.queue);
     r.set_mesh(mesh, scene.skin.albedo).expect("mesh");
     r.set_look(look).expect("look");
@@ -147,8 +151,12 @@ fn gpu_blur_matches_its_cpu_twin() {
     let skin: Vec<bool> = cap.diffuse.iter().map(|p| p[3] > 0.5).collect();
     let img =
         SkinImage { width: w, height: h, rgb: &rgb, skin: &skin, depth_mm: &cap.depth_mm, focal_px: cap.focal_px };
-    let kernel =
-        SeparableKernel::new(&scene.skin.profile, scene.sss.samples, scene.sss.range_sigmas as f64).expect("kernel");
+    let kernel = SeparableKernel::new(
+        scene.skin.subsurface.profile().expect("screen-space model"),
+        scene.sss.samples,
+        scene.sss.range_sigmas as f64,
+    )
+    .expect("kernel");
     let hpass = separable_pass_cpu(&img, &kernel, scene.sss.width, scene.sss.follow_mm, true);
     let hpass_img = SkinImage { rgb: &hpass, ..img };
     let cpu = separable_pass_cpu(&hpass_img, &kernel, scene.sss.width, scene.sss.follow_mm, false);
@@ -193,7 +201,9 @@ fn lipstick_changes_pixels_only_inside_the_lip_mask() {
         // Scattered light may leave the skin up to the profile's support away from the lips.
         let support_px = if sss_on {
             let z = cap.depth_mm[in_mask.iter().position(|&m| m).expect("mask pixel")];
-            (3.0 * scene.skin.profile.max_sigma_mm() as f32 * cap.focal_px / z).ceil() as i64
+            (3.0 * scene.skin.subsurface.profile().expect("screen-space model").max_sigma_mm() as f32 * cap.focal_px
+                / z)
+                .ceil() as i64
         } else {
             1
         };

@@ -1,45 +1,67 @@
 //! Every WGSL shader variant validates with naga, and the Rust uniform structs have exactly the
 //! layout naga computes for their WGSL twins.
 
-use rouge_render::renderer::{Pass, Variant, shader_source, uniform_layouts};
+use rouge_render::passes::Pass;
+use rouge_render::shader::{Variant, shader_source};
+use rouge_render::uniforms::uniform_layouts;
+
+fn source(pass: Pass, variant: Variant) -> String {
+    shader_source(pass, variant, false).unwrap_or_else(|e| panic!("{pass:?} {variant:?}: {e}"))
+}
+
+fn parse_source(pass: Pass, variant: Variant, src: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{pass:?} {variant:?}:\n{}", e.emit_to_string(src)))
+}
 
 fn parse(pass: Pass, variant: Variant) -> naga::Module {
-    let src = shader_source(pass, variant);
+    let src = source(pass, variant);
     naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{pass:?} {variant:?}:\n{}", e.emit_to_string(&src)))
 }
 
 #[test]
 fn every_shader_variant_validates() {
     let mut count = 0;
-    for variant in Variant::all() {
-        for pass in Pass::ALL {
-            let module = parse(pass, variant);
-            let mut validator =
-                naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default());
-            if let Err(e) = validator.validate(&module) {
-                panic!("{pass:?} {variant:?}: {}", e.emit_to_string(&shader_source(pass, variant)));
+    // Both display encodings: the hardware's (Vulkan, Metal, DX12) and the shader's (GL).
+    for encode_srgb in [false, true] {
+        for variant in Variant::all() {
+            for pass in Pass::ALL {
+                let src = shader_source(pass, variant, encode_srgb).unwrap_or_else(|e| panic!("{pass:?}: {e}"));
+                let module = parse_source(pass, variant, &src);
+                let mut validator = naga::valid::Validator::new(
+                    naga::valid::ValidationFlags::all(),
+                    naga::valid::Capabilities::default(),
+                );
+                if let Err(e) = validator.validate(&module) {
+                    panic!("{pass:?} {variant:?} encode_srgb {encode_srgb}: {}", e.emit_to_string(&src));
+                }
+                count += 1;
             }
-            count += 1;
         }
     }
-    assert_eq!(count, 9 * 32 * 5);
+    assert_eq!(count, 2 * 9 * 32 * 5);
 }
 
 #[test]
 fn variants_compile_only_what_the_scene_uses() {
     let bare = Variant { layers: 0, shadows: false, env: false, display: true, albedo_map: false, normal_map: false };
-    let src = shader_source(Pass::Lighting, bare);
+    let src = source(Pass::Lighting, bare);
     assert!(!src.contains("layer_rt"), "a bare look must not carry the layer tables");
     assert!(!src.contains("shadow_factor"), "no shadow code without a shadowing light");
     assert!(!src.contains("fn sh_irradiance"), "no SH code without an environment");
     let full = Variant { layers: 5, shadows: true, env: true, display: true, albedo_map: true, normal_map: true };
-    let src = shader_source(Pass::Lighting, full);
+    let src = source(Pass::Lighting, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
-    assert!(shader_source(Pass::Gbuffer, full).contains("thickness_b"));
-    assert!(!shader_source(Pass::Gbuffer, Variant { layers: 4, ..full }).contains("thickness_b"));
-    assert!(shader_source(Pass::Gbuffer, full).contains("textureSampleLevel(normal_map"));
-    assert!(!shader_source(Pass::Gbuffer, bare).contains("textureSampleLevel(normal_map"));
-    assert!(!shader_source(Pass::Gbuffer, bare).contains("textureSampleLevel(albedo_map"));
+    assert!(source(Pass::Gbuffer, full).contains("thickness_b"));
+    assert!(!source(Pass::Gbuffer, Variant { layers: 4, ..full }).contains("thickness_b"));
+    assert!(source(Pass::Gbuffer, full).contains("textureSampleLevel(normal_map"));
+    assert!(!source(Pass::Gbuffer, bare).contains("textureSampleLevel(normal_map"));
+    assert!(!source(Pass::Gbuffer, bare).contains("textureSampleLevel(albedo_map"));
+    // The display encoding: only the GL variant applies the sRGB curve in the shader.
+    let encoded = shader_source(Pass::Composite, bare, true).expect("source");
+    assert!(encoded.contains("0.0031308") && !source(Pass::Composite, bare).contains("0.0031308"));
+    // The table constant comes from its owner, rouge-measure, not a copy in the WGSL file.
+    assert!(!Pass::Lighting.source().contains("const TABLE_X0_MM"));
+    assert!(source(Pass::Lighting, full).contains("const TABLE_X0_MM"));
 }
 
 #[test]

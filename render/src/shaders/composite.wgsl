@@ -29,6 +29,22 @@ fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
     return mix(color, vec3<f32>(new_peak), g);
 }
 
+// The display target's encoding. Where the backend can view an sRGB texture as plain RGBA8
+// (Vulkan, Metal, DX12), the target is Rgba8UnormSrgb and the hardware encodes; where it cannot
+// (wgpu's GL backend has no view formats), the target is Rgba8Unorm and the shader applies the
+// sRGB transfer function (IEC 61966-2-1) itself, so both hold the same encoded bytes.
+//#if ENCODE_SRGB
+fn display_encode(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
+//#else
+fn display_encode(c: vec3<f32>) -> vec3<f32> {
+    return c;
+}
+//#endif
+
 @fragment
 fn fs_composite(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(frag.xy);
@@ -44,7 +60,7 @@ fn fs_composite(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         c = textureLoad(diffuse, p, 0).rgb * t + textureLoad(surface, p, 0).rgb;
     }
 //#if DISPLAY
-    return vec4<f32>(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0))), 1.0);
+    return vec4<f32>(display_encode(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0)))), 1.0);
 //#else
     return vec4<f32>(c, 1.0);
 //#endif

@@ -12,7 +12,9 @@
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
-@group(1) @binding(2) var gb_depth: texture_depth_2d;
+// The depth buffer as an unfilterable float texture (WebGPU allows it for Depth32Float): GLSL,
+// on wgpu's GL backend, can only texelFetch depth that way, not as a depth texture.
+@group(1) @binding(2) var gb_depth: texture_2d<f32>;
 @group(1) @binding(3) var gb_thickness_a: texture_2d<f32>;
 @group(1) @binding(4) var gb_thickness_b: texture_2d<f32>;
 // Per layer two rows of `frame.counts.z` entries: R0 (rgb), then T (rgb), at thickness
@@ -21,8 +23,8 @@
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
 
-// X0 of the table parameterisation, mm (the Rust side: renderer::TABLE_X0_MM).
-const TABLE_X0_MM: f32 = 0.02;
+// TABLE_X0_MM (mm), the X0 of the table parameterisation, is injected from its owner,
+// rouge_measure::layer_table, by shader::shader_source.
 
 struct LightingOut {
     // rgb: skin radiance before scattering, a: 1 on skin
@@ -105,7 +107,7 @@ fn shadow_factor(light: Light, world: vec3<f32>, n: vec3<f32>) -> f32 {
 //#endif
 
 //#if ENV
-SH_EVAL
+//#insert sh_eval
 //#endif
 
 @fragment
@@ -125,7 +127,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     let albedo_skin = textureLoad(gb_albedo, p, 0);
     let albedo = albedo_skin.rgb;
     let is_skin = albedo_skin.a > 0.5;
-    let depth = textureLoad(gb_depth, p, 0);
+    let depth = textureLoad(gb_depth, p, 0).r;
     let ndc = vec2<f32>(frag.x * frame.viewport.z * 2.0 - 1.0, 1.0 - frag.y * frame.viewport.w * 2.0);
     let world_h = frame.inv_view_proj * vec4<f32>(ndc, depth, 1.0);
     let world = world_h.xyz / world_h.w;

@@ -13,7 +13,8 @@ struct SssPass {
 
 @group(1) @binding(0) var<uniform> sss_pass: SssPass;
 @group(1) @binding(1) var src: texture_2d<f32>;
-@group(1) @binding(2) var src_depth: texture_depth_2d;
+// The depth buffer as an unfilterable float texture (GLSL cannot read it as a depth texture).
+@group(1) @binding(2) var src_depth: texture_2d<f32>;
 @group(1) @binding(3) var linear_sampler: sampler;
 
 @fragment
@@ -25,7 +26,7 @@ fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     }
     let size = vec2<f32>(textureDimensions(src));
     let max_p = vec2<i32>(size) - 1;
-    let z = max(linear_depth(textureLoad(src_depth, p, 0)), 1e-3);
+    let z = max(linear_depth(textureLoad(src_depth, p, 0).r), 1e-3);
     let px_per_mm = frame.projection.x / z;
     let dir = sss_pass.dir.xy;
     let scale = sss_pass.dir.z * px_per_mm;
@@ -43,7 +44,7 @@ fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         let c = textureSampleLevel(src, linear_sampler, pos / size, 0.0);
         var s = c.rgb + (1.0 - c.a) * centre.rgb;
         let q = clamp(vec2<i32>(floor(pos)), vec2<i32>(0), max_p);
-        let dz = linear_depth(textureLoad(src_depth, q, 0)) - z;
+        let dz = linear_depth(textureLoad(src_depth, q, 0).r) - z;
         var w = 1.0;
         if follow > 0.0 {
             w = clamp(abs(dz) / follow, 0.0, 1.0);

@@ -1,0 +1,369 @@
+//! The frame plan: from the scene, what the renderer has uploaded (the look's layers, the skin's
+//! maps) and the frame settings, which passes run, in which order, reading and writing which
+//! targets, and what is skipped and why. [`crate::Renderer::render`] walks it; `rouge render
+//! --explain` prints it.
+//!
+//! Only what the scene uses runs or is allocated: no shadow pass for a light that casts no
+//! shadow; no SSS passes (nor their targets) when the skin's subsurface model is `none` or the
+//! width is 0; no thickness targets, table lookups or layer lobes for a bare look; no SH code
+//! without an environment. Shaders are specialised per [`Variant`] accordingly.
+
+use crate::error::{RenderError, Result};
+use crate::passes::sss::Direction;
+use crate::passes::{composite, gbuffer, lighting};
+use crate::scene::{LightKind, Scene, SubsurfaceModel};
+use crate::shader::Variant;
+use crate::sss::SeparableKernel;
+use crate::targets::Target;
+use crate::uniforms::MAX_LIGHTS;
+use std::fmt::Write as _;
+
+/// What the renderer has uploaded that the plan depends on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Uploaded {
+    /// Layers of the look (0 = bare).
+    pub layers: u32,
+    /// A skin albedo texture is bound.
+    pub albedo_map: bool,
+    /// A normal map is bound.
+    pub normal_map: bool,
+}
+
+/// The output of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameSettings {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Tone-mapped sRGB (true) or linear radiance (false).
+    pub display: bool,
+    /// The largest texture side the device takes.
+    pub max_side: u32,
+}
+
+/// One step of the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// Depth of the mesh from scene light `light` into shadow map `layer`.
+    Shadow {
+        /// The light's index in the scene.
+        light: usize,
+        /// Its layer of the shadow-map array.
+        layer: u32,
+    },
+    /// The G-buffer.
+    Gbuffer,
+    /// Lighting through the cosmetic stack.
+    Lighting,
+    /// One direction of the screen-space scattering blur.
+    Sss(Direction),
+    /// Composition of `skin` (diffuse or scattered) with the surface radiance.
+    Composite {
+        /// The skin radiance composed.
+        skin: Target,
+    },
+}
+
+/// A planned pass with what it reads and writes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannedPass {
+    /// The step.
+    pub step: Step,
+    /// What it reads (targets and uploaded data), by name.
+    pub reads: Vec<String>,
+    /// The targets it writes.
+    pub writes: Vec<String>,
+}
+
+/// A pass, target or piece of shader code left out, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Skipped {
+    /// What is left out.
+    pub what: String,
+    /// Why.
+    pub why: String,
+}
+
+/// The plan of one frame.
+#[derive(Clone, Debug)]
+pub struct FramePlan {
+    /// Width and height, pixels.
+    pub size: (u32, u32),
+    /// The shader variant.
+    pub variant: Variant,
+    /// The passes, in order.
+    pub passes: Vec<PlannedPass>,
+    /// What is left out, and why.
+    pub skipped: Vec<Skipped>,
+    /// Shadow maps needed.
+    pub shadow_maps: u32,
+    /// The separable kernel, when the SSS passes run.
+    pub kernel: Option<SeparableKernel>,
+    /// The render targets the passes use.
+    pub targets: Vec<Target>,
+}
+
+fn names(targets: &[Target]) -> Vec<String> {
+    targets.iter().map(|t| t.name().to_string()).collect()
+}
+
+fn skip(what: impl Into<String>, why: impl Into<String>) -> Skipped {
+    Skipped { what: what.into(), why: why.into() }
+}
+
+impl FramePlan {
+    /// Plans a frame of `scene` with the `uploaded` look and maps at `settings`.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a zero or oversized image, too many lights, a negative or
+    /// non-finite SSS width, or an SSS sample count or range the kernel refuses.
+    pub fn new(scene: &Scene, uploaded: Uploaded, settings: FrameSettings) -> Result<FramePlan> {
+        let (width, height, max) = (settings.width, settings.height, settings.max_side);
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(RenderError::Invalid(format!("image size {width}×{height}: each side must be 1 to {max}")));
+        }
+        if scene.lights.len() > MAX_LIGHTS {
+            return Err(RenderError::Invalid(format!(
+                "{} lights: the renderer takes at most {MAX_LIGHTS}",
+                scene.lights.len()
+            )));
+        }
+        if !(scene.sss.width.is_finite() && scene.sss.width >= 0.0) {
+            return Err(RenderError::Invalid(format!("SSS width {}: must be ≥ 0", scene.sss.width)));
+        }
+        let mut passes = Vec::new();
+        let mut skipped = Vec::new();
+
+        // Shadows: one map per shadowing light, in scene order.
+        let mut shadow_maps = 0;
+        for (light, l) in scene.lights.iter().enumerate() {
+            let kind = match l.kind {
+                LightKind::Directional { .. } => "directional",
+                LightKind::Point { .. } => "point",
+            };
+            if l.shadows {
+                passes.push(PlannedPass {
+                    step: Step::Shadow { light, layer: shadow_maps },
+                    reads: vec![format!("mesh, light {light} ({kind})")],
+                    writes: vec![format!("shadow map {shadow_maps}")],
+                });
+                shadow_maps += 1;
+            } else {
+                skipped.push(skip(format!("shadow pass for light {light} ({kind})"), "the light casts no shadow"));
+            }
+        }
+        let variant = Variant {
+            layers: uploaded.layers,
+            shadows: shadow_maps > 0,
+            env: scene.environment.is_some(),
+            display: settings.display,
+            albedo_map: uploaded.albedo_map,
+            normal_map: uploaded.normal_map,
+        };
+
+        // G-buffer.
+        let mut gbuffer_reads = vec!["mesh".to_string()];
+        if variant.layers > 0 {
+            gbuffer_reads.push(format!("{} thickness map(s)", variant.layers));
+        }
+        if variant.albedo_map {
+            gbuffer_reads.push("albedo map".into());
+        }
+        if variant.normal_map {
+            gbuffer_reads.push("normal map".into());
+        }
+        let mut gbuffer_writes = gbuffer::outputs(variant);
+        gbuffer_writes.push(Target::Depth);
+        passes.push(PlannedPass { step: Step::Gbuffer, reads: gbuffer_reads, writes: names(&gbuffer_writes) });
+        if variant.layers == 0 {
+            skipped.push(skip("thickness targets, layer tables and layer lobes", "the look is bare"));
+        } else if variant.layers <= 4 {
+            skipped.push(skip("thickness 4-7 target", format!("the look has {} layers", variant.layers)));
+        }
+
+        // Lighting.
+        let mut lighting_reads = names(&lighting::inputs(variant));
+        if variant.layers > 0 {
+            lighting_reads.push("layer tables".into());
+        }
+        if variant.shadows {
+            lighting_reads.push("shadow maps".into());
+        }
+        if variant.env {
+            lighting_reads.push("SH environment".into());
+        } else {
+            skipped.push(skip("environment (SH) term", "the scene has no environment"));
+        }
+        passes.push(PlannedPass {
+            step: Step::Lighting,
+            reads: lighting_reads,
+            writes: names(&lighting::outputs(variant)),
+        });
+
+        // The skin's subsurface model.
+        let kernel = match &scene.skin.subsurface {
+            SubsurfaceModel::None => {
+                skipped.push(skip("SSS passes", "the skin's subsurface model is none"));
+                None
+            }
+            SubsurfaceModel::ScreenSpace { profile } => {
+                let kernel = SeparableKernel::new(profile, scene.sss.samples, scene.sss.range_sigmas as f64)?;
+                if scene.sss.width > 0.0 || scene.sss.run_at_zero_width {
+                    for direction in [Direction::Horizontal, Direction::Vertical] {
+                        let (src, dst) = direction.targets();
+                        passes.push(PlannedPass {
+                            step: Step::Sss(direction),
+                            reads: names(&[src, Target::Depth]),
+                            writes: names(&[dst]),
+                        });
+                    }
+                    Some(kernel)
+                } else {
+                    skipped.push(skip("SSS passes", "the SSS width is 0"));
+                    None
+                }
+            }
+        };
+
+        // Composite.
+        let skin = if kernel.is_some() { Target::Scattered } else { Target::Diffuse };
+        let mut composite_reads = vec![skin, Target::Surface, Target::Normal];
+        if variant.layers > 0 {
+            composite_reads.push(Target::ExitT);
+        }
+        let out = composite::output(variant);
+        passes.push(PlannedPass {
+            step: Step::Composite { skin },
+            reads: names(&composite_reads),
+            writes: names(&[out]),
+        });
+
+        let mut targets: Vec<Target> = gbuffer_writes;
+        targets.extend(lighting::outputs(variant));
+        if kernel.is_some() {
+            targets.extend([Target::SssScratch, Target::Scattered]);
+        }
+        targets.push(out);
+        targets.sort();
+        targets.dedup();
+        Ok(FramePlan { size: (width, height), variant, passes, skipped, shadow_maps, kernel, targets })
+    }
+
+    /// The plan for people: the passes in order with what they read and write, then what is
+    /// skipped and why.
+    pub fn explain(&self) -> String {
+        let mut out = String::new();
+        let v = self.variant;
+        let _ = writeln!(
+            out,
+            "frame {}×{}, {} output; variant: {} layer(s), shadows {}, environment {}, albedo map {}, normal map {}",
+            self.size.0,
+            self.size.1,
+            if v.display { "tone-mapped sRGB" } else { "linear" },
+            v.layers,
+            on_off(v.shadows),
+            on_off(v.env),
+            on_off(v.albedo_map),
+            on_off(v.normal_map),
+        );
+        let _ = writeln!(out, "passes:");
+        for (i, p) in self.passes.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "  {}. {:<16} {} -> {}",
+                i + 1,
+                step_name(p.step),
+                p.reads.join(", "),
+                p.writes.join(", ")
+            );
+        }
+        if !self.skipped.is_empty() {
+            let _ = writeln!(out, "skipped:");
+            for s in &self.skipped {
+                let _ = writeln!(out, "  - {}: {}", s.what, s.why);
+            }
+        }
+        out
+    }
+}
+
+fn on_off(b: bool) -> &'static str {
+    if b { "on" } else { "off" }
+}
+
+/// The name of a step, as in timings and `--explain`.
+pub fn step_name(step: Step) -> String {
+    match step {
+        Step::Shadow { layer, .. } => format!("shadow {layer}"),
+        Step::Gbuffer => "gbuffer".into(),
+        Step::Lighting => "lighting".into(),
+        Step::Sss(d) => d.label().into(),
+        Step::Composite { .. } => "composite".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn settings() -> FrameSettings {
+        FrameSettings { width: 64, height: 48, display: true, max_side: 8192 }
+    }
+
+    fn steps(plan: &FramePlan) -> Vec<String> {
+        plan.passes.iter().map(|p| step_name(p.step)).collect()
+    }
+
+    #[test]
+    fn the_studio_frame_runs_every_pass() {
+        let plan =
+            FramePlan::new(&Scene::studio(), Uploaded { layers: 3, albedo_map: false, normal_map: false }, settings())
+                .expect("plan");
+        assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "sss horizontal", "sss vertical", "composite"]);
+        assert!(plan.targets.contains(&Target::ThicknessA) && !plan.targets.contains(&Target::ThicknessB));
+        let text = plan.explain();
+        assert!(text.contains("shadow pass for light 1 (point): the light casts no shadow"), "{text}");
+        assert!(text.contains("thickness 4-7 target"), "{text}");
+    }
+
+    #[test]
+    fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
+        let mut scene = Scene::white_light(Vec3::Z);
+        scene.skin.subsurface = SubsurfaceModel::None;
+        let plan = FramePlan::new(&scene, Uploaded { layers: 0, albedo_map: false, normal_map: false }, settings())
+            .expect("plan");
+        assert_eq!(steps(&plan), ["gbuffer", "lighting", "composite"]);
+        assert_eq!(plan.passes[2].step, Step::Composite { skin: Target::Diffuse });
+        for t in [Target::ThicknessA, Target::ThicknessB, Target::SssScratch, Target::Scattered, Target::ExitT] {
+            assert!(!plan.targets.contains(&t), "{t:?} allocated for a bare frame without SSS");
+        }
+        let text = plan.explain();
+        for reason in ["the look is bare", "subsurface model is none", "no environment", "casts no shadow"] {
+            assert!(text.contains(reason), "{reason:?} missing from:\n{text}");
+        }
+        scene.skin.subsurface = SubsurfaceModel::skin_screen_space();
+        scene.sss.width = 0.0;
+        let plan = FramePlan::new(&scene, Uploaded { layers: 0, albedo_map: false, normal_map: false }, settings())
+            .expect("plan");
+        assert!(plan.explain().contains("the SSS width is 0"));
+    }
+
+    #[test]
+    fn bad_requests_are_errors() {
+        let up = Uploaded { layers: 0, albedo_map: false, normal_map: false };
+        let scene = Scene::studio();
+        assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
+        assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());
+        let mut many = scene.clone();
+        many.lights = vec![scene.lights[0]; MAX_LIGHTS + 1];
+        assert!(FramePlan::new(&many, up, settings()).is_err());
+        let mut nan = scene.clone();
+        nan.sss.width = f32::NAN;
+        assert!(FramePlan::new(&nan, up, settings()).is_err());
+        let mut even = scene;
+        even.sss.samples = 4;
+        assert!(FramePlan::new(&even, up, settings()).is_err());
+    }
+}

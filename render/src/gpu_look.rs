@@ -1,0 +1,233 @@
+//! The look and the skin's textures on the GPU: the layers' thickness maps (one R16Float array
+//! layer each, mm), their R0/T tables (from rouge-measure's [`rouge_measure::layer_table`]) and
+//! specular parameters; the skin albedo and normal maps.
+
+use crate::document::TexelRect;
+use crate::error::{RenderError, Result};
+use crate::look::ThicknessMap;
+use crate::scene::fresnel_f0;
+use crate::shader::MAX_LAYERS;
+use crate::uniforms::LayerUniform;
+use crate::wgpu_util::{array_view, buffer_init, texture, view};
+use rouge_measure::preset::Preset;
+
+/// Thickness (mm) at which a layer's own specular lobe is fully formed; thinner films fade in
+/// linearly, so a layer of zero thickness has no lobe and renders exactly as bare skin.
+pub const LAYER_FULL_COVERAGE_MM: f32 = 0.002;
+
+/// One cosmetic layer for [`crate::Renderer::set_layers`].
+#[derive(Clone, Copy, Debug)]
+pub struct LayerInput<'a> {
+    /// The material.
+    pub preset: &'a Preset,
+    /// Thickness in mm over the mesh's UV space.
+    pub map: &'a ThicknessMap,
+    /// Multiplier applied to the map.
+    pub multiplier: f32,
+}
+
+/// The uploaded layers of a look.
+#[derive(Debug)]
+pub struct GpuLook {
+    /// Number of layers (0 for a bare look).
+    pub layers: u32,
+    /// All thickness maps, as a 2D-array view.
+    pub maps: wgpu::TextureView,
+    texture: wgpu::Texture,
+    size: (u32, u32),
+    /// R0 then T rows of every layer, `TABLE_ENTRIES` RGBA entries each.
+    pub tables: wgpu::Buffer,
+    /// Specular parameters per layer.
+    pub params: [LayerUniform; MAX_LAYERS],
+}
+
+fn half_texels(mm: &[f32], multiplier: f32) -> Vec<u16> {
+    mm.iter().map(|&v| half::f16::from_f32(v * multiplier).to_bits()).collect()
+}
+
+/// Writes `texels` (half floats, rows of the rectangle) into `rect` = (x0, y0, x1, y1) of one
+/// layer; the rectangle is non-empty.
+fn write_layer(queue: &wgpu::Queue, texture: &wgpu::Texture, layer: u32, rect: TexelRect, texels: &[u16]) {
+    let (x0, y0, x1, y1) = rect;
+    let (width, height) = (x1 - x0, y1 - y0);
+    queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: x0, y: y0, z: layer },
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytemuck::cast_slice(texels),
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(2 * width), rows_per_image: Some(height) },
+        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+    );
+}
+
+impl GpuLook {
+    /// No layers; the map array has `min_layers` layers ([`crate::targets::Formats`]).
+    pub fn empty(device: &wgpu::Device, min_layers: u32) -> GpuLook {
+        let maps = texture(
+            device,
+            "GpuLook::maps (none)",
+            (1, 1),
+            min_layers,
+            wgpu::TextureFormat::R16Float,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        GpuLook {
+            layers: 0,
+            maps: array_view(&maps),
+            texture: maps,
+            size: (1, 1),
+            tables: buffer_init(device, "GpuLook::tables (none)", &[0u8; 16], wgpu::BufferUsages::STORAGE),
+            params: [LayerUniform::default(); MAX_LAYERS],
+        }
+    }
+
+    /// Uploads `layers` bottom to top; maps of other sizes are resampled to the largest. The map
+    /// array has at least `min_layers` layers ([`crate::targets::Formats::min_array_layers`]).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for more than [`MAX_LAYERS`] layers or a negative or non-finite
+    /// multiplier.
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layers: &[LayerInput<'_>],
+        min_layers: u32,
+    ) -> Result<GpuLook> {
+        if layers.len() > MAX_LAYERS {
+            return Err(RenderError::Invalid(format!(
+                "the look has {} visible layers; the renderer takes at most {MAX_LAYERS}",
+                layers.len()
+            )));
+        }
+        if layers.iter().any(|l| !(l.multiplier.is_finite() && l.multiplier >= 0.0)) {
+            return Err(RenderError::Invalid("layer thickness multipliers must be finite and ≥ 0".into()));
+        }
+        let (w, h) = layers.iter().fold((1, 1), |(w, h), l| (w.max(l.map.width), h.max(l.map.height)));
+        let count = (layers.len() as u32).max(min_layers).max(1);
+        let maps = texture(
+            device,
+            "GpuLook::maps",
+            (w, h),
+            count,
+            wgpu::TextureFormat::R16Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        let entries = rouge_measure::layer_table::TABLE_ENTRIES;
+        let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 2 * entries);
+        let mut params = [LayerUniform::default(); MAX_LAYERS];
+        let whole = (0, 0, w, h);
+        for (i, layer) in layers.iter().enumerate() {
+            let texels = if (layer.map.width, layer.map.height) == (w, h) {
+                half_texels(&layer.map.mm, layer.multiplier)
+            } else {
+                half_texels(&layer.map.resized(w, h).mm, layer.multiplier)
+            };
+            write_layer(queue, &maps, i as u32, whole, &texels);
+            let table = rouge_measure::layer_table::render_table(layer.preset);
+            tables.extend(table.r0.iter().map(|v| [v[0], v[1], v[2], 0.0]));
+            tables.extend(table.t.iter().map(|v| [v[0], v[1], v[2], 0.0]));
+            params[i] = LayerUniform {
+                params: [
+                    layer.preset.specular.roughness as f32,
+                    fresnel_f0(layer.preset.specular.ior as f32),
+                    LAYER_FULL_COVERAGE_MM,
+                    0.0,
+                ],
+            };
+        }
+        if tables.is_empty() {
+            tables.push([0.0; 4]);
+        }
+        Ok(GpuLook {
+            layers: layers.len() as u32,
+            maps: array_view(&maps),
+            texture: maps,
+            size: (w, h),
+            tables: buffer_init(device, "GpuLook::tables", bytemuck::cast_slice(&tables), wgpu::BufferUsages::STORAGE),
+            params,
+        })
+    }
+
+    /// Re-uploads the texels `rect` (half-open, clamped to the map) of layer `layer` after
+    /// painting; `map` must have the size the layers were uploaded at.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a layer or size that does not match the uploaded look.
+    pub fn update(
+        &self,
+        queue: &wgpu::Queue,
+        layer: usize,
+        map: &ThicknessMap,
+        multiplier: f32,
+        rect: TexelRect,
+    ) -> Result<()> {
+        let (w, h) = self.size;
+        if layer >= self.layers as usize || (map.width, map.height) != (w, h) {
+            return Err(RenderError::Invalid(format!(
+                "thickness update of layer {layer} ({}×{}) does not match the uploaded look ({} layers at {w}×{h})",
+                map.width, map.height, self.layers
+            )));
+        }
+        let (x0, y0, x1, y1) = (rect.0.min(w), rect.1.min(h), rect.2.min(w), rect.3.min(h));
+        if x0 >= x1 || y0 >= y1 {
+            return Ok(());
+        }
+        let mut texels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+        for y in y0..y1 {
+            let row = &map.mm[(y * w + x0) as usize..(y * w + x1) as usize];
+            texels.extend(half_texels(row, multiplier));
+        }
+        write_layer(queue, &self.texture, layer as u32, (x0, y0, x1, y1), &texels);
+        Ok(())
+    }
+}
+
+/// The skin's optional albedo and normal maps.
+#[derive(Debug, Default)]
+pub struct SkinTextures {
+    /// sRGB albedo in the mesh's UV space.
+    pub albedo: Option<wgpu::TextureView>,
+    /// Tangent-space normal map (+Y up).
+    pub normal: Option<wgpu::TextureView>,
+}
+
+impl SkinTextures {
+    /// Uploads the maps (RGBA8; the albedo sRGB-encoded, the normal map linear).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for an empty image.
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        albedo: Option<&image::RgbaImage>,
+        normal: Option<&image::RgbaImage>,
+    ) -> Result<SkinTextures> {
+        let upload = |img: &image::RgbaImage, format: wgpu::TextureFormat, label: &str| -> Result<wgpu::TextureView> {
+            let (w, h) = img.dimensions();
+            if w == 0 || h == 0 {
+                return Err(RenderError::Invalid(format!("{label}: empty image")));
+            }
+            let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+            let t = texture(device, &format!("SkinTextures::{label}"), (w, h), 1, format, usage);
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &t,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                img.as_raw(),
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
+            Ok(view(&t))
+        };
+        Ok(SkinTextures {
+            albedo: albedo.map(|a| upload(a, wgpu::TextureFormat::Rgba8UnormSrgb, "albedo map")).transpose()?,
+            normal: normal.map(|n| upload(n, wgpu::TextureFormat::Rgba8Unorm, "normal map")).transpose()?,
+        })
+    }
+}

@@ -1,0 +1,133 @@
+//! The mesh on the GPU: one interleaved vertex buffer (position, normal, UV, albedo with the
+//! skin flag, tangent) and a 32-bit index buffer, with the vertex layouts the passes draw it with.
+
+use crate::error::{RenderError, Result};
+use crate::mesh::{Bounds, TriangleMesh};
+use crate::wgpu_util::buffer_init;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+/// One vertex, as the G-buffer and shadow passes read it.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Vertex {
+    position: [f32; 3],
+    normal: [f32; 3],
+    uv: [f32; 2],
+    albedo: [f32; 4],
+    tangent: [f32; 4],
+}
+
+/// Every attribute of [`Vertex`] (G-buffer pass).
+const FULL_ATTRIBUTES: [wgpu::VertexAttribute; 5] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x4];
+/// The position only (shadow pass), same stride.
+const POSITION_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
+
+/// The vertex buffer layout with every attribute.
+pub fn full_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &FULL_ATTRIBUTES,
+    }
+}
+
+/// The vertex buffer layout with positions only.
+pub fn position_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &POSITION_ATTRIBUTES,
+    }
+}
+
+/// An uploaded triangle mesh.
+#[derive(Debug)]
+pub struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    /// Bounds of the positions, mm.
+    pub bounds: Bounds,
+    /// Whether the vertices carry tangents (a normal map needs them).
+    pub has_tangents: bool,
+}
+
+impl GpuMesh {
+    /// Uploads `mesh` (mm) with `skin_albedo` (linear sRGB) on skin vertices.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a mesh without vertices or triangles.
+    pub fn upload(device: &wgpu::Device, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<GpuMesh> {
+        let bounds =
+            Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("the mesh has no vertices".into()))?;
+        if mesh.indices.is_empty() {
+            return Err(RenderError::Invalid("the mesh has no triangles".into()));
+        }
+        let albedo = vertex_albedo(mesh, skin_albedo);
+        let vertices: Vec<Vertex> = (0..mesh.positions.len())
+            .map(|i| Vertex {
+                position: mesh.positions[i].to_array(),
+                normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
+                uv: mesh.uvs.get(i).map_or([0.0; 2], |uv| uv.to_array()),
+                albedo: albedo[i],
+                tangent: mesh.tangents.as_ref().and_then(|t| t.get(i)).map_or([0.0; 4], |t| t.to_array()),
+            })
+            .collect();
+        Ok(GpuMesh {
+            vertices: buffer_init(
+                device,
+                "GpuMesh::vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer_init(
+                device,
+                "GpuMesh::indices",
+                bytemuck::cast_slice(&mesh.indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            index_count: mesh.indices.len() as u32,
+            bounds,
+            has_tangents: mesh.tangents.is_some(),
+        })
+    }
+
+    /// Binds the buffers and draws every triangle.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..1);
+    }
+}
+
+/// Albedo and material per vertex: skin everywhere but groups named like eyes, which get a
+/// sclera, iris and pupil by angle from the eye's forward axis (+Z) and do not scatter (a = 0).
+fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
+    let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
+    for g in &mesh.groups {
+        if !g.name.to_ascii_lowercase().contains("eye") {
+            continue;
+        }
+        let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();
+        verts.sort_unstable();
+        verts.dedup();
+        if verts.is_empty() {
+            continue;
+        }
+        let centre = verts.iter().map(|&v| mesh.positions[v as usize]).sum::<Vec3>() / verts.len() as f32;
+        for &v in &verts {
+            let d = (mesh.positions[v as usize] - centre).normalize_or_zero();
+            let cos = d.z;
+            albedo[v as usize] = if cos > 0.985 {
+                [0.01, 0.01, 0.01, 0.0]
+            } else if cos > 0.93 {
+                [0.10, 0.05, 0.025, 0.0]
+            } else {
+                [0.62, 0.58, 0.55, 0.0]
+            };
+        }
+    }
+    albedo
+}

@@ -1,0 +1,122 @@
+//! Lighting pass (shaders/lighting.wgsl): per pixel, the cosmetic stack's reflectance and
+//! transmittance from the layer tables, the irradiance of each light (with its shadow) and of
+//! the environment through the stack, and the specular lobes of skin and layers
+//! ([Huang2013] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
+//! radiance leaving at the surface, and, with layers, the stack's exit transmittance.
+
+use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use crate::error::Result;
+use crate::gpu_look::GpuLook;
+use crate::shader::Variant;
+use crate::targets::{HDR_FORMAT, Target};
+use crate::wgpu_util::{color, float_tex, layout, sampler, sampler_entry, storage_entry, tex, tex_entry};
+
+/// The lighting pass.
+#[derive(Debug)]
+pub struct LightingPass {
+    layout: wgpu::BindGroupLayout,
+    pipelines: Pipelines,
+}
+
+/// The G-buffer targets a variant reads.
+pub fn inputs(variant: Variant) -> Vec<Target> {
+    let mut t = vec![Target::Normal, Target::Albedo, Target::Depth];
+    if variant.layers > 0 {
+        t.push(Target::ThicknessA);
+    }
+    if variant.layers > 4 {
+        t.push(Target::ThicknessB);
+    }
+    t
+}
+
+/// The targets a variant writes, in location order.
+pub fn outputs(variant: Variant) -> Vec<Target> {
+    let mut t = vec![Target::Diffuse, Target::Surface];
+    if variant.layers > 0 {
+        t.push(Target::ExitT);
+    }
+    t
+}
+
+impl LightingPass {
+    /// The pass on `shared`'s device.
+    pub fn new(shared: &Shared) -> LightingPass {
+        let layout = layout(
+            &shared.device,
+            "LightingPass::layout",
+            &[
+                float_tex(0, false),
+                float_tex(1, false),
+                // Depth read as unfilterable float (see lighting.wgsl).
+                float_tex(2, false),
+                float_tex(3, false),
+                float_tex(4, false),
+                storage_entry(5),
+                tex_entry(6, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+                sampler_entry(7, wgpu::SamplerBindingType::Comparison),
+            ],
+        );
+        LightingPass { layout, pipelines: Pipelines::default() }
+    }
+
+    /// Records the pass from the G-buffer, `look`'s tables and the `shadow_maps` array.
+    ///
+    /// # Errors
+    /// When the pipeline cannot be built or a target is missing.
+    pub fn record(
+        &mut self,
+        ctx: FrameContext<'_>,
+        enc: &mut FrameEncoder<'_>,
+        look: &GpuLook,
+        shadow_maps: &wgpu::TextureView,
+    ) -> Result<()> {
+        let (shared, targets) = (ctx.shared, ctx.targets);
+        let key = ctx.variant.for_pass(Pass::Lighting);
+        let outs = outputs(key);
+        let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
+            pass: Pass::Lighting,
+            variant: key,
+            layout: &self.layout,
+            vertices: Vertices::Fullscreen,
+            vs: "vs_fullscreen",
+            fs: Some("fs_lighting"),
+            targets: vec![HDR_FORMAT; outs.len()],
+            depth: None,
+        })?;
+        let optional = |wanted: bool, t: Target| -> Result<Option<wgpu::TextureView>> {
+            if wanted { targets.view(t).map(Some) } else { Ok(None) }
+        };
+        let (normal, albedo, depth) =
+            (targets.view(Target::Normal)?, targets.view(Target::Albedo)?, targets.view(Target::Depth)?);
+        let thickness_a = optional(key.layers > 0, Target::ThicknessA)?;
+        let thickness_b = optional(key.layers > 4, Target::ThicknessB)?;
+        let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("LightingPass::group"),
+            layout: &self.layout,
+            entries: &[
+                tex(0, &normal),
+                tex(1, &albedo),
+                tex(2, &depth),
+                tex(3, thickness_a.as_ref().unwrap_or(&shared.dummy)),
+                tex(4, thickness_b.as_ref().unwrap_or(&shared.dummy)),
+                wgpu::BindGroupEntry { binding: 5, resource: look.tables.as_entire_binding() },
+                tex(6, shadow_maps),
+                sampler(7, &shared.shadow_sampler),
+            ],
+        });
+        let views = outs.iter().map(|&t| targets.view(t)).collect::<Result<Vec<_>>>()?;
+        // The exit transmittance clears to 1 (no stack) where nothing is drawn.
+        let attachments: Vec<_> = outs
+            .iter()
+            .zip(&views)
+            .map(|(&t, v)| color(v, if t == Target::ExitT { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT }))
+            .collect();
+        let mut pass = enc.begin("lighting", &attachments, None);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &shared.frame_group, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.draw(0..3, 0..1);
+        Ok(())
+    }
+}

@@ -1,0 +1,133 @@
+//! Screen-space subsurface scattering (shaders/sss.wgsl): the separable, depth-aware blur of
+//! [Jimenez2015] with the kernel of [`crate::sss::SeparableKernel`], horizontal then vertical.
+//! It runs for materials whose subsurface model is
+//! [`crate::scene::SubsurfaceModel::ScreenSpace`].
+
+use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use crate::error::Result;
+use crate::shader::Variant;
+use crate::sss::{MAX_SAMPLES, SeparableKernel};
+use crate::targets::{HDR_FORMAT, Target};
+use crate::wgpu_util::{buf, color, float_tex, layout, sampler, sampler_entry, tex, uniform_buffer, uniform_entry};
+use bytemuck::{Pod, Zeroable};
+
+/// One SSS pass's uniform, as in WGSL `SssPass`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct SssUniform {
+    /// Direction (px), width, follow (mm).
+    pub dir: [f32; 4],
+    /// Sample count.
+    pub count: [u32; 4],
+    /// Offset (mm) and weights.
+    pub samples: [[f32; 4]; MAX_SAMPLES as usize],
+}
+
+/// The blur's direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// Along x: diffuse → scratch.
+    Horizontal,
+    /// Along y: scratch → scattered.
+    Vertical,
+}
+
+impl Direction {
+    fn index(self) -> usize {
+        match self {
+            Direction::Horizontal => 0,
+            Direction::Vertical => 1,
+        }
+    }
+
+    /// Input and output targets.
+    pub fn targets(self) -> (Target, Target) {
+        match self {
+            Direction::Horizontal => (Target::Diffuse, Target::SssScratch),
+            Direction::Vertical => (Target::SssScratch, Target::Scattered),
+        }
+    }
+
+    /// The pass label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Direction::Horizontal => "sss horizontal",
+            Direction::Vertical => "sss vertical",
+        }
+    }
+}
+
+/// The two SSS passes.
+#[derive(Debug)]
+pub struct SssPass {
+    layout: wgpu::BindGroupLayout,
+    pipelines: Pipelines,
+    uniforms: [wgpu::Buffer; 2],
+}
+
+impl SssPass {
+    /// The passes on `shared`'s device.
+    pub fn new(shared: &Shared) -> SssPass {
+        let device = &shared.device;
+        let layout = layout(
+            device,
+            "SssPass::layout",
+            &[
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
+                float_tex(1, true),
+                // Depth read as unfilterable float (see sss.wgsl).
+                float_tex(2, false),
+                sampler_entry(3, wgpu::SamplerBindingType::Filtering),
+            ],
+        );
+        let size = std::mem::size_of::<SssUniform>();
+        let uniforms =
+            [uniform_buffer(device, "SssPass::horizontal", size), uniform_buffer(device, "SssPass::vertical", size)];
+        SssPass { layout, pipelines: Pipelines::default(), uniforms }
+    }
+
+    /// Writes both directions' uniforms: `kernel` scaled by `width`, `follow_mm` of depth.
+    pub fn write_uniforms(&self, shared: &Shared, kernel: &SeparableKernel, width: f32, follow_mm: f32, count: u32) {
+        let samples = kernel.to_gpu();
+        for (buffer, dir) in self.uniforms.iter().zip([[1.0, 0.0], [0.0, 1.0]]) {
+            let u = SssUniform { dir: [dir[0], dir[1], width, follow_mm], count: [count, 0, 0, 0], samples };
+            shared.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
+        }
+    }
+
+    /// Records one direction of the blur.
+    ///
+    /// # Errors
+    /// When the pipeline cannot be built or a target is missing.
+    pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, direction: Direction) -> Result<()> {
+        let (shared, targets) = (ctx.shared, ctx.targets);
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
+            pass: Pass::Sss,
+            variant: Variant::BARE,
+            layout: &self.layout,
+            vertices: Vertices::Fullscreen,
+            vs: "vs_fullscreen",
+            fs: Some("fs_sss"),
+            targets: vec![HDR_FORMAT],
+            depth: None,
+        })?;
+        let (src, dst) = direction.targets();
+        let (src, dst, depth) = (targets.view(src)?, targets.view(dst)?, targets.view(Target::Depth)?);
+        let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("SssPass::group"),
+            layout: &self.layout,
+            entries: &[
+                buf(0, &self.uniforms[direction.index()]),
+                tex(1, &src),
+                tex(2, &depth),
+                sampler(3, &shared.linear_sampler),
+            ],
+        });
+        let mut pass = enc.begin(direction.label(), &[color(&dst, wgpu::Color::TRANSPARENT)], None);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &shared.frame_group, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.draw(0..3, 0..1);
+        Ok(())
+    }
+}

@@ -1,0 +1,211 @@
+//! WGSL sources specialised per [`Variant`]: the common declarations, constants injected from
+//! their Rust owners, and a pass file with its `//#if FLAG … //#else … //#endif` blocks resolved.
+//!
+//! The preprocessor is strict, so that a typo cannot silently remove code: an unknown flag, an
+//! `//#if` inside another (nesting is not supported), an `//#else` or `//#endif` without an
+//! `//#if`, a second `//#else`, an unclosed block and an unknown `//#insert` are all errors that
+//! name the file and line.
+
+use crate::error::{RenderError, Result};
+use crate::passes::Pass;
+
+/// Most cosmetic layers a look may have (two RGBA16F thickness targets).
+pub const MAX_LAYERS: usize = 8;
+
+/// What a scene and look need compiled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Variant {
+    /// Number of cosmetic layers, 0..=[`MAX_LAYERS`].
+    pub layers: u32,
+    /// Some light casts shadows.
+    pub shadows: bool,
+    /// An environment lights the scene.
+    pub env: bool,
+    /// Tone-mapped sRGB output (else linear radiance).
+    pub display: bool,
+    /// The skin albedo comes from a texture.
+    pub albedo_map: bool,
+    /// A tangent-space normal map perturbs the normals.
+    pub normal_map: bool,
+}
+
+impl Variant {
+    /// The variant with every flag off and no layers.
+    pub const BARE: Variant =
+        Variant { layers: 0, shadows: false, env: false, display: false, albedo_map: false, normal_map: false };
+
+    /// Every variant, for validating all shader sources.
+    pub fn all() -> impl Iterator<Item = Variant> {
+        (0..=MAX_LAYERS as u32).flat_map(|layers| {
+            (0..32u32).map(move |bits| Variant {
+                layers,
+                shadows: bits & 1 != 0,
+                env: bits & 2 != 0,
+                display: bits & 4 != 0,
+                albedo_map: bits & 8 != 0,
+                normal_map: bits & 16 != 0,
+            })
+        })
+    }
+
+    /// The part of the variant a pass depends on (passes share pipelines across the rest).
+    pub fn for_pass(self, pass: Pass) -> Variant {
+        let none = Variant::BARE;
+        match pass {
+            Pass::Shadow | Pass::Sss => none,
+            Pass::Gbuffer => {
+                Variant { layers: self.layers, albedo_map: self.albedo_map, normal_map: self.normal_map, ..none }
+            }
+            Pass::Lighting => Variant { layers: self.layers, shadows: self.shadows, env: self.env, ..none },
+            Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
+        }
+    }
+
+    /// The `//#if` flags of this variant, with their values.
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 8] {
+        [
+            ("LAYERS_A", self.layers > 0),
+            ("LAYERS_B", self.layers > 4),
+            ("SHADOWS", self.shadows),
+            ("ENV", self.env),
+            ("DISPLAY", self.display),
+            ("ALBEDO_MAP", self.albedo_map),
+            ("NORMAL_MAP", self.normal_map),
+            ("ENCODE_SRGB", encode_srgb),
+        ]
+    }
+}
+
+/// The WGSL source of `pass` specialised for `variant`, for a display target that stores sRGB
+/// in hardware (`encode_srgb` false) or one that needs the shader to encode it (`encode_srgb`
+/// true: backends without view formats, see [`crate::targets::Formats`]).
+///
+/// # Errors
+/// [`RenderError::Shader`] when the pass file breaks a preprocessor rule.
+pub fn shader_source(pass: Pass, variant: Variant, encode_srgb: bool) -> Result<String> {
+    let mut out = format!("const LAYERS: u32 = {}u;\n", variant.layers);
+    out.push_str(&rouge_measure::layer_table::wgsl_constants());
+    out.push_str(include_str!("shaders/common.wgsl"));
+    out.push_str(&preprocess(pass.file_name(), pass.source(), &variant.flags(encode_srgb))?);
+    Ok(out)
+}
+
+/// Text that `//#insert NAME` puts in place of the line.
+fn insertion(name: &str) -> Option<&'static str> {
+    match name {
+        "sh_eval" => Some(crate::env::WGSL_SH_EVAL),
+        _ => None,
+    }
+}
+
+/// Resolves `//#if FLAG`, `//#else`, `//#endif` and `//#insert NAME` lines of `source` (named
+/// `file` in errors) with the values in `flags`.
+///
+/// # Errors
+/// [`RenderError::Shader`] naming `file` and the line for an unknown flag or insertion, a
+/// nested `//#if`, an `//#else`/`//#endif` without `//#if`, a second `//#else`, an unclosed
+/// block, or any other `//#` directive.
+pub fn preprocess(file: &str, source: &str, flags: &[(&str, bool)]) -> Result<String> {
+    let fail = |line: usize, message: String| RenderError::Shader(format!("{file}:{line}: {message}"));
+    // The open block: (line of its //#if, whether its current branch is kept, seen //#else).
+    let mut open: Option<(usize, bool, bool)> = None;
+    let mut out = String::with_capacity(source.len());
+    for (i, line) in source.lines().enumerate() {
+        let number = i + 1;
+        let t = line.trim();
+        if let Some(directive) = t.strip_prefix("//#") {
+            let (word, arg) = directive.split_once(' ').map_or((directive, ""), |(w, a)| (w, a.trim()));
+            match word {
+                "if" => {
+                    if let Some((at, _, _)) = open {
+                        return Err(fail(
+                            number,
+                            format!("nested //#if (the block opened at line {at} is still open)"),
+                        ));
+                    }
+                    let value = flags.iter().find(|(name, _)| *name == arg).map(|(_, on)| *on).ok_or_else(|| {
+                        let known: Vec<&str> = flags.iter().map(|(n, _)| *n).collect();
+                        fail(number, format!("unknown flag {arg:?} (known: {})", known.join(", ")))
+                    })?;
+                    open = Some((number, value, false));
+                }
+                "else" => match open {
+                    Some((_, _, true)) => return Err(fail(number, "a second //#else in one block".into())),
+                    Some((at, keep, false)) => open = Some((at, !keep, true)),
+                    None => return Err(fail(number, "//#else without //#if".into())),
+                },
+                "endif" => {
+                    if open.take().is_none() {
+                        return Err(fail(number, "//#endif without //#if".into()));
+                    }
+                }
+                "insert" => {
+                    if open.is_none_or(|(_, keep, _)| keep) {
+                        let text = insertion(arg).ok_or_else(|| fail(number, format!("unknown insertion {arg:?}")))?;
+                        out.push_str(text);
+                        out.push('\n');
+                    }
+                }
+                _ => return Err(fail(number, format!("unknown directive //#{word}"))),
+            }
+            continue;
+        }
+        if open.is_none_or(|(_, keep, _)| keep) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    if let Some((at, _, _)) = open {
+        return Err(fail(at, "//#if is never closed with //#endif".into()));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FLAGS: [(&str, bool); 2] = [("ON", true), ("OFF", false)];
+
+    fn run(src: &str) -> Result<String> {
+        preprocess("test.wgsl", src, &FLAGS)
+    }
+
+    #[test]
+    fn blocks_keep_the_branch_of_their_flag() {
+        let out = run("a\n//#if ON\nb\n//#else\nc\n//#endif\n//#if OFF\nd\n//#else\ne\n//#endif\nf\n").expect("valid");
+        assert_eq!(out, "a\nb\ne\nf\n");
+    }
+
+    #[test]
+    fn an_unknown_flag_is_an_error_naming_the_line() {
+        let e = run("a\n//#if LAYRES_A\nb\n//#endif\n").expect_err("typo").to_string();
+        assert!(e.contains("test.wgsl:2") && e.contains("LAYRES_A") && e.contains("ON, OFF"), "{e}");
+    }
+
+    #[test]
+    fn nesting_is_refused() {
+        let e = run("//#if ON\n//#if OFF\nx\n//#endif\n//#endif\n").expect_err("nested").to_string();
+        assert!(e.contains("test.wgsl:2") && e.contains("nested") && e.contains("line 1"), "{e}");
+    }
+
+    #[test]
+    fn unbalanced_blocks_are_refused() {
+        let stray = run("a\n//#endif\n").expect_err("stray endif").to_string();
+        assert!(stray.contains("test.wgsl:2") && stray.contains("without //#if"), "{stray}");
+        let stray_else = run("//#else\n").expect_err("stray else").to_string();
+        assert!(stray_else.contains("test.wgsl:1"), "{stray_else}");
+        let unclosed = run("a\n//#if ON\nb\n").expect_err("unclosed").to_string();
+        assert!(unclosed.contains("test.wgsl:2") && unclosed.contains("never closed"), "{unclosed}");
+        let twice = run("//#if ON\n//#else\n//#else\n//#endif\n").expect_err("two elses").to_string();
+        assert!(twice.contains("test.wgsl:3"), "{twice}");
+    }
+
+    #[test]
+    fn unknown_directives_and_insertions_are_refused() {
+        assert!(run("//#ifdef ON\n").is_err());
+        assert!(run("//#insert nothing\n").expect_err("unknown insertion").to_string().contains("nothing"));
+        assert!(run("//#insert sh_eval\n").expect("known").contains("fn sh_irradiance"));
+        assert!(!run("//#if OFF\n//#insert sh_eval\n//#endif\n").expect("skipped").contains("sh_irradiance"));
+    }
+}

@@ -1,0 +1,203 @@
+//! The frame's render targets, from one place: [`TargetPool`] creates each [`Target`] on first
+//! use at the frame's size in the format [`Formats`] chose for the adapter, and keeps it until the
+//! size changes. A target no planned pass writes is never created (a bare look has no thickness
+//! targets; a frame without SSS has no scratch or scattered images).
+//!
+//! Per sample the G-buffer writes 32 bytes at most (WebGPU's default limit):
+//! `normal` Rgba16Float (world normal, w = coverage), `albedo` Rgba8UnormSrgb (a = skin flag),
+//! `thickness_a`/`thickness_b` Rgba16Float (layers 0-3 / 4-7), depth Depth32Float.
+
+use crate::error::{RenderError, Result};
+use crate::wgpu_util::{texture, texture_with_views};
+use std::collections::HashMap;
+
+/// Format of the world normal target.
+pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Format of the albedo target.
+pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Format of radiance and thickness targets.
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Format of depth buffers and shadow maps.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Formats that depend on what the adapter can do (its downlevel capabilities).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formats {
+    /// Format of the tone-mapped output: Rgba8UnormSrgb where the texture can also be viewed as
+    /// Rgba8Unorm (for egui, which wants the encoded bytes), else Rgba8Unorm with the sRGB
+    /// encoding done in the composite shader. Either way the texture holds sRGB-encoded bytes.
+    pub display: wgpu::TextureFormat,
+    /// Whether the composite shader encodes sRGB itself.
+    pub encode_srgb_in_shader: bool,
+    /// Format of the linear output: Rgba32Float, or Rgba16Float on GL, where 32-bit float
+    /// textures cannot be render targets (a downlevel restriction); EXRs from GL are half floats.
+    pub linear: wgpu::TextureFormat,
+    /// Fewest layers of a texture sampled as an array (shadow maps, thickness maps): 1, or 2 on
+    /// GL, which creates a one-layer texture as `TEXTURE_2D`, so that an array view of it samples
+    /// nothing (every shadow lookup returned 0 before this; wgpu issue 2161).
+    pub min_array_layers: u32,
+}
+
+impl Formats {
+    /// The formats for `device`. wgpu's GL backend is the native backend without
+    /// `DownlevelFlags::VIEW_FORMATS` (Vulkan, Metal and DX12 always have it), so it gets the
+    /// plain display format and the shader's sRGB encoding.
+    pub fn for_device(device: &wgpu::Device) -> Formats {
+        Formats::for_backend(device.adapter_info().backend)
+    }
+
+    /// The formats for a device on `backend`.
+    pub fn for_backend(backend: wgpu::Backend) -> Formats {
+        match backend {
+            wgpu::Backend::Gl | wgpu::Backend::BrowserWebGpu | wgpu::Backend::Noop => Formats {
+                display: wgpu::TextureFormat::Rgba8Unorm,
+                encode_srgb_in_shader: true,
+                linear: wgpu::TextureFormat::Rgba16Float,
+                min_array_layers: 2,
+            },
+            wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => Formats {
+                display: wgpu::TextureFormat::Rgba8UnormSrgb,
+                encode_srgb_in_shader: false,
+                linear: wgpu::TextureFormat::Rgba32Float,
+                min_array_layers: 1,
+            },
+        }
+    }
+}
+
+/// A view of a display frame for egui, which wants sRGB-encoded values read as they are
+/// (`Rgba8Unorm`), not decoded to linear. Works for both display formats of [`Formats`].
+pub fn egui_view(display: &wgpu::Texture) -> wgpu::TextureView {
+    display.create_view(&wgpu::TextureViewDescriptor {
+        format: Some(wgpu::TextureFormat::Rgba8Unorm),
+        ..Default::default()
+    })
+}
+
+/// The frame's images, named by what they hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Target {
+    /// World normal, w = coverage.
+    Normal,
+    /// Albedo, a = skin flag.
+    Albedo,
+    /// Thickness (mm) of layers 0-3.
+    ThicknessA,
+    /// Thickness (mm) of layers 4-7.
+    ThicknessB,
+    /// Depth buffer.
+    Depth,
+    /// Skin radiance before scattering.
+    Diffuse,
+    /// The horizontal SSS pass's output.
+    SssScratch,
+    /// Skin radiance after scattering.
+    Scattered,
+    /// Radiance that leaves at the surface.
+    Surface,
+    /// Transmittance of the cosmetic stack toward the viewer.
+    ExitT,
+    /// Tone-mapped, sRGB-encoded output.
+    Display,
+    /// Linear radiance output.
+    Linear,
+}
+
+impl Target {
+    /// The name used in labels and in `rouge render --explain`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Normal => "normal",
+            Target::Albedo => "albedo",
+            Target::ThicknessA => "thickness 0-3",
+            Target::ThicknessB => "thickness 4-7",
+            Target::Depth => "depth",
+            Target::Diffuse => "diffuse",
+            Target::SssScratch => "sss scratch",
+            Target::Scattered => "scattered",
+            Target::Surface => "surface",
+            Target::ExitT => "exit T",
+            Target::Display => "display",
+            Target::Linear => "linear",
+        }
+    }
+
+    /// Its format on a device with `formats`.
+    pub fn format(self, formats: Formats) -> wgpu::TextureFormat {
+        match self {
+            Target::Normal => NORMAL_FORMAT,
+            Target::Albedo => ALBEDO_FORMAT,
+            Target::Depth => DEPTH_FORMAT,
+            Target::Display => formats.display,
+            Target::Linear => formats.linear,
+            _ => HDR_FORMAT,
+        }
+    }
+}
+
+/// The frame's targets, created on first use and kept while the size stays.
+#[derive(Debug)]
+pub struct TargetPool {
+    formats: Formats,
+    size: (u32, u32),
+    textures: HashMap<Target, wgpu::Texture>,
+}
+
+impl TargetPool {
+    /// An empty pool for a device with `formats`.
+    pub fn new(formats: Formats) -> TargetPool {
+        TargetPool { formats, size: (0, 0), textures: HashMap::new() }
+    }
+
+    /// The formats targets are created in.
+    pub fn formats(&self) -> Formats {
+        self.formats
+    }
+
+    /// Sets the frame size; a change drops every target.
+    pub fn resize(&mut self, size: (u32, u32)) {
+        if self.size != size {
+            self.size = size;
+            self.textures.clear();
+        }
+    }
+
+    /// The frame size.
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// Creates `targets` that do not exist yet at the current size.
+    pub fn ensure(&mut self, device: &wgpu::Device, targets: impl IntoIterator<Item = Target>) {
+        use wgpu::TextureUsages as U;
+        let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
+        for target in targets {
+            let (size, formats) = (self.size, self.formats);
+            self.textures.entry(target).or_insert_with(|| {
+                let format = target.format(formats);
+                let label = format!("Target::{}", target.name());
+                if target == Target::Display && format == wgpu::TextureFormat::Rgba8UnormSrgb {
+                    // Also viewable as plain RGBA8, the encoded bytes as they are, for egui.
+                    texture_with_views(device, &label, size, 1, format, usage, &[wgpu::TextureFormat::Rgba8Unorm])
+                } else {
+                    texture(device, &label, size, 1, format, usage)
+                }
+            });
+        }
+    }
+
+    /// A target created by [`TargetPool::ensure`] at the current size.
+    pub fn get(&self, target: Target) -> Option<&wgpu::Texture> {
+        self.textures.get(&target)
+    }
+
+    /// The default view of a target the frame plan created.
+    ///
+    /// # Errors
+    /// [`RenderError::Gpu`] when it was not created (a planning bug, reported rather than a panic).
+    pub fn view(&self, target: Target) -> Result<wgpu::TextureView> {
+        self.get(target)
+            .map(crate::wgpu_util::view)
+            .ok_or_else(|| RenderError::Gpu(format!("target {} was not created by the frame plan", target.name())))
+    }
+}
