@@ -81,8 +81,10 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
 }
 
 fn main() -> ExitCode {
-    // RUST_LOG=info shows the adapter and wgpu's warnings; by default only errors.
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("error")).init();
+    // RUST_LOG=info shows the adapter and wgpu's warnings. By default only errors, and none from
+    // wgpu-hal, whose loader messages (a Vulkan loader without drivers, say) would bury the one
+    // line that says what to install; wgpu's own errors reach the user as rouge's messages.
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("error,wgpu_hal=off")).init();
     let cli = Cli::parse();
     let Some(command) = cli.command else {
         let options = rouge_app::gui::Options {

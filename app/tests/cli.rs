@@ -318,6 +318,29 @@ fn without_a_gpu_driver_render_exits_2_with_the_package_to_install() {
 }
 
 #[test]
+fn without_a_vulkan_driver_render_writes_the_face_through_gl() {
+    // The fresh machine of the renderer-architecture issue: Mesa's OpenGL (llvmpipe through EGL)
+    // but no Vulkan driver. wgpu then picks its GL backend, which must render the face.
+    let out = std::env::temp_dir().join(format!("rouge-gl-only-{}.png", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_rouge"))
+        .args(["render", "--width", "160", "--height", "120", "--out"])
+        .arg(&out)
+        .env_remove("WGPU_BACKEND")
+        .env("VK_ICD_FILENAMES", "/nonexistent/rouge-test-icd.json")
+        .env("VK_DRIVER_FILES", "/nonexistent/rouge-test-icd.json")
+        .current_dir(root())
+        .output()
+        .expect("run rouge");
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("(Gl,"), "expected the GL backend: {err}");
+    let img = image::open(&out).expect("a PNG").to_rgba8();
+    let skin = img.pixels().filter(|p| p[0] > p[2].saturating_add(30)).count();
+    assert!(skin > 2000, "only {skin} skin-coloured pixels");
+    let _ = std::fs::remove_file(&out);
+}
+
+#[test]
 fn explain_prints_the_frame_plan_and_what_is_skipped() {
     let o =
         rouge(&["render", "--explain", "--look", "bare", "--subsurface", "none", "--width", "64", "--height", "48"]);
