@@ -245,10 +245,8 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         )?,
     );
 
-    let presets: Vec<_> = rouge_render::look::builtin_preset_names()
-        .iter()
-        .filter_map(|n| rouge_render::look::builtin_preset(n))
-        .collect();
+    let presets: Vec<_> =
+        rouge_model::look::builtin_preset_names().iter().filter_map(|n| rouge_model::look::builtin_preset(n)).collect();
     let table = study::table_study(&presets);
     out.push_str(&format!(
         "\nLayer tables ({} entries, X = {} mm·u/(1−u)) against exact spectral R0 and T, {} presets × {} thicknesses 0.1 µm-2 mm:\nR0 mean ΔE2000 {:.4}, max {:.4}; T max |error| {:.2e}\n",

@@ -2,9 +2,9 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
+use rouge_model::look::{Look, ThicknessSource};
 use rouge_render::SubsurfaceModel;
 use rouge_render::job::{LookChoice, RenderJob, render_to_file};
-use rouge_render::look::{Look, ThicknessSource};
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -1,6 +1,6 @@
 //! The renderer's error type. Every error that comes from a file names that file.
 
-use crate::mesh::MeshError;
+use rouge_model::mesh::MeshError;
 use std::fmt::Display;
 use std::path::Path;
 
@@ -17,6 +17,9 @@ pub enum RenderError {
         /// What is wrong with it.
         message: String,
     },
+    /// A model error (look, project, map, mesh): it names its file.
+    #[error(transparent)]
+    Model(#[from] rouge_model::ModelError),
     /// The mesh could not be loaded or prepared.
     #[error(transparent)]
     Mesh(#[from] MeshError),

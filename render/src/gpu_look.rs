@@ -2,14 +2,14 @@
 //! layer each, mm), their R0/T tables (from rouge-measure's [`rouge_measure::layer_table`]) and
 //! specular parameters; the skin albedo and normal maps.
 
-use crate::document::TexelRect;
 use crate::error::{RenderError, Result};
-use crate::look::ThicknessMap;
 use crate::scene::fresnel_f0;
 use crate::shader::MAX_LAYERS;
 use crate::uniforms::LayerUniform;
 use crate::wgpu_util::{array_view, buffer_init, texture, view};
 use rouge_measure::preset::Preset;
+use rouge_model::TexelRect;
+use rouge_model::look::ThicknessMap;
 
 /// Thickness (mm) at which a layer's own specular lobe is fully formed; thinner films fade in
 /// linearly, so a layer of zero thickness has no lobe and renders exactly as bare skin.
@@ -45,16 +45,15 @@ fn half_texels(mm: &[f32], multiplier: f32) -> Vec<u16> {
     mm.iter().map(|&v| half::f16::from_f32(v * multiplier).to_bits()).collect()
 }
 
-/// Writes `texels` (half floats, rows of the rectangle) into `rect` = (x0, y0, x1, y1) of one
-/// layer; the rectangle is non-empty.
+/// Writes `texels` (half floats, rows of the rectangle) into `rect` of one layer; the rectangle
+/// is non-empty.
 fn write_layer(queue: &wgpu::Queue, texture: &wgpu::Texture, layer: u32, rect: TexelRect, texels: &[u16]) {
-    let (x0, y0, x1, y1) = rect;
-    let (width, height) = (x1 - x0, y1 - y0);
+    let (width, height) = (rect.width(), rect.height());
     queue.write_texture(
         wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
-            origin: wgpu::Origin3d { x: x0, y: y0, z: layer },
+            origin: wgpu::Origin3d { x: rect.x0, y: rect.y0, z: layer },
             aspect: wgpu::TextureAspect::All,
         },
         bytemuck::cast_slice(texels),
@@ -118,7 +117,7 @@ impl GpuLook {
         let entries = rouge_measure::layer_table::TABLE_ENTRIES;
         let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 2 * entries);
         let mut params = [LayerUniform::default(); MAX_LAYERS];
-        let whole = (0, 0, w, h);
+        let whole = TexelRect::whole(w, h);
         for (i, layer) in layers.iter().enumerate() {
             let texels = if (layer.map.width, layer.map.height) == (w, h) {
                 half_texels(&layer.map.mm, layer.multiplier)
@@ -171,16 +170,16 @@ impl GpuLook {
                 map.width, map.height, self.layers
             )));
         }
-        let (x0, y0, x1, y1) = (rect.0.min(w), rect.1.min(h), rect.2.min(w), rect.3.min(h));
-        if x0 >= x1 || y0 >= y1 {
+        let rect = rect.clamped(w, h);
+        if rect.is_empty() {
             return Ok(());
         }
-        let mut texels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-        for y in y0..y1 {
-            let row = &map.mm[(y * w + x0) as usize..(y * w + x1) as usize];
+        let mut texels = Vec::with_capacity(rect.area());
+        for y in rect.y0..rect.y1 {
+            let row = &map.mm[(y * w + rect.x0) as usize..(y * w + rect.x1) as usize];
             texels.extend(half_texels(row, multiplier));
         }
-        write_layer(queue, &self.texture, layer as u32, (x0, y0, x1, y1), &texels);
+        write_layer(queue, &self.texture, layer as u32, rect, &texels);
         Ok(())
     }
 }

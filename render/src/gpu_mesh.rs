@@ -2,10 +2,10 @@
 //! skin flag, tangent) and a 32-bit index buffer, with the vertex layouts the passes draw it with.
 
 use crate::error::{RenderError, Result};
-use crate::mesh::{Bounds, TriangleMesh};
 use crate::wgpu_util::buffer_init;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use rouge_model::mesh::{Bounds, TriangleMesh};
 
 /// One vertex, as the G-buffer and shadow passes read it.
 #[repr(C)]

@@ -9,10 +9,10 @@
 use crate::env::EnvMap;
 use crate::error::{RenderError, Result};
 use crate::gpu::Gpu;
-use crate::look::Look;
-use crate::mesh::{TriangleMesh, default_head, load_gltf, load_obj};
 use crate::renderer::Renderer;
 use crate::scene::{Camera, Scene};
+use rouge_model::look::Look;
+pub use rouge_model::mesh::load_mesh;
 use std::path::{Path, PathBuf};
 
 /// Which look to render.
@@ -72,23 +72,6 @@ impl Default for RenderJob {
             scene: Scene::studio(),
         }
     }
-}
-
-/// Loads a mesh by extension (or the default head for `None`), subdivides and triangulates it.
-///
-/// # Errors
-/// The loader's error naming the file; an unknown extension.
-pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result<TriangleMesh> {
-    let mesh = match path {
-        None => default_head()?,
-        Some(p) => match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("obj") => load_obj(p, scale_mm)?,
-            Some("gltf" | "glb") => load_gltf(p, scale_mm)?,
-            _ => return Err(RenderError::file(p, "unknown mesh format: use .obj, .gltf or .glb")),
-        },
-    };
-    let mesh = if subdivision > 0 { mesh.catmull_clark(subdivision) } else { mesh };
-    Ok(mesh.triangulate())
 }
 
 /// Reads a PNG texture as RGBA8.

@@ -1,9 +1,8 @@
 //! Rouge renderer: real-time skin with layered cosmetics (paper 003, section 3, figure 1) on wgpu.
 //!
+//! It uploads what `rouge-model` gives it (meshes, looks, thickness maps) and knows no UI.
 //! Headless first: [`gpu::Gpu`] opens a device without a window (Mesa lavapipe where there is no
 //! GPU), and the painting app hands in its own device. Modules:
-//! - [`mesh`]: OBJ/glTF loading with a unit scale, Catmull-Clark, triangulation, MikkTSpace.
-//! - [`look`]: the look document (cosmetic layers bottom to top, each a preset and a thickness).
 //! - [`env`]: HDR environment maps and their spherical-harmonics irradiance (paper 000, 4.1.2).
 //! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
 //! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
@@ -11,7 +10,6 @@
 //! - [`renderer`]: uploads and the frame itself; [`targets`], [`shader`], [`uniforms`],
 //!   [`profiler`] and [`wgpu_util`] serve it.
 
-pub mod document;
 pub mod env;
 pub mod error;
 pub mod frame;
@@ -19,9 +17,6 @@ pub mod gpu;
 pub mod gpu_look;
 pub mod gpu_mesh;
 pub mod job;
-pub mod look;
-pub mod mesh;
-pub mod paint;
 pub mod passes;
 pub mod profiler;
 pub mod renderer;
@@ -35,6 +30,5 @@ pub mod wgpu_util;
 
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
-pub use mesh::{Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_obj};
 pub use renderer::Renderer;
 pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings, SubsurfaceModel};

@@ -3,13 +3,10 @@
 //! The frame of [Huang2013] figure 1 on wgpu: shadow maps → G-buffer → lighting (cosmetic stack,
 //! irradiance through it, specular lobes) → the skin's subsurface model → composition.
 
-use crate::document::TexelRect;
 use crate::error::{RenderError, Result};
 use crate::frame::{FramePlan, FrameSettings, Step, Uploaded};
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
-use crate::look::{Look, ThicknessMap};
-use crate::mesh::{Bounds, TriangleMesh};
 use crate::passes::composite::CompositePass;
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
@@ -23,6 +20,9 @@ use crate::targets::{Formats, Target, TargetPool};
 use crate::uniforms::{FrameUniform, FrameView};
 use crate::wgpu_util::{read_texture, validated};
 use glam::Vec3;
+use rouge_model::TexelRect;
+use rouge_model::look::{Look, ThicknessMap};
+use rouge_model::mesh::{Bounds, TriangleMesh};
 
 pub use crate::gpu_look::LayerInput;
 pub use crate::targets::egui_view;

@@ -3,11 +3,11 @@
 
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
-use crate::mesh::Bounds;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
 use rouge_measure::{Extrapolation, Spectrum};
+use rouge_model::mesh::Bounds;
 use std::path::Path;
 
 /// An orbit camera around the mesh.

@@ -334,10 +334,10 @@ pub struct DabTimes {
 ///
 /// # Errors
 /// As [`crate::Renderer::render`].
-pub fn dab_to_frame(p: &mut Prepared, mesh: &crate::mesh::TriangleMesh, dabs: usize) -> Result<DabTimes> {
-    use crate::document::{Document, MAP_SIZE};
-    use crate::paint::{Brush, SurfaceMap, apply_dab};
+pub fn dab_to_frame(p: &mut Prepared, mesh: &rouge_model::mesh::TriangleMesh, dabs: usize) -> Result<DabTimes> {
     use crate::renderer::LayerInput;
+    use rouge_model::document::{Document, MAP_SIZE};
+    use rouge_model::paint::{Brush, SurfaceMap, apply_dab};
     let (w, h) = p.size;
     let t = Instant::now();
     let surface = SurfaceMap::build(mesh, MAP_SIZE, MAP_SIZE);
@@ -373,7 +373,7 @@ pub fn dab_to_frame(p: &mut Prepared, mesh: &crate::mesh::TriangleMesh, dabs: us
         };
         let t1 = Instant::now();
         let layer = &doc.layers[0];
-        p.renderer.update_thickness(0, &layer.map, layer.multiplier, (rect.x0, rect.y0, rect.x1, rect.y1))?;
+        p.renderer.update_thickness(0, &layer.map, layer.multiplier, rect)?;
         let t2 = Instant::now();
         p.renderer.render(&p.scene, &p.camera, w, h, true)?;
         p.renderer.wait()?;

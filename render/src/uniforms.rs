@@ -2,12 +2,12 @@
 //! they are built from the scene and the camera: view and projection, lights with their shadow
 //! matrices. Keep in sync with common.wgsl; tests/shaders.rs checks the layouts with naga.
 
-use crate::mesh::Bounds;
 use crate::passes::sss::SssUniform;
 use crate::scene::{Camera, LightKind, Scene};
 use crate::shader::MAX_LAYERS;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
+use rouge_model::mesh::Bounds;
 
 /// Most lights a scene may have.
 pub const MAX_LIGHTS: usize = 4;

@@ -7,9 +7,9 @@
 
 use glam::{Vec2, Vec3};
 use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_decode};
-use rouge_render::job::load_mesh;
-use rouge_render::look::{Look, builtin_preset};
-use rouge_render::mesh::TriangleMesh;
+use rouge_model::look::{Look, builtin_preset};
+use rouge_model::mesh::TriangleMesh;
+use rouge_model::mesh::load_mesh;
 use rouge_render::renderer::FrameCapture;
 use rouge_render::sss::{SeparableKernel, SkinImage, separable_pass_cpu};
 use rouge_render::{Camera, Gpu, Renderer, Scene};

@@ -61,10 +61,10 @@ pub struct Library {
 impl Library {
     /// The built-in presets plus every readable preset in `user_dir`.
     pub fn load(user_dir: PathBuf) -> Library {
-        let mut materials: Vec<Material> = rouge_render::look::builtin_preset_names()
+        let mut materials: Vec<Material> = rouge_model::look::builtin_preset_names()
             .iter()
             .filter_map(|n| {
-                rouge_render::look::builtin_preset(n).map(|preset| Material {
+                rouge_model::look::builtin_preset(n).map(|preset| Material {
                     preset_ref: format!("builtin:{n}"),
                     preset,
                     source: Source::Builtin,

@@ -16,10 +16,11 @@ use anyhow::{Context as _, Result};
 use egui::{Color32, Key, Modifiers, Pos2, Rect, Sense, Vec2};
 use glam::Vec3;
 use materials::Library;
-use rouge_render::document::{Change, Document};
+use rouge_model::TexelRect;
+use rouge_model::document::{Change, Document};
+use rouge_model::mesh::TriangleMesh;
+use rouge_model::paint::{Brush, BrushMode, StrokeSpacer, SurfaceMap, apply_dab_split};
 use rouge_render::job::{load_mesh, write_png};
-use rouge_render::mesh::TriangleMesh;
-use rouge_render::paint::{Brush, BrushMode, DirtyRect, StrokeSpacer, SurfaceMap, apply_dab_split};
 use rouge_render::renderer::LayerInput;
 use rouge_render::{Camera, LightKind, Renderer, Scene};
 use std::path::{Path, PathBuf};
@@ -315,7 +316,7 @@ impl RougeApp {
             let result = (|| -> Result<(TriangleMesh, Arc<SurfaceMap>), String> {
                 let mesh =
                     load_mesh(path.as_deref(), scale, if path.is_some() { 0 } else { 2 }).map_err(|e| e.to_string())?;
-                let size = rouge_render::document::MAP_SIZE;
+                let size = rouge_model::document::MAP_SIZE;
                 let surface = SurfaceMap::build(&mesh, size, size);
                 Ok((mesh, Arc::new(surface)))
             })();
@@ -393,7 +394,7 @@ impl RougeApp {
     pub fn clear_layer(&mut self, i: usize) {
         if let Some(map) = self.doc.begin_stroke(i) {
             map.mm.fill(0.0);
-            let rect = (0, 0, map.width, map.height);
+            let rect = TexelRect::whole(map.width, map.height);
             self.doc.note_dirty(rect);
         }
         let c = self.doc.end_stroke();
@@ -466,7 +467,7 @@ impl RougeApp {
             return;
         };
         let brush = self.brush;
-        let mut sides = [DirtyRect::EMPTY; 2];
+        let mut sides = [TexelRect::EMPTY; 2];
         if let Some(map) = self.doc.stroke_map(layer) {
             for &c in dabs {
                 let [a, b] = apply_dab_split(map, surface, &brush, c);
@@ -475,7 +476,7 @@ impl RougeApp {
         }
         self.stroke_dabs.extend_from_slice(dabs);
         for side in sides.into_iter().filter(|r| !r.is_empty()) {
-            let rect: (u32, u32, u32, u32) = side.into();
+            let rect = side;
             self.doc.note_dirty(rect);
             if let Some(l) = self.doc.layers.get(layer)
                 && let Err(e) = self.renderer.update_thickness(ri, &l.map, multiplier, rect)

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use glam::Vec3;
-use rouge_render::{Mesh, MeshError, load_gltf, load_obj};
+use rouge_model::{Mesh, MeshError, load_gltf, load_obj};
 
 fn head_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../data/heads/hm08_head.obj")

@@ -6,8 +6,8 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Arc;
 
-use rouge_render::document::{Change, Document, MAP_SIZE, PaintLayer, TexelRect};
-use rouge_render::look::{Look, Region, ThicknessMap, ThicknessSource, builtin_preset};
+use rouge_model::document::{Change, Document, MAP_SIZE, PaintLayer, TexelRect};
+use rouge_model::look::{Look, Region, ThicknessMap, ThicknessSource, builtin_preset};
 
 const N: usize = MAP_SIZE as usize;
 
@@ -18,7 +18,7 @@ fn bits(map: &ThicknessMap) -> Vec<u32> {
 /// Paints `value(x, y)` into `rect` of `layer` as one stroke of two dabs (top half, bottom half),
 /// reporting each dab's rect.
 fn paint(doc: &mut Document, layer: usize, rect: TexelRect, value: impl Fn(u32, u32) -> f32) -> Change {
-    let (x0, y0, x1, y1) = rect;
+    let TexelRect { x0, y0, x1, y1 } = rect;
     let ym = (y0 + y1) / 2;
     for (i, (ya, yb)) in [(y0, ym), (ym, y1)].into_iter().enumerate() {
         let map = if i == 0 { doc.begin_stroke(layer) } else { doc.stroke_map(layer) }.expect("the layer exists");
@@ -27,7 +27,7 @@ fn paint(doc: &mut Document, layer: usize, rect: TexelRect, value: impl Fn(u32, 
                 map.mm[y as usize * N + x as usize] = value(x, y);
             }
         }
-        doc.note_dirty((x0, ya, x1, yb));
+        doc.note_dirty(TexelRect::new(x0, ya, x1, yb));
     }
     doc.end_stroke()
 }
@@ -107,7 +107,7 @@ fn default_project_has_three_full_size_layers_with_lipstick_on_the_lips_only() {
 fn a_stroke_undoes_and_redoes_bit_for_bit_and_a_new_stroke_clears_redo() {
     let mut doc = Document::default_project();
     let original = bits(&doc.layers[1].map);
-    let rect = (100, 200, 180, 260);
+    let rect = TexelRect::new(100, 200, 180, 260);
     let change = paint(&mut doc, 1, rect, pattern);
     assert_eq!(change, Change::Map { layer: 1, rect });
     let painted = bits(&doc.layers[1].map);
@@ -124,8 +124,8 @@ fn a_stroke_undoes_and_redoes_bit_for_bit_and_a_new_stroke_clears_redo() {
 
     doc.undo();
     assert!(doc.can_redo());
-    let other = paint(&mut doc, 0, (0, 0, 4, 4), |_, _| 0.05);
-    assert_eq!(other, Change::Map { layer: 0, rect: (0, 0, 4, 4) });
+    let other = paint(&mut doc, 0, TexelRect::new(0, 0, 4, 4), |_, _| 0.05);
+    assert_eq!(other, Change::Map { layer: 0, rect: TexelRect::new(0, 0, 4, 4) });
     assert!(!doc.can_redo(), "a new stroke clears the redo stack");
     assert_eq!(doc.redo(), Change::Nothing);
     assert!(bits(&doc.layers[1].map) == original);
@@ -135,20 +135,20 @@ fn a_stroke_undoes_and_redoes_bit_for_bit_and_a_new_stroke_clears_redo() {
 fn stroke_records_only_changed_texels_and_nothing_for_no_change() {
     let mut doc = Document::default_project();
     // Writes the same value the foundation already has: no step.
-    assert_eq!(paint(&mut doc, 0, (10, 10, 50, 50), |_, _| 0.015), Change::Nothing);
+    assert_eq!(paint(&mut doc, 0, TexelRect::new(10, 10, 50, 50), |_, _| 0.015), Change::Nothing);
     assert!(!doc.can_undo() && !doc.is_modified());
     // Dirty rect larger than the change: the step covers the changed texels only.
     let map = doc.begin_stroke(0).expect("layer 0");
     map.mm[20 * N + 30] = 0.03;
     map.mm[25 * N + 12] = 0.03;
-    doc.note_dirty((0, 0, 100, 100));
-    assert_eq!(doc.end_stroke(), Change::Map { layer: 0, rect: (12, 20, 31, 26) });
+    doc.note_dirty(TexelRect::new(0, 0, 100, 100));
+    assert_eq!(doc.end_stroke(), Change::Map { layer: 0, rect: TexelRect::new(12, 20, 31, 26) });
     // No stroke open: nothing to paint, note_dirty is ignored.
     assert!(doc.stroke_map(0).is_none());
-    doc.note_dirty((0, 0, 10, 10));
+    doc.note_dirty(TexelRect::new(0, 0, 10, 10));
     assert_eq!(doc.end_stroke(), Change::Nothing);
     assert!(doc.begin_stroke(7).is_none());
-    assert_eq!(doc.undo(), Change::Map { layer: 0, rect: (12, 20, 31, 26) });
+    assert_eq!(doc.undo(), Change::Map { layer: 0, rect: TexelRect::new(12, 20, 31, 26) });
     assert!(doc.layers[0].map.mm.iter().all(|&v| v == 0.015));
 }
 
@@ -249,7 +249,7 @@ fn the_history_budget_drops_the_oldest_steps() {
     // Each stroke stores 2 × 64 × 64 × 4 bytes = 32 KiB.
     doc.set_history_budget(100 << 10);
     for k in 0..6 {
-        paint(&mut doc, 2, (k * 64, 0, k * 64 + 64, 64), |_, _| 0.01);
+        paint(&mut doc, 2, TexelRect::new(k * 64, 0, k * 64 + 64, 64), |_, _| 0.01);
         assert!(doc.history_bytes() <= 100 << 10, "{} bytes after stroke {k}", doc.history_bytes());
     }
     assert_eq!(count_undo_steps(&mut doc), 3);
@@ -268,7 +268,7 @@ fn save_then_open_gives_identical_maps_and_layers() {
     let tmp = tempfile::tempdir().expect("temp dir");
     let dir = tmp.path().join("My Look");
     let mut doc = Document::default_project();
-    paint(&mut doc, 1, (500, 600, 700, 640), pattern);
+    paint(&mut doc, 1, TexelRect::new(500, 600, 700, 640), pattern);
     doc.set_multiplier(1, 1.7);
     doc.set_visible(0, false);
     doc.rename_layer(2, "Red lips");
@@ -276,7 +276,7 @@ fn save_then_open_gives_identical_maps_and_layers() {
     let mut custom = builtin_preset("eyeshadow_02_sapphire").expect("built-in");
     custom.name = "My sapphire".into();
     doc.add_layer("/somewhere/else/sapphire.json", custom.clone());
-    paint(&mut doc, 3, (0, 0, 2048, 3), |x, _| x as f32 * 1e-6);
+    paint(&mut doc, 3, TexelRect::new(0, 0, 2048, 3), |x, _| x as f32 * 1e-6);
     assert!(doc.is_modified());
 
     doc.save_project(&dir).expect("save");
@@ -302,7 +302,7 @@ fn save_then_open_gives_identical_maps_and_layers() {
     doc.save_project(&dir).expect("save again");
     assert_eq!(files_in(&dir.join("maps")), maps_before);
     doc.remove_layer(3);
-    paint(&mut doc, 2, (10, 10, 20, 20), |_, _| 0.004);
+    paint(&mut doc, 2, TexelRect::new(10, 10, 20, 20), |_, _| 0.004);
     doc.save_project(&dir).expect("save after removing a layer");
     let look = Look::load(&dir.join("look.json")).expect("look.json loads");
     assert_eq!(look.layers.len(), 3);
@@ -329,7 +329,7 @@ fn a_failed_save_names_the_path_and_leaves_the_previous_project_readable() {
     let dir = tmp.path().join("project");
     doc.save_project(&dir).expect("first save");
     let saved_layers = doc.layers.clone();
-    paint(&mut doc, 2, (300, 300, 340, 340), |_, _| 0.03);
+    paint(&mut doc, 2, TexelRect::new(300, 300, 340, 340), |_, _| 0.03);
     let ThicknessSource::Map { path, .. } = &doc.to_look().layers[2].thickness else { panic!("a map") };
     let blocked = dir.join(path);
     std::fs::create_dir_all(&blocked).expect("a folder where the map must go");
@@ -340,7 +340,7 @@ fn a_failed_save_names_the_path_and_leaves_the_previous_project_readable() {
     assert_same_layers(&previous.layers, &saved_layers);
 
     // A thickness × multiplier over 10 mm is refused before anything is written.
-    paint(&mut doc, 0, (0, 0, 1, 1), |_, _| 2.0);
+    paint(&mut doc, 0, TexelRect::new(0, 0, 1, 1), |_, _| 2.0);
     doc.set_multiplier(0, 6.0);
     let e = doc.save_project(&tmp.path().join("too thick")).expect_err("12 mm").to_string();
     assert!(e.contains("look.json") && e.contains("layer 0"), "{e}");
@@ -358,7 +358,7 @@ fn open_project_without_look_json_names_it() {
 fn exported_maps_read_back() {
     let tmp = tempfile::tempdir().expect("temp dir");
     let mut doc = Document::default_project();
-    paint(&mut doc, 1, (1000, 1000, 1100, 1010), pattern);
+    paint(&mut doc, 1, TexelRect::new(1000, 1000, 1100, 1010), pattern);
     doc.set_multiplier(1, 1.3);
     let files = doc.export_maps(tmp.path()).expect("export");
     assert_eq!(files.len(), 9);
@@ -397,13 +397,13 @@ fn autosave_recovery_cycle() {
     Document::clear_recovery(&recovery).expect("nothing to clear is fine");
 
     let mut doc = Document::default_project();
-    paint(&mut doc, 2, (800, 1500, 900, 1600), pattern);
+    paint(&mut doc, 2, TexelRect::new(800, 1500, 900, 1600), pattern);
     doc.autosave(&recovery).expect("autosave");
     assert!(doc.is_modified(), "an autosave does not mark the document saved");
     assert!(Document::recovery_available(&recovery));
 
     // Painting on and autosaving again replaces the autosave; unchanged maps stay.
-    paint(&mut doc, 2, (0, 0, 8, 8), |_, _| 0.01);
+    paint(&mut doc, 2, TexelRect::new(0, 0, 8, 8), |_, _| 0.01);
     doc.autosave(&recovery).expect("autosave again");
     let recovered = Document::open_project(&recovery).expect("recover");
     assert_same_layers(&recovered.layers, &doc.layers);

@@ -4,6 +4,7 @@
 //! scans come in arbitrary units (metres, centimetres, millimetres).
 
 mod gltf;
+mod load;
 mod obj;
 mod subdivide;
 mod tangents;
@@ -15,6 +16,7 @@ use std::path::PathBuf;
 use glam::{Vec2, Vec3, Vec4};
 
 pub use self::gltf::load_gltf;
+pub use self::load::load_mesh;
 pub use self::obj::{load_obj, parse_obj};
 
 /// The default head (MakeHuman hm08 head and neck, CC0; see data/SOURCES.md), embedded so the

@@ -14,7 +14,7 @@
 //! (v up, as in the default head), pixel (x, y) of a w × h map has its centre at
 //! u = (x + 0.5) / w, v = 1 − (y + 0.5) / h. [`ThicknessMap::sample_uv`] takes such UVs.
 
-use crate::error::{RenderError, Result};
+use crate::error::{ModelError, Result};
 use rouge_measure::preset::{Preset, write_atomic};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -78,7 +78,7 @@ pub fn builtin_preset(name: &str) -> Option<Preset> {
 /// `base_dir` (the look file's folder) unless absolute. The error keeps the preset's own
 /// message (file, line, field).
 pub fn load_preset_ref(preset_ref: &str, base_dir: &Path) -> Result<Preset> {
-    resolve_preset(preset_ref, base_dir).map_err(RenderError::Invalid)
+    resolve_preset(preset_ref, base_dir).map_err(ModelError::Invalid)
 }
 
 fn resolve_preset(preset_ref: &str, base_dir: &Path) -> std::result::Result<Preset, String> {
@@ -191,7 +191,7 @@ impl ThicknessMap {
         use exr::prelude::{AnyChannel, AnyChannels, FlatSamples, Image, SmallVec, WritableImage};
         let n = self.width as usize * self.height as usize;
         if n == 0 || self.mm.len() != n {
-            return Err(RenderError::file(
+            return Err(ModelError::file(
                 path,
                 format!("cannot write a {}×{} map holding {} values", self.width, self.height, self.mm.len()),
             ));
@@ -200,8 +200,8 @@ impl ThicknessMap {
             AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new("Y", FlatSamples::F32(self.mm.clone()))]));
         let image = Image::from_channels((self.width as usize, self.height as usize), channels);
         let mut bytes = std::io::Cursor::new(Vec::new());
-        image.write().to_buffered(&mut bytes).map_err(|e| RenderError::file(path, format!("OpenEXR: {e}")))?;
-        write_atomic(path, bytes.get_ref()).map_err(|e| RenderError::file(path, e))
+        image.write().to_buffered(&mut bytes).map_err(|e| ModelError::file(path, format!("OpenEXR: {e}")))?;
+        write_atomic(path, bytes.get_ref()).map_err(|e| ModelError::file(path, e))
     }
 }
 
@@ -510,7 +510,7 @@ impl ThicknessSource {
     /// Resolves the source into a thickness map, reading mask and map files relative to
     /// `base_dir` (the look file's folder). Checks every pixel.
     pub fn load_map(&self, base_dir: &Path) -> Result<ThicknessMap> {
-        self.resolve(base_dir).map_err(RenderError::Invalid)
+        self.resolve(base_dir).map_err(ModelError::Invalid)
     }
 
     fn resolve(&self, base_dir: &Path) -> std::result::Result<ThicknessMap, String> {
@@ -690,14 +690,14 @@ impl Look {
 
     /// Reads a look file; presets, masks and maps are resolved relative to its folder.
     pub fn load(path: &Path) -> Result<Look> {
-        let text = std::fs::read_to_string(path).map_err(|e| RenderError::file(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| ModelError::file(path, e))?;
         Look::from_json(&text, path)
     }
 
     /// Parses and resolves look JSON. `path` names the document in messages, and its folder is
     /// where relative presets, masks and maps are looked up.
     pub fn from_json(text: &str, path: &Path) -> Result<Look> {
-        let err = |m: String| RenderError::file(path, m);
+        let err = |m: String| ModelError::file(path, m);
         let value: serde_json::Value = serde_json::from_str(text).map_err(|e| err(e.to_string()))?;
         let Some(obj) = value.as_object() else {
             return Err(err(format!("a look is a JSON object with \"schema\": {SCHEMA:?}")));
@@ -775,7 +775,7 @@ impl Look {
     /// Writes the look atomically (temporary file, then rename). Relative references are written
     /// as they are, so they must hold from the new file's folder too.
     pub fn save(&self, path: &Path) -> Result<()> {
-        write_atomic(path, self.to_json().as_bytes()).map_err(|e| RenderError::file(path, e))
+        write_atomic(path, self.to_json().as_bytes()).map_err(|e| ModelError::file(path, e))
     }
 
     /// The layers to draw, bottom to top.

@@ -17,7 +17,7 @@
 //! `look.json` refers to: until the new `look.json` replaces the old one (an atomic rename) the
 //! previous project is intact, and a map that did not change is not written again.
 
-use crate::error::{RenderError, Result};
+use crate::error::{ModelError, Result};
 use crate::look::{BUILTIN_PREFIX, Look, LookLayer, MAX_THICKNESS_MM, ThicknessMap, ThicknessSource, builtin_preset};
 use rouge_measure::preset::{Preset, PresetError, write_atomic};
 use std::collections::{HashSet, VecDeque};
@@ -38,8 +38,7 @@ pub const MAPS_DIR: &str = "maps";
 /// The folder of a project's presets (those not built in).
 pub const PRESETS_DIR: &str = "presets";
 
-/// A rectangle of texels `(x0, y0, x1, y1)`, half-open: x0 ≤ x < x1, y0 ≤ y < y1.
-pub type TexelRect = (u32, u32, u32, u32);
+pub use crate::rect::TexelRect;
 
 const MAP_TEXELS: usize = MAP_SIZE as usize * MAP_SIZE as usize;
 /// Rough cost of one layer in a layer-list snapshot (name, preset spectra and tables), bytes.
@@ -357,14 +356,11 @@ impl Document {
     pub fn note_dirty(&mut self, rect: TexelRect) {
         let Some(stroke) = self.stroke.as_mut() else { return };
         let (w, h) = (stroke.start.width, stroke.start.height);
-        let (x0, y0, x1, y1) = (rect.0.min(w), rect.1.min(h), rect.2.min(w), rect.3.min(h));
-        if x0 >= x1 || y0 >= y1 {
+        let rect = rect.clamped(w, h);
+        if rect.is_empty() {
             return;
         }
-        stroke.rect = Some(match stroke.rect {
-            None => (x0, y0, x1, y1),
-            Some(r) => (r.0.min(x0), r.1.min(y0), r.2.max(x1), r.3.max(y1)),
-        });
+        stroke.rect = Some(stroke.rect.map_or(rect, |r| r.union(rect)));
     }
 
     /// Ends the open stroke: one undo step holding the changed texels' bounding box before and
@@ -388,7 +384,7 @@ impl Document {
             self.push(Edit::Layers { before, after });
             return Change::Layers;
         }
-        let search = stroke.rect.unwrap_or((0, 0, old.width, old.height));
+        let search = stroke.rect.unwrap_or(TexelRect::whole(old.width, old.height));
         let Some(rect) = changed_bounds(old, new, search) else {
             // Nothing changed: give the layer its old map back, so that history steps sharing
             // it do not keep a second copy alive.
@@ -588,13 +584,13 @@ impl Document {
             let max_mm = map.max_mm();
             let png_name = format!("{stem}.png");
             let png = dir.join(&png_name);
-            write_atomic(&png, &encode_png16(&map, max_mm, &png)?).map_err(|e| RenderError::file(&png, e))?;
+            write_atomic(&png, &encode_png16(&map, max_mm, &png)?).map_err(|e| ModelError::file(&png, e))?;
             written.push(png);
 
             let sidecar = dir.join(format!("{stem}.thickness.json"));
             let json = serde_json::json!({ "map": png_name, "scale_mm": max_mm });
-            let text = serde_json::to_string_pretty(&json).map_err(|e| RenderError::file(&sidecar, e))? + "\n";
-            write_atomic(&sidecar, text.as_bytes()).map_err(|e| RenderError::file(&sidecar, e))?;
+            let text = serde_json::to_string_pretty(&json).map_err(|e| ModelError::file(&sidecar, e))? + "\n";
+            write_atomic(&sidecar, text.as_bytes()).map_err(|e| ModelError::file(&sidecar, e))?;
             written.push(sidecar);
         }
         Ok(written)
@@ -605,10 +601,10 @@ impl Document {
         let layer = self
             .layers
             .get(i)
-            .ok_or_else(|| RenderError::Invalid(format!("no layer {i}: the document has {}", self.layers.len())))?;
+            .ok_or_else(|| ModelError::Invalid(format!("no layer {i}: the document has {}", self.layers.len())))?;
         layer.preset.save(path).map_err(|e| match e {
-            PresetError::Io { source, .. } => RenderError::file(path, source),
-            other => RenderError::Invalid(other.to_string()),
+            PresetError::Io { source, .. } => ModelError::file(path, source),
+            other => ModelError::Invalid(other.to_string()),
         })
     }
 
@@ -635,7 +631,7 @@ impl Document {
         match std::fs::remove_file(&look) {
             Ok(()) => {}
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-            Err(e) => return Err(RenderError::file(&look, e)),
+            Err(e) => return Err(ModelError::file(&look, e)),
         }
         remove_unreferenced(dir, &HashSet::new())?;
         for sub in [MAPS_DIR, PRESETS_DIR] {
@@ -653,7 +649,7 @@ impl Document {
 /// (same size), or `None`.
 fn changed_bounds(old: &ThicknessMap, new: &ThicknessMap, search: TexelRect) -> Option<TexelRect> {
     let w = old.width as usize;
-    let (x0, y0, x1, y1) = (search.0 as usize, search.1 as usize, search.2 as usize, search.3 as usize);
+    let (x0, y0, x1, y1) = (search.x0 as usize, search.y0 as usize, search.x1 as usize, search.y1 as usize);
     let mut bounds: Option<(usize, usize, usize, usize)> = None;
     for y in y0..y1 {
         let (Some(a), Some(b)) = (old.mm.get(y * w + x0..y * w + x1), new.mm.get(y * w + x0..y * w + x1)) else {
@@ -669,15 +665,15 @@ fn changed_bounds(old: &ThicknessMap, new: &ThicknessMap, search: TexelRect) -> 
         });
     }
     // The bounds lie inside `search`, which holds u32s.
-    bounds.map(|(a, b, c, d)| (a as u32, b as u32, c as u32, d as u32))
+    bounds.map(|(x0, y0, x1, y1)| TexelRect { x0: x0 as u32, y0: y0 as u32, x1: x1 as u32, y1: y1 as u32 })
 }
 
 /// The texels of `rect`, row by row.
 fn read_rect(map: &ThicknessMap, rect: TexelRect) -> Vec<f32> {
     let w = map.width as usize;
-    let (x0, x1) = (rect.0 as usize, rect.2 as usize);
-    let mut out = Vec::with_capacity(x1.saturating_sub(x0) * rect.3.saturating_sub(rect.1) as usize);
-    for y in rect.1 as usize..rect.3 as usize {
+    let (x0, x1) = (rect.x0 as usize, rect.x1 as usize);
+    let mut out = Vec::with_capacity(rect.area());
+    for y in rect.y0 as usize..rect.y1 as usize {
         if let Some(row) = map.mm.get(y * w + x0..y * w + x1) {
             out.extend_from_slice(row);
         }
@@ -688,12 +684,12 @@ fn read_rect(map: &ThicknessMap, rect: TexelRect) -> Vec<f32> {
 /// Writes `values` (row by row, as [`read_rect`] gives them) into `rect`.
 fn write_rect(map: &mut ThicknessMap, rect: TexelRect, values: &[f32]) {
     let w = map.width as usize;
-    let (x0, x1) = (rect.0 as usize, rect.2 as usize);
+    let (x0, x1) = (rect.x0 as usize, rect.x1 as usize);
     if x1 <= x0 {
         return;
     }
     let rows = values.chunks_exact(x1 - x0);
-    for (y, row) in (rect.1 as usize..rect.3 as usize).zip(rows) {
+    for (y, row) in (rect.y0 as usize..rect.y1 as usize).zip(rows) {
         if let Some(dst) = map.mm.get_mut(y * w + x0..y * w + x1) {
             dst.copy_from_slice(row);
         }
@@ -813,14 +809,14 @@ fn base_dir(dir: &Path) -> &Path {
 }
 
 fn create_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| RenderError::file(dir, format!("cannot create the folder: {e}")))
+    std::fs::create_dir_all(dir).map_err(|e| ModelError::file(dir, format!("cannot create the folder: {e}")))
 }
 
 /// Checks that every layer can be written as a look that [`Look::load`] reads back: maps of
 /// [`MAP_SIZE`]², painted values and values × multiplier finite, ≥ 0 and ≤ 10 mm.
 fn check_layers(doc: &Document, look_path: &Path) -> Result<()> {
     for (i, l) in doc.layers.iter().enumerate() {
-        let at = |m: String| RenderError::file(look_path, format!("layer {i} ({:?}): {m}", l.name));
+        let at = |m: String| ModelError::file(look_path, format!("layer {i} ({:?}): {m}", l.name));
         let map = &*l.map;
         if (map.width, map.height, map.mm.len()) != (MAP_SIZE, MAP_SIZE, MAP_TEXELS) {
             return Err(at(format!(
@@ -877,7 +873,7 @@ fn write_project(doc: &Document, dir: &Path) -> Result<()> {
             create_dir(&presets_dir)?;
             let path = presets_dir.join(file);
             if !path.is_file() {
-                write_atomic(&path, json.as_bytes()).map_err(|e| RenderError::file(&path, e))?;
+                write_atomic(&path, json.as_bytes()).map_err(|e| ModelError::file(&path, e))?;
             }
             keep.insert(PathBuf::from(PRESETS_DIR).join(file));
         }
@@ -904,7 +900,7 @@ fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result<()> {
                 continue;
             }
             if let Err(e) = std::fs::remove_file(entry.path()) {
-                first_error.get_or_insert_with(|| RenderError::file(&entry.path(), format!("cannot delete: {e}")));
+                first_error.get_or_insert_with(|| ModelError::file(&entry.path(), format!("cannot delete: {e}")));
             }
         }
     }
@@ -917,9 +913,9 @@ fn encode_png16(map: &ThicknessMap, max_mm: f32, path: &Path) -> Result<Vec<u8>>
     let data: Vec<u16> = map.mm.iter().map(|&v| (f64::from(v) * scale).round().clamp(0.0, 65535.0) as u16).collect();
     let image =
         image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(map.width, map.height, data).ok_or_else(|| {
-            RenderError::file(path, format!("a {}×{} map has the wrong number of values", map.width, map.height))
+            ModelError::file(path, format!("a {}×{} map has the wrong number of values", map.width, map.height))
         })?;
     let mut bytes = std::io::Cursor::new(Vec::new());
-    image.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| RenderError::file(path, format!("PNG: {e}")))?;
+    image.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| ModelError::file(path, format!("PNG: {e}")))?;
     Ok(bytes.into_inner())
 }

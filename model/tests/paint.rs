@@ -6,10 +6,10 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
-use rouge_render::TriangleMesh;
-use rouge_render::job::load_mesh;
-use rouge_render::look::ThicknessMap;
-use rouge_render::paint::{Brush, BrushMode, DirtyRect, StrokeSpacer, SurfaceMap, apply_dab, apply_dab_split, stroke};
+use rouge_model::TriangleMesh;
+use rouge_model::look::ThicknessMap;
+use rouge_model::mesh::load_mesh;
+use rouge_model::paint::{Brush, BrushMode, StrokeSpacer, SurfaceMap, TexelRect, apply_dab, apply_dab_split, stroke};
 
 const SIZE: u32 = 1024;
 
@@ -59,7 +59,7 @@ fn changed(before: &ThicknessMap, after: &ThicknessMap) -> Vec<(u32, u32)> {
     (0..before.mm.len()).filter(|&i| before.mm[i] != after.mm[i]).map(|i| ((i % w) as u32, (i / w) as u32)).collect()
 }
 
-fn contains(rect: DirtyRect, x: u32, y: u32) -> bool {
+fn contains(rect: TexelRect, x: u32, y: u32) -> bool {
     x >= rect.x0 && x < rect.x1 && y >= rect.y0 && y < rect.y1
 }
 
@@ -506,15 +506,14 @@ fn brush_weight_follows_the_documented_curve() {
 
 #[test]
 fn dirty_rects_union_and_measure() {
-    let a = DirtyRect { x0: 2, y0: 3, x1: 5, y1: 7 };
-    let b = DirtyRect { x0: 4, y0: 1, x1: 9, y1: 4 };
+    let a = TexelRect { x0: 2, y0: 3, x1: 5, y1: 7 };
+    let b = TexelRect { x0: 4, y0: 1, x1: 9, y1: 4 };
     assert_eq!(a.area(), 12);
-    assert_eq!(a.union(b), DirtyRect { x0: 2, y0: 1, x1: 9, y1: 7 });
-    assert!(DirtyRect::EMPTY.is_empty());
-    assert_eq!(DirtyRect::EMPTY.area(), 0);
-    assert_eq!(DirtyRect::EMPTY.union(a), a);
-    assert_eq!(a.union(DirtyRect { x0: 50, y0: 50, x1: 50, y1: 60 }), a);
-    assert_eq!(<(u32, u32, u32, u32)>::from(a), (2, 3, 5, 7));
+    assert_eq!(a.union(b), TexelRect { x0: 2, y0: 1, x1: 9, y1: 7 });
+    assert!(TexelRect::EMPTY.is_empty());
+    assert_eq!(TexelRect::EMPTY.area(), 0);
+    assert_eq!(TexelRect::EMPTY.union(a), a);
+    assert_eq!(a.union(TexelRect { x0: 50, y0: 50, x1: 50, y1: 60 }), a);
 }
 
 #[test]

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use exr::prelude::{AnyChannel, AnyChannels, FlatSamples, Image, SmallVec, WritableImage, f16};
 use glam::Vec3;
-use rouge_render::load_obj;
-use rouge_render::look::{
+use rouge_model::load_obj;
+use rouge_model::look::{
     Look, LookLayer, Region, SCHEMA, ThicknessMap, ThicknessSource, VERSION, builtin_preset, builtin_preset_names,
 };
 
@@ -171,7 +171,7 @@ fn relative_paths_resolve_against_the_look_file() {
 }
 
 /// The default head's corner UVs at the vertex nearest to `p` (mm).
-fn head_uvs_near(mesh: &rouge_render::Mesh, p: Vec3) -> Vec<glam::Vec2> {
+fn head_uvs_near(mesh: &rouge_model::Mesh, p: Vec3) -> Vec<glam::Vec2> {
     let (best, d) = mesh
         .positions
         .iter()

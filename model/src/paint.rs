@@ -18,7 +18,7 @@
 //! Pixel convention as in [`crate::look`]: row 0 is the top of the image; pixel (x, y) has its
 //! centre at u = (x + 0.5) / w, v = 1 − (y + 0.5) / h (OBJ UVs, v up).
 //!
-//! Wiring into the app: each dab returns the [`DirtyRect`] of texels it changed; hand it to
+//! Wiring into the app: each dab returns the [`TexelRect`] of texels it changed; hand it to
 //! `Renderer::update_thickness(layer, &map, multiplier, rect.into())`, which re-uploads only
 //! that rectangle (wgpu's `Queue::write_texture` needs no row alignment). With the mirror on,
 //! [`apply_dab_split`] gives one rectangle per side: the two sides lie far apart in UV, and
@@ -31,6 +31,7 @@ use glam::{Vec2, Vec3};
 
 use crate::look::{MAX_THICKNESS_MM, ThicknessMap};
 use crate::mesh::{Bounds, TriangleMesh};
+pub use crate::rect::TexelRect;
 
 /// Edge of a [`SurfaceMap`] grid cell, mm: a 10 mm brush visits about 11³ cells.
 const GRID_CELL_MM: f32 = 2.0;
@@ -593,71 +594,6 @@ impl Brush {
 }
 
 // ------------------------------------------------------------------------------------------
-// Dirty rectangles
-
-/// A rectangle of texels, half-open: x0..x1 × y0..y1 (row 0 at the top).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DirtyRect {
-    /// First column.
-    pub x0: u32,
-    /// First row.
-    pub y0: u32,
-    /// One past the last column.
-    pub x1: u32,
-    /// One past the last row.
-    pub y1: u32,
-}
-
-impl DirtyRect {
-    /// The empty rectangle.
-    pub const EMPTY: DirtyRect = DirtyRect { x0: 0, y0: 0, x1: 0, y1: 0 };
-
-    /// The smallest rectangle holding both (an empty one adds nothing).
-    pub fn union(self, other: DirtyRect) -> DirtyRect {
-        if self.is_empty() {
-            return other;
-        }
-        if other.is_empty() {
-            return self;
-        }
-        DirtyRect {
-            x0: self.x0.min(other.x0),
-            y0: self.y0.min(other.y0),
-            x1: self.x1.max(other.x1),
-            y1: self.y1.max(other.y1),
-        }
-    }
-
-    /// Whether it holds no texel.
-    pub fn is_empty(&self) -> bool {
-        self.x1 <= self.x0 || self.y1 <= self.y0
-    }
-
-    /// Number of texels it holds.
-    pub fn area(&self) -> usize {
-        if self.is_empty() { 0 } else { (self.x1 - self.x0) as usize * (self.y1 - self.y0) as usize }
-    }
-
-    /// Grows the rectangle to hold texel (x, y).
-    fn include(&mut self, x: u32, y: u32) {
-        *self = self.union(DirtyRect { x0: x, y0: y, x1: x + 1, y1: y + 1 });
-    }
-}
-
-impl Default for DirtyRect {
-    fn default() -> Self {
-        DirtyRect::EMPTY
-    }
-}
-
-/// `(x0, y0, x1, y1)`, the form `Renderer::update_thickness` takes.
-impl From<DirtyRect> for (u32, u32, u32, u32) {
-    fn from(r: DirtyRect) -> Self {
-        (r.x0, r.y0, r.x1, r.y1)
-    }
-}
-
-// ------------------------------------------------------------------------------------------
 // Dabs and strokes
 
 /// One dab at surface point `centre` (plus its mirror image when `brush.mirror`).
@@ -674,14 +610,14 @@ impl From<DirtyRect> for (u32, u32, u32, u32) {
 ///
 /// With the mirror on, the two sides usually lie far apart in UV, so this rectangle spans much
 /// texture that did not change; [`apply_dab_split`] gives one rectangle per side.
-pub fn apply_dab(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> DirtyRect {
+pub fn apply_dab(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> TexelRect {
     let [a, b] = apply_dab_split(map, surface, brush, centre);
     a.union(b)
 }
 
 /// [`apply_dab`], returning the rectangles of changed texels nearer `centre` and nearer its
 /// mirror image (empty without the mirror), for uploading the two sides separately.
-pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> [DirtyRect; 2] {
+pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> [TexelRect; 2] {
     let n = surface.width as usize * surface.height as usize;
     if (map.width, map.height) != (surface.width, surface.height)
         || map.mm.len() != n
@@ -689,7 +625,7 @@ pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Bru
         || !centre.is_finite()
         || brush.validate().is_err()
     {
-        return [DirtyRect::EMPTY; 2];
+        return [TexelRect::EMPTY; 2];
     }
     let r = brush.radius_mm;
     let r2 = r * r;
@@ -738,7 +674,7 @@ pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Bru
     }
 
     let mean = [0, 1].map(|k| if count[k] > 0 { (sum[k] / count[k] as f64) as f32 } else { 0.0 });
-    let mut dirty = [DirtyRect::EMPTY; 2];
+    let mut dirty = [TexelRect::EMPTY; 2];
     let width = surface.width as usize;
     for (s, w, k) in hits {
         let i = surface.texels[s as usize] as usize;
@@ -845,10 +781,10 @@ impl StrokeSpacer {
 
 /// Dabs along the polyline `points` (surface points) with a [`StrokeSpacer`]: start, a move to
 /// each further point, finish. Returns the union of the dabs' rectangles.
-pub fn stroke(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, points: &[Vec3]) -> DirtyRect {
-    let Some((&first, rest)) = points.split_first() else { return DirtyRect::EMPTY };
+pub fn stroke(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, points: &[Vec3]) -> TexelRect {
+    let Some((&first, rest)) = points.split_first() else { return TexelRect::EMPTY };
     let mut spacer = StrokeSpacer::new(brush);
-    let mut dirty = DirtyRect::EMPTY;
+    let mut dirty = TexelRect::EMPTY;
     let mut dab = |centres: Vec<Vec3>, map: &mut ThicknessMap| {
         for c in centres {
             dirty = dirty.union(apply_dab(map, surface, brush, c));

@@ -1,0 +1,24 @@
+//! Rouge's model: everything a makeup session edits, with no GPU and no UI, so that the
+//! renderer (`rouge-render`) only uploads what it is given and the editor logic is testable
+//! without a window or a device.
+//!
+//! - [`mesh`]: OBJ/glTF loading with a unit scale, Catmull-Clark, triangulation, MikkTSpace, the
+//!   embedded default head.
+//! - [`look`]: the look document (cosmetic layers bottom to top, each a preset and a thickness).
+//! - [`document`]: the painting document: layers with 2048² thickness maps, undo/redo, projects,
+//!   exports, recovery.
+//! - [`paint`]: the brush: the surface map, dabs, strokes.
+//! - [`rect`]: the one texel-rectangle type.
+
+pub mod document;
+pub mod error;
+pub mod look;
+pub mod mesh;
+pub mod paint;
+pub mod rect;
+
+pub use error::{ModelError, Result};
+pub use mesh::{
+    Bounds, Corner, Face, Group, Mesh, MeshError, TriangleGroup, TriangleMesh, load_gltf, load_mesh, load_obj,
+};
+pub use rect::TexelRect;

@@ -1,0 +1,24 @@
+//! Loading a mesh by its file's extension, ready to paint and render.
+
+use std::path::Path;
+
+use super::{TriangleMesh, default_head, load_gltf, load_obj};
+use crate::error::{ModelError, Result};
+
+/// Loads a mesh by extension (or the default head for `None`), subdivides it `subdivision`
+/// times (Catmull-Clark) and triangulates it.
+///
+/// # Errors
+/// The loader's error naming the file; an unknown extension.
+pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result<TriangleMesh> {
+    let mesh = match path {
+        None => default_head()?,
+        Some(p) => match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("obj") => load_obj(p, scale_mm)?,
+            Some("gltf" | "glb") => load_gltf(p, scale_mm)?,
+            _ => return Err(ModelError::file(p, "unknown mesh format: use .obj, .gltf or .glb")),
+        },
+    };
+    let mesh = if subdivision > 0 { mesh.catmull_clark(subdivision) } else { mesh };
+    Ok(mesh.triangulate())
+}
