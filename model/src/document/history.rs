@@ -1,0 +1,257 @@
+//! Strokes, undo and redo of the [`Document`]: the open stroke, the history of edits with
+//! its memory budget, and the rectangles a stroke step stores.
+
+use super::*;
+
+impl Document {
+    // --------------------------------------------------------------------------------------
+    // Strokes
+
+    /// Opens a stroke on layer `layer` (ending any open stroke) and returns its map to paint;
+    /// `None` if there is no such layer. The map as it was is kept (shared, no copy) until
+    /// [`Document::end_stroke`]; the returned map is the document's own copy.
+    pub fn begin_stroke(&mut self, layer: usize) -> Option<&mut ThicknessMap> {
+        self.finish_stroke();
+        let start = Arc::clone(&self.layers.get(layer)?.map);
+        self.stroke = Some(OpenStroke { layer, start, rect: None });
+        self.layers.get_mut(layer).map(|l| Arc::make_mut(&mut l.map))
+    }
+
+    /// The map being painted: `Some` only while a stroke is open on `layer`.
+    pub fn stroke_map(&mut self, layer: usize) -> Option<&mut ThicknessMap> {
+        if self.stroke.as_ref().is_none_or(|s| s.layer != layer) {
+            return None;
+        }
+        self.layers.get_mut(layer).map(|l| Arc::make_mut(&mut l.map))
+    }
+
+    /// Reports texels the painter changed during the open stroke (half-open, clamped to the
+    /// map); the document keeps the union. Ignored when no stroke is open.
+    pub fn note_dirty(&mut self, rect: TexelRect) {
+        let Some(stroke) = self.stroke.as_mut() else { return };
+        let (w, h) = (stroke.start.width, stroke.start.height);
+        let rect = rect.clamped(w, h);
+        if rect.is_empty() {
+            return;
+        }
+        stroke.rect = Some(stroke.rect.map_or(rect, |r| r.union(rect)));
+    }
+
+    /// Ends the open stroke: one undo step holding the changed texels' bounding box before and
+    /// after, and `Change::Map` naming it; `Change::Nothing` if no texel changed (or no stroke
+    /// was open). Without any [`Document::note_dirty`] the whole map is compared.
+    pub fn end_stroke(&mut self) -> Change {
+        self.finish_stroke()
+    }
+
+    pub(super) fn finish_stroke(&mut self) -> Change {
+        let Some(stroke) = self.stroke.take() else { return Change::Nothing };
+        let Some(layer) = self.layers.get(stroke.layer) else { return Change::Nothing };
+        let (old, new) = (&*stroke.start, &*layer.map);
+        if (old.width, old.height, old.mm.len()) != (new.width, new.height, new.mm.len()) {
+            // The painter replaced the map by one of another size: record the whole layer list.
+            let mut before = self.layers.clone();
+            if let Some(l) = before.get_mut(stroke.layer) {
+                l.map = stroke.start;
+            }
+            let after = self.layers.clone();
+            self.push(Edit::Layers { before, after });
+            return Change::Layers;
+        }
+        let search = stroke.rect.unwrap_or(TexelRect::whole(old.width, old.height));
+        let Some(rect) = changed_bounds(old, new, search) else {
+            // Nothing changed: give the layer its old map back, so that history steps sharing
+            // it do not keep a second copy alive.
+            if let Some(l) = self.layers.get_mut(stroke.layer) {
+                l.map = stroke.start;
+            }
+            return Change::Nothing;
+        };
+        let (before, after) = (read_rect(old, rect), read_rect(new, rect));
+        self.push(Edit::Stroke { layer: stroke.layer, rect, before, after });
+        Change::Map { layer: stroke.layer, rect }
+    }
+
+    // --------------------------------------------------------------------------------------
+    // Undo / redo
+
+    /// Whether there is a step to undo (an open stroke counts: undo ends and undoes it).
+    pub fn can_undo(&self) -> bool {
+        !self.history.undo.is_empty() || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+    }
+
+    /// Whether there is a step to redo.
+    pub fn can_redo(&self) -> bool {
+        !self.history.redo.is_empty()
+    }
+
+    /// Undoes the last step (ending an open stroke first); maps come back bit for bit.
+    pub fn undo(&mut self) -> Change {
+        self.finish_stroke();
+        let Some(entry) = self.history.undo.pop_back() else { return Change::Nothing };
+        let change = self.apply(&entry.edit, false);
+        self.history.redo.push(entry);
+        change
+    }
+
+    /// Redoes the last undone step.
+    pub fn redo(&mut self) -> Change {
+        self.finish_stroke();
+        let Some(entry) = self.history.redo.pop() else { return Change::Nothing };
+        let change = self.apply(&entry.edit, true);
+        self.history.undo.push_back(entry);
+        change
+    }
+
+    pub(super) fn apply(&mut self, edit: &Edit, forward: bool) -> Change {
+        match edit {
+            Edit::Layers { before, after } => {
+                self.layers = if forward { after.clone() } else { before.clone() };
+                Change::Layers
+            }
+            Edit::Stroke { layer, rect, before, after } => {
+                let Some(l) = self.layers.get_mut(*layer) else { return Change::Nothing };
+                write_rect(Arc::make_mut(&mut l.map), *rect, if forward { after } else { before });
+                Change::Map { layer: *layer, rect: *rect }
+            }
+        }
+    }
+
+    /// Records a new step: clears the redo steps and drops the oldest steps past the budget.
+    pub(super) fn push(&mut self, edit: Edit) {
+        let h = &mut self.history;
+        h.redo.clear();
+        h.undo.push_back(Entry { id: h.next_id, edit });
+        h.next_id += 1;
+        self.trim_history();
+    }
+
+    /// Bytes each undo step keeps alive, oldest first. A map no longer in the document is
+    /// counted once, with the newest step holding it (dropping older steps does not free it).
+    pub(super) fn step_costs(&self) -> Vec<usize> {
+        let live: HashSet<*const ThicknessMap> = self.layers.iter().map(|l| Arc::as_ptr(&l.map)).collect();
+        let mut seen = HashSet::new();
+        let mut costs: Vec<usize> = self
+            .history
+            .undo
+            .iter()
+            .rev()
+            .map(|e| match &e.edit {
+                Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
+                Edit::Layers { before, after } => before
+                    .iter()
+                    .chain(after)
+                    .map(|l| {
+                        let p = Arc::as_ptr(&l.map);
+                        let map = if !live.contains(&p) && seen.insert(p) {
+                            l.map.mm.len() * std::mem::size_of::<f32>()
+                        } else {
+                            0
+                        };
+                        LAYER_SNAPSHOT_BYTES + map
+                    })
+                    .sum(),
+            })
+            .collect();
+        costs.reverse();
+        costs
+    }
+
+    pub(super) fn trim_history(&mut self) {
+        let costs = self.step_costs();
+        let mut total: usize = costs.iter().sum();
+        let mut drop = 0;
+        // The newest step always stays.
+        while total > self.history.budget_bytes && drop + 1 < costs.len() {
+            total -= costs[drop];
+            drop += 1;
+        }
+        for _ in 0..drop {
+            if let Some(e) = self.history.undo.pop_front() {
+                self.history.base_id = e.id;
+            }
+        }
+    }
+
+    /// Memory the undo and redo steps keep alive beyond the document itself, bytes (estimated
+    /// for names and presets; maps and stroke rectangles exactly).
+    pub fn history_bytes(&self) -> usize {
+        let redo: usize = self
+            .history
+            .redo
+            .iter()
+            .map(|e| match &e.edit {
+                Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
+                Edit::Layers { before, after } => (before.len() + after.len()) * LAYER_SNAPSHOT_BYTES,
+            })
+            .sum();
+        self.step_costs().iter().sum::<usize>() + redo
+    }
+
+    /// Sets the history's memory budget (default [`HISTORY_BUDGET_BYTES`]); the oldest steps
+    /// past it are dropped now and as new steps come (the newest step always stays).
+    pub fn set_history_budget(&mut self, bytes: usize) {
+        self.history.budget_bytes = bytes;
+        self.trim_history();
+    }
+
+    /// Whether the document differs from the last save or open (a stroke in progress that
+    /// reported a dirty rect counts).
+    pub fn is_modified(&self) -> bool {
+        self.history.saved_id != Some(self.history.state_id()) || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Rectangles
+
+/// The bounding box of the texels inside `search` whose bits differ between `old` and `new`
+/// (same size), or `None`.
+pub(super) fn changed_bounds(old: &ThicknessMap, new: &ThicknessMap, search: TexelRect) -> Option<TexelRect> {
+    let w = old.width as usize;
+    let (x0, y0, x1, y1) = (search.x0 as usize, search.y0 as usize, search.x1 as usize, search.y1 as usize);
+    let mut bounds: Option<(usize, usize, usize, usize)> = None;
+    for y in y0..y1 {
+        let (Some(a), Some(b)) = (old.mm.get(y * w + x0..y * w + x1), new.mm.get(y * w + x0..y * w + x1)) else {
+            continue;
+        };
+        let differs = |(p, q): (&f32, &f32)| p.to_bits() != q.to_bits();
+        let Some(first) = a.iter().zip(b).position(differs) else { continue };
+        let last = a.iter().zip(b).rposition(differs).unwrap_or(first);
+        let (lo, hi) = (x0 + first, x0 + last + 1);
+        bounds = Some(match bounds {
+            None => (lo, y, hi, y + 1),
+            Some((bx0, by0, bx1, _)) => (bx0.min(lo), by0, bx1.max(hi), y + 1),
+        });
+    }
+    // The bounds lie inside `search`, which holds u32s.
+    bounds.map(|(x0, y0, x1, y1)| TexelRect { x0: x0 as u32, y0: y0 as u32, x1: x1 as u32, y1: y1 as u32 })
+}
+
+/// The texels of `rect`, row by row.
+pub(super) fn read_rect(map: &ThicknessMap, rect: TexelRect) -> Vec<f32> {
+    let w = map.width as usize;
+    let (x0, x1) = (rect.x0 as usize, rect.x1 as usize);
+    let mut out = Vec::with_capacity(rect.area());
+    for y in rect.y0 as usize..rect.y1 as usize {
+        if let Some(row) = map.mm.get(y * w + x0..y * w + x1) {
+            out.extend_from_slice(row);
+        }
+    }
+    out
+}
+
+/// Writes `values` (row by row, as [`read_rect`] gives them) into `rect`.
+pub(super) fn write_rect(map: &mut ThicknessMap, rect: TexelRect, values: &[f32]) {
+    let w = map.width as usize;
+    let (x0, x1) = (rect.x0 as usize, rect.x1 as usize);
+    if x1 <= x0 {
+        return;
+    }
+    let rows = values.chunks_exact(x1 - x0);
+    for (y, row) in (rect.y0 as usize..rect.y1 as usize).zip(rows) {
+        if let Some(dst) = map.mm.get_mut(y * w + x0..y * w + x1) {
+            dst.copy_from_slice(row);
+        }
+    }
+}

@@ -1,0 +1,337 @@
+//! The painting app's document: cosmetic layers, each a preset and a painted thickness map of
+//! [`MAP_SIZE`]² texels, with undo/redo, project folders, exports, autosave and crash recovery.
+//! No GUI and no GPU here: the app draws [`Document::layers`] and re-uploads what each edit's
+//! [`Change`] names.
+//!
+//! **History.** Every layer edit is one undo step that stores the whole layer list before and
+//! after; the maps are shared ([`Arc`]), so such a step costs a few kilobytes until a map it holds
+//! is painted over (painting copies the map, the step keeps the old one). A brush stroke, from
+//! [`Document::begin_stroke`] to [`Document::end_stroke`], is one step that stores only the
+//! changed rectangle, before and after. The history has a memory budget
+//! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
+//!
+//! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
+//! `maps/` (one OpenEXR map per layer, raw painted millimetres) and `presets/` (the presets that
+//! are not built in). docs/FORMATS.md ("Project folders") describes them. Map and preset file
+//! names carry a hash of their contents, so a save never overwrites a file the previous
+//! `look.json` refers to: until the new `look.json` replaces the old one (an atomic rename) the
+//! previous project is intact, and a map that did not change is not written again.
+
+mod history;
+mod project;
+
+use project::{layer_files, look_layer};
+
+use crate::error::{ModelError, Result};
+use crate::look::{BUILTIN_PREFIX, Look, LookLayer, MAX_THICKNESS_MM, ThicknessMap, ThicknessSource, builtin_preset};
+use rouge_measure::preset::{Preset, PresetError, write_atomic};
+use std::collections::{HashSet, VecDeque};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Width and height of every painted thickness map, texels.
+pub const MAP_SIZE: u32 = 2048;
+/// Largest thickness multiplier of a layer.
+pub const MAX_MULTIPLIER: f32 = 10.0;
+/// Default memory budget of the undo history, bytes (1 GiB).
+pub const HISTORY_BUDGET_BYTES: usize = 1 << 30;
+/// The look document of a project folder.
+pub const LOOK_FILE: &str = "look.json";
+/// The folder of a project's thickness maps.
+pub const MAPS_DIR: &str = "maps";
+/// The folder of a project's presets (those not built in).
+pub const PRESETS_DIR: &str = "presets";
+
+pub use crate::rect::TexelRect;
+
+const MAP_TEXELS: usize = MAP_SIZE as usize * MAP_SIZE as usize;
+/// Rough cost of one layer in a layer-list snapshot (name, preset spectra and tables), bytes.
+const LAYER_SNAPSHOT_BYTES: usize = 16 << 10;
+
+// ------------------------------------------------------------------------------------------
+// Layers
+
+/// One cosmetic layer of the document.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PaintLayer {
+    /// Display name.
+    pub name: String,
+    /// Where the preset came from: `builtin:<name>` or a path.
+    pub preset_ref: String,
+    /// The material.
+    pub preset: Preset,
+    /// The painted thickness, mm, [`MAP_SIZE`] × [`MAP_SIZE`] (before the multiplier).
+    pub map: Arc<ThicknessMap>,
+    /// Whether the layer is drawn.
+    pub visible: bool,
+    /// Global thickness multiplier, 0..=[`MAX_MULTIPLIER`]: the layer is `map × multiplier` thick.
+    pub multiplier: f32,
+}
+
+impl PaintLayer {
+    /// The thickness the layer renders with: the painted map × the multiplier, mm.
+    pub fn effective_map(&self) -> ThicknessMap {
+        if self.multiplier == 1.0 { (*self.map).clone() } else { self.map.scaled(self.multiplier) }
+    }
+}
+
+/// A [`MAP_SIZE`]² map of zeros (calloc'd: pages are touched only when painted).
+fn empty_map() -> ThicknessMap {
+    ThicknessMap { width: MAP_SIZE, height: MAP_SIZE, mm: vec![0.0; MAP_TEXELS] }
+}
+
+/// `map` at [`MAP_SIZE`]²: as it is if it has that size, filled if it is one texel, else
+/// resampled bilinearly ([`ThicknessMap::resized`]).
+fn at_map_size(map: &ThicknessMap) -> ThicknessMap {
+    if map.width == 1 && map.height == 1 {
+        let v = map.mm.first().copied().unwrap_or(0.0);
+        return ThicknessMap { width: MAP_SIZE, height: MAP_SIZE, mm: vec![v; MAP_TEXELS] };
+    }
+    map.resized(MAP_SIZE, MAP_SIZE)
+}
+
+// ------------------------------------------------------------------------------------------
+// Changes and history
+
+/// What an edit changed, so the app re-uploads no more than it must.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Change {
+    /// The layer list, order, presets, names, visibility or multipliers changed (or a map's
+    /// size): re-upload all layers.
+    Layers,
+    /// Only `rect` of the map of layer `layer` changed.
+    Map {
+        /// Index into [`Document::layers`].
+        layer: usize,
+        /// The changed texels.
+        rect: TexelRect,
+    },
+    /// Nothing changed (and no undo step was recorded).
+    Nothing,
+}
+
+/// One undo step.
+enum Edit {
+    /// A layer edit: the whole list before and after (maps shared).
+    Layers { before: Vec<PaintLayer>, after: Vec<PaintLayer> },
+    /// A stroke: the changed rectangle of one map, row by row, before and after.
+    Stroke { layer: usize, rect: TexelRect, before: Vec<f32>, after: Vec<f32> },
+}
+
+struct Entry {
+    /// Identifies the document state after this step (for the saved marker).
+    id: u64,
+    edit: Edit,
+}
+
+struct History {
+    undo: VecDeque<Entry>,
+    redo: Vec<Entry>,
+    next_id: u64,
+    /// The id of the state with nothing left to undo (changes as the oldest steps are dropped).
+    base_id: u64,
+    /// The state last saved or opened; `None` if that state is no longer reachable.
+    saved_id: Option<u64>,
+    budget_bytes: usize,
+}
+
+impl History {
+    fn new() -> Self {
+        History {
+            undo: VecDeque::new(),
+            redo: Vec::new(),
+            next_id: 1,
+            base_id: 0,
+            saved_id: Some(0),
+            budget_bytes: HISTORY_BUDGET_BYTES,
+        }
+    }
+
+    fn state_id(&self) -> u64 {
+        self.undo.back().map_or(self.base_id, |e| e.id)
+    }
+}
+
+/// The open stroke: the map as it was when the stroke began and the union of the dirty rects.
+struct OpenStroke {
+    layer: usize,
+    start: Arc<ThicknessMap>,
+    rect: Option<TexelRect>,
+}
+
+// ------------------------------------------------------------------------------------------
+// The document
+
+/// The painting app's document. Edit the layers through the methods, which record undo steps;
+/// changing [`Document::layers`] directly bypasses the history.
+pub struct Document {
+    /// Display name.
+    pub name: String,
+    /// Layers, bottom (on the skin) to top.
+    pub layers: Vec<PaintLayer>,
+    history: History,
+    stroke: Option<OpenStroke>,
+}
+
+impl fmt::Debug for Document {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<&str> = self.layers.iter().map(|l| l.name.as_str()).collect();
+        f.debug_struct("Document")
+            .field("name", &self.name)
+            .field("layers", &names)
+            .field("undo_steps", &self.history.undo.len())
+            .field("redo_steps", &self.history.redo.len())
+            .field("stroke_open", &self.stroke.is_some())
+            .field("modified", &self.is_modified())
+            .finish()
+    }
+}
+
+impl Document {
+    /// A document holding `look`'s layers, each map at [`MAP_SIZE`]² (uniform layers filled,
+    /// regions, masks and maps resampled bilinearly with their thickness folded in), multiplier 1.
+    /// Unmodified, with an empty history.
+    pub fn from_look(look: &Look) -> Document {
+        let layers = look
+            .layers
+            .iter()
+            .map(|l| PaintLayer {
+                name: l.name.clone(),
+                preset_ref: l.preset_ref.clone(),
+                preset: l.preset.clone(),
+                map: Arc::new(at_map_size(&l.map)),
+                visible: l.visible,
+                multiplier: 1.0,
+            })
+            .collect();
+        Document { name: look.name.clone(), layers, history: History::new(), stroke: None }
+    }
+
+    /// A new project: the default look ([`Look::default_look`]), named "Untitled".
+    pub fn default_project() -> Document {
+        let mut doc = Document::from_look(&Look::default_look());
+        doc.name = "Untitled".into();
+        doc
+    }
+
+    /// The document as the look its project's `look.json` holds: each layer's thickness is
+    /// `{"map": "maps/NN-<slug>-<hash>.exr"}` with `"scale_mm"` = the multiplier (left out when
+    /// 1), presets that are not built in refer to `presets/NN-<slug>-<hash>.json`, and each
+    /// layer's `map` is what that thickness resolves to: the effective map (painted × multiplier),
+    /// so the look renders like the document and equals what [`Look::load`] reads back.
+    pub fn to_look(&self) -> Look {
+        let layers =
+            self.layers.iter().enumerate().map(|(i, l)| look_layer(l, &layer_files(i, l), l.effective_map())).collect();
+        Look { name: self.name.clone(), layers }
+    }
+
+    // --------------------------------------------------------------------------------------
+    // Layer edits
+
+    /// Adds a layer on top with an empty map, named after the preset, visible, multiplier 1.
+    pub fn add_layer(&mut self, preset_ref: &str, preset: Preset) -> Change {
+        let layer = PaintLayer {
+            name: preset.name.clone(),
+            preset_ref: preset_ref.to_string(),
+            preset,
+            map: Arc::new(empty_map()),
+            visible: true,
+            multiplier: 1.0,
+        };
+        self.edit_layers(|layers| {
+            layers.push(layer);
+            true
+        })
+    }
+
+    /// Removes layer `i`.
+    pub fn remove_layer(&mut self, i: usize) -> Change {
+        self.edit_layers(|layers| {
+            if i >= layers.len() {
+                return false;
+            }
+            layers.remove(i);
+            true
+        })
+    }
+
+    /// Moves layer `from` so that it ends up at index `to` (both must be layers; 0 is the bottom).
+    pub fn move_layer(&mut self, from: usize, to: usize) -> Change {
+        self.edit_layers(|layers| {
+            if from >= layers.len() || to >= layers.len() || from == to {
+                return false;
+            }
+            let layer = layers.remove(from);
+            layers.insert(to, layer);
+            true
+        })
+    }
+
+    /// Renames layer `i`. An empty or blank name, or the same name, changes nothing.
+    pub fn rename_layer(&mut self, i: usize, name: &str) -> Change {
+        self.edit_layers(|layers| match layers.get_mut(i) {
+            Some(l) if !name.trim().is_empty() && l.name != name => {
+                l.name = name.to_string();
+                true
+            }
+            _ => false,
+        })
+    }
+
+    /// Shows or hides layer `i`.
+    pub fn set_visible(&mut self, i: usize, v: bool) -> Change {
+        self.edit_layers(|layers| match layers.get_mut(i) {
+            Some(l) if l.visible != v => {
+                l.visible = v;
+                true
+            }
+            _ => false,
+        })
+    }
+
+    /// Sets layer `i`'s thickness multiplier, clamped to 0..=[`MAX_MULTIPLIER`]; a non-finite
+    /// `m` changes nothing. Each call is one undo step: call it when a slider drag ends.
+    pub fn set_multiplier(&mut self, i: usize, m: f32) -> Change {
+        if !m.is_finite() {
+            return Change::Nothing;
+        }
+        let m = m.clamp(0.0, MAX_MULTIPLIER);
+        self.edit_layers(|layers| match layers.get_mut(i) {
+            Some(l) if l.multiplier != m => {
+                l.multiplier = m;
+                true
+            }
+            _ => false,
+        })
+    }
+
+    /// Gives layer `i` another preset. A layer still named after its old preset takes the new
+    /// preset's name; a renamed layer keeps its name.
+    pub fn set_preset(&mut self, i: usize, preset_ref: &str, preset: Preset) -> Change {
+        self.edit_layers(|layers| match layers.get_mut(i) {
+            Some(l) if l.preset_ref != preset_ref || l.preset != preset => {
+                if l.name == l.preset.name {
+                    l.name = preset.name.clone();
+                }
+                l.preset_ref = preset_ref.to_string();
+                l.preset = preset;
+                true
+            }
+            _ => false,
+        })
+    }
+
+    /// Runs a layer edit as one undo step. `edit` returns whether it changed anything, and
+    /// must leave the list as it was when it returns false.
+    fn edit_layers(&mut self, edit: impl FnOnce(&mut Vec<PaintLayer>) -> bool) -> Change {
+        self.finish_stroke();
+        let before = self.layers.clone();
+        if !edit(&mut self.layers) {
+            return Change::Nothing;
+        }
+        let after = self.layers.clone();
+        self.push(Edit::Layers { before, after });
+        Change::Layers
+    }
+}

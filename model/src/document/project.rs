@@ -1,0 +1,344 @@
+//! Project folders, exports and recovery of the [`Document`] (docs/FORMATS.md, "Project
+//! folders"): content-hashed file names, atomic writes, stale files removed after `look.json`.
+
+use super::*;
+
+impl Document {
+    // --------------------------------------------------------------------------------------
+    // Projects
+
+    /// Saves the project into the folder `dir` (created if missing), ending an open stroke
+    /// first: the maps, then the presets, then `look.json`, each atomically (temporary file,
+    /// then rename). Files are named by their contents, so nothing the previous `look.json`
+    /// refers to is overwritten, and unchanged maps are not written again; map and preset files
+    /// that the new `look.json` does not refer to are deleted after it is written. On error
+    /// (naming the file) the previous project is left as it was. Marks the document unmodified.
+    pub fn save_project(&mut self, dir: &Path) -> Result<()> {
+        self.finish_stroke();
+        write_project(self, dir)?;
+        self.history.saved_id = Some(self.history.state_id());
+        Ok(())
+    }
+
+    /// Opens a project folder: `dir/look.json` by [`Look::load`], then [`Document::from_look`],
+    /// with the painted maps read back unscaled (bit for bit) and each layer's multiplier from
+    /// its `scale_mm`. Errors name the file at fault.
+    pub fn open_project(dir: &Path) -> Result<Document> {
+        let look_path = dir.join(LOOK_FILE);
+        let look = Look::load(&look_path)?;
+        let mut doc = Document::from_look(&look);
+        for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
+            let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
+            // The look holds map × scale_mm, and dividing by it again is not exact: read the
+            // painted values themselves. (A PNG map cannot be read without its scale: it stays
+            // as the look resolved it, with multiplier 1.)
+            let unscaled = ThicknessSource::Map { path: path.clone(), scale_mm: None };
+            if let Ok(raw) = unscaled.load_map(base_dir(dir)) {
+                layer.map = Arc::new(at_map_size(&raw));
+                layer.multiplier = *scale;
+            }
+        }
+        Ok(doc)
+    }
+
+    // --------------------------------------------------------------------------------------
+    // Exports
+
+    /// Writes each layer's effective thickness (painted × multiplier) into `dir` (created if
+    /// missing), named `NN-<slug>`: `.exr` (single channel `Y`, mm, exact), `.png` (16-bit grey,
+    /// value / max · 65535) and `.thickness.json`, the look thickness that reads the PNG back,
+    /// `{"map": "NN-<slug>.png", "scale_mm": max}`. Atomic writes; returns the files written.
+    pub fn export_maps(&self, dir: &Path) -> Result<Vec<PathBuf>> {
+        create_dir(dir)?;
+        let mut written = Vec::with_capacity(self.layers.len() * 3);
+        for (i, layer) in self.layers.iter().enumerate() {
+            let stem = format!("{i:02}-{}", slug(&layer.name));
+            let map = layer.effective_map();
+            let exr = dir.join(format!("{stem}.exr"));
+            map.save_exr(&exr)?;
+            written.push(exr);
+
+            let max_mm = map.max_mm();
+            let png_name = format!("{stem}.png");
+            let png = dir.join(&png_name);
+            write_atomic(&png, &encode_png16(&map, max_mm, &png)?).map_err(|e| ModelError::file(&png, e))?;
+            written.push(png);
+
+            let sidecar = dir.join(format!("{stem}.thickness.json"));
+            let json = serde_json::json!({ "map": png_name, "scale_mm": max_mm });
+            let text = serde_json::to_string_pretty(&json).map_err(|e| ModelError::file(&sidecar, e))? + "\n";
+            write_atomic(&sidecar, text.as_bytes()).map_err(|e| ModelError::file(&sidecar, e))?;
+            written.push(sidecar);
+        }
+        Ok(written)
+    }
+
+    /// Writes layer `i`'s preset as a preset file (`rouge-preset` JSON), atomically.
+    pub fn export_preset(&self, i: usize, path: &Path) -> Result<()> {
+        let layer = self
+            .layers
+            .get(i)
+            .ok_or_else(|| ModelError::Invalid(format!("no layer {i}: the document has {}", self.layers.len())))?;
+        layer.preset.save(path).map_err(|e| match e {
+            PresetError::Io { source, .. } => ModelError::file(path, source),
+            other => ModelError::Invalid(other.to_string()),
+        })
+    }
+
+    // --------------------------------------------------------------------------------------
+    // Autosave and recovery
+
+    /// Saves the document into the recovery folder `dir` as [`Document::save_project`] does,
+    /// but leaves an open stroke open and the document's modified state as it is.
+    pub fn autosave(&mut self, dir: &Path) -> Result<()> {
+        write_project(self, dir)
+    }
+
+    /// Whether `dir` holds an autosave that was not cleared (open it with
+    /// [`Document::open_project`]).
+    pub fn recovery_available(dir: &Path) -> bool {
+        dir.join(LOOK_FILE).is_file()
+    }
+
+    /// Deletes the autosave in `dir`: `look.json` first (so that a partial clear is no longer
+    /// offered for recovery), then the project's map and preset files, then their folders if
+    /// empty. Nothing to delete is not an error.
+    pub fn clear_recovery(dir: &Path) -> Result<()> {
+        let look = dir.join(LOOK_FILE);
+        match std::fs::remove_file(&look) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(ModelError::file(&look, e)),
+        }
+        remove_unreferenced(dir, &HashSet::new())?;
+        for sub in [MAPS_DIR, PRESETS_DIR] {
+            // Only if empty: files that are not Rouge's stay, and so does their folder.
+            let _ = std::fs::remove_dir(dir.join(sub));
+        }
+        Ok(())
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Project files
+
+/// A file name part from a display name: lower-case ASCII letters and digits, runs of anything
+/// else as one `-`, at most 40 characters; `layer` if nothing is left.
+pub(super) fn slug(name: &str) -> String {
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.is_empty() && !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    s.truncate(40);
+    let s = s.trim_end_matches('-');
+    if s.is_empty() { "layer".into() } else { s.into() }
+}
+
+/// 64-bit hash of a map's size and values (bit patterns): names its file in a project.
+/// Multiply-rotate mixing with a SplitMix64 finaliser; not cryptographic, only to tell maps apart.
+pub(super) fn map_hash(map: &ThicknessMap) -> u64 {
+    let mut h = 0x9E37_79B9_7F4A_7C15u64 ^ (u64::from(map.width) << 32 | u64::from(map.height));
+    for v in &map.mm {
+        h = (h.rotate_left(23) ^ u64::from(v.to_bits())).wrapping_mul(0xD6E8_FEB8_6659_FD93);
+    }
+    splitmix64(h ^ map.mm.len() as u64)
+}
+
+pub(super) fn bytes_hash(bytes: &[u8]) -> u64 {
+    let mut h = 0x9E37_79B9_7F4A_7C15u64;
+    for &b in bytes {
+        h = (h.rotate_left(23) ^ u64::from(b)).wrapping_mul(0xD6E8_FEB8_6659_FD93);
+    }
+    splitmix64(h ^ bytes.len() as u64)
+}
+
+pub(super) fn splitmix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+pub(super) const HASH_DIGITS: usize = 16;
+
+/// `NN-<slug>-<hash>.<ext>`.
+pub(super) fn hashed_name(i: usize, name: &str, hash: u64, ext: &str) -> String {
+    format!("{i:02}-{}-{hash:016x}.{ext}", slug(name))
+}
+
+/// Whether `file` is named as [`hashed_name`] names files with extension `ext`.
+pub(super) fn is_hashed_name(file: &str, ext: &str) -> bool {
+    let Some(stem) = file.strip_suffix(ext).and_then(|s| s.strip_suffix('.')) else { return false };
+    let stem = stem.as_bytes();
+    let Some(split) = stem.len().checked_sub(HASH_DIGITS + 1) else { return false };
+    let (head, hash) = stem.split_at(split);
+    head.first().is_some_and(u8::is_ascii_digit)
+        && hash.first() == Some(&b'-')
+        && hash.iter().skip(1).all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(b))
+}
+
+/// Where a layer's preset goes in a project.
+pub(super) enum PresetFile {
+    /// A built-in preset, unchanged: referred to as `builtin:<name>`.
+    Builtin(String),
+    /// Written to `presets/<file>`.
+    File { file: String, json: String },
+}
+
+pub(super) fn preset_file(i: usize, layer: &PaintLayer) -> PresetFile {
+    if let Some(name) = layer.preset_ref.strip_prefix(BUILTIN_PREFIX)
+        && builtin_preset(name).as_ref() == Some(&layer.preset)
+    {
+        return PresetFile::Builtin(layer.preset_ref.clone());
+    }
+    let json = layer.preset.to_json();
+    PresetFile::File { file: hashed_name(i, &layer.preset.name, bytes_hash(json.as_bytes()), "json"), json }
+}
+
+/// The files a layer has in a project: its map (in `maps/`) and its preset.
+pub(super) struct LayerFiles {
+    map: String,
+    preset: PresetFile,
+}
+
+pub(super) fn layer_files(i: usize, layer: &PaintLayer) -> LayerFiles {
+    LayerFiles { map: hashed_name(i, &layer.name, map_hash(&layer.map), "exr"), preset: preset_file(i, layer) }
+}
+
+/// A layer as its project's `look.json` has it, with `map` as its map.
+pub(super) fn look_layer(layer: &PaintLayer, files: &LayerFiles, map: ThicknessMap) -> LookLayer {
+    let preset_ref = match &files.preset {
+        PresetFile::Builtin(r) => r.clone(),
+        PresetFile::File { file, .. } => format!("{PRESETS_DIR}/{file}"),
+    };
+    LookLayer {
+        name: layer.name.clone(),
+        preset_ref,
+        preset: layer.preset.clone(),
+        thickness: ThicknessSource::Map {
+            path: PathBuf::from(format!("{MAPS_DIR}/{}", files.map)),
+            scale_mm: (layer.multiplier != 1.0).then_some(layer.multiplier),
+        },
+        map,
+        visible: layer.visible,
+    }
+}
+
+pub(super) fn base_dir(dir: &Path) -> &Path {
+    if dir.as_os_str().is_empty() { Path::new(".") } else { dir }
+}
+
+pub(super) fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| ModelError::file(dir, format!("cannot create the folder: {e}")))
+}
+
+/// Checks that every layer can be written as a look that [`Look::load`] reads back: maps of
+/// [`MAP_SIZE`]², painted values and values × multiplier finite, ≥ 0 and ≤ 10 mm.
+pub(super) fn check_layers(doc: &Document, look_path: &Path) -> Result<()> {
+    for (i, l) in doc.layers.iter().enumerate() {
+        let at = |m: String| ModelError::file(look_path, format!("layer {i} ({:?}): {m}", l.name));
+        let map = &*l.map;
+        if (map.width, map.height, map.mm.len()) != (MAP_SIZE, MAP_SIZE, MAP_TEXELS) {
+            return Err(at(format!(
+                "the map is {}×{} with {} values, not {MAP_SIZE}×{MAP_SIZE}",
+                map.width,
+                map.height,
+                map.mm.len()
+            )));
+        }
+        if !(l.multiplier.is_finite() && (0.0..=MAX_MULTIPLIER).contains(&l.multiplier)) {
+            return Err(at(format!("multiplier {} is not in 0..={MAX_MULTIPLIER}", l.multiplier)));
+        }
+        let ok = |v: f32| v.is_finite() && (0.0..=MAX_THICKNESS_MM).contains(&v);
+        if let Some(k) = map.mm.iter().position(|&v| !ok(v)) {
+            let (x, y) = (k % MAP_SIZE as usize, k / MAP_SIZE as usize);
+            return Err(at(format!(
+                "texel ({x}, {y}) is {} mm: thickness must be finite, ≥ 0 and ≤ {MAX_THICKNESS_MM} mm",
+                map.mm[k]
+            )));
+        }
+        // Rounding is monotonic, so the largest product is the product of the largest value.
+        let max = map.max_mm() * l.multiplier;
+        if !ok(max) {
+            return Err(at(format!(
+                "the thickness × multiplier {} reaches {max} mm, more than the {MAX_THICKNESS_MM} mm a look allows",
+                l.multiplier
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Writes `doc` as a project into `dir`: maps, presets, `look.json`, then deletes files of
+/// earlier saves that it no longer refers to.
+pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
+    let look_path = dir.join(LOOK_FILE);
+    check_layers(doc, &look_path)?;
+    create_dir(dir)?;
+    let maps_dir = dir.join(MAPS_DIR);
+    create_dir(&maps_dir)?;
+    let files: Vec<LayerFiles> = doc.layers.iter().enumerate().map(|(i, l)| layer_files(i, l)).collect();
+    let mut keep = HashSet::new();
+    for (layer, files) in doc.layers.iter().zip(&files) {
+        let path = maps_dir.join(&files.map);
+        // Named by content: an existing file already holds these values.
+        if !path.is_file() {
+            layer.map.save_exr(&path)?;
+        }
+        keep.insert(PathBuf::from(MAPS_DIR).join(&files.map));
+    }
+    for files in &files {
+        if let PresetFile::File { file, json } = &files.preset {
+            let presets_dir = dir.join(PRESETS_DIR);
+            create_dir(&presets_dir)?;
+            let path = presets_dir.join(file);
+            if !path.is_file() {
+                write_atomic(&path, json.as_bytes()).map_err(|e| ModelError::file(&path, e))?;
+            }
+            keep.insert(PathBuf::from(PRESETS_DIR).join(file));
+        }
+    }
+    // `look.json` needs only the references; the maps themselves are in the files.
+    let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
+    let look = Look { name: doc.name.clone(), layers };
+    look.save(&look_path)?;
+    // The project is saved; a file that cannot be deleted now is deleted by a later save.
+    let _ = remove_unreferenced(dir, &keep);
+    Ok(())
+}
+
+/// Deletes the map and preset files of the project in `dir` (named as Rouge names them) that
+/// are not in `keep` (paths relative to `dir`). Returns the first error, after trying all.
+pub(super) fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result<()> {
+    let mut first_error = None;
+    for (sub, ext) in [(MAPS_DIR, "exr"), (PRESETS_DIR, "json")] {
+        let Ok(entries) = std::fs::read_dir(dir.join(sub)) else { continue };
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let rel = PathBuf::from(sub).join(&name);
+            if !is_hashed_name(&name, ext) || keep.contains(&rel) || !entry.path().is_file() {
+                continue;
+            }
+            if let Err(e) = std::fs::remove_file(entry.path()) {
+                first_error.get_or_insert_with(|| ModelError::file(&entry.path(), format!("cannot delete: {e}")));
+            }
+        }
+    }
+    first_error.map_or(Ok(()), Err)
+}
+
+/// `map` as a 16-bit grey PNG: round(value / max_mm · 65535), all 0 when `max_mm` is 0.
+pub(super) fn encode_png16(map: &ThicknessMap, max_mm: f32, path: &Path) -> Result<Vec<u8>> {
+    let scale = if max_mm > 0.0 { 65535.0 / f64::from(max_mm) } else { 0.0 };
+    let data: Vec<u16> = map.mm.iter().map(|&v| (f64::from(v) * scale).round().clamp(0.0, 65535.0) as u16).collect();
+    let image =
+        image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(map.width, map.height, data).ok_or_else(|| {
+            ModelError::file(path, format!("a {}×{} map has the wrong number of values", map.width, map.height))
+        })?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| ModelError::file(path, format!("PNG: {e}")))?;
+    Ok(bytes.into_inner())
+}
