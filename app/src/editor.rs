@@ -1,0 +1,208 @@
+//! The painting app's editor core: the document, the active layer, the brush and the stroke in
+//! progress, with no egui, eframe or wgpu, so that every edit, stroke and undo step can be tested
+//! without a window or a device. The GUI turns input into calls here and uploads what each
+//! returned [`Change`] names; this never calls the GUI.
+
+use glam::Vec3;
+use rouge_measure::preset::Preset;
+use rouge_model::TexelRect;
+use rouge_model::document::{Change, Document};
+use rouge_model::paint::{Brush, StrokeSpacer, SurfaceMap, apply_dab_split};
+use std::sync::Arc;
+
+/// Why a dab was refused.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum StrokeError {
+    /// The active layer is hidden, so painting it would be invisible.
+    #[error("the active layer is hidden: show it to paint")]
+    HiddenLayer,
+}
+
+/// Document, active layer, brush and the stroke in progress.
+#[derive(Debug)]
+pub struct Editor {
+    doc: Document,
+    /// The brush strokes use.
+    pub brush: Brush,
+    active: usize,
+    surface: Option<Arc<SurfaceMap>>,
+    spacer: Option<StrokeSpacer>,
+    stroke_dabs: Vec<Vec3>,
+}
+
+impl Editor {
+    /// An editor on `doc` with its top layer active and the default brush; no surface yet.
+    pub fn new(doc: Document) -> Editor {
+        let active = doc.layers.len().saturating_sub(1);
+        Editor { doc, brush: Brush::default(), active, surface: None, spacer: None, stroke_dabs: Vec::new() }
+    }
+
+    /// The document.
+    pub fn document(&self) -> &Document {
+        &self.doc
+    }
+
+    /// The document, for saving and autosaving (which end an open stroke). Layer edits go
+    /// through [`Editor::edit`] so that the active layer stays valid.
+    pub fn document_mut(&mut self) -> &mut Document {
+        &mut self.doc
+    }
+
+    /// Replaces the document (new, opened or recovered project); its top layer becomes active.
+    pub fn replace_document(&mut self, doc: Document) -> Change {
+        self.spacer = None;
+        self.stroke_dabs.clear();
+        self.active = doc.layers.len().saturating_sub(1);
+        self.doc = doc;
+        Change::Layers
+    }
+
+    /// The layer strokes go to.
+    pub fn active(&self) -> usize {
+        self.active
+    }
+
+    /// Selects the layer strokes go to (clamped to the layers there are).
+    pub fn set_active_layer(&mut self, i: usize) {
+        self.active = i.min(self.doc.layers.len().saturating_sub(1));
+    }
+
+    /// The surface map of the mesh being painted, once prepared.
+    pub fn surface(&self) -> Option<&Arc<SurfaceMap>> {
+        self.surface.as_ref()
+    }
+
+    /// Sets the surface map of a newly prepared mesh (ending any stroke).
+    pub fn set_surface(&mut self, surface: Option<Arc<SurfaceMap>>) {
+        self.spacer = None;
+        self.surface = surface;
+    }
+
+    /// Where layer `layer` is among the layers the renderer draws (the visible ones), or `None`
+    /// for a hidden or missing layer.
+    pub fn render_index(&self, layer: usize) -> Option<usize> {
+        let l = self.doc.layers.get(layer)?;
+        l.visible.then(|| self.doc.layers[..layer].iter().filter(|l| l.visible).count())
+    }
+
+    /// Applies a layer edit (one undo step, recorded by the document) and keeps the active
+    /// layer valid.
+    pub fn edit(&mut self, edit: impl FnOnce(&mut Document) -> Change) -> Change {
+        let change = edit(&mut self.doc);
+        self.set_active_layer(self.active);
+        change
+    }
+
+    /// Adds a layer of `preset` on top and makes it active.
+    pub fn add_layer(&mut self, preset_ref: &str, preset: Preset) -> Change {
+        let change = self.doc.add_layer(preset_ref, preset);
+        self.active = self.doc.layers.len().saturating_sub(1);
+        change
+    }
+
+    /// Sets layer `i`'s whole map to zero thickness, as one undo step.
+    pub fn clear_layer(&mut self, i: usize) -> Change {
+        if let Some(map) = self.doc.begin_stroke(i) {
+            map.mm.fill(0.0);
+            let rect = TexelRect::whole(map.width, map.height);
+            self.doc.note_dirty(rect);
+        }
+        self.doc.end_stroke()
+    }
+
+    /// Undoes the last stroke or layer edit.
+    pub fn undo(&mut self) -> Change {
+        let change = self.doc.undo();
+        self.set_active_layer(self.active);
+        change
+    }
+
+    /// Redoes the last undone step.
+    pub fn redo(&mut self) -> Change {
+        let change = self.doc.redo();
+        self.set_active_layer(self.active);
+        change
+    }
+
+    /// Opens a stroke on the active layer (ending any open one).
+    pub fn begin_stroke(&mut self) {
+        self.spacer = None;
+        self.stroke_dabs.clear();
+        let _ = self.doc.begin_stroke(self.active);
+    }
+
+    /// Whether a stroke has dabbed since [`Editor::begin_stroke`].
+    pub fn stroking(&self) -> bool {
+        self.spacer.is_some()
+    }
+
+    /// Moves the brush to the surface point `world`: the first point of a stroke dabs there,
+    /// later ones fill the way with evenly spaced dabs. Returns the changed rectangles, one per
+    /// side of the face (the two sides of a mirrored dab lie far apart in UV). Nothing happens
+    /// without a surface map or with an invalid brush.
+    ///
+    /// # Errors
+    /// [`StrokeError::HiddenLayer`] when the active layer is hidden.
+    pub fn stroke_to(&mut self, world: Vec3) -> Result<Vec<Change>, StrokeError> {
+        let Some(surface) = self.surface.clone() else { return Ok(Vec::new()) };
+        if self.brush.validate().is_err() {
+            return Ok(Vec::new());
+        }
+        if self.render_index(self.active).is_none() {
+            return Err(StrokeError::HiddenLayer);
+        }
+        let dabs = match &mut self.spacer {
+            Some(s) => s.move_to(world, &surface),
+            None => {
+                let mut s = StrokeSpacer::new(&self.brush);
+                let d = s.start(world);
+                self.spacer = Some(s);
+                d
+            }
+        };
+        Ok(self.dab(&dabs, &surface))
+    }
+
+    /// Ends the stroke: the spacer's last dab, then one undo step for the whole stroke. Returns
+    /// the rectangles the last dab changed, then the document's change for the step.
+    pub fn end_stroke(&mut self) -> Vec<Change> {
+        let mut changes = Vec::new();
+        if let (Some(mut spacer), Some(surface)) = (self.spacer.take(), self.surface.clone()) {
+            let last = spacer.finish(&surface);
+            if self.render_index(self.active).is_some() {
+                changes = self.dab(&last, &surface);
+            }
+        }
+        changes.push(self.doc.end_stroke());
+        changes
+    }
+
+    /// Surface points of the dabs of the last stroke.
+    pub fn last_stroke_dabs(&self) -> &[Vec3] {
+        &self.stroke_dabs
+    }
+
+    fn dab(&mut self, dabs: &[Vec3], surface: &SurfaceMap) -> Vec<Change> {
+        if dabs.is_empty() {
+            return Vec::new();
+        }
+        let layer = self.active;
+        let brush = self.brush;
+        let mut sides = [TexelRect::EMPTY; 2];
+        if let Some(map) = self.doc.stroke_map(layer) {
+            for &c in dabs {
+                let [a, b] = apply_dab_split(map, surface, &brush, c);
+                sides = [sides[0].union(a), sides[1].union(b)];
+            }
+        }
+        self.stroke_dabs.extend_from_slice(dabs);
+        sides
+            .into_iter()
+            .filter(|r| !r.is_empty())
+            .map(|rect| {
+                self.doc.note_dirty(rect);
+                Change::Map { layer, rect }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,61 @@
+//! Document → renderer: what each edit changed is uploaded (every layer, or one rectangle of
+//! one map); strokes go through the editor core ([`crate::editor::Editor`]).
+
+use super::*;
+
+impl RougeApp {
+    /// Uploads every visible layer (after a layer edit, a new document or a new mesh).
+    pub(super) fn sync_layers(&mut self) {
+        let inputs: Vec<LayerInput<'_>> = self
+            .editor
+            .document()
+            .layers
+            .iter()
+            .filter(|l| l.visible)
+            .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: l.multiplier })
+            .collect();
+        if let Err(e) = self.renderer.set_layers(&inputs) {
+            self.message = Some((false, e.to_string()));
+        }
+        self.needs_render = true;
+    }
+
+    /// Uploads what an edit changed: every layer, or one rectangle of one map.
+    pub(super) fn apply_change(&mut self, change: Change) {
+        match change {
+            Change::Nothing => {}
+            Change::Layers => self.sync_layers(),
+            Change::Map { layer, rect } => {
+                if let (Some(ri), Some(l)) = (self.editor.render_index(layer), self.editor.document().layers.get(layer))
+                    && let Err(e) = self.renderer.update_thickness(ri, &l.map, l.multiplier, rect)
+                {
+                    self.message = Some((false, e.to_string()));
+                }
+                self.needs_render = true;
+            }
+        }
+    }
+
+    pub(super) fn apply_changes(&mut self, changes: Vec<Change>) {
+        for change in changes {
+            self.apply_change(change);
+        }
+    }
+
+    /// Moves the brush of the open stroke to the surface point `world`.
+    pub(super) fn paint_at(&mut self, world: Vec3) {
+        match self.editor.stroke_to(world) {
+            Ok(changes) => self.apply_changes(changes),
+            Err(e) => self.message = Some((false, e.to_string())),
+        }
+    }
+
+    pub(super) fn begin_stroke(&mut self) {
+        self.editor.begin_stroke();
+    }
+
+    pub(super) fn end_stroke(&mut self) {
+        let changes = self.editor.end_stroke();
+        self.apply_changes(changes);
+    }
+}

@@ -1,0 +1,122 @@
+//! The menu bar (File, Edit, View) and keyboard shortcuts.
+
+use super::*;
+
+impl RougeApp {
+    pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
+        let (redo, undo, reset) = ctx.input_mut(|i| {
+            (
+                i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z),
+                i.consume_key(Modifiers::COMMAND, Key::Z),
+                i.consume_key(Modifiers::NONE, Key::F),
+            )
+        });
+        if redo {
+            self.redo();
+        } else if undo {
+            self.undo();
+        }
+        if reset {
+            self.view = View::default();
+            self.needs_render = true;
+        }
+    }
+
+    pub(super) fn menu(&mut self, ui: &mut egui::Ui) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.button("New project (default look)").clicked() {
+                    let c = self.editor.replace_document(Document::default_project());
+                    self.apply_change(c);
+                }
+                if ui.button("Open project…").clicked()
+                    && let Some(dir) = rfd::FileDialog::new().pick_folder()
+                    && let Err(e) = self.open_project_from(&dir)
+                {
+                    self.message = Some((false, format!("{e:#}")));
+                }
+                if ui.button("Save project").clicked()
+                    && let Some(dir) = self.options.project.clone().or_else(|| rfd::FileDialog::new().pick_folder())
+                {
+                    let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
+                    self.report(r);
+                }
+                if ui.button("Save project as…").clicked()
+                    && let Some(dir) = rfd::FileDialog::new().pick_folder()
+                {
+                    let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
+                    self.report(r);
+                }
+                ui.separator();
+                if ui.button("Open mesh… (.obj, .gltf, .glb)").clicked()
+                    && let Some(p) = rfd::FileDialog::new().add_filter("mesh", &["obj", "gltf", "glb"]).pick_file()
+                {
+                    let scale = if p.extension().is_some_and(|e| e == "glb" || e == "gltf") { 25.0 } else { 1.0 };
+                    self.start_mesh(Some(p), scale);
+                }
+                if ui.button("Default head").clicked() {
+                    self.start_mesh(None, 1.0);
+                }
+                ui.separator();
+                if ui.button("Export maps (EXR + 16-bit PNG)…").clicked()
+                    && let Some(dir) = rfd::FileDialog::new().pick_folder()
+                {
+                    let r = self
+                        .editor
+                        .document()
+                        .export_maps(&dir)
+                        .map(|files| format!("exported {} files to {}", files.len(), dir.display()));
+                    self.report(r.map_err(anyhow::Error::from));
+                }
+                if ui.button("Export active layer's preset…").clicked()
+                    && let Some(p) = rfd::FileDialog::new().add_filter("preset", &["json"]).save_file()
+                {
+                    let r = self
+                        .editor
+                        .document()
+                        .export_preset(self.editor.active(), &p)
+                        .map(|()| format!("wrote {}", p.display()));
+                    self.report(r.map_err(anyhow::Error::from));
+                }
+                if ui.button("Screenshot (PNG)…").clicked()
+                    && let Some(p) = rfd::FileDialog::new().add_filter("PNG", &["png"]).save_file()
+                {
+                    let size = if self.frame_size.0 > 0 { self.frame_size } else { (1280, 720) };
+                    let r = self.screenshot(&p, size).map(|()| format!("wrote {}", p.display()));
+                    self.report(r);
+                }
+            });
+            ui.menu_button("Edit", |ui| {
+                if ui.add_enabled(self.editor.document().can_undo(), egui::Button::new("Undo (Ctrl+Z)")).clicked() {
+                    self.undo();
+                }
+                if ui.add_enabled(self.editor.document().can_redo(), egui::Button::new("Redo (Ctrl+Shift+Z)")).clicked()
+                {
+                    self.redo();
+                }
+            });
+            ui.menu_button("View", |ui| {
+                if ui.button("Reset view (F)").clicked() {
+                    self.view = View::default();
+                    self.needs_render = true;
+                }
+                if ui.checkbox(&mut self.split, "Before / after split").changed() {
+                    self.needs_render = true;
+                }
+                if ui.checkbox(&mut self.environment, "Environment light").changed() {
+                    self.needs_render = true;
+                }
+            });
+            ui.separator();
+            let modified = if self.editor.document().is_modified() { " •" } else { "" };
+            ui.label(format!("{}{modified} — {}", self.editor.document().name, self.mesh_name));
+        });
+    }
+
+    pub(super) fn report(&mut self, r: Result<String>) {
+        self.message = Some(match r {
+            Ok(m) => (true, m),
+            Err(e) => (false, format!("{e:#}")),
+        });
+    }
+}

@@ -1,0 +1,120 @@
+//! The session around the document: preparing meshes on a worker thread, the recovery offer,
+//! autosave, and the window screenshot.
+
+use super::*;
+
+impl RougeApp {
+    pub(super) fn start_mesh(&mut self, path: Option<PathBuf>, scale: f32) {
+        let (tx, rx) = mpsc::channel();
+        let label = path.as_ref().map_or("default head".to_string(), |p| p.display().to_string());
+        std::thread::spawn(move || {
+            let result = (|| -> Result<(TriangleMesh, Arc<SurfaceMap>), String> {
+                let mesh =
+                    load_mesh(path.as_deref(), scale, if path.is_some() { 0 } else { 2 }).map_err(|e| e.to_string())?;
+                let size = rouge_model::document::MAP_SIZE;
+                let surface = SurfaceMap::build(&mesh, size, size);
+                Ok((mesh, Arc::new(surface)))
+            })();
+            let _ = tx.send(result);
+        });
+        self.preparing = Some((label, rx));
+    }
+
+    pub(super) fn poll_mesh(&mut self) -> bool {
+        let Some((label, rx)) = &self.preparing else { return false };
+        let result = match rx.try_recv() {
+            Ok(r) => r,
+            Err(mpsc::TryRecvError::Empty) => return false,
+            Err(mpsc::TryRecvError::Disconnected) => Err("the mesh thread stopped".into()),
+        };
+        let label = label.clone();
+        self.preparing = None;
+        match result {
+            Ok((mesh, surface)) => {
+                if let Err(e) = self.renderer.set_mesh(&mesh, self.scene.skin.albedo) {
+                    self.message = Some((false, format!("{label}: {e}")));
+                    return true;
+                }
+                self.bare = None;
+                self.mesh = Some(mesh);
+                self.editor.set_surface(Some(surface));
+                self.view = View::default();
+                self.sync_layers();
+                self.mesh_name = label;
+            }
+            Err(e) => self.message = Some((false, e)),
+        }
+        true
+    }
+
+    pub(super) fn recovery_ui(&mut self, ui: &mut egui::Ui) {
+        if !self.recovery_offer {
+            return;
+        }
+        let dir = self.options.recovery_dir();
+        egui::Modal::new(egui::Id::unique("rouge recovery offer")).show(ui.ctx(), |ui| {
+            ui.heading("Recover unsaved work?");
+            ui.label(format!("Rouge did not close cleanly last time. An autosave is in {}.", dir.display()));
+            ui.horizontal(|ui| {
+                if ui.button("Recover").clicked() {
+                    match Document::open_project(&dir) {
+                        Ok(doc) => {
+                            let c = self.editor.replace_document(doc);
+                            self.apply_change(c);
+                        }
+                        Err(e) => self.message = Some((false, e.to_string())),
+                    }
+                    self.recovery_offer = false;
+                }
+                if ui.button("Discard").clicked() {
+                    let _ = Document::clear_recovery(&dir);
+                    self.recovery_offer = false;
+                }
+            });
+        });
+    }
+
+    /// With `Options::window_screenshot`: once the face has been shown for a few frames, asks
+    /// the window for a screenshot, writes it, and closes the window.
+    pub(super) fn window_screenshot(&mut self, ctx: &egui::Context) {
+        let Some(path) = self.options.window_screenshot.clone() else { return };
+        if self.ready() && self.texture.is_some() {
+            self.frames_shown += 1;
+        }
+        ctx.request_repaint_after(Duration::from_millis(100));
+        if let Some(rx) = &self.screenshot_state {
+            if let Ok(result) = rx.try_recv() {
+                if let Err(e) = result {
+                    eprintln!("rouge: {e}");
+                }
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+            return;
+        }
+        if self.frames_shown >= 3 {
+            let (tx, rx) = mpsc::channel();
+            let repaint = ctx.clone();
+            ctx.request_screenshot(move |image| {
+                let [w, h] = image.size;
+                let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+                let r = write_png(&path, w as u32, h as u32, &bytes).map_err(|e| e.to_string());
+                let _ = tx.send(r);
+                repaint.request_repaint();
+            });
+            self.screenshot_state = Some(rx);
+        }
+    }
+
+    pub(super) fn autosave(&mut self) {
+        if !self.options.autosave
+            || self.last_autosave.elapsed() < AUTOSAVE_EVERY
+            || !self.editor.document().is_modified()
+        {
+            return;
+        }
+        self.last_autosave = Instant::now();
+        if let Err(e) = self.editor.document_mut().autosave(&self.options.recovery_dir()) {
+            self.message = Some((false, format!("autosave failed: {e}")));
+        }
+    }
+}
