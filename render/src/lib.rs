@@ -22,6 +22,7 @@ pub mod profiler;
 pub mod renderer;
 pub mod scene;
 pub mod shader;
+pub mod specular;
 pub mod sss;
 pub mod study;
 pub mod targets;

@@ -1,0 +1,60 @@
+//! The lighting shader's specular lobe against its CPU twin (`rouge_render::specular`), on a
+//! real device (lavapipe on CI): a flat skin plane under one directional light, bare look, no
+//! environment, no subsurface model, so the surface radiance is E (n·l) f_r(l, v) exactly.
+
+use glam::{DVec3, Vec2, Vec3};
+use rouge_model::look::Look;
+use rouge_model::mesh::TriangleMesh;
+use rouge_render::specular::kelemen;
+use rouge_render::{Camera, Gpu, Renderer, Scene, SubsurfaceModel};
+
+/// A 200 mm square in the z = 0 plane facing +Z.
+fn plane() -> TriangleMesh {
+    let p = [(-100.0, -100.0), (100.0, -100.0), (100.0, 100.0), (-100.0, 100.0)];
+    TriangleMesh {
+        positions: p.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
+        normals: vec![Vec3::Z; 4],
+        uvs: p.iter().map(|&(x, y)| Vec2::new(x / 200.0 + 0.5, y / 200.0 + 0.5)).collect(),
+        tangents: None,
+        indices: vec![0, 1, 2, 0, 2, 3],
+        groups: vec![],
+    }
+}
+
+#[test]
+fn the_shader_lobe_matches_its_cpu_twin() {
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let toward = Vec3::new(0.35, 0.25, 1.0).normalize();
+    let mut scene = Scene::white_light(toward);
+    scene.skin.subsurface = SubsurfaceModel::None;
+    scene.specular = true;
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&plane(), scene.skin.albedo).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    // Close and oblique, so that the view direction sweeps through the highlight.
+    let camera = Camera { target: Vec3::ZERO, distance: 260.0, yaw_deg: -20.0, pitch_deg: -10.0, fov_y_deg: 40.0 };
+    let (w, h) = (96u32, 72u32);
+    r.render(&scene, &camera, w, h, false).expect("render");
+    let cap = r.capture().expect("capture");
+    let (m, f0) = (scene.skin.roughness as f64, scene.skin.f0() as f64);
+    let l = toward.as_dvec3();
+    let e = scene.lights[0].irradiance[0] as f64 * l.z;
+    let eye = camera.position().as_dvec3();
+    let (mut checked, mut worst, mut peak) = (0, 0.0f64, 0.0f64);
+    for y in (0..h).step_by(3) {
+        for x in (0..w).step_by(3) {
+            let Some(world) = r.pick(x, y).expect("pick") else { continue };
+            let v = (eye - world.as_dvec3()).normalize();
+            let want = e * kelemen(DVec3::Z, l, v, m, f0);
+            let got = cap.surface[(y * w + x) as usize][0] as f64;
+            // f16 targets: 2⁻¹⁰ relative, plus the depth-reconstructed position.
+            let err = (got - want).abs() / want.max(1e-3);
+            worst = worst.max(err);
+            peak = peak.max(want);
+            checked += 1;
+        }
+    }
+    assert!(checked > 300, "only {checked} pixels on the plane");
+    assert!(peak > 0.05, "the highlight is not in view (peak {peak})");
+    assert!(worst < 0.02, "worst relative error {worst} over {checked} pixels");
+}
