@@ -340,11 +340,7 @@ impl Colorimeter {
     /// Never; an `xyz` of another viewing is a logic error caught in debug builds.
     pub fn lab(&self, xyz: &Xyz) -> Lab {
         debug_assert_eq!(xyz.viewing, self.viewing);
-        let f = |t: f64| {
-            if t > (24.0f64 / 116.0).powi(3) { t.cbrt() } else { 841.0 / 108.0 * t + 16.0 / 116.0 }
-        };
-        let [fx, fy, fz] = std::array::from_fn(|c| f(xyz.xyz[c] / self.white[c]));
-        Lab { lab: [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)], viewing: self.viewing }
+        Lab { lab: xyz_to_lab_raw(xyz.xyz, self.white), viewing: self.viewing }
     }
 
     /// Linear sRGB (white = 1) of `xyz`; adapted to D65 by Bradford when the illuminant is not D65.
@@ -389,6 +385,27 @@ fn xyz_many_avx2(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
 fn xyz_many_avx512(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[f64; 3]]) {
     xyz_many_loop(w, spectra, out)
+}
+
+/// CIELAB of tristimulus values `xyz` relative to the white `white` (CIE 15:2004, eq. 8.1-8.3,
+/// with the linear segment below (24/116)³).
+pub fn xyz_to_lab_raw(xyz: [f64; 3], white: [f64; 3]) -> [f64; 3] {
+    let f = |t: f64| {
+        if t > (24.0f64 / 116.0).powi(3) { t.cbrt() } else { 841.0 / 108.0 * t + 16.0 / 116.0 }
+    };
+    let [fx, fy, fz] = std::array::from_fn(|c| f(xyz[c] / white[c]));
+    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
+}
+
+/// The IEC 61966-2-1 linear sRGB → XYZ matrix (white = Y 1).
+const SRGB_TO_XYZ: [[f64; 3]; 3] = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
+
+/// CIELAB of a linear sRGB colour, against the sRGB primaries' own D65 white (linear RGB
+/// 1, 1, 1): how the renderer's outputs are compared with each other (golden images, studies),
+/// where the display's white is the reference rather than a measured illuminant.
+pub fn linear_srgb_to_lab(rgb: [f64; 3]) -> [f64; 3] {
+    let white = std::array::from_fn(|i| SRGB_TO_XYZ[i].iter().sum());
+    xyz_to_lab_raw(mat_vec(&SRGB_TO_XYZ, rgb), white)
 }
 
 /// sRGB transfer function (IEC 61966-2-1), applied as colour-science's `eotf_inverse_sRGB`:

@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::job::Prepared;
 use crate::renderer::FrameCapture;
 use crate::sss::{SkinImage, reference_blur};
-use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw};
+use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, linear_srgb_to_lab};
 use rouge_measure::layer_table::{TABLE_ENTRIES, TABLE_X0_MM, lookup, render_table};
 use rouge_measure::preset::{Preset, layer_spectra};
 use serde::Serialize;
@@ -30,17 +30,6 @@ pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
     c = c.map(|v| v * new_peak / peak);
     let g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0);
     c.map(|v| v + (new_peak - v) * g)
-}
-
-/// CIELAB (D65 white of the sRGB primaries) of a linear sRGB colour.
-pub fn linear_srgb_to_lab(rgb: [f64; 3]) -> [f64; 3] {
-    let m = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
-    let xyz: [f64; 3] = std::array::from_fn(|i| m[i][0] * rgb[0] + m[i][1] * rgb[1] + m[i][2] * rgb[2]);
-    let white: [f64; 3] = std::array::from_fn(|i| m[i][0] + m[i][1] + m[i][2]);
-    let e = (6.0f64 / 29.0).powi(3);
-    let f = |t: f64| if t > e { t.cbrt() } else { t / (3.0 * (6.0f64 / 29.0).powi(2)) + 4.0 / 29.0 };
-    let (fx, fy, fz) = (f(xyz[0] / white[0]), f(xyz[1] / white[1]), f(xyz[2] / white[2]));
-    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
 }
 
 /// Mean GPU time of each pass and the whole frame.

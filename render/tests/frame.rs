@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)] // RGB channels are indexed by number.
 
 use glam::{Vec2, Vec3};
-use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_decode};
+use rouge_measure::colorimetry::{delta_e_2000_raw, linear_srgb_to_lab, srgb_decode};
 use rouge_model::look::{Look, builtin_preset};
 use rouge_model::mesh::TriangleMesh;
 use rouge_model::mesh::load_mesh;
@@ -89,7 +89,6 @@ fn layers_of_zero_thickness_render_exactly_as_bare_skin() {
 
 #[test]
 fn thick_opaque_layer_under_white_light_shows_its_r_inf() {
-    let c = Colorimeter::get(Viewing::D65_1931);
     let mut scene = Scene::white_light(Vec3::Z);
     scene.specular = false;
     for name in
@@ -99,29 +98,16 @@ fn thick_opaque_layer_under_white_light_shows_its_r_inf() {
         let one = look(&format!(r#"{{"preset": "builtin:{name}", "thickness": {{"uniform_mm": 5}}}}"#));
         let (linear, _) = render_linear(&plane(), &one, &scene, 64, 64);
         let centre = linear[32 * 64 + 32];
-        let rendered = linear_srgb_to_lab(c, [centre[0] as f64, centre[1] as f64, centre[2] as f64]);
-        let expected = linear_srgb_to_lab(c, preset.derived.r_inf_linear_srgb);
+        let rendered = linear_srgb_to_lab([centre[0] as f64, centre[1] as f64, centre[2] as f64]);
+        let expected = linear_srgb_to_lab(preset.derived.r_inf_linear_srgb);
         let de = delta_e_2000_raw(rendered, expected);
         assert!(de < 2.0, "{name}: rendered {centre:?} vs R∞ {:?}: ΔE2000 {de:.3}", preset.derived.r_inf_linear_srgb);
         eprintln!("{name}: ΔE2000 {de:.4}");
     }
 }
 
-fn linear_srgb_to_lab(c: &Colorimeter, rgb: [f64; 3]) -> [f64; 3] {
-    // IEC 61966-2-1 matrix, D65 white Y = 100 (the colorimeter's white).
-    let m = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
-    let xyz: [f64; 3] = std::array::from_fn(|i| 100.0 * (m[i][0] * rgb[0] + m[i][1] * rgb[1] + m[i][2] * rgb[2]));
-    let _ = c;
-    // The matrix's own white (linear RGB 1, 1, 1).
-    let white: [f64; 3] = std::array::from_fn(|i| 100.0 * (m[i][0] + m[i][1] + m[i][2]));
-    let f =
-        |t: f64| if t > (6.0f64 / 29.0).powi(3) { t.cbrt() } else { t / (3.0 * (6.0f64 / 29.0).powi(2)) + 4.0 / 29.0 };
-    let (fx, fy, fz) = (f(xyz[0] / white[0]), f(xyz[1] / white[1]), f(xyz[2] / white[2]));
-    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
-}
-
-fn srgb8_to_lab(c: &Colorimeter, p: &[u8]) -> [f64; 3] {
-    linear_srgb_to_lab(c, [0, 1, 2].map(|i| srgb_decode(p[i] as f64 / 255.0)))
+fn srgb8_to_lab(p: &[u8]) -> [f64; 3] {
+    linear_srgb_to_lab([0, 1, 2].map(|i| srgb_decode(p[i] as f64 / 255.0)))
 }
 
 #[test]
@@ -264,11 +250,10 @@ fn check_golden(name: &str, rgba: &[u8], w: u32, h: u32) {
         .unwrap_or_else(|e| panic!("{}: {e} (run with UPDATE_SNAPSHOTS=1 to create it)", path.display()))
         .to_rgba8();
     assert_eq!((golden.width(), golden.height()), (w, h), "{name}: golden size");
-    let c = Colorimeter::get(Viewing::D65_1931);
     let mut de: Vec<f64> = rgba
         .chunks(4)
         .zip(golden.as_raw().chunks(4))
-        .map(|(a, b)| delta_e_2000_raw(srgb8_to_lab(c, a), srgb8_to_lab(c, b)))
+        .map(|(a, b)| delta_e_2000_raw(srgb8_to_lab(a), srgb8_to_lab(b)))
         .collect();
     de.sort_by(f64::total_cmp);
     let mean = de.iter().sum::<f64>() / de.len() as f64;
