@@ -161,7 +161,7 @@ pub(crate) fn ln1p_over_x(z: f64) -> f64 {
 
 /// Inverts Kubelka-Munk S and K (per mm) from the reflectance `r_inf` of an opaque layer, the
 /// reflectance `r` of a layer of thickness `thickness_mm` over a background, and the background's
-/// reflectance `rg` (paper 003, eq. 6-7, rewritten as derived in the module documentation).
+/// reflectance `rg` ([HuangCosmetic] eq. 6-7, rewritten as derived in the module documentation).
 ///
 /// Domain: `0 < R∞ ≤ 1`; `R, Rg ∈ [0, 1]` on the same side of `R∞` with `R` between `Rg` and
 /// `R∞` (background darker *or lighter* than the layer); `D > 0`. `R = Rg ≠ R∞` gives
@@ -227,7 +227,7 @@ fn sech(y: f64) -> f64 {
 }
 
 /// Reflectance R0 (over black) and transmittance T of a layer with scattering `s_per_mm`,
-/// absorption `k_per_mm` and thickness `thickness_mm` (paper 003, eq. 1-2, rewritten as derived in
+/// absorption `k_per_mm` and thickness `thickness_mm` ([HuangCosmetic] eq. 1-2, rewritten as derived in
 /// the module documentation).
 ///
 /// Domain: S, K finite and ≥ 0; X ≥ 0, `X = ∞` allowed (an opaque layer: `T = 0`, `R0 = R∞`).
@@ -290,7 +290,7 @@ pub fn r_inf_from_s_k(s_per_mm: f64, k_per_mm: f64) -> f64 {
     if den == 0.0 { 0.0 } else { s_per_mm / den }
 }
 
-/// Puts layer `top` over `bottom` (paper 003, eq. 3-4, corrected: see the module documentation).
+/// Puts layer `top` over `bottom` ([HuangCosmetic] eq. 3-4, corrected: see the module documentation).
 ///
 /// `top` must be a symmetric layer (a single KM layer: same R from above and below); `bottom`
 /// may be anything seen from above, including an opaque background ([`LayerRt::opaque`]).

@@ -4,8 +4,8 @@
 //! numerically stable Kubelka-Munk inversion and forward model, CIE colorimetry that matches
 //! colour-science, and material presets. No GPU, no UI.
 //!
-//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* (paper 003 in
-//! `shared/papers`), sections 3.1 and 4; every function documents its equation, the corrections
+//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* ([HuangCosmetic] in
+//! docs/REFERENCES.md), sections 3.1 and 4; every function documents its equation, the corrections
 //! made to the printed forms, and its domain.
 
 #[macro_use]

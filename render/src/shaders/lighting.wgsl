@@ -1,7 +1,7 @@
 // Lighting pass (figure 1, steps 2, 3 and 5). Per pixel:
 // - the cosmetic stack's R (from above and from below) and T, from each layer's table of R0 and
-//   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas (paper 003,
-//   eq 3-4, with T1²R2 in the numerator) in linear RGB;
+//   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas ([HuangCosmetic]
+//   eq. 3-4, with T1²R2 in the numerator) in linear RGB;
 // - the irradiance of every light (shadowed where the light casts shadows) and of the
 //   environment's spherical harmonics;
 // - the skin radiance before scattering: light that crossed the stack (× T), with the
@@ -44,7 +44,7 @@ fn beckmann(n_dot_h: f32, m: f32) -> f32 {
     return exp((c2 - 1.0) / (m2 * c2)) / (PI * m2 * c2 * c2);
 }
 
-// Kelemen/Szirmay-Kalos specular BRDF (paper 003, eq 5): P_H(H) F(H·L) / (2 (1 + L·V)),
+// Kelemen/Szirmay-Kalos specular BRDF ([HuangCosmetic] eq 5): P_H(H) F(H·L) / (2 (1 + L·V)),
 // Schlick's Fresnel from F0.
 fn kelemen(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, m: f32, f0: f32) -> f32 {
     let h_un = l + v;
