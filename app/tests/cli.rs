@@ -11,6 +11,22 @@ fn rouge(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_rouge")).args(args).current_dir(root()).output().expect("run rouge")
 }
 
+/// `rouge render` of a small frame to `out` with the Vulkan loader pointed at no driver, and
+/// `backend` as WGPU_BACKEND (or wgpu's own choice).
+fn render_without_vulkan_driver(out: &Path, (w, h): (u32, u32), backend: Option<&str>) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rouge"));
+    cmd.args(["render", "--width", &w.to_string(), "--height", &h.to_string(), "--out"])
+        .arg(out)
+        .env("VK_ICD_FILENAMES", "/nonexistent/rouge-test-icd.json")
+        .env("VK_DRIVER_FILES", "/nonexistent/rouge-test-icd.json")
+        .current_dir(root());
+    match backend {
+        Some(b) => cmd.env("WGPU_BACKEND", b),
+        None => cmd.env_remove("WGPU_BACKEND"),
+    };
+    cmd.output().expect("run rouge")
+}
+
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
@@ -300,15 +316,7 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
 fn without_a_gpu_driver_render_exits_2_with_the_package_to_install() {
     // Only Vulkan, and a Vulkan loader that finds no driver: no adapter at all.
     let out = std::env::temp_dir().join(format!("rouge-no-driver-{}.png", std::process::id()));
-    let o = Command::new(env!("CARGO_BIN_EXE_rouge"))
-        .args(["render", "--width", "64", "--height", "48", "--out"])
-        .arg(&out)
-        .env("WGPU_BACKEND", "vulkan")
-        .env("VK_ICD_FILENAMES", "/nonexistent/rouge-test-icd.json")
-        .env("VK_DRIVER_FILES", "/nonexistent/rouge-test-icd.json")
-        .current_dir(root())
-        .output()
-        .expect("run rouge");
+    let o = render_without_vulkan_driver(&out, (64, 48), Some("vulkan"));
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("apt-get install mesa-vulkan-drivers"), "{err}");
@@ -322,15 +330,7 @@ fn without_a_vulkan_driver_render_writes_the_face_through_gl() {
     // The fresh machine of the renderer-architecture issue: Mesa's OpenGL (llvmpipe through EGL)
     // but no Vulkan driver. wgpu then picks its GL backend, which must render the face.
     let out = std::env::temp_dir().join(format!("rouge-gl-only-{}.png", std::process::id()));
-    let o = Command::new(env!("CARGO_BIN_EXE_rouge"))
-        .args(["render", "--width", "160", "--height", "120", "--out"])
-        .arg(&out)
-        .env_remove("WGPU_BACKEND")
-        .env("VK_ICD_FILENAMES", "/nonexistent/rouge-test-icd.json")
-        .env("VK_DRIVER_FILES", "/nonexistent/rouge-test-icd.json")
-        .current_dir(root())
-        .output()
-        .expect("run rouge");
+    let o = render_without_vulkan_driver(&out, (160, 120), None);
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     assert!(err.contains("(Gl,"), "expected the GL backend: {err}");

@@ -1,7 +1,7 @@
 //! The editor core without a window or a GPU: strokes, undo/redo, layer edits and the
 //! rectangles the GUI uploads.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rouge_app::editor::{Editor, StrokeError};
 use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document, MAP_SIZE};
@@ -11,15 +11,7 @@ use std::sync::{Arc, OnceLock};
 
 /// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
 fn plane() -> TriangleMesh {
-    let p = [(-100.0, -100.0), (100.0, -100.0), (100.0, 100.0), (-100.0, 100.0)];
-    TriangleMesh {
-        positions: p.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
-        normals: vec![Vec3::Z; 4],
-        uvs: p.iter().map(|&(x, y)| Vec2::new(x / 200.0 + 0.5, y / 200.0 + 0.5)).collect(),
-        tangents: None,
-        indices: vec![0, 1, 2, 0, 2, 3],
-        groups: vec![],
-    }
+    TriangleMesh::flat_square(200.0)
 }
 
 fn surface() -> Arc<SurfaceMap> {

@@ -5,7 +5,7 @@
 
 #![allow(clippy::needless_range_loop)] // RGB channels are indexed by number.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rouge_measure::colorimetry::{delta_e_2000_raw, linear_srgb_to_lab, srgb_decode};
 use rouge_model::look::{Look, builtin_preset};
 use rouge_model::mesh::TriangleMesh;
@@ -58,15 +58,7 @@ fn render_linear(mesh: &TriangleMesh, look: &Look, scene: &Scene, w: u32, h: u32
 
 /// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
 fn plane() -> TriangleMesh {
-    let p = [(-100.0, -100.0), (100.0, -100.0), (100.0, 100.0), (-100.0, 100.0)];
-    TriangleMesh {
-        positions: p.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
-        normals: vec![Vec3::Z; 4],
-        uvs: p.iter().map(|&(x, y)| Vec2::new(x / 200.0 + 0.5, y / 200.0 + 0.5)).collect(),
-        tangents: None,
-        indices: vec![0, 1, 2, 0, 2, 3],
-        groups: vec![],
-    }
+    TriangleMesh::flat_square(200.0)
 }
 
 #[test]

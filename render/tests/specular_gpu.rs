@@ -2,23 +2,15 @@
 //! real device (lavapipe on CI): a flat skin plane under one directional light, bare look, no
 //! environment, no subsurface model, so the surface radiance is E (n·l) f_r(l, v) exactly.
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec3};
 use rouge_model::look::Look;
 use rouge_model::mesh::TriangleMesh;
 use rouge_render::specular::kelemen;
 use rouge_render::{Camera, Gpu, Renderer, Scene, SubsurfaceModel};
 
-/// A 200 mm square in the z = 0 plane facing +Z.
+/// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
 fn plane() -> TriangleMesh {
-    let p = [(-100.0, -100.0), (100.0, -100.0), (100.0, 100.0), (-100.0, 100.0)];
-    TriangleMesh {
-        positions: p.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect(),
-        normals: vec![Vec3::Z; 4],
-        uvs: p.iter().map(|&(x, y)| Vec2::new(x / 200.0 + 0.5, y / 200.0 + 0.5)).collect(),
-        tangents: None,
-        indices: vec![0, 1, 2, 0, 2, 3],
-        groups: vec![],
-    }
+    TriangleMesh::flat_square(200.0)
 }
 
 #[test]

@@ -285,6 +285,22 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// A flat square of side `side_mm` in the z = 0 plane, centred on the origin and facing +Z,
+    /// with UVs 0..1 (u along +X, v along +Y): a calibration target for renders of a swatch, a
+    /// specular lobe or a brush stroke on a known surface.
+    pub fn flat_square(side_mm: f32) -> TriangleMesh {
+        let h = 0.5 * side_mm;
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        TriangleMesh {
+            positions: corners.iter().map(|&(x, y)| Vec3::new(x * h, y * h, 0.0)).collect(),
+            normals: vec![Vec3::Z; 4],
+            uvs: corners.iter().map(|&(x, y)| Vec2::new(0.5 * x + 0.5, 0.5 * y + 0.5)).collect(),
+            tangents: None,
+            indices: vec![0, 1, 2, 0, 2, 3],
+            groups: vec![],
+        }
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
