@@ -72,6 +72,7 @@ impl GpuLook {
             min_layers,
             wgpu::TextureFormat::R16Float,
             wgpu::TextureUsages::TEXTURE_BINDING,
+            &[],
         );
         GpuLook {
             layers: 0,
@@ -113,6 +114,7 @@ impl GpuLook {
             count,
             wgpu::TextureFormat::R16Float,
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            &[],
         );
         let entries = rouge_measure::layer_table::TABLE_ENTRIES;
         let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 2 * entries);
@@ -210,7 +212,7 @@ impl SkinTextures {
                 return Err(RenderError::Invalid(format!("{label}: empty image")));
             }
             let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-            let t = texture(device, &format!("SkinTextures::{label}"), (w, h), 1, format, usage);
+            let t = texture(device, &format!("SkinTextures::{label}"), (w, h), 1, format, usage, &[]);
             queue.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture: &t,

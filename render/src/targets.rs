@@ -8,7 +8,7 @@
 //! `thickness_a`/`thickness_b` Rgba16Float (layers 0-3 / 4-7), depth Depth32Float.
 
 use crate::error::{RenderError, Result};
-use crate::wgpu_util::{texture, texture_with_views};
+use crate::wgpu_util::texture;
 use std::collections::HashMap;
 
 /// Format of the world normal target.
@@ -176,12 +176,11 @@ impl TargetPool {
             self.textures.entry(target).or_insert_with(|| {
                 let format = target.format(formats);
                 let label = format!("Target::{}", target.name());
-                if target == Target::Display && format == wgpu::TextureFormat::Rgba8UnormSrgb {
-                    // Also viewable as plain RGBA8, the encoded bytes as they are, for egui.
-                    texture_with_views(device, &label, size, 1, format, usage, &[wgpu::TextureFormat::Rgba8Unorm])
-                } else {
-                    texture(device, &label, size, 1, format, usage)
-                }
+                // The sRGB display target is also viewable as plain RGBA8, the encoded bytes as
+                // they are, for egui.
+                let srgb_display = target == Target::Display && format == wgpu::TextureFormat::Rgba8UnormSrgb;
+                let views: &[wgpu::TextureFormat] = if srgb_display { &[wgpu::TextureFormat::Rgba8Unorm] } else { &[] };
+                texture(device, &label, size, 1, format, usage, views)
             });
         }
     }

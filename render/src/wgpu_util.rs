@@ -3,21 +3,9 @@
 
 use crate::error::{RenderError, Result};
 
-/// A 2D texture (or array of `layers`) with one mip level and no view formats.
+/// A 2D texture (or array of `layers`) with one mip level, also viewable in `view_formats`
+/// (which needs `DownlevelFlags::VIEW_FORMATS` unless empty).
 pub fn texture(
-    device: &wgpu::Device,
-    label: &str,
-    (width, height): (u32, u32),
-    layers: u32,
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    texture_with_views(device, label, (width, height), layers, format, usage, &[])
-}
-
-/// As [`texture`], also viewable in `view_formats` (needs `DownlevelFlags::VIEW_FORMATS` unless
-/// empty).
-pub fn texture_with_views(
     device: &wgpu::Device,
     label: &str,
     (width, height): (u32, u32),

@@ -115,6 +115,7 @@ impl Shared {
             1,
             crate::targets::HDR_FORMAT,
             wgpu::TextureUsages::TEXTURE_BINDING,
+            &[],
         );
         Shared {
             device: device.clone(),

@@ -46,7 +46,7 @@ impl ShadowPass {
 
     fn create_maps(device: &wgpu::Device, size: (u32, u32), layers: u32, label: &str) -> wgpu::Texture {
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
-        texture(device, label, size, layers, DEPTH_FORMAT, usage)
+        texture(device, label, size, layers, DEPTH_FORMAT, usage, &[])
     }
 
     /// Makes room for `count` shadow maps of [`SHADOW_MAP_SIZE`]² (kept while large enough).
