@@ -47,7 +47,7 @@ step "cargo test (workspace)"
 cargo test --workspace --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
-WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame golden_default_look_and_bare_skin
+WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
 
 step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into

@@ -8,6 +8,7 @@ use crate::frame::{FramePlan, FrameSettings, Step, Uploaded};
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
 use crate::passes::composite::CompositePass;
+use crate::passes::depth_copy::{self, DepthCopyPass};
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
 use crate::passes::shadow::ShadowPass;
@@ -18,7 +19,7 @@ use crate::scene::{Camera, Scene};
 use crate::shader::Variant;
 use crate::targets::{Formats, Target, TargetPool};
 use crate::uniforms::{FrameUniform, FrameView};
-use crate::wgpu_util::{read_texture, validated};
+use crate::wgpu_util::{self, read_texture, texture, validated};
 use glam::Vec3;
 use rouge_model::TexelRect;
 use rouge_model::look::{Look, ThicknessMap};
@@ -79,6 +80,8 @@ pub struct Renderer {
     mesh: Option<GpuMesh>,
     textures: SkinTextures,
     look: GpuLook,
+    /// Depth readback where depth cannot be copied (GL); locked by the `&self` readers.
+    depth_copy: std::sync::Mutex<DepthCopyPass>,
     profiler: Option<Profiler>,
     profiling: bool,
     timings: Vec<PassTiming>,
@@ -104,6 +107,7 @@ impl Renderer {
             mesh: None,
             textures: SkinTextures::default(),
             look: GpuLook::empty(device, formats.min_array_layers),
+            depth_copy: std::sync::Mutex::new(DepthCopyPass::new(&shared)),
             profiler: Profiler::new(device, queue),
             profiling: false,
             timings: Vec::new(),
@@ -241,7 +245,7 @@ impl Renderer {
     /// Records the passes of `plan` in order and submits them.
     fn record_and_submit(&mut self, plan: &FramePlan, scene: &Scene, camera: &Camera) -> Result<wgpu::Texture> {
         let display = plan.variant.display;
-        let Renderer { shared, passes, targets, mesh, textures, look, profiler, profiling, timings, last } = self;
+        let Renderer { shared, passes, targets, mesh, textures, look, profiler, profiling, timings, last, .. } = self;
         let mesh =
             mesh.as_ref().ok_or_else(|| RenderError::Invalid("no mesh to render: call set_mesh first".into()))?;
         let device = &shared.device;
@@ -305,6 +309,31 @@ impl Renderer {
         self.last.as_ref().ok_or_else(|| RenderError::Invalid("no frame rendered yet".into()))
     }
 
+    /// The depth buffer of the last frame (values in [0, 1]); through the depth copy pass where
+    /// depth textures cannot be copied to buffers (GL).
+    fn read_depth(&self) -> Result<Vec<f32>> {
+        if self.shared.formats.copy_depth {
+            return Ok(bytemuck::pod_collect_to_vec(&self.read(Target::Depth, 4)?));
+        }
+        let depth = self.targets.view(Target::Depth)?;
+        let (device, queue) = (&self.shared.device, &self.shared.queue);
+        let mut pass = self.depth_copy.lock().map_err(|_| RenderError::Gpu("depth copy pass poisoned".into()))?;
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let copy = validated(device, "depth copy", || {
+            let (size, format) = (self.targets.size(), depth_copy::OUTPUT_FORMAT);
+            let copy = texture(device, "DepthCopyPass::out", size, 1, format, usage, &[]);
+            let label = Some("DepthCopyPass");
+            let encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label });
+            let mut enc = FrameEncoder { encoder, profiler: None };
+            pass.record(&self.shared, &mut enc, &depth, &wgpu_util::view(&copy))?;
+            queue.submit([enc.encoder.finish()]);
+            Ok(copy)
+        })?;
+        let bytes = validated(device, "readback", || read_texture(device, queue, &copy, 4))?;
+        // Each texel holds the f32's bytes, least significant first.
+        Ok(bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect())
+    }
+
     fn read(&self, target: Target, bytes_per_texel: u32) -> Result<Vec<u8>> {
         let texture = self
             .targets
@@ -351,7 +380,7 @@ impl Renderer {
         // (3.7 MB at 1280×720) and answer every pick of that frame from the copy.
         let mut cache = last.depth.lock().map_err(|_| RenderError::Gpu("depth cache poisoned".into()))?;
         if cache.is_none() {
-            *cache = Some(bytemuck::pod_collect_to_vec(&self.read(Target::Depth, 4)?));
+            *cache = Some(self.read_depth()?);
         }
         let depth = cache.as_ref().and_then(|d| d.get((y * w + x) as usize).copied()).unwrap_or(1.0);
         if depth >= 1.0 {
@@ -391,7 +420,7 @@ impl Renderer {
         let layers = last.variant.layers;
         let exit_t = if layers > 0 { half4(Target::ExitT)? } else { vec![[1.0; 4]; diffuse.len()] };
         let thickness = if layers > 0 { half4(Target::ThicknessA)? } else { vec![[0.0; 4]; diffuse.len()] };
-        let depth: Vec<f32> = bytemuck::pod_collect_to_vec(&self.read(Target::Depth, 4)?);
+        let depth = self.read_depth()?;
         let (n, f) = (last.view.near, last.view.far);
         let depth_mm = depth.iter().map(|&d| n * f / (f - d * (f - n))).collect();
         let (w, h) = self.targets.size();

@@ -52,7 +52,7 @@ impl Variant {
     pub fn for_pass(self, pass: Pass) -> Variant {
         let none = Variant::BARE;
         match pass {
-            Pass::Shadow | Pass::Sss => none,
+            Pass::Shadow | Pass::Sss | Pass::DepthCopy => none,
             Pass::Gbuffer => {
                 Variant { layers: self.layers, albedo_map: self.albedo_map, normal_map: self.normal_map, ..none }
             }

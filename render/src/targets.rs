@@ -36,6 +36,9 @@ pub struct Formats {
     /// GL, which creates a one-layer texture as `TEXTURE_2D`, so that an array view of it samples
     /// nothing (every shadow lookup returned 0 before this; wgpu issue 2161).
     pub min_array_layers: u32,
+    /// Whether depth textures can be copied to buffers (`DEPTH_TEXTURE_AND_BUFFER_COPIES`, not
+    /// on GL); where not, depth is read back through [`crate::passes::depth_copy`].
+    pub copy_depth: bool,
 }
 
 impl Formats {
@@ -54,12 +57,14 @@ impl Formats {
                 encode_srgb_in_shader: true,
                 linear: wgpu::TextureFormat::Rgba16Float,
                 min_array_layers: 2,
+                copy_depth: false,
             },
             wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => Formats {
                 display: wgpu::TextureFormat::Rgba8UnormSrgb,
                 encode_srgb_in_shader: false,
                 linear: wgpu::TextureFormat::Rgba32Float,
                 min_array_layers: 1,
+                copy_depth: true,
             },
         }
     }

@@ -370,3 +370,22 @@ fn the_scanned_head_renders_when_available() {
     let skin = cap.diffuse.iter().filter(|p| p[3] > 0.5).count();
     assert!(skin > 3000, "{skin} skin pixels of the scan");
 }
+
+#[test]
+fn picking_and_captures_read_depth_on_every_backend() {
+    // On GL, depth cannot be copied to a buffer: the renderer reads it through the depth copy
+    // pass (tests/run.sh runs this test with WGPU_BACKEND=gl too).
+    let scene = Scene::studio();
+    let (_gpu, mut r) = renderer(head(), &Look::bare(), &scene);
+    let cam = camera(&r);
+    let (w, h) = (160, 120);
+    r.render(&scene, &cam, w, h, false).expect("render");
+    let hit = r.pick(w / 2, h / 2).expect("pick").expect("the face is under the centre");
+    let (px, py) = r.project(hit).expect("in front of the camera");
+    assert!((px - (w / 2) as f32 - 0.5).abs() < 0.6 && (py - (h / 2) as f32 - 0.5).abs() < 0.6, "{px}, {py}");
+    assert_eq!(r.pick(0, 0).expect("pick"), None, "the corner is background");
+    let cap = r.capture().expect("capture");
+    let z = cap.depth_mm[(h / 2 * w + w / 2) as usize];
+    let expected = (hit - cam.position()).dot((cam.target - cam.position()).normalize());
+    assert!((z - expected).abs() < 0.5, "view depth {z} mm vs {expected} mm");
+}

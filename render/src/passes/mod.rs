@@ -6,6 +6,7 @@
 //! Labels name the owner (`"LightingPass::pipeline"`), so validation errors point at the file.
 
 pub mod composite;
+pub mod depth_copy;
 pub mod gbuffer;
 pub mod lighting;
 pub mod shadow;
@@ -31,11 +32,14 @@ pub enum Pass {
     Sss,
     /// Composition and tone mapping.
     Composite,
+    /// Depth into a colour target, for readback where depth cannot be copied (GL).
+    DepthCopy,
 }
 
 impl Pass {
     /// Every pass.
-    pub const ALL: [Pass; 5] = [Pass::Shadow, Pass::Gbuffer, Pass::Lighting, Pass::Sss, Pass::Composite];
+    pub const ALL: [Pass; 6] =
+        [Pass::Shadow, Pass::Gbuffer, Pass::Lighting, Pass::Sss, Pass::Composite, Pass::DepthCopy];
 
     /// The pass's WGSL file name (for errors).
     pub fn file_name(self) -> &'static str {
@@ -45,6 +49,7 @@ impl Pass {
             Pass::Lighting => "shaders/lighting.wgsl",
             Pass::Sss => "shaders/sss.wgsl",
             Pass::Composite => "shaders/composite.wgsl",
+            Pass::DepthCopy => "shaders/depth_copy.wgsl",
         }
     }
 
@@ -56,6 +61,7 @@ impl Pass {
             Pass::Lighting => include_str!("../shaders/lighting.wgsl"),
             Pass::Sss => include_str!("../shaders/sss.wgsl"),
             Pass::Composite => include_str!("../shaders/composite.wgsl"),
+            Pass::DepthCopy => include_str!("../shaders/depth_copy.wgsl"),
         }
     }
 }
