@@ -7,7 +7,7 @@ use serde_json::json;
 
 #[derive(Debug, Subcommand)]
 pub enum KmCommand {
-    /// S and K (per mm) from R∞, R over a background Rg, and the layer thickness (paper eq. 6-7).
+    /// S and K (per mm) from R∞, R over a background Rg, and the layer thickness ([Huang2013] eq. 6-7).
     Invert {
         /// Reflectance of an opaque layer, in (0, 1].
         #[arg(long = "r-inf", allow_negative_numbers = true)]
@@ -22,7 +22,7 @@ pub enum KmCommand {
         #[arg(long = "thickness-mm", allow_negative_numbers = true)]
         thickness_mm: f64,
     },
-    /// R0 (over black) and T of a layer of S, K (per mm) and thickness (paper eq. 1-2).
+    /// R0 (over black) and T of a layer of S, K (per mm) and thickness ([Huang2013] eq. 1-2).
     Layer {
         /// Scattering coefficient, mm⁻¹.
         #[arg(long, allow_negative_numbers = true)]
@@ -34,7 +34,7 @@ pub enum KmCommand {
         #[arg(long = "thickness-mm", allow_negative_numbers = true)]
         thickness_mm: f64,
     },
-    /// R and T of a stack of layers, top layer first (paper eq. 3-4, corrected).
+    /// R and T of a stack of layers, top layer first ([Huang2013] eq. 3-4, corrected).
     Stack {
         /// Reflectances R0 of the layers, top first, comma-separated.
         #[arg(long, value_delimiter = ',', required = true, allow_negative_numbers = true)]

@@ -77,7 +77,7 @@ pub struct RenderArgs {
 pub enum Subsurface {
     /// No subsurface scattering.
     None,
-    /// Separable screen-space kernel (Jimenez et al. 2015).
+    /// Separable screen-space kernel ([Jimenez2015]).
     ScreenSpace,
 }
 

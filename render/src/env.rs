@@ -1,8 +1,9 @@
 //! Environment lighting: HDR equirectangular maps and their spherical-harmonics irradiance.
 //!
-//! Paper 000, section 4.1.2 (eq. 4-8) with the closed form of Ramamoorthi & Hanrahan 2001,
-//! "An efficient representation for irradiance environment maps" (sections 2-3). Irradiance on a
-//! surface with normal `n` lit by distant radiance `L(ω)` (eq. 4 without the Fresnel factor) is
+//! [Benmounah2009] section 4.1.2 (eq. 4-8) with the closed form of [Ramamoorthi2001], "An
+//! efficient representation for irradiance environment maps" (sections 2-3). Irradiance on a
+//! surface with normal `n` lit by distant radiance `L(ω)` ([Benmounah2009] eq. 4 without the
+//! Fresnel factor) is
 //!
 //! ```text
 //! E(n) = ∫ L(ω) max(0, n·ω) dω  ≈  Σ_{l≤2} Σ_m Â_l L_lm Y_lm(n),   L_lm = ∫ L(ω) Y_lm(ω) dω
@@ -14,7 +15,7 @@
 //! which bounds the error for any smooth environment to a few percent (measured in
 //! `tests/env.rs`). [`ShIrradiance`] stores `c_i = Â_l L_lm`, so evaluation is `E(n) = Σ c_i Y_i(n)`.
 //!
-//! **Corrections to the paper.** Eq. 8 multiplies the coefficients of L, Ft and the cosine G
+//! **Corrections to [Benmounah2009].** Eq. 8 multiplies the coefficients of L, Ft and the cosine G
 //! index by index. The SH coefficients of a product are not the products of the coefficients;
 //! the form is right only when Ft and G are zonal (functions of `n·ω`), and then the kernel to use
 //! is the Legendre expansion of the product `Ft(μ)·μ`, not `F_l G_l`. We fold only the clamped

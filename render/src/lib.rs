@@ -1,9 +1,9 @@
-//! Rouge renderer: real-time skin with layered cosmetics ([HuangCosmetic] section 3, figure 1) on wgpu.
+//! Rouge renderer: real-time skin with layered cosmetics ([Huang2013] section 3, figure 1) on wgpu.
 //!
 //! It uploads what `rouge-model` gives it (meshes, looks, thickness maps) and knows no UI.
 //! Headless first: [`gpu::Gpu`] opens a device without a window (Mesa lavapipe where there is no
 //! GPU), and the painting app hands in its own device. Modules:
-//! - [`env`]: HDR environment maps and their spherical-harmonics irradiance ([CubeAtlas2009] section 4.1.2).
+//! - [`env`]: HDR environment maps and their spherical-harmonics irradiance ([Benmounah2009] section 4.1.2).
 //! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
 //! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
 //! - [`passes`]: one module per pass, each with its pipelines, layouts and uniforms.

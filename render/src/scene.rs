@@ -123,7 +123,7 @@ pub enum SubsurfaceModel {
 }
 
 impl SubsurfaceModel {
-    /// The screen-space kernel of d'Eon's six-Gaussian skin profile, today's default.
+    /// The screen-space kernel of d'Eon's six-Gaussian skin profile ([dEon2007]), today's default.
     pub fn skin_screen_space() -> SubsurfaceModel {
         SubsurfaceModel::ScreenSpace { profile: DiffusionProfile::skin() }
     }
@@ -150,7 +150,7 @@ const COLORCHECKER_SKIN: &str = include_str!("../../data/skin/colorchecker_skin.
 
 impl Skin {
     /// Skin whose albedo is the linear sRGB (D65, CIE 1931) of a reflectance spectrum; d'Eon's
-    /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke.
+    /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke ([dEon2007]).
     pub fn from_spectrum(reflectance: &Spectrum) -> Skin {
         let c = Colorimeter::get(Viewing::D65_1931);
         let rgb = c.srgb_linear(&c.xyz(reflectance));

@@ -1,5 +1,5 @@
 //! The CPU twin, in double precision, of the specular lobes of shaders/lighting.wgsl: one
-//! Kelemen/Szirmay-Kalos lobe for the skin and one per cosmetic layer ([HuangCosmetic] eq. 5,
+//! Kelemen/Szirmay-Kalos lobe for the skin and one per cosmetic layer ([Huang2013] eq. 5,
 //! [Kelemen2001]), with a Beckmann distribution [Beckmann1963] and Schlick's Fresnel
 //! [Schlick1994]. Tests check it (energy, Fresnel at grazing angles, the order in which layers
 //! attenuate the lobes below them), and render/tests/specular_gpu.rs checks the shader against it.
@@ -15,7 +15,7 @@
 //!
 //! **Layers.** Bottom to top: lobes = lobes · T_i² + coverage_i · f_r(layer i), starting from the
 //! skin's lobe. Light reaching a lower interface crosses layer i twice (in and out), hence T²
-//! where [HuangCosmetic] writes T. A layer's own lobe fades in over its first
+//! where [Huang2013] writes T. A layer's own lobe fades in over its first
 //! [`crate::gpu_look::LAYER_FULL_COVERAGE_MM`], so a layer of zero thickness adds nothing.
 
 use glam::DVec3;
@@ -122,7 +122,7 @@ mod tests {
 
     #[test]
     fn the_lobe_never_reflects_more_than_it_receives() {
-        for m in [0.1, 0.2, 0.35, 0.55, 1.0] {
+        for m in [0.05, 0.1, 0.2, 0.35, 0.55, 1.0] {
             for view_deg in [0.0, 30.0, 60.0, 80.0, 89.0] {
                 let v = dir(f64::to_radians(view_deg), 0.0);
                 let a = directional_albedo(v, m, 1.0);

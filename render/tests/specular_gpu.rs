@@ -39,14 +39,20 @@ fn the_shader_lobe_matches_its_cpu_twin() {
             let v = (eye - world.as_dvec3()).normalize();
             let want = e * kelemen(DVec3::Z, l, v, m, f0);
             let got = cap.surface[(y * w + x) as usize][0] as f64;
-            // f16 targets: 2⁻¹⁰ relative, plus the depth-reconstructed position.
             let err = (got - want).abs() / want.max(1e-3);
             worst = worst.max(err);
             peak = peak.max(want);
             checked += 1;
         }
     }
+    eprintln!("{checked} pixels, peak E·f_r {peak:.4}, worst relative error {worst:.2e}");
     assert!(checked > 300, "only {checked} pixels on the plane");
     assert!(peak > 0.05, "the highlight is not in view (peak {peak})");
-    assert!(worst < 0.02, "worst relative error {worst} over {checked} pixels");
+    // Tolerance: the surface target is Rgba16Float, whose rounding alone is up to 2⁻¹¹ ≈ 4.9e-4
+    // relative; the shader's f32 exp and pow add ~1e-6, and the view vector comes from the
+    // position reconstructed from Depth32Float (the CPU side uses the same depth through `pick`).
+    // Lavapipe measured 9.4e-4; 5e-3 (ten f16 roundings) leaves room for drivers with looser
+    // transcendentals, and is still far below a wrong term (a factor 2, π or n·l is off by
+    // tens of percent over this view).
+    assert!(worst < 5e-3, "worst relative error {worst} over {checked} pixels");
 }

@@ -1,4 +1,4 @@
-//! 3D painting of cosmetic thickness maps ([HuangCosmetic] future work: "paint the film on the face").
+//! 3D painting of cosmetic thickness maps ([Huang2013] future work: "paint the film on the face").
 //!
 //! A designer paints thickness in millimetres directly on the head. The brush is a ball in 3D:
 //! its radius is millimetres on the surface (straight-line distance in 3D, not distance in UV),

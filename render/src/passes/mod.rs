@@ -1,4 +1,4 @@
-//! One module per pass of the frame ([HuangCosmetic] figure 1). Each pass owns its bind-group
+//! One module per pass of the frame ([Huang2013] figure 1). Each pass owns its bind-group
 //! layout, its pipelines per [`Variant`] (built on first use), its uniform structs, and one
 //! `record` function from named inputs to named outputs. [`crate::frame`] decides which passes
 //! run; [`crate::Renderer::render`] walks that plan.

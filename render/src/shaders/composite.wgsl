@@ -1,4 +1,4 @@
-// Composition (figure 1, step 6): the scattered skin radiance leaving through the stack (× T),
+// Composition ([Huang2013] figure 1, step 6): the scattered skin radiance leaving through the stack (× T),
 // plus what left at the surface, over the background; then either linear radiance (for EXR) or
 // exposure and Khronos PBR Neutral tone mapping into an sRGB target (for PNG and the app).
 
@@ -7,7 +7,7 @@
 @group(1) @binding(2) var exit_t: texture_2d<f32>;
 @group(1) @binding(3) var coverage: texture_2d<f32>;
 
-// Khronos PBR Neutral: hue-preserving, linear below ~0.76, so product colours stay true.
+// Khronos PBR Neutral ([KhronosNeutral]): hue-preserving, linear below ~0.76, so product colours stay true.
 fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
     let start = 0.76;
     let desat = 0.15;
@@ -32,7 +32,7 @@ fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
 // The display target's encoding. Where the backend can view an sRGB texture as plain RGBA8
 // (Vulkan, Metal, DX12), the target is Rgba8UnormSrgb and the hardware encodes; where it cannot
 // (wgpu's GL backend has no view formats), the target is Rgba8Unorm and the shader applies the
-// sRGB transfer function (IEC 61966-2-1) itself, so both hold the same encoded bytes.
+// sRGB transfer function ([IEC61966]) itself, so both hold the same encoded bytes.
 //#if ENCODE_SRGB
 fn display_encode(c: vec3<f32>) -> vec3<f32> {
     let lo = c * 12.92;

@@ -1,4 +1,4 @@
-// G-buffer pass (figure 1, step 1): world normal, albedo, and the thickness of every cosmetic
+// G-buffer pass ([Huang2013] figure 1, step 1): world normal, albedo, and the thickness of every cosmetic
 // layer at each pixel, read from the look's thickness maps in the mesh's UV space. Depth comes
 // from the depth attachment.
 

@@ -1,6 +1,6 @@
-// Lighting pass (figure 1, steps 2, 3 and 5). Per pixel:
+// Lighting pass ([Huang2013] figure 1, steps 2, 3 and 5). Per pixel:
 // - the cosmetic stack's R (from above and from below) and T, from each layer's table of R0 and
-//   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas ([HuangCosmetic]
+//   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas ([Huang2013]
 //   eq. 3-4, with T1²R2 in the numerator) in linear RGB;
 // - the irradiance of every light (shadowed where the light casts shadows) and of the
 //   environment's spherical harmonics;
@@ -37,15 +37,15 @@ struct LightingOut {
 //#endif
 }
 
-// Beckmann distribution of half vectors, normalised so that ∫ D (n·h) dω = 1.
+// Beckmann distribution of half vectors ([Beckmann1963]), normalised so that ∫ D (n·h) dω = 1.
 fn beckmann(n_dot_h: f32, m: f32) -> f32 {
     let c2 = max(n_dot_h * n_dot_h, 1e-6);
     let m2 = m * m;
     return exp((c2 - 1.0) / (m2 * c2)) / (PI * m2 * c2 * c2);
 }
 
-// Kelemen/Szirmay-Kalos specular BRDF ([HuangCosmetic] eq 5): P_H(H) F(H·L) / (2 (1 + L·V)),
-// Schlick's Fresnel from F0.
+// Kelemen/Szirmay-Kalos specular BRDF ([Huang2013] eq. 5, [Kelemen2001]): P_H(H) F(H·L) / (2 (1 + L·V)),
+// Schlick's Fresnel from F0 ([Schlick1994]). CPU twin: render/src/specular.rs.
 fn kelemen(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, m: f32, f0: f32) -> f32 {
     let h_un = l + v;
     let len2 = dot(h_un, h_un);

@@ -1,4 +1,4 @@
-// Separable screen-space subsurface scattering (figure 1, step 4; Jimenez et al. 2015), one
+// Separable screen-space subsurface scattering ([Huang2013] figure 1, step 4; [Jimenez2015]), one
 // direction per pass. Kernel and rules: see the Rust module `sss` (its `separable_pass_cpu` is
 // this shader on the CPU).
 
