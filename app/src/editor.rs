@@ -182,6 +182,26 @@ impl Editor {
         &self.stroke_dabs
     }
 
+    /// The mean surface point of the first lipstick layer's painted texels (every 4th texel
+    /// each way), or `None` without a surface map or a painted lipstick layer: a point on the
+    /// lips of the default look.
+    pub fn lip_point(&self) -> Option<Vec3> {
+        let surface = self.surface.as_deref()?;
+        let lips = self.doc.layers.iter().find(|l| l.preset.kind == rouge_measure::Kind::Lipstick)?;
+        let (mut sum, mut n) = (Vec3::ZERO, 0.0f32);
+        for y in (0..lips.map.height).step_by(4) {
+            for x in (0..lips.map.width).step_by(4) {
+                if lips.map.mm[(y * lips.map.width + x) as usize] > 0.0
+                    && let Some(p) = surface.position(x, y)
+                {
+                    sum += p;
+                    n += 1.0;
+                }
+            }
+        }
+        (n > 0.0).then(|| sum / n)
+    }
+
     fn dab(&mut self, dabs: &[Vec3], surface: &SurfaceMap) -> Vec<Change> {
         if dabs.is_empty() {
             return Vec::new();

@@ -6,7 +6,7 @@ use rouge_app::editor::{Editor, StrokeError};
 use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document, MAP_SIZE};
 use rouge_model::mesh::TriangleMesh;
-use rouge_model::paint::SurfaceMap;
+use rouge_model::paint::{BrushMode, SurfaceMap};
 use std::sync::{Arc, OnceLock};
 
 /// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
@@ -133,4 +133,62 @@ fn replacing_the_document_resets_the_stroke_and_selects_the_top_layer() {
     assert!(!e.stroking() && e.last_stroke_dabs().is_empty());
     assert_eq!(e.active(), e.document().layers.len() - 1);
     assert!(!e.document().can_undo());
+}
+
+/// Strokes `points` in `mode` on the active layer and checks the step: something changed, the
+/// uploaded rectangles cover every changed texel, undo restores the map bit for bit and redo
+/// re-applies it.
+fn check_stroke_step(e: &mut Editor, mode: BrushMode, points: &[Vec3]) {
+    e.brush.mode = mode;
+    let layer = e.active();
+    let before = map_bits(e, layer);
+    let changes = stroke(e, points);
+    let after = map_bits(e, layer);
+    let changed: Vec<usize> = (0..before.len()).filter(|&i| before[i] != after[i]).collect();
+    assert!(!changed.is_empty(), "{mode:?} changed nothing");
+    for i in changed {
+        let (x, y) = ((i % MAP_SIZE as usize) as u32, (i / MAP_SIZE as usize) as u32);
+        assert!(
+            changes.iter().any(|c| matches!(c, Change::Map { layer: l, rect }
+                if *l == layer && (rect.x0..rect.x1).contains(&x) && (rect.y0..rect.y1).contains(&y))),
+            "{mode:?}: texel ({x}, {y}) changed outside every uploaded rectangle"
+        );
+    }
+    e.undo();
+    assert_eq!(map_bits(e, layer), before, "{mode:?}: undo restores the map bit for bit");
+    e.redo();
+    assert_eq!(map_bits(e, layer), after, "{mode:?}: redo re-applies it bit for bit");
+    e.undo();
+}
+
+#[test]
+fn erasing_and_smoothing_are_one_step_each_undone_bit_for_bit() {
+    let mut e = editor();
+    let lips = e.lip_point().expect("the default look paints the lips");
+    assert!(lips.z.abs() < 1e-3 && lips.x.abs() <= 100.0 && lips.y.abs() <= 100.0, "{lips} is on the plane");
+    // The top layer is the lipstick: erase across its middle, then smooth across its edge with
+    // a brush wide enough to reach past it.
+    e.brush.flow = 1.0;
+    check_stroke_step(&mut e, BrushMode::Erase, &[lips - Vec3::X * 5.0, lips + Vec3::X * 5.0]);
+    e.brush.radius_mm = 30.0;
+    check_stroke_step(&mut e, BrushMode::Smooth, &[lips - Vec3::Y * 10.0, lips + Vec3::Y * 10.0]);
+    assert!(!e.document().can_undo(), "every stroke was undone");
+}
+
+#[test]
+fn the_document_is_modified_from_the_first_dab_until_undone_or_saved() {
+    let mut e = editor();
+    assert!(!e.document().is_modified());
+    e.begin_stroke();
+    assert!(!e.document().is_modified(), "an open stroke without dabs changes nothing");
+    e.stroke_to(Vec3::ZERO).expect("paint");
+    assert!(e.document().is_modified(), "a dab marks the document for autosave");
+    e.end_stroke();
+    assert!(e.document().is_modified());
+    e.undo();
+    assert!(!e.document().is_modified(), "undone back to the opened state");
+    e.redo();
+    let dir = tempfile::tempdir().expect("tempdir");
+    e.document_mut().save_project(dir.path()).expect("save");
+    assert!(!e.document().is_modified(), "saved");
 }

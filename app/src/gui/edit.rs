@@ -14,10 +14,10 @@ impl RougeApp {
             .filter(|l| l.visible)
             .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: l.multiplier })
             .collect();
-        if let Err(e) = self.renderer.set_layers(&inputs) {
-            self.message = Some((false, e.to_string()));
+        if let Err(e) = self.gpu.renderer.set_layers(&inputs) {
+            self.ui.message = Some((false, e.to_string()));
         }
-        self.needs_render = true;
+        self.view.needs_render = true;
     }
 
     /// Uploads what an edit changed: every layer, or one rectangle of one map.
@@ -27,11 +27,11 @@ impl RougeApp {
             Change::Layers => self.sync_layers(),
             Change::Map { layer, rect } => {
                 if let (Some(ri), Some(l)) = (self.editor.render_index(layer), self.editor.document().layers.get(layer))
-                    && let Err(e) = self.renderer.update_thickness(ri, &l.map, l.multiplier, rect)
+                    && let Err(e) = self.gpu.renderer.update_thickness(ri, &l.map, l.multiplier, rect)
                 {
-                    self.message = Some((false, e.to_string()));
+                    self.ui.message = Some((false, e.to_string()));
                 }
-                self.needs_render = true;
+                self.view.needs_render = true;
             }
         }
     }
@@ -46,7 +46,7 @@ impl RougeApp {
     pub(super) fn paint_at(&mut self, world: Vec3) {
         match self.editor.stroke_to(world) {
             Ok(changes) => self.apply_changes(changes),
-            Err(e) => self.message = Some((false, e.to_string())),
+            Err(e) => self.ui.message = Some((false, e.to_string())),
         }
     }
 

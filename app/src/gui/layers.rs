@@ -1,5 +1,5 @@
-//! The left panel: layers (visibility, order, rename, clear, multiplier, material), the
-//! brush, the typed project folder and the key light.
+//! The layers panel (top of the left panel): visibility, order, rename, clear, multiplier and
+//! material of each layer, and adding a layer of the selected material.
 
 use super::*;
 
@@ -35,7 +35,7 @@ impl RougeApp {
         }
         if let Some(i) = select {
             self.editor.set_active_layer(i);
-            self.rename_buffer = self.editor.document().layers[i].name.clone();
+            self.ui.rename_buffer = self.editor.document().layers[i].name.clone();
         }
         if let Some(a) = action.take() {
             let c = self.editor.edit(a);
@@ -52,9 +52,9 @@ impl RougeApp {
             ui.label(format!("Active: {name} ({preset_name})"));
             let i = self.editor.active();
             ui.horizontal(|ui| {
-                ui.text_edit_singleline(&mut self.rename_buffer);
-                if ui.button("Rename").clicked() && !self.rename_buffer.trim().is_empty() {
-                    let name = self.rename_buffer.trim().to_string();
+                ui.text_edit_singleline(&mut self.ui.rename_buffer);
+                if ui.button("Rename").clicked() && !self.ui.rename_buffer.trim().is_empty() {
+                    let name = self.ui.rename_buffer.trim().to_string();
                     let c = self.editor.edit(|d| d.rename_layer(i, &name));
                     self.apply_change(c);
                 }
@@ -81,54 +81,6 @@ impl RougeApp {
         {
             let c = self.editor.add_layer(&mat.preset_ref, mat.preset.clone());
             self.apply_change(c);
-        }
-
-        ui.separator();
-        ui.heading("Brush");
-        ui.horizontal(|ui| {
-            ui.selectable_value(&mut self.editor.brush.mode, BrushMode::Paint, "Paint");
-            ui.selectable_value(&mut self.editor.brush.mode, BrushMode::Erase, "Erase");
-            ui.selectable_value(&mut self.editor.brush.mode, BrushMode::Smooth, "Smooth");
-        });
-        ui.add(egui::Slider::new(&mut self.editor.brush.radius_mm, 1.0..=40.0).text("radius (mm on the skin)"));
-        let mut microns = self.editor.brush.thickness_mm * 1000.0;
-        if ui.add(egui::Slider::new(&mut microns, 0.0..=100.0).text("thickness (µm)")).changed() {
-            self.editor.brush.thickness_mm = microns / 1000.0;
-        }
-        ui.add(egui::Slider::new(&mut self.editor.brush.flow, 0.01..=1.0).text("flow"));
-        ui.add(egui::Slider::new(&mut self.editor.brush.hardness, 0.0..=1.0).text("hardness"));
-        ui.checkbox(&mut self.editor.brush.mirror, "Mirror across the face's midplane");
-
-        ui.separator();
-        egui::CollapsingHeader::new("Project folder").default_open(false).show(ui, |ui| {
-            ui.label("Typed path, for machines without a file dialog");
-            ui.text_edit_singleline(&mut self.project_path);
-            ui.horizontal(|ui| {
-                let dir = PathBuf::from(self.project_path.trim());
-                let has = !self.project_path.trim().is_empty();
-                if ui.add_enabled(has, egui::Button::new("Open")).clicked() {
-                    let r = self.open_project_from(&dir).map(|()| format!("opened {}", dir.display()));
-                    self.report(r);
-                }
-                if ui.add_enabled(has, egui::Button::new("Save")).clicked() {
-                    let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
-                    self.report(r);
-                }
-            });
-        });
-
-        ui.separator();
-        ui.heading("Light");
-        let mut changed = ui.add(egui::Slider::new(&mut self.light_yaw, -180.0..=180.0).text("key yaw °")).changed();
-        changed |= ui.add(egui::Slider::new(&mut self.light_pitch, -60.0..=85.0).text("key pitch °")).changed();
-        changed |= ui.add(egui::Slider::new(&mut self.light_intensity, 0.0..=3.0).text("key intensity")).changed();
-        changed |= ui.checkbox(&mut self.environment, "Environment").changed();
-        if changed {
-            self.needs_render = true;
-        }
-        if self.split {
-            changed = ui.add(egui::Slider::new(&mut self.split_at, 0.0..=1.0).text("before | after")).changed();
-            self.needs_render |= changed;
         }
     }
 }

@@ -17,8 +17,7 @@ impl RougeApp {
             self.undo();
         }
         if reset {
-            self.view = View::default();
-            self.needs_render = true;
+            self.view.reset_orbit();
         }
     }
 
@@ -33,7 +32,7 @@ impl RougeApp {
                     && let Some(dir) = rfd::FileDialog::new().pick_folder()
                     && let Err(e) = self.open_project_from(&dir)
                 {
-                    self.message = Some((false, format!("{e:#}")));
+                    self.ui.message = Some((false, format!("{e:#}")));
                 }
                 if ui.button("Save project").clicked()
                     && let Some(dir) = self.options.project.clone().or_else(|| rfd::FileDialog::new().pick_folder())
@@ -81,7 +80,7 @@ impl RougeApp {
                 if ui.button("Screenshot (PNG)…").clicked()
                     && let Some(p) = rfd::FileDialog::new().add_filter("PNG", &["png"]).save_file()
                 {
-                    let size = if self.frame_size.0 > 0 { self.frame_size } else { (1280, 720) };
+                    let size = if self.gpu.frame_size.0 > 0 { self.gpu.frame_size } else { (1280, 720) };
                     let r = self.screenshot(&p, size).map(|()| format!("wrote {}", p.display()));
                     self.report(r);
                 }
@@ -97,24 +96,23 @@ impl RougeApp {
             });
             ui.menu_button("View", |ui| {
                 if ui.button("Reset view (F)").clicked() {
-                    self.view = View::default();
-                    self.needs_render = true;
+                    self.view.reset_orbit();
                 }
-                if ui.checkbox(&mut self.split, "Before / after split").changed() {
-                    self.needs_render = true;
+                if ui.checkbox(&mut self.view.split, "Before / after split").changed() {
+                    self.view.needs_render = true;
                 }
-                if ui.checkbox(&mut self.environment, "Environment light").changed() {
-                    self.needs_render = true;
+                if ui.checkbox(&mut self.view.environment, "Environment light").changed() {
+                    self.view.needs_render = true;
                 }
             });
             ui.separator();
             let modified = if self.editor.document().is_modified() { " •" } else { "" };
-            ui.label(format!("{}{modified} — {}", self.editor.document().name, self.mesh_name));
+            ui.label(format!("{}{modified} — {}", self.editor.document().name, self.ui.mesh_name));
         });
     }
 
     pub(super) fn report(&mut self, r: Result<String>) {
-        self.message = Some(match r {
+        self.ui.message = Some(match r {
             Ok(m) => (true, m),
             Err(e) => (false, format!("{e:#}")),
         });

@@ -1,15 +1,21 @@
 //! The painting app (`rouge` with no arguments): paint cosmetic thickness maps on a 3D face and
 //! see them rendered live by rouge-render on the app's own wgpu device.
 //!
-//! Layout: menu bar; left panel = layers and brush; right panel = material library (import,
-//! plots); centre = the viewport. Viewport controls: left drag paints (Alt+left or right drag
+//! Layout: menu bar; left panel = layers, brush, project folder and key light; right panel =
+//! material library (import, plots); centre = the viewport. Viewport controls: left drag paints (Alt+left or right drag
 //! orbits), middle drag or Shift+right drag pans, wheel zooms; Ctrl+Z / Ctrl+Shift+Z undo and
 //! redo; F resets the view.
 //!
 //! The renderer draws into its own texture, which egui shows as a native texture, so the app,
 //! the CLI and the tests run the same frame code. Frames are drawn only when something changed
 //! (view, light, layers, a dab), which matters on software Vulkan.
+//!
+//! Code: edits go through the egui-free [`crate::editor::Editor`]; `edit.rs` uploads what each
+//! edit changed. One file per panel (`layers.rs`, `brush.rs`, `materials_panel.rs`, `menu.rs`,
+//! `viewport.rs`); `viewport.rs` also holds the view and GPU state, `session.rs` the background
+//! jobs (mesh preparation, autosave, recovery, the window screenshot).
 
+mod brush;
 mod edit;
 mod layers;
 pub mod materials;
@@ -29,9 +35,11 @@ use rouge_model::paint::{Brush, BrushMode, SurfaceMap};
 use rouge_render::job::{load_mesh, write_png};
 use rouge_render::renderer::LayerInput;
 use rouge_render::{Camera, LightKind, Renderer, Scene};
+use session::Jobs;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, mpsc};
 use std::time::{Duration, Instant};
+use viewport::{GpuState, ViewState};
 
 /// How often unsaved work is written to the recovery folder.
 pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(60);
@@ -67,70 +75,48 @@ impl Options {
     }
 }
 
-/// A mesh being prepared on a worker thread: triangles for the renderer, surface map for the brush.
-type Prepared = Result<(TriangleMesh, Arc<SurfaceMap>), String>;
-
-/// Orbit camera state (the renderer's `Camera` is derived from it and the mesh bounds).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct View {
-    yaw: f32,
-    pitch: f32,
-    zoom: f32,
-    pan: Vec3,
-}
-
-impl Default for View {
-    fn default() -> Self {
-        View { yaw: 0.0, pitch: 0.0, zoom: 1.0, pan: Vec3::ZERO }
-    }
-}
-
 /// A layer edit chosen in the layer list, applied after the list is drawn.
 type LayerAction = Box<dyn FnOnce(&mut Document) -> Change>;
 
-/// The painting app.
+/// The painting app: the editor core and the material library (what the user works on), and
+/// apart from them the view, the GPU objects, the background jobs and the panels' own state.
 pub struct RougeApp {
     options: Options,
-    renderer: Renderer,
-    bare: Option<Renderer>,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    egui_renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
-    texture: Option<egui::TextureId>,
-    bare_texture: Option<egui::TextureId>,
-    mesh: Option<TriangleMesh>,
-    mesh_name: String,
-    preparing: Option<(String, mpsc::Receiver<Prepared>)>,
     /// Document, active layer, brush, stroke: the egui-free editor core.
     editor: Editor,
     library: Library,
-    scene: Scene,
-    view: View,
-    light_yaw: f32,
-    light_pitch: f32,
-    light_intensity: f32,
-    environment: bool,
-    split: bool,
-    split_at: f32,
-    needs_render: bool,
-    frame_size: (u32, u32),
-    viewport: Rect,
-    last_autosave: Instant,
-    recovery_offer: bool,
+    /// Camera, lights and split: how the document is looked at ([`viewport`]).
+    view: ViewState,
+    /// Device, renderers and the egui textures their frames are shown through ([`viewport`]).
+    gpu: GpuState,
+    /// Mesh preparation, autosave timing and the window screenshot ([`session`]).
+    jobs: Jobs,
+    /// Status message, edit buffers and the recovery offer.
+    ui: UiState,
+}
+
+/// What the panels keep between frames that is neither document nor view.
+#[derive(Debug, Default)]
+struct UiState {
+    /// The status line: (ok, text).
     message: Option<(bool, String)>,
+    /// The active layer's name being edited.
     rename_buffer: String,
-    last_frame_ms: f64,
-    frames_shown: u32,
+    /// The typed project folder.
     project_path: String,
-    screenshot_state: Option<mpsc::Receiver<Result<(), String>>>,
+    /// Whether to ask about the autosave found at start.
+    recovery_offer: bool,
+    /// The mesh being painted, as the menu bar names it.
+    mesh_name: String,
 }
 
 impl std::fmt::Debug for RougeApp {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RougeApp")
             .field("document", &self.editor.document().name)
-            .field("mesh", &self.mesh_name)
-            .finish()
+            .field("mesh", &self.ui.mesh_name)
+            .field("view", &self.view)
+            .finish_non_exhaustive()
     }
 }
 
@@ -141,51 +127,27 @@ impl RougeApp {
     /// Without eframe's wgpu renderer, or when the project cannot be opened.
     pub fn new(cc: &eframe::CreationContext<'_>, options: Options) -> Result<RougeApp> {
         let rs = cc.wgpu_render_state.as_ref().context("the app needs eframe's wgpu renderer")?;
-        let renderer = Renderer::new(&rs.device, &rs.queue);
         let doc = match &options.project {
             Some(dir) => Document::open_project(dir)?,
             None => Document::default_project(),
         };
-        let library = Library::load(options.data_dir.join("presets"));
-        let recovery_offer = options.autosave && Document::recovery_available(&options.recovery_dir());
-        let mut app = RougeApp {
-            renderer,
-            bare: None,
-            device: rs.device.clone(),
-            queue: rs.queue.clone(),
-            egui_renderer: rs.renderer.clone(),
-            texture: None,
-            bare_texture: None,
-            mesh: None,
-            mesh_name: "default head (hm08, CC0)".into(),
-            preparing: None,
-            editor: Editor::new(doc),
-            library,
-            scene: Scene::studio(),
-            view: View::default(),
-            light_yaw: -34.0,
-            light_pitch: 27.0,
-            light_intensity: 1.0,
-            environment: true,
-            split: false,
-            split_at: 0.5,
-            needs_render: true,
-            frame_size: (0, 0),
-            viewport: Rect::NOTHING,
-            last_autosave: Instant::now(),
-            recovery_offer,
+        let ui = UiState {
             message: None,
-            rename_buffer: String::new(),
-            last_frame_ms: 0.0,
-            frames_shown: 0,
-            project_path: String::new(),
-            screenshot_state: None,
+            rename_buffer: doc.layers.last().map(|l| l.name.clone()).unwrap_or_default(),
+            project_path: options.project.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
+            recovery_offer: options.autosave && Document::recovery_available(&options.recovery_dir()),
+            mesh_name: "default head (hm08, CC0)".into(),
+        };
+        let mut app = RougeApp {
+            editor: Editor::new(doc),
+            library: Library::load(options.data_dir.join("presets")),
+            view: ViewState::default(),
+            gpu: GpuState::new(rs),
+            jobs: Jobs::default(),
+            ui,
             options,
         };
-        app.rename_buffer = app.editor.document().layers.last().map(|l| l.name.clone()).unwrap_or_default();
-        app.project_path = app.options.project.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
-        let mesh = app.options.mesh.clone();
-        match mesh {
+        match app.options.mesh.clone() {
             Some((path, scale)) => app.start_mesh(Some(path), scale),
             None => app.start_mesh(None, 1.0),
         }
@@ -219,27 +181,14 @@ impl RougeApp {
 
     /// Turns the before/after split on or off, with the line at `at` (0-1) of the viewport.
     pub fn set_split(&mut self, on: bool, at: f32) {
-        self.split = on;
-        self.split_at = at.clamp(0.0, 1.0);
-        self.needs_render = true;
+        self.view.split = on;
+        self.view.split_at = at.clamp(0.0, 1.0);
+        self.view.needs_render = true;
     }
 
     /// A point on the lips of the default head (the centre of the lipstick layer's texels).
     pub fn lip_point(&self) -> Option<Vec3> {
-        let surface = self.editor.surface().map(|s| &**s)?;
-        let lips = self.editor.document().layers.iter().find(|l| l.preset.kind == rouge_measure::Kind::Lipstick)?;
-        let (mut sum, mut n) = (Vec3::ZERO, 0.0f32);
-        for y in (0..lips.map.height).step_by(4) {
-            for x in (0..lips.map.width).step_by(4) {
-                if lips.map.mm[(y * lips.map.width + x) as usize] > 0.0
-                    && let Some(p) = surface.position(x, y)
-                {
-                    sum += p;
-                    n += 1.0;
-                }
-            }
-        }
-        (n > 0.0).then(|| sum / n)
+        self.editor.lip_point()
     }
 
     /// The material library.
@@ -249,17 +198,17 @@ impl RougeApp {
 
     /// The last message shown (ok, text).
     pub fn message(&self) -> Option<&(bool, String)> {
-        self.message.as_ref()
+        self.ui.message.as_ref()
     }
 
     /// Whether the mesh and brush are ready.
     pub fn ready(&self) -> bool {
-        self.preparing.is_none() && self.mesh.is_some() && self.editor.surface().is_some()
+        !self.jobs.preparing() && self.gpu.has_mesh() && self.editor.surface().is_some()
     }
 
     /// Blocks until the mesh is prepared (tests).
     pub fn wait_ready(&mut self) {
-        while self.preparing.is_some() {
+        while self.jobs.preparing() {
             if !self.poll_mesh() {
                 std::thread::sleep(Duration::from_millis(10));
             }
@@ -268,13 +217,7 @@ impl RougeApp {
 
     /// Screen position (egui points) of a world point in the current viewport.
     pub fn screen_pos_of(&self, world: Vec3) -> Option<Pos2> {
-        let (px, py) = self.renderer.project(world)?;
-        let (w, h) = self.frame_size;
-        if w == 0 || h == 0 {
-            return None;
-        }
-        let r = self.viewport;
-        Some(Pos2::new(r.min.x + px / w as f32 * r.width(), r.min.y + py / h as f32 * r.height()))
+        self.gpu.screen_pos_of(self.view.rect, world)
     }
 
     /// Saves the project into `dir`.
@@ -284,7 +227,7 @@ impl RougeApp {
     pub fn save_project_to(&mut self, dir: &Path) -> Result<()> {
         self.editor.document_mut().save_project(dir)?;
         self.options.project = Some(dir.to_owned());
-        self.project_path = dir.display().to_string();
+        self.ui.project_path = dir.display().to_string();
         if self.options.autosave {
             let _ = Document::clear_recovery(&self.options.recovery_dir());
         }
@@ -299,7 +242,7 @@ impl RougeApp {
         let doc = Document::open_project(dir)?;
         let change = self.editor.replace_document(doc);
         self.options.project = Some(dir.to_owned());
-        self.project_path = dir.display().to_string();
+        self.ui.project_path = dir.display().to_string();
         self.apply_change(change);
         Ok(())
     }
@@ -340,14 +283,14 @@ impl eframe::App for RougeApp {
         if self.poll_mesh() || self.library.poll() {
             ui.ctx().request_repaint();
         }
-        if self.preparing.is_some() || self.library.busy() {
+        if self.jobs.preparing() || self.library.busy() {
             ui.ctx().request_repaint_after(Duration::from_millis(50));
         }
         self.shortcuts(ui.ctx());
         self.autosave();
         egui::Panel::top("menu").show(ui, |ui| self.menu(ui));
         egui::Panel::bottom("status").show(ui, |ui| {
-            ui.horizontal(|ui| match &self.message {
+            ui.horizontal(|ui| match &self.ui.message {
                 Some((true, m)) => {
                     ui.colored_label(Color32::LIGHT_GREEN, m);
                 }
@@ -360,7 +303,15 @@ impl eframe::App for RougeApp {
             });
         });
         egui::Panel::left("layers").default_size(270.0).show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| self.layers_panel(ui));
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                self.layers_panel(ui);
+                ui.separator();
+                self.brush_panel(ui);
+                ui.separator();
+                self.project_folder_panel(ui);
+                ui.separator();
+                self.light_panel(ui);
+            });
         });
         egui::Panel::right("materials").default_size(320.0).show(ui, |ui| self.materials_panel(ui));
         egui::CentralPanel::default().show(ui, |ui| self.viewport_ui(ui));

@@ -3,6 +3,38 @@
 
 use super::*;
 
+/// A mesh being prepared on a worker thread: triangles for the renderer, surface map for the brush.
+type Prepared = Result<(TriangleMesh, Arc<SurfaceMap>), String>;
+
+/// Work that finishes later: the mesh being prepared, the autosave timer, the window screenshot.
+#[derive(Debug)]
+pub(super) struct Jobs {
+    /// The mesh being prepared: its label and the worker's answer.
+    preparing: Option<(String, mpsc::Receiver<Prepared>)>,
+    last_autosave: Instant,
+    /// Frames shown with the face drawn, before the window screenshot is taken.
+    frames_shown: u32,
+    /// The window screenshot being written.
+    screenshot: Option<mpsc::Receiver<Result<(), String>>>,
+}
+
+impl Default for Jobs {
+    fn default() -> Self {
+        Jobs { preparing: None, last_autosave: Instant::now(), frames_shown: 0, screenshot: None }
+    }
+}
+
+impl Jobs {
+    /// What is being prepared, while a mesh is.
+    pub(super) fn preparing_label(&self) -> Option<&str> {
+        self.preparing.as_ref().map(|(label, _)| label.as_str())
+    }
+
+    pub(super) fn preparing(&self) -> bool {
+        self.preparing.is_some()
+    }
+}
+
 impl RougeApp {
     pub(super) fn start_mesh(&mut self, path: Option<PathBuf>, scale: f32) {
         let (tx, rx) = mpsc::channel();
@@ -17,38 +49,36 @@ impl RougeApp {
             })();
             let _ = tx.send(result);
         });
-        self.preparing = Some((label, rx));
+        self.jobs.preparing = Some((label, rx));
     }
 
     pub(super) fn poll_mesh(&mut self) -> bool {
-        let Some((label, rx)) = &self.preparing else { return false };
+        let Some((label, rx)) = &self.jobs.preparing else { return false };
         let result = match rx.try_recv() {
             Ok(r) => r,
             Err(mpsc::TryRecvError::Empty) => return false,
             Err(mpsc::TryRecvError::Disconnected) => Err("the mesh thread stopped".into()),
         };
         let label = label.clone();
-        self.preparing = None;
+        self.jobs.preparing = None;
         match result {
             Ok((mesh, surface)) => {
-                if let Err(e) = self.renderer.set_mesh(&mesh, self.scene.skin.albedo) {
-                    self.message = Some((false, format!("{label}: {e}")));
+                if let Err(e) = self.gpu.set_mesh(mesh, self.view.skin_albedo()) {
+                    self.ui.message = Some((false, format!("{label}: {e}")));
                     return true;
                 }
-                self.bare = None;
-                self.mesh = Some(mesh);
                 self.editor.set_surface(Some(surface));
-                self.view = View::default();
+                self.view.reset_orbit();
                 self.sync_layers();
-                self.mesh_name = label;
+                self.ui.mesh_name = label;
             }
-            Err(e) => self.message = Some((false, e)),
+            Err(e) => self.ui.message = Some((false, e)),
         }
         true
     }
 
     pub(super) fn recovery_ui(&mut self, ui: &mut egui::Ui) {
-        if !self.recovery_offer {
+        if !self.ui.recovery_offer {
             return;
         }
         let dir = self.options.recovery_dir();
@@ -62,13 +92,13 @@ impl RougeApp {
                             let c = self.editor.replace_document(doc);
                             self.apply_change(c);
                         }
-                        Err(e) => self.message = Some((false, e.to_string())),
+                        Err(e) => self.ui.message = Some((false, e.to_string())),
                     }
-                    self.recovery_offer = false;
+                    self.ui.recovery_offer = false;
                 }
                 if ui.button("Discard").clicked() {
                     let _ = Document::clear_recovery(&dir);
-                    self.recovery_offer = false;
+                    self.ui.recovery_offer = false;
                 }
             });
         });
@@ -78,11 +108,11 @@ impl RougeApp {
     /// the window for a screenshot, writes it, and closes the window.
     pub(super) fn window_screenshot(&mut self, ctx: &egui::Context) {
         let Some(path) = self.options.window_screenshot.clone() else { return };
-        if self.ready() && self.texture.is_some() {
-            self.frames_shown += 1;
+        if self.ready() && self.gpu.has_frame() {
+            self.jobs.frames_shown += 1;
         }
         ctx.request_repaint_after(Duration::from_millis(100));
-        if let Some(rx) = &self.screenshot_state {
+        if let Some(rx) = &self.jobs.screenshot {
             if let Ok(result) = rx.try_recv() {
                 if let Err(e) = result {
                     eprintln!("rouge: {e}");
@@ -91,7 +121,7 @@ impl RougeApp {
             }
             return;
         }
-        if self.frames_shown >= 3 {
+        if self.jobs.frames_shown >= 3 {
             let (tx, rx) = mpsc::channel();
             let repaint = ctx.clone();
             ctx.request_screenshot(move |image| {
@@ -101,20 +131,40 @@ impl RougeApp {
                 let _ = tx.send(r);
                 repaint.request_repaint();
             });
-            self.screenshot_state = Some(rx);
+            self.jobs.screenshot = Some(rx);
         }
     }
 
     pub(super) fn autosave(&mut self) {
         if !self.options.autosave
-            || self.last_autosave.elapsed() < AUTOSAVE_EVERY
+            || self.jobs.last_autosave.elapsed() < AUTOSAVE_EVERY
             || !self.editor.document().is_modified()
         {
             return;
         }
-        self.last_autosave = Instant::now();
+        self.jobs.last_autosave = Instant::now();
         if let Err(e) = self.editor.document_mut().autosave(&self.options.recovery_dir()) {
-            self.message = Some((false, format!("autosave failed: {e}")));
+            self.ui.message = Some((false, format!("autosave failed: {e}")));
         }
+    }
+
+    /// The typed project folder, for machines without a file dialog (left panel).
+    pub(super) fn project_folder_panel(&mut self, ui: &mut egui::Ui) {
+        egui::CollapsingHeader::new("Project folder").default_open(false).show(ui, |ui| {
+            ui.label("Typed path, for machines without a file dialog");
+            ui.text_edit_singleline(&mut self.ui.project_path);
+            ui.horizontal(|ui| {
+                let dir = PathBuf::from(self.ui.project_path.trim());
+                let has = !self.ui.project_path.trim().is_empty();
+                if ui.add_enabled(has, egui::Button::new("Open")).clicked() {
+                    let r = self.open_project_from(&dir).map(|()| format!("opened {}", dir.display()));
+                    self.report(r);
+                }
+                if ui.add_enabled(has, egui::Button::new("Save")).clicked() {
+                    let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
+                    self.report(r);
+                }
+            });
+        });
     }
 }

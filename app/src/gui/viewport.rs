@@ -3,17 +3,71 @@
 
 use super::*;
 
-impl RougeApp {
-    pub(super) fn camera(&self) -> Option<Camera> {
-        let bounds = self.renderer.mesh_bounds()?;
-        let mut c = Camera::framing(&bounds, self.view.yaw, self.view.pitch);
-        c.distance /= self.view.zoom;
-        c.target += self.view.pan;
+/// Orbit camera state (the renderer's `Camera` is derived from it and the mesh bounds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Orbit {
+    yaw_deg: f32,
+    pitch_deg: f32,
+    zoom: f32,
+    pan_mm: Vec3,
+}
+
+impl Default for Orbit {
+    fn default() -> Self {
+        Orbit { yaw_deg: 0.0, pitch_deg: 0.0, zoom: 1.0, pan_mm: Vec3::ZERO }
+    }
+}
+
+/// How the document is looked at: camera, key light, environment, the before/after split, and
+/// where on screen the frame is shown. None of it is saved with the document.
+#[derive(Debug)]
+pub(super) struct ViewState {
+    pub(super) orbit: Orbit,
+    /// The studio scene with the key light below applied ([`ViewState::update_lights`]).
+    scene: Scene,
+    pub(super) light_yaw_deg: f32,
+    pub(super) light_pitch_deg: f32,
+    pub(super) light_intensity: f32,
+    pub(super) environment: bool,
+    pub(super) split: bool,
+    /// Where the split line is, 0-1 across the viewport.
+    pub(super) split_at: f32,
+    /// The viewport on screen (egui points).
+    pub(super) rect: Rect,
+    /// Something shown changed since the last frame: draw a new one.
+    pub(super) needs_render: bool,
+}
+
+impl Default for ViewState {
+    fn default() -> Self {
+        ViewState {
+            orbit: Orbit::default(),
+            scene: Scene::studio(),
+            light_yaw_deg: -34.0,
+            light_pitch_deg: 27.0,
+            light_intensity: 1.0,
+            environment: true,
+            split: false,
+            split_at: 0.5,
+            rect: Rect::NOTHING,
+            needs_render: true,
+        }
+    }
+}
+
+impl ViewState {
+    /// The camera framing `renderer`'s mesh from the orbit; `None` before a mesh is set.
+    fn camera(&self, renderer: &Renderer) -> Option<Camera> {
+        let bounds = renderer.mesh_bounds()?;
+        let mut c = Camera::framing(&bounds, self.orbit.yaw_deg, self.orbit.pitch_deg);
+        c.distance /= self.orbit.zoom;
+        c.target += self.orbit.pan_mm;
         Some(c)
     }
 
-    pub(super) fn update_lights(&mut self) {
-        let (yaw, pitch) = (self.light_yaw.to_radians(), self.light_pitch.to_radians());
+    /// Puts the key light and the environment switch into the scene.
+    fn update_lights(&mut self) {
+        let (yaw, pitch) = (self.light_yaw_deg.to_radians(), self.light_pitch_deg.to_radians());
         let toward = Vec3::new(yaw.sin() * pitch.cos(), pitch.sin(), yaw.cos() * pitch.cos());
         let studio = Scene::studio();
         self.scene.lights = studio.lights.clone();
@@ -24,15 +78,158 @@ impl RougeApp {
         self.scene.environment = if self.environment { studio.environment } else { None };
     }
 
-    pub(super) fn pick(&self, pos: Pos2) -> Option<Vec3> {
+    /// Back to the default orbit (F, View → Reset view, a new mesh).
+    pub(super) fn reset_orbit(&mut self) {
+        self.orbit = Orbit::default();
+        self.needs_render = true;
+    }
+
+    /// The skin albedo meshes are uploaded with.
+    pub(super) fn skin_albedo(&self) -> [f32; 3] {
+        self.scene.skin.albedo
+    }
+}
+
+/// The GPU side of the app: eframe's device, the renderer painting the document, the one
+/// showing bare skin for the split, and the egui textures their frames are shown through.
+pub(super) struct GpuState {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    egui_renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
+    pub(super) renderer: Renderer,
+    /// Renders the bare-skin half of the split; made on first use, dropped with a new mesh.
+    bare: Option<Renderer>,
+    /// The mesh being painted (kept for the bare renderer).
+    mesh: Option<TriangleMesh>,
+    texture: Option<egui::TextureId>,
+    bare_texture: Option<egui::TextureId>,
+    /// The size of the last frame, in pixels.
+    pub(super) frame_size: (u32, u32),
+    last_frame_ms: f64,
+}
+
+impl std::fmt::Debug for GpuState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuState")
+            .field("has_mesh", &self.mesh.is_some())
+            .field("frame_size", &self.frame_size)
+            .finish_non_exhaustive()
+    }
+}
+
+impl GpuState {
+    pub(super) fn new(rs: &egui_wgpu::RenderState) -> GpuState {
+        GpuState {
+            renderer: Renderer::new(&rs.device, &rs.queue),
+            device: rs.device.clone(),
+            queue: rs.queue.clone(),
+            egui_renderer: rs.renderer.clone(),
+            bare: None,
+            mesh: None,
+            texture: None,
+            bare_texture: None,
+            frame_size: (0, 0),
+            last_frame_ms: 0.0,
+        }
+    }
+
+    /// Uploads a newly prepared mesh; the bare renderer is made again on its next use.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_mesh`]; the previous mesh stays.
+    pub(super) fn set_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
+        self.renderer.set_mesh(&mesh, skin_albedo)?;
+        self.bare = None;
+        self.mesh = Some(mesh);
+        Ok(())
+    }
+
+    pub(super) fn has_mesh(&self) -> bool {
+        self.mesh.is_some()
+    }
+
+    /// Whether a frame has been shown.
+    pub(super) fn has_frame(&self) -> bool {
+        self.texture.is_some()
+    }
+
+    /// Shows `texture` through the egui texture in `slot`: updated in place while the frame
+    /// size stays, registered anew (freeing the old one) when it changes.
+    fn show(&self, slot: &mut Option<egui::TextureId>, same_size: bool, texture: &wgpu::Texture) {
+        let view = rouge_render::renderer::egui_view(texture);
+        let mut r = self.egui_renderer.write();
+        match *slot {
+            Some(id) if same_size => {
+                r.update_egui_texture_from_wgpu_texture(&self.device, &view, wgpu::FilterMode::Linear, id)
+            }
+            _ => {
+                if let Some(id) = slot.take() {
+                    r.free_texture(&id);
+                }
+                *slot = Some(r.register_native_texture(&self.device, &view, wgpu::FilterMode::Linear));
+            }
+        }
+    }
+
+    /// Renders the document's frame at `size` into the shown texture.
+    fn render(&mut self, scene: &Scene, camera: &Camera, size: (u32, u32)) -> rouge_render::Result<()> {
+        let texture = self.renderer.render(scene, camera, size.0, size.1, true)?;
+        let mut slot = self.texture.take();
+        self.show(&mut slot, self.frame_size == size, &texture);
+        self.texture = slot;
+        Ok(())
+    }
+
+    /// Renders bare skin (no layers) at `size` into the split's texture.
+    fn render_bare(&mut self, scene: &Scene, camera: &Camera, size: (u32, u32)) {
+        if self.bare.is_none() {
+            let mut bare = Renderer::new(&self.device, &self.queue);
+            if let Some(mesh) = &self.mesh
+                && bare.set_mesh(mesh, scene.skin.albedo).is_err()
+            {
+                return;
+            }
+            self.bare = Some(bare);
+        }
+        let Some(bare) = self.bare.as_mut() else { return };
+        if let Ok(texture) = bare.render(scene, camera, size.0, size.1, true) {
+            let mut slot = self.bare_texture.take();
+            self.show(&mut slot, self.frame_size == size, &texture);
+            self.bare_texture = slot;
+        }
+    }
+
+    /// The frame pixel under the screen point `pos` of the viewport `rect`.
+    fn pixel_at(&self, rect: Rect, pos: Pos2) -> Option<(u32, u32)> {
         let (w, h) = self.frame_size;
-        let r = self.viewport;
-        if w == 0 || !r.contains(pos) {
+        if w == 0 || h == 0 || !rect.contains(pos) {
             return None;
         }
-        let x = ((pos.x - r.min.x) / r.width() * w as f32) as u32;
-        let y = ((pos.y - r.min.y) / r.height() * h as f32) as u32;
-        match self.renderer.pick(x, y) {
+        let x = ((pos.x - rect.min.x) / rect.width() * w as f32) as u32;
+        let y = ((pos.y - rect.min.y) / rect.height() * h as f32) as u32;
+        Some((x, y))
+    }
+
+    /// The screen point of the viewport `rect` showing the world point `world`.
+    pub(super) fn screen_pos_of(&self, rect: Rect, world: Vec3) -> Option<Pos2> {
+        let (px, py) = self.renderer.project(world)?;
+        let (w, h) = self.frame_size;
+        if w == 0 || h == 0 {
+            return None;
+        }
+        Some(Pos2::new(rect.min.x + px / w as f32 * rect.width(), rect.min.y + py / h as f32 * rect.height()))
+    }
+}
+
+impl RougeApp {
+    pub(super) fn camera(&self) -> Option<Camera> {
+        self.view.camera(&self.gpu.renderer)
+    }
+
+    /// The surface point under the screen point `pos`, read from the last frame's depth.
+    pub(super) fn pick(&self, pos: Pos2) -> Option<Vec3> {
+        let (x, y) = self.gpu.pixel_at(self.view.rect, pos)?;
+        match self.gpu.renderer.pick(x, y) {
             Ok(p) => p,
             Err(e) => {
                 eprintln!("rouge: pick failed: {e}");
@@ -41,58 +238,22 @@ impl RougeApp {
         }
     }
 
-    pub(super) fn render(&mut self, size: (u32, u32)) {
+    fn render(&mut self, size: (u32, u32)) {
         let Some(camera) = self.camera() else { return };
         if size.0 == 0 || size.1 == 0 {
             return;
         }
         let start = Instant::now();
-        self.update_lights();
-        match self.renderer.render(&self.scene, &camera, size.0, size.1, true) {
-            Ok(texture) => {
-                let view = rouge_render::renderer::egui_view(&texture);
-                let mut r = self.egui_renderer.write();
-                match self.texture {
-                    Some(id) if self.frame_size == size => {
-                        r.update_egui_texture_from_wgpu_texture(&self.device, &view, wgpu::FilterMode::Linear, id)
-                    }
-                    _ => {
-                        if let Some(id) = self.texture.take() {
-                            r.free_texture(&id);
-                        }
-                        self.texture = Some(r.register_native_texture(&self.device, &view, wgpu::FilterMode::Linear));
-                    }
-                }
-            }
-            Err(e) => self.message = Some((false, e.to_string())),
+        self.view.update_lights();
+        if let Err(e) = self.gpu.render(&self.view.scene, &camera, size) {
+            self.ui.message = Some((false, e.to_string()));
         }
-        if self.split {
-            self.render_bare(&camera, size);
+        if self.view.split {
+            self.gpu.render_bare(&self.view.scene, &camera, size);
         }
-        self.frame_size = size;
-        self.needs_render = false;
-        self.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
-    }
-
-    pub(super) fn render_bare(&mut self, camera: &Camera, size: (u32, u32)) {
-        if self.bare.is_none() {
-            let mut bare = Renderer::new(&self.device, &self.queue);
-            if let Some(mesh) = &self.mesh
-                && bare.set_mesh(mesh, self.scene.skin.albedo).is_err()
-            {
-                return;
-            }
-            self.bare = Some(bare);
-        }
-        let Some(bare) = self.bare.as_mut() else { return };
-        if let Ok(texture) = bare.render(&self.scene, camera, size.0, size.1, true) {
-            let view = rouge_render::renderer::egui_view(&texture);
-            let mut r = self.egui_renderer.write();
-            if let Some(id) = self.bare_texture.take() {
-                r.free_texture(&id);
-            }
-            self.bare_texture = Some(r.register_native_texture(&self.device, &view, wgpu::FilterMode::Linear));
-        }
+        self.gpu.frame_size = size;
+        self.view.needs_render = false;
+        self.gpu.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
     }
 
     /// Renders the current view at `size` and writes it as a PNG (the screenshot export).
@@ -101,12 +262,26 @@ impl RougeApp {
     /// Rendering or writing fails.
     pub fn screenshot(&mut self, path: &Path, size: (u32, u32)) -> Result<()> {
         let camera = self.camera().context("no mesh yet")?;
-        self.update_lights();
-        self.renderer.render(&self.scene, &camera, size.0, size.1, true)?;
-        let pixels = self.renderer.read_display()?;
+        self.view.update_lights();
+        self.gpu.renderer.render(&self.view.scene, &camera, size.0, size.1, true)?;
+        let pixels = self.gpu.renderer.read_display()?;
         write_png(path, size.0, size.1, &pixels)?;
-        self.needs_render = true;
+        self.view.needs_render = true;
         Ok(())
+    }
+
+    /// The key light and the split line (left panel).
+    pub(super) fn light_panel(&mut self, ui: &mut egui::Ui) {
+        let v = &mut self.view;
+        ui.heading("Light");
+        let mut changed = ui.add(egui::Slider::new(&mut v.light_yaw_deg, -180.0..=180.0).text("key yaw °")).changed();
+        changed |= ui.add(egui::Slider::new(&mut v.light_pitch_deg, -60.0..=85.0).text("key pitch °")).changed();
+        changed |= ui.add(egui::Slider::new(&mut v.light_intensity, 0.0..=3.0).text("key intensity")).changed();
+        changed |= ui.checkbox(&mut v.environment, "Environment").changed();
+        if v.split {
+            changed |= ui.add(egui::Slider::new(&mut v.split_at, 0.0..=1.0).text("before | after")).changed();
+        }
+        v.needs_render |= changed;
     }
 
     pub(super) fn viewport_ui(&mut self, ui: &mut egui::Ui) {
@@ -114,8 +289,8 @@ impl RougeApp {
         let ppp = ui.ctx().pixels_per_point();
         let size = ((avail.x * ppp).round().max(1.0) as u32, (avail.y * ppp).round().max(1.0) as u32);
         let (rect, response) = ui.allocate_exact_size(avail, Sense::click_and_drag());
-        self.viewport = rect;
-        if let Some((label, _)) = &self.preparing {
+        self.view.rect = rect;
+        if let Some(label) = self.jobs.preparing_label() {
             ui.put(rect, egui::Spinner::new().size(32.0));
             ui.painter().text(
                 rect.center() + Vec2::new(0.0, 30.0),
@@ -134,9 +309,9 @@ impl RougeApp {
             || (response.dragged_by(egui::PointerButton::Secondary) && shift);
         if orbit {
             let d = response.drag_delta();
-            self.view.yaw -= d.x * 0.4;
-            self.view.pitch = (self.view.pitch + d.y * 0.4).clamp(-80.0, 80.0);
-            self.needs_render = true;
+            self.view.orbit.yaw_deg -= d.x * 0.4;
+            self.view.orbit.pitch_deg = (self.view.orbit.pitch_deg + d.y * 0.4).clamp(-80.0, 80.0);
+            self.view.needs_render = true;
         } else if pan {
             if let Some(c) = self.camera() {
                 let d = response.drag_delta();
@@ -144,8 +319,8 @@ impl RougeApp {
                 let view = c.view();
                 let right = Vec3::new(view.x_axis.x, view.y_axis.x, view.z_axis.x);
                 let up = Vec3::new(view.x_axis.y, view.y_axis.y, view.z_axis.y);
-                self.view.pan += (-right * d.x + up * d.y) * mm_per_point;
-                self.needs_render = true;
+                self.view.orbit.pan_mm += (-right * d.x + up * d.y) * mm_per_point;
+                self.view.needs_render = true;
             }
         } else if self.ready() && !alt {
             if response.drag_started_by(egui::PointerButton::Primary) {
@@ -164,24 +339,24 @@ impl RougeApp {
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
-                self.view.zoom = (self.view.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 8.0);
-                self.needs_render = true;
+                self.view.orbit.zoom = (self.view.orbit.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 8.0);
+                self.view.needs_render = true;
             }
         }
-        if self.needs_render || size != self.frame_size {
+        if self.view.needs_render || size != self.gpu.frame_size {
             self.render(size);
         }
         // Draw.
         let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
-        if let Some(id) = self.texture {
+        if let Some(id) = self.gpu.texture {
             ui.painter().image(id, rect, uv, Color32::WHITE);
         }
-        if self.split
-            && let Some(id) = self.bare_texture
+        if self.view.split
+            && let Some(id) = self.gpu.bare_texture
         {
-            let x = rect.min.x + rect.width() * self.split_at;
+            let x = rect.min.x + rect.width() * self.view.split_at;
             let left = Rect::from_min_max(rect.min, Pos2::new(x, rect.max.y));
-            let left_uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(self.split_at, 1.0));
+            let left_uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(self.view.split_at, 1.0));
             ui.painter().image(id, left, left_uv, Color32::WHITE);
             ui.painter().vline(x, rect.y_range(), egui::Stroke::new(2.0, Color32::WHITE));
             ui.painter().text(
@@ -206,13 +381,16 @@ impl RougeApp {
             && let (Some(c), Some(w)) = (self.camera(), self.pick(hover))
         {
             let dist = (c.position() - w).length().max(1.0);
-            let px = self.editor.brush.radius_mm * c.focal_px(self.frame_size.1) / dist / ppp;
+            let px = self.editor.brush.radius_mm * c.focal_px(self.gpu.frame_size.1) / dist / ppp;
             ui.painter().circle_stroke(hover, px, egui::Stroke::new(1.0, Color32::from_white_alpha(180)));
         }
         ui.painter().text(
             rect.left_bottom() + Vec2::new(8.0, -8.0),
             egui::Align2::LEFT_BOTTOM,
-            format!("frame submitted in {:.0} ms · {}×{}", self.last_frame_ms, self.frame_size.0, self.frame_size.1),
+            format!(
+                "frame submitted in {:.0} ms · {}×{}",
+                self.gpu.last_frame_ms, self.gpu.frame_size.0, self.gpu.frame_size.1
+            ),
             egui::FontId::monospace(11.0),
             Color32::from_white_alpha(150),
         );
