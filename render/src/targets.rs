@@ -154,11 +154,6 @@ impl TargetPool {
         TargetPool { formats, size: (0, 0), textures: HashMap::new() }
     }
 
-    /// The formats targets are created in.
-    pub fn formats(&self) -> Formats {
-        self.formats
-    }
-
     /// Sets the frame size; a change drops every target.
     pub fn resize(&mut self, size: (u32, u32)) {
         if self.size != size {
