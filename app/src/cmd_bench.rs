@@ -21,6 +21,11 @@ pub enum BenchCommand {
     /// sample count against a brute-force reference (RMSE, mean/p95 ΔE2000), and the error of
     /// the layer tables.
     Render(RenderBenchArgs),
+    /// Translucency: every subsurface model × reference scene × parameter set against Mitsuba 3
+    /// references of the same scenes (data/reference/translucency): GPU ms per frame, RMSE of
+    /// linear radiance and ΔE2000 (mean, 95th percentile) of the tone-mapped images over the
+    /// object's pixels. Plot the JSON with python/plot_translucency.py.
+    Translucency(crate::bench_translucency::TranslucencyBenchArgs),
     /// Painting: brush dab to updated frame at 1280×720 with 2048² maps (apply the dab on the
     /// CPU, upload the changed rectangle, render, wait), on the default head.
     Paint(PaintBenchArgs),
@@ -87,6 +92,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Compositing(args) => compositing(args),
         BenchCommand::Render(args) => render(args),
         BenchCommand::Paint(args) => paint(args),
+        BenchCommand::Translucency(args) => crate::bench_translucency::run(args),
     }
 }
 

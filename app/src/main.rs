@@ -4,12 +4,15 @@
 //! reads back bit-for-bit) except `import` and `demo`, which print a report for people (`--json`
 //! for a machine). Errors: a message on stderr and exit status 2.
 
+mod bench_translucency;
 mod cmd_bench;
 mod cmd_color;
+mod cmd_export;
 mod cmd_import;
 mod cmd_km;
 mod cmd_render;
 mod plot;
+mod scene_args;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -63,6 +66,9 @@ enum Command {
     /// Defaults: the embedded head, foundation + blush + lipstick, a studio light rig, 1280×720.
     /// Runs on any wgpu adapter, Mesa's lavapipe included when there is no GPU.
     Render(cmd_render::RenderArgs),
+    /// Export a scene for another renderer (Mitsuba 3, the ground truth for translucency).
+    #[command(subcommand)]
+    Export(cmd_export::ExportCommand),
     /// Speed-against-error studies (figures for docs/BENCHMARKS.md).
     #[command(subcommand)]
     Bench(cmd_bench::BenchCommand),
@@ -108,6 +114,7 @@ fn main() -> ExitCode {
         Command::Km(cmd) => cmd_km::run(&cmd),
         Command::Color(args) => cmd_color::run(&args),
         Command::Render(args) => cmd_render::run(&args),
+        Command::Export(cmd) => cmd_export::run(&cmd),
         Command::Bench(cmd) => cmd_bench::run(&cmd),
     };
     match result {

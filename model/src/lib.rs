@@ -8,11 +8,13 @@
 //! - [`document`]: the painting document: layers with 2048² thickness maps, undo/redo, projects,
 //!   exports, recovery.
 //! - [`paint`]: the brush: the surface map, dabs, strokes.
+//! - [`medium`]: physical participating media (σa, σs′, g, η), the built-in measured ones.
 //! - [`rect`]: the one texel-rectangle type.
 
 pub mod document;
 pub mod error;
 pub mod look;
+pub mod medium;
 pub mod mesh;
 pub mod paint;
 pub mod rect;

@@ -104,7 +104,7 @@ impl GpuMesh {
 
 /// Albedo and material per vertex: skin everywhere but groups named like eyes, which get a
 /// sclera, iris and pupil by angle from the eye's forward axis (+Z) and do not scatter (a = 0).
-fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
+pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
     for g in &mesh.groups {
         if !g.name.to_ascii_lowercase().contains("eye") {

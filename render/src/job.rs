@@ -12,6 +12,7 @@ use crate::gpu::Gpu;
 use crate::renderer::Renderer;
 use crate::scene::{Camera, Scene};
 use rouge_model::look::Look;
+use rouge_model::mesh::Bounds;
 pub use rouge_model::mesh::load_mesh;
 use std::path::{Path, PathBuf};
 
@@ -108,30 +109,56 @@ impl RenderJob {
     /// # Errors
     /// Any file that cannot be loaded (named), or no GPU.
     pub fn prepare(&self) -> Result<Prepared> {
+        let Loaded { mesh, look, scene, camera, .. } = self.load()?;
+        let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
+        let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
+        let gpu = Gpu::headless()?;
+        let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
+        renderer.set_mesh(&mesh, scene.skin.albedo)?;
+        renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
+        renderer.set_look(&look)?;
+        Ok(Prepared { gpu, renderer, scene, camera, triangles: mesh.triangle_count(), size: (self.width, self.height) })
+    }
+
+    /// Loads mesh, look and environment without a GPU (what `rouge export mitsuba` needs), and
+    /// frames the camera on the mesh's bounds as [`RenderJob::prepare`] does.
+    ///
+    /// # Errors
+    /// Any file that cannot be loaded (named); an empty mesh.
+    pub fn load(&self) -> Result<Loaded> {
         let look = match &self.look {
             LookChoice::Default => Look::default_look(),
             LookChoice::Bare => Look::bare(),
             LookChoice::File(p) => Look::load(p)?,
         };
         let mut scene = self.scene.clone();
-        if let Some(env) = &self.env {
-            scene.environment = Some(EnvMap::load_exr(env)?.sh_irradiance());
+        let env = self.env.as_deref().map(EnvMap::load_exr).transpose()?;
+        if let Some(env) = &env {
+            scene.environment = Some(env.sh_irradiance());
         }
         let mut mesh = load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?;
-        let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
-        let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
-        if normal.is_some() {
+        if self.normal_map.is_some() {
             mesh.generate_tangents()?;
         }
-        let gpu = Gpu::headless()?;
-        let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
-        renderer.set_mesh(&mesh, scene.skin.albedo)?;
-        renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
-        renderer.set_look(&look)?;
-        let bounds = renderer.mesh_bounds().ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
+        let bounds = Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
         let camera = Camera::framing(&bounds, self.yaw_deg, self.pitch_deg);
-        Ok(Prepared { gpu, renderer, scene, camera, triangles: mesh.triangle_count(), size: (self.width, self.height) })
+        Ok(Loaded { mesh, look, scene, env, camera })
     }
+}
+
+/// A job's scene loaded on the CPU.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The triangle mesh, mm, subdivided.
+    pub mesh: rouge_model::mesh::TriangleMesh,
+    /// The look.
+    pub look: Look,
+    /// The scene, with the environment of the job.
+    pub scene: Scene,
+    /// The environment map, when the job names one.
+    pub env: Option<EnvMap>,
+    /// The camera framing the mesh.
+    pub camera: Camera,
 }
 
 impl Prepared {
@@ -171,6 +198,15 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
 /// # Errors
 /// [`RenderError::File`] naming `path`.
 pub fn write_exr(path: &Path, width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<()> {
+    let bytes = encode_exr(width, height, rgba).map_err(|e| RenderError::file(path, e))?;
+    rouge_measure::preset::write_atomic(path, &bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+}
+
+/// Encodes linear RGB (alpha ignored) as a 32-bit float EXR in memory.
+///
+/// # Errors
+/// [`RenderError::Invalid`] when the encoder refuses the image.
+pub fn encode_exr(width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<Vec<u8>> {
     use exr::prelude::*;
     let (w, h) = (width as usize, height as usize);
     let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
@@ -179,9 +215,8 @@ pub fn write_exr(path: &Path, width: u32, height: u32, rgba: &[[f32; 4]]) -> Res
     });
     let image = Image::from_channels((w, h), channels);
     let mut bytes = std::io::Cursor::new(Vec::new());
-    image.write().to_buffered(&mut bytes).map_err(|e| RenderError::file(path, format!("cannot encode EXR: {e}")))?;
-    rouge_measure::preset::write_atomic(path, bytes.get_ref())
-        .map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+    image.write().to_buffered(&mut bytes).map_err(|e| RenderError::Invalid(format!("cannot encode EXR: {e}")))?;
+    Ok(bytes.into_inner())
 }
 
 /// Writes the frame to `path` by its extension: .png (tone-mapped) or .exr (linear).

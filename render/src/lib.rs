@@ -10,6 +10,7 @@
 //! - [`renderer`]: uploads and the frame itself; [`targets`], [`shader`], [`uniforms`],
 //!   [`profiler`] and [`wgpu_util`] serve it.
 
+pub mod diffusion;
 pub mod env;
 pub mod error;
 pub mod frame;
@@ -17,7 +18,9 @@ pub mod gpu;
 pub mod gpu_look;
 pub mod gpu_mesh;
 pub mod job;
+pub mod mitsuba;
 pub mod passes;
+pub mod profile_fit;
 pub mod profiler;
 pub mod renderer;
 pub mod scene;
@@ -26,10 +29,11 @@ pub mod specular;
 pub mod sss;
 pub mod study;
 pub mod targets;
+pub mod translucency;
 pub mod uniforms;
 pub mod wgpu_util;
 
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
 pub use renderer::Renderer;
-pub use scene::{Camera, Light, LightKind, Scene, Skin, SssSettings, SubsurfaceModel};
+pub use scene::{Camera, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};

@@ -1,12 +1,15 @@
 //! What a frame shows besides the mesh and the look: camera, lights, environment, skin, SSS
 //! settings, exposure. Units are millimetres; +Y up, the face looks toward +Z.
 
+use crate::diffusion::ProfileModel;
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
+use crate::profile_fit::FittedProfile;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
 use rouge_measure::{Extrapolation, Spectrum};
+use rouge_model::medium::Medium;
 use rouge_model::mesh::Bounds;
 use std::path::Path;
 
@@ -105,6 +108,9 @@ pub struct Skin {
     pub ior: f32,
     /// How light scatters under the surface (the subsurface model of the skin material).
     pub subsurface: SubsurfaceModel,
+    /// The physical medium under the surface, when the material names one (`--medium`): what
+    /// `rouge export mitsuba` puts inside the mesh. `None`: a measured albedo and profile only.
+    pub medium: Option<Medium>,
 }
 
 /// A material's subsurface scattering model: which technique the frame plan runs for it, with
@@ -159,7 +165,23 @@ impl Skin {
             roughness: 0.35,
             ior: 1.4,
             subsurface: SubsurfaceModel::skin_screen_space(),
+            medium: None,
         }
+    }
+
+    /// A material of `medium` whose screen-space profile comes from `model` fitted by Gaussians
+    /// ([`FittedProfile`]): the albedo is the model's total diffuse reflectance, the IOR the
+    /// medium's η, the roughness that of skin. Returns the fit too (its error is reported).
+    pub fn from_medium(medium: &Medium, model: ProfileModel) -> (Skin, FittedProfile) {
+        let fit = FittedProfile::of_medium(medium, model);
+        let skin = Skin {
+            albedo: fit.total.map(|v| v.clamp(0.0, 1.0) as f32),
+            roughness: 0.35,
+            ior: medium.eta as f32,
+            subsurface: SubsurfaceModel::ScreenSpace { profile: fit.profile.clone() },
+            medium: Some(medium.clone()),
+        };
+        (skin, fit)
     }
 
     /// The ColorChecker's "light skin" or "dark skin" patch.
@@ -195,6 +217,7 @@ impl Default for Skin {
             roughness: 0.35,
             ior: 1.4,
             subsurface: SubsurfaceModel::skin_screen_space(),
+            medium: None,
         })
     }
 }
@@ -225,6 +248,21 @@ impl Default for SssSettings {
     fn default() -> Self {
         SssSettings { width: 1.0, samples: 11, follow_mm: 3.0, range_sigmas: 3.0, run_at_zero_width: false }
     }
+}
+
+/// Named light setups (`--lights`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightRig {
+    /// The default studio: key, fill and rim lights and a soft environment.
+    Studio,
+    /// One white key light from the front left, with shadows.
+    FrontLeft,
+    /// One white light from behind, with shadows (backlit translucency).
+    Back,
+    /// One white light from the camera's side (+Z), with shadows.
+    Front,
+    /// No light and no environment (add one with `--env`).
+    None,
 }
 
 /// Everything about a frame but the mesh and the look.
@@ -275,6 +313,24 @@ impl Scene {
             exposure: 1.0,
             background: [0.16, 0.17, 0.19],
         }
+    }
+
+    /// The scene of a light rig: `Studio` is [`Scene::studio`]; the others are one white
+    /// directional light of irradiance π that casts shadows and no environment, the setups of
+    /// the translucency references (a white Lambertian facing the light has radiance 1).
+    pub fn rig(rig: LightRig) -> Scene {
+        let toward = match rig {
+            LightRig::Studio => return Scene::studio(),
+            LightRig::FrontLeft => Vec3::new(-0.6, 0.35, 0.72),
+            // From behind, above and to the right: the ear, the nostrils' rims and the silhouette
+            // glow.
+            LightRig::Back => Vec3::new(0.55, 0.3, -0.78),
+            LightRig::Front => Vec3::Z,
+            LightRig::None => return Scene { lights: Vec::new(), ..Scene::white_light(Vec3::Z) },
+        };
+        let mut scene = Scene::white_light(toward);
+        scene.lights[0].shadows = true;
+        scene
     }
 
     /// One white directional light of irradiance π along `toward`, nothing else: a white

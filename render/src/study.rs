@@ -139,13 +139,13 @@ pub struct SssStudy {
     pub rows: Vec<SssRow>,
 }
 
-fn final_image(cap: &FrameCapture, scattered: &[[f32; 3]]) -> Vec<[f32; 3]> {
+pub(crate) fn final_image(cap: &FrameCapture, scattered: &[[f32; 3]]) -> Vec<[f32; 3]> {
     (0..cap.width * cap.height)
         .map(|i| std::array::from_fn(|c| scattered[i][c] * cap.exit_t[i][c] + cap.surface[i][c]))
         .collect()
 }
 
-fn compare(a: &[[f32; 3]], b: &[[f32; 3]], skin: &[bool], exposure: f32) -> (f64, f64, f64, f64) {
+pub(crate) fn compare(a: &[[f32; 3]], b: &[[f32; 3]], skin: &[bool], exposure: f32) -> (f64, f64, f64, f64) {
     let mut sq = 0.0f64;
     let mut des = Vec::new();
     for i in 0..a.len() {

@@ -2,15 +2,30 @@
 
 use std::path::Path;
 
+use super::shapes::{BUILTIN_SHAPES, builtin_shape};
 use super::{TriangleMesh, default_head, load_gltf, load_obj};
 use crate::error::{ModelError, Result};
 
 /// Loads a mesh by extension (or the default head for `None`), subdivides it `subdivision`
-/// times (Catmull-Clark) and triangulates it.
+/// times (Catmull-Clark) and triangulates it. `builtin:head`, `builtin:sphere` and
+/// `builtin:wedge` name the built-in objects ([`super::shapes`]); the sphere and the wedge are
+/// exact shapes in mm, neither scaled nor subdivided.
 ///
 /// # Errors
-/// The loader's error naming the file; an unknown extension.
+/// The loader's error naming the file; an unknown extension or built-in name.
 pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result<TriangleMesh> {
+    if let Some(name) = path.and_then(|p| p.to_str()).and_then(|p| p.strip_prefix("builtin:")) {
+        if name == "head" {
+            return load_mesh(None, scale_mm, subdivision);
+        }
+        let shape = builtin_shape(name).ok_or_else(|| {
+            ModelError::Invalid(format!(
+                "--mesh builtin:{name}: no such built-in mesh; use builtin:{}",
+                BUILTIN_SHAPES.join(", builtin:")
+            ))
+        })?;
+        return Ok(shape.triangulate());
+    }
     let mesh = match path {
         None => default_head()?,
         Some(p) => match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {

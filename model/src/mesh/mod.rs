@@ -3,9 +3,11 @@
 //! Units: positions are millimetres. Loaders take a declared `scale_to_mm` factor because
 //! scans come in arbitrary units (metres, centimetres, millimetres).
 
+mod cap;
 mod gltf;
 mod load;
 mod obj;
+pub mod shapes;
 mod subdivide;
 mod tangents;
 
@@ -15,6 +17,7 @@ use std::path::PathBuf;
 
 use glam::{Vec2, Vec3, Vec4};
 
+pub use self::cap::close_boundary_loops;
 pub use self::gltf::load_gltf;
 pub use self::load::load_mesh;
 pub use self::obj::{load_obj, parse_obj};

@@ -1,0 +1,167 @@
+//! `rouge bench translucency`: every subsurface model × reference scene × parameter set, GPU ms
+//! per frame against the error to the Mitsuba 3 reference (docs/TRANSLUCENCY.md). Rows follow
+//! ../shared/DESIGN.md's benchmark table.
+
+use crate::scene_args::{Profile, SceneArgs};
+use anyhow::{Context, Result, bail};
+use clap::{Args, Parser};
+use rouge_render::job::RenderJob;
+use rouge_render::translucency::{ReferenceImage, measure};
+use rouge_render::{Skin, SubsurfaceModel};
+use serde::Serialize;
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct TranslucencyBenchArgs {
+    /// Folder of references (NAME.exr + NAME.json sidecars from python/render_reference.py).
+    #[arg(long, default_value = "data/reference/translucency")]
+    pub references: PathBuf,
+    /// Only these scenes (sidecar names), comma-separated.
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+    /// Screen-space kernel sample counts (odd, 3-33).
+    #[arg(long, value_delimiter = ',', default_values_t = [5u32, 7, 11, 17, 25, 33])]
+    pub samples: Vec<u32>,
+    /// Profiles the screen-space kernel is built from.
+    #[arg(long, value_delimiter = ',', value_enum, default_values_t = [Profile::Dipole, Profile::BetterDipole, Profile::Burley])]
+    pub profiles: Vec<Profile>,
+    /// Frames timed per configuration (after two warm-up frames).
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
+    /// Write the rows as JSON here (plot them with python/plot_translucency.py).
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// One row of the table (../shared/DESIGN.md).
+#[derive(Debug, Serialize)]
+struct Row {
+    scene: String,
+    model: String,
+    params: serde_json::Value,
+    gpu_ms: Option<f64>,
+    wall_ms: f64,
+    rmse: f64,
+    delta_e_mean: f64,
+    delta_e_p95: f64,
+    pixels: usize,
+    reference: String,
+    reference_noise_rms: f64,
+    device: String,
+}
+
+/// Parses a sidecar's `rouge_options` as `rouge render` would.
+#[derive(Debug, Parser)]
+struct OptionsOnly {
+    #[command(flatten)]
+    scene: SceneArgs,
+}
+
+fn sidecars(dir: &Path, only: &[String]) -> Result<Vec<(String, serde_json::Value)>> {
+    let mut out = Vec::new();
+    let entries = std::fs::read_dir(dir).with_context(|| format!("{}: cannot list the references", dir.display()))?;
+    for entry in entries {
+        let path = entry?.path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+        if !only.is_empty() && !only.contains(&name) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).with_context(|| format!("{}: cannot read", path.display()))?;
+        let value: serde_json::Value = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not a reference sidecar (JSON)", path.display()))?;
+        out.push((name, value));
+    }
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    if let Some(missing) = only.iter().find(|n| !out.iter().any(|(m, _)| m == *n)) {
+        bail!("{}: no reference named {missing}", dir.display());
+    }
+    if out.is_empty() {
+        bail!("{}: no references (make them with python/render_reference.py)", dir.display());
+    }
+    Ok(out)
+}
+
+pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
+    if let Some(&n) = args.samples.iter().find(|&&n| !(3..=33).contains(&n) || n % 2 == 0) {
+        bail!("--samples {n}: each count must be odd, 3-33");
+    }
+    let mut rows = Vec::new();
+    for (name, sidecar) in sidecars(&args.references, &args.only)? {
+        let sidecar_path = args.references.join(format!("{name}.json"));
+        let options: Vec<String> = serde_json::from_value(sidecar["rouge_options"].clone())
+            .with_context(|| format!("{}: rouge_options must be a list of strings", sidecar_path.display()))?;
+        let parsed = OptionsOnly::try_parse_from(std::iter::once("rouge".to_string()).chain(options.clone()))
+            .with_context(|| format!("{}: rouge_options {options:?}", sidecar_path.display()))?;
+        let exr = args.references.join(sidecar["image"].as_str().unwrap_or(&format!("{name}.exr")));
+        let reference = ReferenceImage::load(&exr)?;
+        let noise = sidecar["noise_rms"].as_f64().unwrap_or(f64::NAN);
+        let (base, _) = parsed.scene.job()?;
+        let Some(medium) = base.scene.skin.medium.clone() else {
+            bail!("{}: the scene names no medium", sidecar_path.display());
+        };
+        eprintln!("rouge: {name} ({}×{}, reference noise {noise:.2e})", reference.width, reference.height);
+        // (model, params, skin) for every configuration of this scene.
+        let mut configs: Vec<(&str, serde_json::Value, Skin, u32)> = Vec::new();
+        let (better, _) = Skin::from_medium(&medium, Profile::BetterDipole.model());
+        configs.push((
+            "none",
+            json!({"albedo": "better-dipole"}),
+            Skin { subsurface: SubsurfaceModel::None, ..better },
+            0,
+        ));
+        for &profile in &args.profiles {
+            let (skin, fit) = Skin::from_medium(&medium, profile.model());
+            for &n in &args.samples {
+                let params = json!({"profile": fit.model.name(), "samples": n, "fit_error": fit.fit_error});
+                configs.push(("screen-space", params, skin.clone(), n));
+            }
+        }
+        if medium.name.starts_with("skin") {
+            // Today's skin: the ColorChecker albedo and d'Eon's six Gaussians, 11 samples.
+            configs.push(("screen-space", json!({"profile": "deon-skin", "samples": 11}), Skin::default(), 11));
+        }
+        for (model, params, skin, samples) in configs {
+            let mut job: RenderJob = base.clone();
+            job.scene.skin = skin;
+            job.scene.specular = false;
+            job.scene.background = [0.0; 3];
+            job.scene.exposure = 1.0;
+            if samples > 0 {
+                job.scene.sss.samples = samples;
+            }
+            let mut prepared = job.prepare()?;
+            let m = measure(&mut prepared, &reference, args.frames)?;
+            eprintln!(
+                "  {model:<12} {params}: gpu {} ms, rmse {:.4}, ΔE mean {:.2} p95 {:.2}",
+                m.gpu_ms.map_or("-".to_string(), |v| format!("{v:.2}")),
+                m.error.rmse,
+                m.error.delta_e_mean,
+                m.error.delta_e_p95
+            );
+            rows.push(Row {
+                scene: name.clone(),
+                model: model.to_string(),
+                params,
+                gpu_ms: m.gpu_ms,
+                wall_ms: m.wall_ms,
+                rmse: m.error.rmse,
+                delta_e_mean: m.error.delta_e_mean,
+                delta_e_p95: m.error.delta_e_p95,
+                pixels: m.error.pixels,
+                reference: exr.display().to_string(),
+                reference_noise_rms: noise,
+                device: prepared.gpu.describe(),
+            });
+        }
+    }
+    let text = serde_json::to_string_pretty(&rows)?;
+    if let Some(path) = &args.json {
+        rouge_measure::preset::write_atomic(path, text.as_bytes())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    crate::emit(&text)
+}

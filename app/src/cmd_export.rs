@@ -1,0 +1,99 @@
+//! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (the ground truth
+//! of docs/TRANSLUCENCY.md).
+
+use crate::scene_args::SceneArgs;
+use anyhow::Result;
+use clap::{Args, Subcommand};
+use rouge_render::mitsuba::{ExportInput, Interior, export};
+use std::path::PathBuf;
+
+#[derive(Debug, Subcommand)]
+pub enum ExportCommand {
+    /// A Mitsuba 3 scene (DIR/scene.xml with skin.ply, eyes.ply and env.exr beside it) of exactly
+    /// what `rouge render` draws with the same options: mesh in mm, camera, lights, environment,
+    /// and the skin's boundary and interior medium. Render it with
+    /// `python/render_reference.py` or `mi.load_file("DIR/scene.xml", spp=N)`.
+    Mitsuba(MitsubaArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MitsubaArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Below the surface: the material's medium behind a rough dielectric, the same boundary
+    /// over a black absorber (the surface reflection alone; medium − absorber is the light that
+    /// went below the surface), or an opaque Lambertian of the skin's albedo (the check that
+    /// camera, lights and units match).
+    #[arg(long, value_enum, default_value_t = InteriorArg::Medium)]
+    pub interior: InteriorArg,
+    /// Samples per pixel written as the scene's default (`$spp`).
+    #[arg(long, default_value_t = 256)]
+    pub spp: u32,
+    /// Beckmann roughness α of the medium's boundary; 0 for a smooth dielectric. The path
+    /// tracer connects delta lights (directional, point) to the interior only through a rough
+    /// boundary, and a rough one loses a little energy at every internal reflection (Mitsuba's
+    /// microfacet model is single-scattering): docs/TRANSLUCENCY.md gives the loss per α.
+    #[arg(long, default_value_t = 0.1)]
+    pub boundary_alpha: f64,
+    /// Angular radius of the lights in degrees: 0 keeps delta lights; above 0 each directional
+    /// light becomes a distant disk and each point light a sphere of that angular radius with
+    /// the same irradiance. Delta lights reach a medium only by light sampling through a rough
+    /// boundary, whose estimates have rare huge weights (fireflies); area lights let the path
+    /// tracer combine light and BSDF samples (MIS). docs/TRANSLUCENCY.md measures both.
+    #[arg(long, default_value_t = 0.0)]
+    pub light_radius_deg: f64,
+    /// Output folder (created; scene.xml and its files are replaced atomically).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `--interior` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum InteriorArg {
+    /// The medium behind a rough dielectric boundary.
+    Medium,
+    /// A black absorber behind the same boundary.
+    Absorber,
+    /// An opaque Lambertian surface of the skin's albedo.
+    Lambert,
+}
+
+pub fn run(cmd: &ExportCommand) -> Result<()> {
+    let ExportCommand::Mitsuba(args) = cmd;
+    args.scene.check()?;
+    if !(args.boundary_alpha.is_finite() && (0.0..=1.0).contains(&args.boundary_alpha)) {
+        anyhow::bail!("--boundary-alpha {}: must lie in [0, 1]", args.boundary_alpha);
+    }
+    if !(args.light_radius_deg.is_finite() && (0.0..45.0).contains(&args.light_radius_deg)) {
+        anyhow::bail!("--light-radius-deg {}: must lie in [0, 45)", args.light_radius_deg);
+    }
+    let (job, _) = args.scene.job()?;
+    let loaded = job.load()?;
+    let interior = match args.interior {
+        InteriorArg::Medium => Interior::Medium,
+        InteriorArg::Absorber => Interior::Absorber,
+        InteriorArg::Lambert => Interior::Lambert,
+    };
+    let scene = export(&ExportInput {
+        mesh: &loaded.mesh,
+        scene: &loaded.scene,
+        env: loaded.env.as_ref(),
+        camera: &loaded.camera,
+        width: job.width,
+        height: job.height,
+        interior,
+        spp: args.spp,
+        boundary_alpha: args.boundary_alpha,
+        light_radius_deg: args.light_radius_deg,
+    })?;
+    scene.write(&args.out)?;
+    eprintln!(
+        "rouge: wrote {} ({} triangles, interior {}, {}×{})",
+        args.out.join("scene.xml").display(),
+        loaded.mesh.triangle_count(),
+        interior.name(),
+        job.width,
+        job.height
+    );
+    Ok(())
+}

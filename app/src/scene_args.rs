@@ -1,0 +1,228 @@
+//! The scene options `rouge render` and `rouge export mitsuba` share, so that an export is
+//! exactly the scene the renderer draws: mesh, look, lights, environment, camera, image size,
+//! skin material (a physical medium or today's skin) and its subsurface model.
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use rouge_model::look::{Look, ThicknessSource};
+use rouge_model::medium::Medium;
+use rouge_render::diffusion::ProfileModel;
+use rouge_render::job::{LookChoice, RenderJob};
+use rouge_render::profile_fit::FittedProfile;
+use rouge_render::{LightRig, Scene, Skin, SubsurfaceModel};
+use std::path::PathBuf;
+
+#[derive(Debug, Clone, Args)]
+pub struct SceneArgs {
+    /// Mesh to render (.obj, .gltf, .glb), or builtin:head, builtin:sphere (25 mm radius),
+    /// builtin:wedge (60×40 mm, 1 to 15 mm thick); the embedded default head (hm08, CC0) when
+    /// absent.
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
+    /// Millimetres per mesh unit (scans come in metres, centimetres or arbitrary units).
+    #[arg(long, default_value_t = 1.0)]
+    pub mesh_scale: f32,
+    /// Catmull-Clark subdivision levels applied to the mesh (0-3).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=3))]
+    pub subdiv: u32,
+    /// Look document (JSON, `rouge-look` v1), `bare` for no cosmetics, or `default`
+    /// (foundation + blush + lipstick).
+    #[arg(long, default_value = "default")]
+    pub look: String,
+    /// Lights: the studio rig (key, fill, rim and a soft environment), or one white directional
+    /// light of irradiance π with shadows and no environment, from the front left, from behind
+    /// or from the camera, or nothing but the --env map.
+    #[arg(long, value_enum, default_value_t = Lights::Studio)]
+    pub lights: Lights,
+    /// Equirectangular HDR environment map (.exr) lighting the scene through spherical harmonics;
+    /// without it, the rig's (the studio's soft dome, or none).
+    #[arg(long)]
+    pub env: Option<PathBuf>,
+    /// No environment light at all, whatever the rig.
+    #[arg(long, conflicts_with = "env")]
+    pub no_environment: bool,
+    /// Skin albedo texture (PNG, sRGB) in the mesh's UV space; replaces the skin colour.
+    #[arg(long)]
+    pub albedo_map: Option<PathBuf>,
+    /// Tangent-space normal map (PNG, OpenGL convention: green = +V); MikkTSpace tangents are
+    /// generated for the mesh.
+    #[arg(long)]
+    pub normal_map: Option<PathBuf>,
+    /// Image width, pixels.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Image height, pixels.
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Camera yaw around the head, degrees (positive: from the head's left).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub yaw: f32,
+    /// Camera pitch, degrees (positive: from above).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub pitch: f32,
+    /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
+    /// chicken1, chicken2, cream, ketchup, marble, potato, skimmilk, skin1, skin2, wholemilk) or
+    /// a `rouge-medium` JSON file. The skin's albedo, IOR and scattering profile then come from
+    /// the medium (see --profile).
+    #[arg(long, conflicts_with_all = ["sigma_a", "sigma_s"])]
+    pub medium: Option<String>,
+    /// Absorption σa per linear RGB channel, mm⁻¹ (with --sigma-s and --eta: an explicit medium).
+    #[arg(long, value_delimiter = ',', requires_all = ["sigma_s", "eta"])]
+    pub sigma_a: Option<Vec<f64>>,
+    /// Reduced scattering σs′ = σs(1 − g) per linear RGB channel, mm⁻¹ (g = 0 is assumed).
+    #[arg(long, value_delimiter = ',', requires_all = ["sigma_a", "eta"])]
+    pub sigma_s: Option<Vec<f64>>,
+    /// Relative index of refraction of the medium's boundary (with --medium: replaces the
+    /// medium's; 1 is an index-matched boundary, which the path tracer references use).
+    #[arg(long)]
+    pub eta: Option<f64>,
+    /// Diffusion model the medium's screen-space profile comes from (fitted by Gaussians): the
+    /// classic dipole of [Jensen2001], the better dipole of [dEon2012], or Burley's normalized
+    /// diffusion [Christensen2015]. docs/BENCHMARKS.md says which matches the path tracer best.
+    #[arg(long, value_enum, default_value_t = Profile::BetterDipole)]
+    pub profile: Profile,
+}
+
+/// `--lights` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Lights {
+    /// Key, fill and rim lights and a soft environment.
+    Studio,
+    /// One white light from the front left.
+    FrontLeft,
+    /// One white light from behind.
+    Back,
+    /// One white light from the camera.
+    Front,
+    /// No light: only the environment given with --env.
+    None,
+}
+
+/// `--profile` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Profile {
+    /// Classic dipole ([Jensen2001]).
+    Dipole,
+    /// Better dipole ([dEon2012]).
+    BetterDipole,
+    /// Burley's normalized diffusion ([Christensen2015]).
+    Burley,
+}
+
+impl Profile {
+    pub fn model(self) -> ProfileModel {
+        match self {
+            Profile::Dipole => ProfileModel::ClassicDipole,
+            Profile::BetterDipole => ProfileModel::BetterDipole,
+            Profile::Burley => ProfileModel::Burley,
+        }
+    }
+}
+
+impl SceneArgs {
+    /// The medium the options name, if any.
+    pub fn medium(&self) -> Result<Option<Medium>> {
+        if let Some(name) = &self.medium {
+            let mut m = Medium::resolve(name).with_context(|| format!("--medium {name}"))?;
+            if let Some(eta) = self.eta {
+                m = Medium::from_coefficients(&m.name, m.sigma_a_per_mm, m.sigma_s_prime_per_mm, eta)
+                    .with_context(|| format!("--medium {name} --eta {eta}"))?;
+            }
+            return Ok(Some(m));
+        }
+        if self.eta.is_some() && (self.sigma_a.is_none() || self.sigma_s.is_none()) {
+            bail!("--eta needs --medium, or --sigma-a and --sigma-s");
+        }
+        match (&self.sigma_a, &self.sigma_s, self.eta) {
+            (Some(a), Some(s), Some(eta)) => {
+                let three = |v: &[f64], flag: &str| -> Result<[f64; 3]> {
+                    v.try_into().map_err(|_| anyhow::anyhow!("{flag}: give three values R,G,B"))
+                };
+                let m = Medium::from_coefficients("explicit", three(a, "--sigma-a")?, three(s, "--sigma-s")?, eta)
+                    .context("--sigma-a/--sigma-s/--eta")?;
+                Ok(Some(m))
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// The render job these options describe; the fitted profile when a medium is named.
+    pub fn job(&self) -> Result<(RenderJob, Option<FittedProfile>)> {
+        let look = match self.look.as_str() {
+            "default" => LookChoice::Default,
+            "bare" => LookChoice::Bare,
+            path => LookChoice::File(PathBuf::from(path)),
+        };
+        let rig = match self.lights {
+            Lights::Studio => LightRig::Studio,
+            Lights::FrontLeft => LightRig::FrontLeft,
+            Lights::Back => LightRig::Back,
+            Lights::Front => LightRig::Front,
+            Lights::None => LightRig::None,
+        };
+        let mut scene = Scene::rig(rig);
+        if self.no_environment {
+            scene.environment = None;
+        }
+        let mut fit = None;
+        if let Some(medium) = self.medium()? {
+            let (skin, fitted) = Skin::from_medium(&medium, self.profile.model());
+            scene.skin = skin;
+            fit = Some(fitted);
+        }
+        let job = RenderJob {
+            mesh: self.mesh.clone(),
+            mesh_scale_mm: self.mesh_scale,
+            subdivision: self.subdiv,
+            look,
+            env: self.env.clone(),
+            albedo_map: self.albedo_map.clone(),
+            normal_map: self.normal_map.clone(),
+            width: self.width,
+            height: self.height,
+            yaw_deg: self.yaw,
+            pitch_deg: self.pitch,
+            scene,
+        };
+        self.note_regions(&job);
+        Ok((job, fit))
+    }
+
+    /// Region masks are drawn for the default head's UVs: say so when they land on another mesh.
+    fn note_regions(&self, job: &RenderJob) {
+        let Some(mesh) = &self.mesh else { return };
+        if mesh.to_str() == Some("builtin:head") {
+            return;
+        }
+        let regions = |l: &Look| l.layers.iter().any(|l| matches!(l.thickness, ThicknessSource::Region { .. }));
+        let uses_regions = match &job.look {
+            LookChoice::Default => true,
+            LookChoice::Bare => false,
+            LookChoice::File(p) => Look::load(p).is_ok_and(|l| regions(&l)),
+        };
+        if uses_regions {
+            eprintln!(
+                "rouge: note: the look uses region masks drawn for the default head's UVs; on {} they land \
+                 wherever its UVs put them (use thickness maps painted for this mesh, or --look bare)",
+                mesh.display()
+            );
+        }
+    }
+
+    /// Checks the image size.
+    pub fn check(&self) -> Result<()> {
+        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
+            bail!("--width {} --height {}: each must be 1-16384 pixels", self.width, self.height);
+        }
+        Ok(())
+    }
+}
+
+/// The skin's subsurface model for `--subsurface` given the material (keeps a medium's profile).
+pub fn subsurface_model(skin: &Skin, screen_space: bool) -> SubsurfaceModel {
+    match (screen_space, &skin.subsurface) {
+        (false, _) => SubsurfaceModel::None,
+        (true, SubsurfaceModel::ScreenSpace { profile }) => SubsurfaceModel::ScreenSpace { profile: profile.clone() },
+        (true, SubsurfaceModel::None) => SubsurfaceModel::skin_screen_space(),
+    }
+}

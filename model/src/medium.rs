@@ -1,0 +1,194 @@
+//! Physical participating media: what is under a material's surface, in the terms a path tracer
+//! and the diffusion models share. A [`Medium`] is σa and σs′ per linear RGB channel in mm⁻¹,
+//! the phase function's mean cosine g and the boundary's relative index of refraction η.
+//!
+//! The built-in media are the measurements of Jensen et al. ([Jensen2001], the table of measured
+//! parameters) in `data/media/*.json` (`rouge-medium` v1, docs/FORMATS.md), embedded. The table
+//! gives the reduced scattering σs′ = σs(1 − g) only, so the files carry g = 0 and σs = σs′ (the
+//! similarity relation): a diffusion model sees exactly the measured medium, and a path tracer
+//! sees its isotropic equivalent.
+
+use crate::error::{ModelError, Result};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A homogeneous participating medium with a dielectric boundary.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Medium {
+    /// Always `"rouge-medium"`.
+    pub schema: String,
+    /// Format version (1).
+    pub version: u32,
+    /// Short name (`skin1`, `marble`, ...): what `--medium` takes.
+    pub name: String,
+    /// What it is, in words.
+    #[serde(default)]
+    pub description: String,
+    /// Absorption coefficient σa per linear RGB channel, mm⁻¹.
+    pub sigma_a_per_mm: [f64; 3],
+    /// Reduced scattering coefficient σs′ = σs(1 − g) per channel, mm⁻¹.
+    pub sigma_s_prime_per_mm: [f64; 3],
+    /// Mean cosine of the phase function (Henyey-Greenstein), in (−1, 1).
+    pub g: f64,
+    /// Relative index of refraction of the boundary (inside over outside).
+    pub eta: f64,
+    /// Where the values come from (a key of docs/REFERENCES.md and the table or figure).
+    #[serde(default)]
+    pub source: String,
+    /// Independent copies of the source the values were checked against.
+    #[serde(default)]
+    pub checked_against: Vec<String>,
+    /// Anything a user of the values should know (disagreements between copies, choices made).
+    #[serde(default)]
+    pub notes: String,
+}
+
+/// The names of the built-in media, in the order of [Jensen2001]'s table.
+pub const BUILTIN_MEDIA: [&str; 11] = [
+    "apple",
+    "chicken1",
+    "chicken2",
+    "cream",
+    "ketchup",
+    "marble",
+    "potato",
+    "skimmilk",
+    "skin1",
+    "skin2",
+    "wholemilk",
+];
+
+fn builtin_json(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "apple" => include_str!("../../data/media/apple.json"),
+        "chicken1" => include_str!("../../data/media/chicken1.json"),
+        "chicken2" => include_str!("../../data/media/chicken2.json"),
+        "cream" => include_str!("../../data/media/cream.json"),
+        "ketchup" => include_str!("../../data/media/ketchup.json"),
+        "marble" => include_str!("../../data/media/marble.json"),
+        "potato" => include_str!("../../data/media/potato.json"),
+        "skimmilk" => include_str!("../../data/media/skimmilk.json"),
+        "skin1" => include_str!("../../data/media/skin1.json"),
+        "skin2" => include_str!("../../data/media/skin2.json"),
+        "wholemilk" => include_str!("../../data/media/wholemilk.json"),
+        _ => return None,
+    })
+}
+
+impl Medium {
+    /// A medium from explicit coefficients (σs′ given, g = 0), checked.
+    ///
+    /// # Errors
+    /// [`ModelError::Invalid`] naming the value out of its domain.
+    pub fn from_coefficients(
+        name: &str,
+        sigma_a_per_mm: [f64; 3],
+        sigma_s_prime_per_mm: [f64; 3],
+        eta: f64,
+    ) -> Result<Medium> {
+        let m = Medium {
+            schema: "rouge-medium".into(),
+            version: 1,
+            name: name.into(),
+            description: String::new(),
+            sigma_a_per_mm,
+            sigma_s_prime_per_mm,
+            g: 0.0,
+            eta,
+            source: String::new(),
+            checked_against: Vec::new(),
+            notes: String::new(),
+        };
+        m.validate().map_err(ModelError::Invalid)?;
+        Ok(m)
+    }
+
+    /// A built-in medium by name ([`BUILTIN_MEDIA`]).
+    ///
+    /// # Errors
+    /// [`ModelError::Invalid`] for an unknown name (the message lists the known ones).
+    pub fn builtin(name: &str) -> Result<Medium> {
+        let json = builtin_json(name).ok_or_else(|| {
+            ModelError::Invalid(format!("no built-in medium {name:?}: use one of {}", BUILTIN_MEDIA.join(", ")))
+        })?;
+        Self::parse(json, Path::new(&format!("<embedded data/media/{name}.json>")))
+    }
+
+    /// A built-in medium by name, or a `rouge-medium` JSON file when `name_or_path` ends in
+    /// `.json`.
+    ///
+    /// # Errors
+    /// As [`Medium::builtin`] and [`Medium::load`].
+    pub fn resolve(name_or_path: &str) -> Result<Medium> {
+        if name_or_path.to_ascii_lowercase().ends_with(".json") {
+            Self::load(Path::new(name_or_path))
+        } else {
+            Self::builtin(name_or_path)
+        }
+    }
+
+    /// Reads a `rouge-medium` v1 JSON file.
+    ///
+    /// # Errors
+    /// [`ModelError::File`] naming the file and the line and column of a syntax error or the
+    /// field out of its domain.
+    pub fn load(path: &Path) -> Result<Medium> {
+        let text = std::fs::read_to_string(path).map_err(|e| ModelError::file(path, format!("cannot read: {e}")))?;
+        Self::parse(&text, path)
+    }
+
+    fn parse(text: &str, path: &Path) -> Result<Medium> {
+        let m: Medium = serde_json::from_str(text).map_err(|e| {
+            ModelError::file(path, format!("line {}, column {}: not a rouge-medium file: {e}", e.line(), e.column()))
+        })?;
+        m.validate().map_err(|message| ModelError::file(path, message))?;
+        Ok(m)
+    }
+
+    /// Checks every field's domain; the message names the field and channel.
+    fn validate(&self) -> std::result::Result<(), String> {
+        if self.schema != "rouge-medium" || self.version != 1 {
+            return Err(format!(
+                "schema {:?} version {}: expected \"rouge-medium\" version 1",
+                self.schema, self.version
+            ));
+        }
+        const CHANNELS: [&str; 3] = ["R", "G", "B"];
+        for c in 0..3 {
+            let (a, s) = (self.sigma_a_per_mm[c], self.sigma_s_prime_per_mm[c]);
+            if !(a.is_finite() && a >= 0.0) {
+                return Err(format!("sigma_a_per_mm[{}] = {a}: must be finite and ≥ 0", CHANNELS[c]));
+            }
+            if !(s.is_finite() && s >= 0.0) {
+                return Err(format!("sigma_s_prime_per_mm[{}] = {s}: must be finite and ≥ 0", CHANNELS[c]));
+            }
+            if a + s <= 0.0 {
+                return Err(format!("channel {}: σa + σs′ = 0, the medium is vacuum", CHANNELS[c]));
+            }
+        }
+        if !(self.g.is_finite() && self.g > -1.0 && self.g < 1.0) {
+            return Err(format!("g = {}: must lie in (−1, 1)", self.g));
+        }
+        if !(self.eta.is_finite() && (1.0..=3.0).contains(&self.eta)) {
+            return Err(format!("eta = {}: must lie in [1, 3] (inside over outside)", self.eta));
+        }
+        Ok(())
+    }
+
+    /// Scattering coefficient σs = σs′ / (1 − g) per channel, mm⁻¹ (the similarity relation).
+    pub fn sigma_s_per_mm(&self) -> [f64; 3] {
+        self.sigma_s_prime_per_mm.map(|s| s / (1.0 - self.g))
+    }
+
+    /// Extinction σt = σa + σs per channel, mm⁻¹.
+    pub fn sigma_t_per_mm(&self) -> [f64; 3] {
+        let s = self.sigma_s_per_mm();
+        std::array::from_fn(|c| self.sigma_a_per_mm[c] + s[c])
+    }
+
+    /// Single-scattering albedo σs / σt per channel.
+    pub fn albedo(&self) -> [f64; 3] {
+        let (s, t) = (self.sigma_s_per_mm(), self.sigma_t_per_mm());
+        std::array::from_fn(|c| s[c] / t[c])
+    }
+}

@@ -1,0 +1,123 @@
+"""Mitsuba 3 references of Rouge's own scenes: export with `rouge export mitsuba`, render in
+passes with independent seeds, split the passes into two halves for a noise estimate.
+
+Used by python/render_reference.py (the committed references) and python/test_mitsuba_match.py
+(the small CI checks). The subsurface part of a scene is the image with the medium inside minus
+the image with a black absorber behind the same boundary (docs/TRANSLUCENCY.md).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import subprocess
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+
+def pick_variant(preferred: str | None = None) -> str:
+    """`preferred`, else cuda_ad_rgb where a CUDA device answers, else scalar_rgb."""
+    import mitsuba as mi
+
+    if preferred:
+        mi.set_variant(preferred)
+        return preferred
+    for v in ("cuda_ad_rgb", "scalar_rgb"):
+        try:
+            mi.set_variant(v)
+            if v.startswith("cuda"):
+                import drjit as dr
+
+                dr.zeros(mi.Float, 4)  # touches the device: raises without one
+                dr.eval()
+            return v
+        except Exception:  # noqa: BLE001 - any failure means: not this variant
+            continue
+    raise RuntimeError("no Mitsuba variant runs here (need scalar_rgb at least)")
+
+
+def export(rouge: str, args: list[str], interior: str, out: Path) -> Path:
+    """Runs `rouge export mitsuba ARGS --interior I --out OUT`; returns OUT/scene.xml."""
+    cmd = [rouge, "export", "mitsuba", *args, "--interior", interior, "--out", str(out)]
+    p = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
+    return out / "scene.xml"
+
+
+def scene_hash(scene_dir: Path) -> str:
+    """SHA-256 over scene.xml and the files beside it, in name order."""
+    h = hashlib.sha256()
+    for f in sorted(scene_dir.iterdir()):
+        if f.is_file():
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+@dataclass
+class Halves:
+    """Two independent estimates of one image (H×W×4, linear RGB + coverage)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    spp: int
+    seconds: float
+
+    @property
+    def mean(self) -> np.ndarray:
+        return 0.5 * (self.a + self.b)
+
+
+def render_halves(xml: Path, spp: int, spp_per_pass: int, seed0: int = 0) -> Halves:
+    """Renders `spp` samples per pixel in passes of `spp_per_pass` with seeds seed0, seed0+1, ...;
+    even passes go to half a, odd to half b (so `spp` should be a multiple of 2·spp_per_pass)."""
+    import mitsuba as mi
+
+    scene = mi.load_file(str(xml), spp=spp_per_pass)
+    passes = max(2, spp // spp_per_pass)
+    passes += passes % 2
+    acc = [None, None]
+    t0 = time.perf_counter()
+    for k in range(passes):
+        img = np.array(mi.render(scene, seed=seed0 + k, spp=spp_per_pass), dtype=np.float64)
+        half = k % 2
+        acc[half] = img if acc[half] is None else acc[half] + img
+    seconds = time.perf_counter() - t0
+    n = passes // 2
+    return Halves(acc[0] / n, acc[1] / n, passes * spp_per_pass, seconds)
+
+
+def subsurface(medium: Halves, absorber: Halves) -> tuple[np.ndarray, float, np.ndarray]:
+    """The subsurface image (medium − absorber, RGB, coverage in alpha from the medium render),
+    the RMS standard error of its pixels over fully covered pixels, and that mask."""
+    img = medium.mean - absorber.mean
+    img[..., 3] = medium.mean[..., 3]
+    # Standard error of the mean of two halves: |a − b| / 2 per pixel and channel.
+    diff = (medium.a - medium.b) - (absorber.a - absorber.b)
+    mask = medium.mean[..., 3] > 0.999
+    se = 0.5 * diff[..., :3][mask]
+    noise = float(np.sqrt(np.mean(se**2))) if se.size else 0.0
+    return img, noise, mask
+
+
+def write_exr(path: Path, rgba: np.ndarray, half: bool = True) -> None:
+    """Writes an RGBA EXR (half floats by default, Mitsuba's default compression)."""
+    import mitsuba as mi
+
+    bmp = mi.Bitmap(np.ascontiguousarray(rgba, dtype=np.float32), mi.Bitmap.PixelFormat.RGBA)
+    if half:
+        bmp = bmp.convert(mi.Bitmap.PixelFormat.RGBA, mi.Struct.Type.Float16, False)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.exr")
+    bmp.write(str(tmp))
+    tmp.replace(path)
+
+
+def read_exr(path: Path) -> np.ndarray:
+    """An EXR as a float64 H×W×C array."""
+    import mitsuba as mi
+
+    return np.array(mi.Bitmap(str(path)), dtype=np.float64)

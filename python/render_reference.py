@@ -1,0 +1,150 @@
+"""Remakes the Mitsuba 3 references of data/reference/translucency/ (docs/TRANSLUCENCY.md).
+
+Each reference scene is a set of `rouge render` scene options. For each one:
+  1. `export`: `rouge export mitsuba OPTIONS --interior medium|absorber` into SCENES_DIR/NAME/;
+  2. `render`: both scenes rendered by Mitsuba 3 (volpath, max_depth = -1) in passes with
+     independent seeds, split into two halves; writes NAME.exr (RGB = the subsurface radiance,
+     medium − absorber; A = coverage) as half floats, and NAME.json, the sidecar: the options
+     (which `rouge bench translucency` renders again), Mitsuba's version and variant, samples,
+     seconds, the scene hash, and the noise floor (RMS standard error of the subsurface image
+     over covered pixels, from the two halves).
+
+The two stages can run on different machines (export where `rouge` is built, render where a
+GPU is: the cuda_ad_rgb variant is picked when one answers, else scalar_rgb).
+
+  python python/render_reference.py export --rouge target/debug/rouge --scenes-dir build/ref
+  python python/render_reference.py render --scenes-dir build/ref --out data/reference/translucency
+  python python/render_reference.py all --rouge target/debug/rouge   # both, here
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import mitsuba_ref  # noqa: E402
+
+SIZE = ["--width", "256", "--height", "256"]
+# Index-matched boundary (η = 1): the path tracer's light samples then reach every medium vertex
+# through the surface. With a dielectric boundary a delta light is reached only through a rough
+# interface by rare, huge samples (measured in docs/TRANSLUCENCY.md); the boundary's Fresnel
+# terms are checked against 50-digit references instead (python/test_profile_reference.py).
+BARE = ["--look", "bare", "--eta", "1"]
+
+# name -> (options for `rouge render` / `rouge export mitsuba`, samples per pixel, description)
+SCENES: dict[str, tuple[list[str], int, str]] = {
+    "head-skin1-front-left": (
+        ["--mesh", "builtin:head", *BARE, "--lights", "front-left", "--medium", "skin1", *SIZE],
+        4096,
+        "the default head (hm08) in skin1, one white key light from the front left",
+    ),
+    "head-skin1-back": (
+        ["--mesh", "builtin:head", *BARE, "--lights", "back", "--medium", "skin1", *SIZE],
+        4096,
+        "the default head in skin1 lit from behind: ears, nose and lips glow",
+    ),
+}
+for medium in ("marble", "skimmilk", "ketchup"):
+    SCENES[f"sphere-{medium}"] = (
+        ["--mesh", "builtin:sphere", *BARE, "--lights", "front-left", "--medium", medium, *SIZE],
+        4096,
+        f"a 25 mm sphere of {medium}, key light from the front left",
+    )
+    SCENES[f"wedge-{medium}"] = (
+        ["--mesh", "builtin:wedge", *BARE, "--lights", "back", "--medium", medium, *SIZE],
+        4096,
+        f"a wedge of {medium} 1 to 15 mm thick, lit from behind",
+    )
+
+
+def do_export(rouge: str, scenes_dir: Path, names: list[str]) -> None:
+    for name in names:
+        args, spp, _ = SCENES[name]
+        for interior in ("medium", "absorber"):
+            out = scenes_dir / name / interior
+            mitsuba_ref.export(rouge, [*args, "--spp", str(spp)], interior, out)
+        (scenes_dir / name / "options.json").write_text(json.dumps(args))
+        print(f"exported {name}", flush=True)
+
+
+def device_name(variant: str) -> str:
+    if variant.startswith("cuda"):
+        try:
+            q = ["nvidia-smi", "--query-gpu=name", "--format=csv,noheader"]
+            return subprocess.run(q, capture_output=True, text=True, check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            return "CUDA device"
+    import os
+
+    return f"CPU ({os.cpu_count()} threads)"
+
+
+def do_render(scenes_dir: Path, out: Path, names: list[str], variant: str | None, spp_scale: float) -> None:
+    import mitsuba as mi
+
+    variant = mitsuba_ref.pick_variant(variant)
+    per_pass = 256 if variant.startswith("cuda") else 16
+    for name in names:
+        args, spp, description = SCENES[name]
+        spp = max(2 * per_pass, int(spp * spp_scale))
+        med = mitsuba_ref.render_halves(scenes_dir / name / "medium" / "scene.xml", spp, per_pass, seed0=0)
+        # The same seeds for both: what the surface does is sampled alike and cancels in the difference.
+        absb = mitsuba_ref.render_halves(scenes_dir / name / "absorber" / "scene.xml", spp, per_pass, seed0=0)
+        img, noise, mask = mitsuba_ref.subsurface(med, absb)
+        exr = out / f"{name}.exr"
+        mitsuba_ref.write_exr(exr, img)
+        sidecar = {
+            "scene": name,
+            "description": description,
+            "rouge_options": args,
+            "image": exr.name,
+            "channels": "RGB: subsurface radiance (medium minus absorber), linear; A: coverage",
+            "mitsuba": mi.__version__,
+            "variant": variant,
+            "device": device_name(variant),
+            "spp": med.spp,
+            "seconds": round(med.seconds + absb.seconds, 2),
+            "noise_rms": noise,
+            "covered_pixels": int(mask.sum()),
+            "mean_radiance": float(img[..., :3][mask].mean()) if mask.any() else 0.0,
+            "scene_hash": {
+                "medium": mitsuba_ref.scene_hash(scenes_dir / name / "medium"),
+                "absorber": mitsuba_ref.scene_hash(scenes_dir / name / "absorber"),
+            },
+        }
+        (out / f"{name}.json").write_text(json.dumps(sidecar, indent=2) + "\n")
+        print(f"{name}: {med.spp} spp, {sidecar['seconds']} s, noise {noise:.2e}, mean {sidecar['mean_radiance']:.4f}",
+              flush=True)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("stage", choices=["export", "render", "all"])
+    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "debug" / "rouge"))
+    ap.add_argument("--scenes-dir", type=Path, default=HERE.parent / "build" / "reference-scenes")
+    ap.add_argument("--out", type=Path, default=HERE.parent / "data" / "reference" / "translucency")
+    ap.add_argument("--only", nargs="*", help="scene names (default: all)")
+    ap.add_argument("--variant", help="Mitsuba variant (default: cuda_ad_rgb if a GPU answers, else scalar_rgb)")
+    ap.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's samples")
+    a = ap.parse_args()
+    names = a.only or list(SCENES)
+    unknown = [n for n in names if n not in SCENES]
+    if unknown:
+        ap.error(f"unknown scenes {unknown}; known: {', '.join(SCENES)}")
+    if a.stage in ("export", "all"):
+        if not shutil.which(a.rouge) and not Path(a.rouge).is_file():
+            ap.error(f"--rouge {a.rouge}: no such binary (cargo build -p rouge-app)")
+        do_export(a.rouge, a.scenes_dir, names)
+    if a.stage in ("render", "all"):
+        do_render(a.scenes_dir, a.out, names, a.variant, a.spp_scale)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+//! The diffusion profiles of `rouge_render::diffusion` against 50-digit mpmath references
+//! (data/reference/profiles.json, made by python/gen_profile_reference.py), the Gaussian fit
+//! of `profile_fit`, and the media of `rouge_model::medium`.
+
+use rouge_model::medium::{BUILTIN_MEDIA, Medium};
+use rouge_render::diffusion::{ChannelProfile, ProfileModel, f_dr_polynomial, fresnel_moment};
+use rouge_render::profile_fit::FittedProfile;
+use serde_json::Value;
+
+fn reference() -> Value {
+    let text = include_str!("../../data/reference/profiles.json");
+    serde_json::from_str(text).expect("profiles.json parses")
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+fn close(a: f64, b: f64, rel: f64, what: &str) {
+    let tol = rel * b.abs().max(1e-300);
+    assert!(
+        (a - b).abs() <= tol || (a == b),
+        "{what}: {a} vs reference {b} (relative {:.2e})",
+        (a - b).abs() / b.abs()
+    );
+}
+
+#[test]
+fn fresnel_moments_and_f_dr_match_mpmath() {
+    for m in reference()["media"].as_array().expect("media") {
+        let (name, eta) = (m["name"].as_str().expect("name"), f(&m["eta"]));
+        close(fresnel_moment(eta, 1), f(&m["fm1"]), 1e-9, &format!("{name} FM1(η)"));
+        close(fresnel_moment(eta, 2), f(&m["fm2"]), 1e-9, &format!("{name} FM2(η)"));
+        if eta > 1.0 {
+            close(fresnel_moment(1.0 / eta, 1), f(&m["fm1_inv"]), 1e-9, &format!("{name} FM1(1/η)"));
+            close(fresnel_moment(1.0 / eta, 2), f(&m["fm2_inv"]), 1e-9, &format!("{name} FM2(1/η)"));
+            close(2.0 * fresnel_moment(1.0 / eta, 1), f(&m["f_dr_exact"]), 1e-9, &format!("{name} F_dr"));
+        }
+        close(f_dr_polynomial(eta), f(&m["f_dr_poly"]), 1e-12, &format!("{name} F_dr polynomial"));
+    }
+}
+
+#[test]
+fn three_profiles_match_mpmath_radially_and_in_total() {
+    for m in reference()["media"].as_array().expect("media") {
+        let name = m["name"].as_str().expect("name");
+        let (a, s, eta) = (f(&m["sigma_a_per_mm"]), f(&m["sigma_s_prime_per_mm"]), f(&m["eta"]));
+        for (model, key, total_key) in [
+            (ProfileModel::ClassicDipole, "classic", "total_closed"),
+            (ProfileModel::BetterDipole, "better", "total"),
+            (ProfileModel::Burley, "burley", "total"),
+        ] {
+            let p = ChannelProfile::new(model, a, s, eta);
+            close(p.total(), f(&m[key][total_key]), 1e-9, &format!("{name} {key} total"));
+            for pair in m[key]["radial"].as_array().expect("radial") {
+                let (r, want) = (f(&pair[0]), f(&pair[1]));
+                let got = p.radial(r);
+                assert!(got.is_finite() && got >= 0.0, "{name} {key} R({r}) = {got}");
+                if want > 1e-250 {
+                    close(got, want, 1e-9, &format!("{name} {key} R({r})"));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn edges_of_the_domain_give_numbers() {
+    // No absorption: the dipoles conserve energy exactly; index-matched boundary; dense media.
+    for model in ProfileModel::ALL {
+        let p = ChannelProfile::new(model, 0.0, 1.0, 1.3);
+        assert!((p.total() - 1.0).abs() < 1e-12, "{model:?} total at σa = 0: {}", p.total());
+        for (a, s, eta) in [(0.0, 1.0, 1.0), (1.0, 0.0, 1.3), (1e-9, 1e4, 3.0), (10.0, 1e-6, 1.0)] {
+            let p = ChannelProfile::new(model, a, s, eta);
+            let t = p.total();
+            assert!(t.is_finite() && (0.0..=1.0).contains(&t), "{model:?} ({a}, {s}, {eta}): total {t}");
+            for r in [1e-6, 0.1, 1.0, 100.0, 1e6] {
+                let v = p.radial(r);
+                assert!(v.is_finite() && v >= 0.0, "{model:?} ({a}, {s}, {eta}): R({r}) = {v}");
+            }
+            assert!(p.support_mm().is_finite() && p.support_mm() > 0.0);
+        }
+    }
+}
+
+#[test]
+fn gaussian_fits_of_every_medium_are_close_and_normalised() {
+    for name in BUILTIN_MEDIA {
+        let medium = Medium::builtin(name).expect("built-in medium");
+        for model in ProfileModel::ALL {
+            let fit = FittedProfile::of_medium(&medium, model);
+            assert!(!fit.profile.gaussians.is_empty());
+            for c in 0..3 {
+                let sum: f64 = fit.profile.gaussians.iter().map(|g| g.weight[c]).sum();
+                assert!((sum - 1.0).abs() < 1e-9, "{name} {model:?} channel {c}: weights sum to {sum}");
+                // Burley's 1/r peak is the hardest for Gaussians; the dipoles fit within a few %.
+                let limit = if model == ProfileModel::Burley { 0.12 } else { 0.06 };
+                assert!(fit.fit_error[c] < limit, "{name} {model:?} channel {c}: fit error {}", fit.fit_error[c]);
+                assert!(fit.total[c] > 0.0 && fit.total[c] <= 1.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn builtin_media_load_and_bad_media_say_why() {
+    for name in BUILTIN_MEDIA {
+        let m = Medium::builtin(name).expect("loads");
+        assert_eq!(m.name, name);
+        assert!(m.sigma_t_per_mm().iter().all(|v| v.is_finite() && *v > 0.0));
+    }
+    let skin1 = Medium::builtin("skin1").expect("skin1");
+    assert_eq!(skin1.sigma_a_per_mm, [0.032, 0.17, 0.48]);
+    assert_eq!(skin1.sigma_s_prime_per_mm, [0.74, 0.88, 1.01]);
+    let e = Medium::builtin("jelly").expect_err("unknown");
+    assert!(e.to_string().contains("skin1"), "{e}");
+    let e = Medium::from_coefficients("x", [0.1, -1.0, 0.1], [1.0; 3], 1.3).expect_err("negative");
+    assert!(e.to_string().contains("sigma_a_per_mm[G]"), "{e}");
+    let e = Medium::from_coefficients("x", [0.0; 3], [0.0; 3], 1.3).expect_err("vacuum");
+    assert!(e.to_string().contains("vacuum"), "{e}");
+    let e = Medium::from_coefficients("x", [0.1; 3], [1.0; 3], 0.5).expect_err("eta");
+    assert!(e.to_string().contains("eta"), "{e}");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("bad.json");
+    std::fs::write(&path, "{\"schema\": \"rouge-medium\",\n \"version\": 1, \"name\": 3}").expect("write");
+    let e = Medium::load(&path).expect_err("bad type");
+    let msg = e.to_string();
+    assert!(msg.contains("bad.json") && msg.contains("line 2"), "{msg}");
+}
