@@ -71,9 +71,12 @@ class Halves:
         return 0.5 * (self.a + self.b)
 
 
-def render_halves(xml: Path, spp: int, spp_per_pass: int, seed0: int = 0) -> Halves:
+def render_halves(
+    xml: Path, spp: int, spp_per_pass: int, seed0: int = 0, max_seconds: float | None = None
+) -> Halves:
     """Renders `spp` samples per pixel in passes of `spp_per_pass` with seeds seed0, seed0+1, ...;
-    even passes go to half a, odd to half b (so `spp` should be a multiple of 2·spp_per_pass)."""
+    even passes go to half a, odd to half b (so `spp` should be a multiple of 2·spp_per_pass).
+    With `max_seconds`, stops after the first pair of passes that ends past it."""
     import mitsuba as mi
 
     scene = mi.load_file(str(xml), spp=spp_per_pass)
@@ -81,23 +84,67 @@ def render_halves(xml: Path, spp: int, spp_per_pass: int, seed0: int = 0) -> Hal
     passes += passes % 2
     acc = [None, None]
     t0 = time.perf_counter()
+    done = 0
     for k in range(passes):
         img = np.array(mi.render(scene, seed=seed0 + k, spp=spp_per_pass), dtype=np.float64)
         half = k % 2
         acc[half] = img if acc[half] is None else acc[half] + img
+        done = k + 1
+        if max_seconds is not None and half == 1 and time.perf_counter() - t0 > max_seconds:
+            break
     seconds = time.perf_counter() - t0
-    n = passes // 2
-    return Halves(acc[0] / n, acc[1] / n, passes * spp_per_pass, seconds)
+    n = done // 2
+    return Halves(acc[0] / n, acc[1] / n, done * spp_per_pass, seconds)
+
+
+def gray_channel_scenes(xml: Path) -> list[Path]:
+    """Three copies of a scene whose interior medium is gray: copy c has channel c's albedo and
+    extinction in all three channels. Rendering channel c from copy c gives the same expected
+    image as the chromatic medium, without the path weights that differ per channel (in a
+    bright chromatic medium, after hundreds of scattering events those ratios reach
+    hundreds: single bright coloured pixels that converge very slowly, even with spectral MIS)."""
+    import xml.etree.ElementTree as ET
+
+    out = []
+    for c in range(3):
+        tree = ET.parse(xml)
+        medium = tree.getroot().find("medium[@id='interior']")
+        if medium is None:
+            raise ValueError(f"{xml}: no medium with id 'interior'")
+        for rgb in medium.findall("rgb"):
+            v = [x.strip() for x in rgb.get("value", "").split(",")]
+            rgb.set("value", ", ".join([v[c]] * 3))
+        path = xml.with_name(f"scene_channel{c}.xml")
+        tree.write(path)
+        out.append(path)
+    return out
+
+
+def render_halves_per_channel(
+    xml: Path, spp: int, spp_per_pass: int, seed0: int = 0, max_seconds: float | None = None
+) -> Halves:
+    """[`render_halves`] of the three gray-channel copies of `xml` (each with a third of the time
+    budget), channel c taken from copy c; alpha from the first. `spp` is the smallest count."""
+    parts = [
+        render_halves(x, spp, spp_per_pass, seed0, None if max_seconds is None else max_seconds / 3)
+        for x in gray_channel_scenes(xml)
+    ]
+    a, b = parts[0].a.copy(), parts[0].b.copy()
+    for c in (1, 2):
+        a[..., c], b[..., c] = parts[c].a[..., c], parts[c].b[..., c]
+    return Halves(a, b, min(p.spp for p in parts), sum(p.seconds for p in parts))
 
 
 def subsurface(medium: Halves, absorber: Halves) -> tuple[np.ndarray, float, np.ndarray]:
     """The subsurface image (medium − absorber, RGB, coverage in alpha from the medium render),
     the RMS standard error of its pixels over fully covered pixels, and that mask."""
     img = medium.mean - absorber.mean
-    img[..., 3] = medium.mean[..., 3]
+    # Coverage: where the absorber stops the camera ray (with an index-matched boundary a ray can
+    # cross a thin, clear medium without an interaction, so the medium's alpha is not coverage).
+    img[..., 3] = np.maximum(medium.mean[..., 3], absorber.mean[..., 3])
     # Standard error of the mean of two halves: |a − b| / 2 per pixel and channel.
     diff = (medium.a - medium.b) - (absorber.a - absorber.b)
-    mask = medium.mean[..., 3] > 0.999
+    mask = img[..., 3] > 0.999
     se = 0.5 * diff[..., :3][mask]
     noise = float(np.sqrt(np.mean(se**2))) if se.size else 0.0
     return img, noise, mask

@@ -2,8 +2,9 @@
 
 Each reference scene is a set of `rouge render` scene options. For each one:
   1. `export`: `rouge export mitsuba OPTIONS --interior medium|absorber` into SCENES_DIR/NAME/;
-  2. `render`: both scenes rendered by Mitsuba 3 (volpath, max_depth = -1) in passes with
-     independent seeds, split into two halves; writes NAME.exr (RGB = the subsurface radiance,
+  2. `render`: both scenes rendered by Mitsuba 3 (volpathmis, max_depth = -1) in passes with
+     independent seeds, split into two halves, the medium once per colour channel with a gray
+     medium of that channel's coefficients (mitsuba_ref.gray_channel_scenes); writes NAME.exr (RGB = the subsurface radiance,
      medium − absorber; A = coverage) as half floats, and NAME.json, the sidecar: the options
      (which `rouge bench translucency` renders again), Mitsuba's version and variant, samples,
      seconds, the scene hash, and the noise floor (RMS standard error of the subsurface image
@@ -86,7 +87,9 @@ def device_name(variant: str) -> str:
     return f"CPU ({os.cpu_count()} threads)"
 
 
-def do_render(scenes_dir: Path, out: Path, names: list[str], variant: str | None, spp_scale: float) -> None:
+def do_render(
+    scenes_dir: Path, out: Path, names: list[str], variant: str | None, spp_scale: float, max_seconds: float | None
+) -> None:
     import mitsuba as mi
 
     variant = mitsuba_ref.pick_variant(variant)
@@ -94,7 +97,10 @@ def do_render(scenes_dir: Path, out: Path, names: list[str], variant: str | None
     for name in names:
         args, spp, description = SCENES[name]
         spp = max(2 * per_pass, int(spp * spp_scale))
-        med = mitsuba_ref.render_halves(scenes_dir / name / "medium" / "scene.xml", spp, per_pass, seed0=0)
+        med = mitsuba_ref.render_halves_per_channel(
+            scenes_dir / name / "medium" / "scene.xml", spp, per_pass, seed0=0, max_seconds=max_seconds
+        )
+        spp = med.spp
         # The same seeds for both: what the surface does is sampled alike and cancels in the difference.
         absb = mitsuba_ref.render_halves(scenes_dir / name / "absorber" / "scene.xml", spp, per_pass, seed0=0)
         img, noise, mask = mitsuba_ref.subsurface(med, absb)
@@ -133,6 +139,7 @@ def main() -> None:
     ap.add_argument("--only", nargs="*", help="scene names (default: all)")
     ap.add_argument("--variant", help="Mitsuba variant (default: cuda_ad_rgb if a GPU answers, else scalar_rgb)")
     ap.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's samples")
+    ap.add_argument("--max-seconds", type=float, help="stop a scene's medium render after this long (samples vary)")
     a = ap.parse_args()
     names = a.only or list(SCENES)
     unknown = [n for n in names if n not in SCENES]
@@ -143,7 +150,7 @@ def main() -> None:
             ap.error(f"--rouge {a.rouge}: no such binary (cargo build -p rouge-app)")
         do_export(a.rouge, a.scenes_dir, names)
     if a.stage in ("render", "all"):
-        do_render(a.scenes_dir, a.out, names, a.variant, a.spp_scale)
+        do_render(a.scenes_dir, a.out, names, a.variant, a.spp_scale, a.max_seconds)
 
 
 if __name__ == "__main__":
