@@ -15,7 +15,7 @@ use rouge_model::medium::Medium;
 use std::f64::consts::PI;
 
 /// Gaussians in a fit.
-pub const FIT_GAUSSIANS: usize = 12;
+pub const FIT_GAUSSIANS: usize = 16;
 
 /// A medium's profile as the screen-space kernel needs it.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,9 +62,10 @@ impl FittedProfile {
 
     /// Fits three channel profiles of one model.
     pub fn fit(channels: &[ChannelProfile; 3], model: ProfileModel) -> FittedProfile {
-        // Scales: the narrowest Gaussian resolves a tenth of the shortest mean free path, the
+        // Scales: the narrowest Gaussian resolves 3% of the shortest mean free path (Burley's profile
+        // keeps its energy density finite at r = 0, which Gaussians can only approach), the
         // widest reaches the longest support.
-        let sigma_min = 0.1 * channels.iter().map(ChannelProfile::mean_free_path_mm).fold(f64::INFINITY, f64::min);
+        let sigma_min = 0.03 * channels.iter().map(ChannelProfile::mean_free_path_mm).fold(f64::INFINITY, f64::min);
         let sigma_max = channels.iter().map(ChannelProfile::support_mm).fold(0.0, f64::max).max(4.0 * sigma_min);
         let ratio = (sigma_max / sigma_min).powf(1.0 / (FIT_GAUSSIANS - 1) as f64);
         let variances: Vec<f64> = (0..FIT_GAUSSIANS).map(|k| (sigma_min * ratio.powi(k as i32)).powi(2)).collect();

@@ -93,8 +93,10 @@ fn gaussian_fits_of_every_medium_are_close_and_normalised() {
             for c in 0..3 {
                 let sum: f64 = fit.profile.gaussians.iter().map(|g| g.weight[c]).sum();
                 assert!((sum - 1.0).abs() < 1e-9, "{name} {model:?} channel {c}: weights sum to {sum}");
-                // Burley's 1/r peak is the hardest for Gaussians; the dipoles fit within a few %.
-                let limit = if model == ProfileModel::Burley { 0.12 } else { 0.06 };
+                // Burley's energy density stays finite at r = 0, where every Gaussian's vanishes: the
+                // hardest to fit (7-17% on r·R(r) over the built-in media, however many Gaussians:
+                // scipy's NNLS does no better); the dipoles fit within 1%.
+                let limit = if model == ProfileModel::Burley { 0.2 } else { 0.02 };
                 assert!(fit.fit_error[c] < limit, "{name} {model:?} channel {c}: fit error {}", fit.fit_error[c]);
                 assert!(fit.total[c] > 0.0 && fit.total[c] <= 1.0);
             }
