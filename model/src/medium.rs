@@ -154,16 +154,16 @@ impl Medium {
             ));
         }
         const CHANNELS: [&str; 3] = ["R", "G", "B"];
-        for c in 0..3 {
+        for (c, channel) in CHANNELS.iter().enumerate() {
             let (a, s) = (self.sigma_a_per_mm[c], self.sigma_s_prime_per_mm[c]);
             if !(a.is_finite() && a >= 0.0) {
-                return Err(format!("sigma_a_per_mm[{}] = {a}: must be finite and ≥ 0", CHANNELS[c]));
+                return Err(format!("sigma_a_per_mm[{channel}] = {a}: must be finite and ≥ 0"));
             }
             if !(s.is_finite() && s >= 0.0) {
-                return Err(format!("sigma_s_prime_per_mm[{}] = {s}: must be finite and ≥ 0", CHANNELS[c]));
+                return Err(format!("sigma_s_prime_per_mm[{channel}] = {s}: must be finite and ≥ 0"));
             }
             if a + s <= 0.0 {
-                return Err(format!("channel {}: σa + σs′ = 0, the medium is vacuum", CHANNELS[c]));
+                return Err(format!("channel {channel}: σa + σs′ = 0, the medium is vacuum"));
             }
         }
         if !(self.g.is_finite() && self.g > -1.0 && self.g < 1.0) {

@@ -108,15 +108,14 @@ fn ply(mesh: &TriangleMesh, triangles: &[usize], colours: Option<&[[f32; 4]]>) -
     let mut verts = Vec::new();
     let mut faces = Vec::with_capacity(triangles.len());
     for &t in triangles {
-        let mut f = [0u32; 3];
-        for k in 0..3 {
+        let f: [u32; 3] = std::array::from_fn(|k| {
             let v = mesh.indices[3 * t + k] as usize;
             if remap[v] == u32::MAX {
                 remap[v] = verts.len() as u32;
                 verts.push(v);
             }
-            f[k] = remap[v];
-        }
+            remap[v]
+        });
         faces.push(f);
     }
     let mut header = String::from("ply\nformat binary_little_endian 1.0\n");

@@ -75,7 +75,7 @@ impl FittedProfile {
         let step = (r1 / r0).powf(1.0 / samples as f64);
         let radii: Vec<(f64, f64)> = (0..samples)
             .map(|k| {
-                let (a, b) = (r0 * step.powi(k as i32), r0 * step.powi(k as i32 + 1));
+                let (a, b) = (r0 * step.powi(k), r0 * step.powi(k + 1));
                 (0.5 * (a + b), b - a)
             })
             .collect();
