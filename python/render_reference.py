@@ -52,6 +52,11 @@ SCENES: dict[str, tuple[list[str], int, str]] = {
         "the default head in skin1 lit from behind: ears, nose and lips glow",
     ),
 }
+SCENES["hand-skin1-back"] = (
+    ["--mesh", "data/hands/hm08_hand.obj", *BARE, "--lights", "back", "--medium", "skin1", *SIZE],
+    4096,
+    "the hm08 left hand (python/gen_hand.py) in skin1, lit from behind: the fingers glow",
+)
 for medium in ("marble", "skimmilk", "ketchup"):
     SCENES[f"sphere-{medium}"] = (
         ["--mesh", "builtin:sphere", *BARE, "--lights", "front-left", "--medium", medium, *SIZE],
