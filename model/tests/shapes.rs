@@ -1,0 +1,59 @@
+//! Built-in shapes are closed; the default head has exactly one open loop (the neck), which
+//! `close_boundary_loops` closes into a watertight surface with outward caps.
+
+use rouge_model::mesh::{TriangleMesh, close_boundary_loops, load_mesh};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Directed edges over welded positions: (edges used once without their reverse, edges whose
+/// direction repeats).
+fn open_and_bad_edges(mesh: &TriangleMesh) -> (usize, usize) {
+    let key = |v: u32| {
+        let p = mesh.positions[v as usize];
+        [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
+    };
+    let mut ids: HashMap<[u32; 3], usize> = HashMap::new();
+    let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+    for t in mesh.indices.chunks(3) {
+        let w: Vec<usize> = t
+            .iter()
+            .map(|&v| {
+                let next = ids.len();
+                *ids.entry(key(v)).or_insert(next)
+            })
+            .collect();
+        for k in 0..3 {
+            *count.entry((w[k], w[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let open = count.keys().filter(|(a, b)| !count.contains_key(&(*b, *a))).count();
+    let repeated = count.values().filter(|&&c| c > 1).count();
+    (open, repeated)
+}
+
+#[test]
+fn sphere_and_wedge_are_closed_and_consistently_wound() {
+    for name in ["builtin:sphere", "builtin:wedge"] {
+        let mesh = load_mesh(Some(Path::new(name)), 1.0, 2).expect(name);
+        assert_eq!(open_and_bad_edges(&mesh), (0, 0), "{name}");
+        let all: Vec<usize> = (0..mesh.triangle_count()).collect();
+        let (_, loops) = close_boundary_loops(&mesh, &all);
+        assert_eq!(loops, 0, "{name} has nothing to close");
+    }
+    let e = load_mesh(Some(Path::new("builtin:cube")), 1.0, 0).expect_err("unknown");
+    assert!(e.to_string().contains("builtin:sphere"), "{e}");
+}
+
+#[test]
+fn the_default_head_closes_at_the_neck_only() {
+    let head = load_mesh(None, 1.0, 1).expect("head");
+    let skin: Vec<usize> = (0..head.triangle_count())
+        .filter(|t| !head.groups.iter().any(|g| g.triangles.contains(t) && g.name.to_lowercase().contains("eye")))
+        .collect();
+    let (closed, loops) = close_boundary_loops(&head, &skin);
+    assert_eq!(loops, 1, "the neck is the one open loop");
+    assert_eq!(open_and_bad_edges(&closed), (0, 0), "capped head is watertight and consistently wound");
+    // The cap faces down, away from the face.
+    let cap_normal = *closed.normals.last().expect("cap vertices");
+    assert!(cap_normal.y < -0.5, "cap normal {cap_normal}");
+}
