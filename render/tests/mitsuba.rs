@@ -4,7 +4,7 @@
 use rouge_model::medium::Medium;
 use rouge_render::diffusion::ProfileModel;
 use rouge_render::job::RenderJob;
-use rouge_render::mitsuba::{ExportInput, Interior, export};
+use rouge_render::mitsuba::{ExportInput, Interior, MitsubaScene, export};
 use rouge_render::{LightRig, Scene, Skin};
 use std::path::PathBuf;
 
@@ -16,9 +16,9 @@ fn job(medium: Option<&str>) -> RenderJob {
     RenderJob { mesh: Some(PathBuf::from("builtin:sphere")), width: 64, height: 48, scene, ..RenderJob::default() }
 }
 
-fn xml(job: &RenderJob, interior: Interior, light_radius_deg: f64) -> String {
+fn exported(job: &RenderJob, interior: Interior, light_radius_deg: f64) -> rouge_render::Result<MitsubaScene> {
     let loaded = job.load().expect("load");
-    let input = ExportInput {
+    export(&ExportInput {
         mesh: &loaded.mesh,
         scene: &loaded.scene,
         env: None,
@@ -29,8 +29,11 @@ fn xml(job: &RenderJob, interior: Interior, light_radius_deg: f64) -> String {
         spp: 16,
         boundary_alpha: 0.1,
         light_radius_deg,
-    };
-    export(&input).expect("export").xml
+    })
+}
+
+fn xml(job: &RenderJob, interior: Interior, light_radius_deg: f64) -> String {
+    exported(job, interior, light_radius_deg).expect("export").xml
 }
 
 #[test]
@@ -73,20 +76,6 @@ fn interiors_and_area_lights() {
 
 #[test]
 fn a_medium_interior_needs_a_medium() {
-    let j = job(None);
-    let loaded = j.load().expect("load");
-    let input = ExportInput {
-        mesh: &loaded.mesh,
-        scene: &loaded.scene,
-        env: None,
-        camera: &loaded.camera,
-        width: 8,
-        height: 8,
-        interior: Interior::Medium,
-        spp: 1,
-        boundary_alpha: 0.1,
-        light_radius_deg: 0.0,
-    };
-    let e = export(&input).expect_err("no medium");
+    let e = exported(&job(None), Interior::Medium, 0.0).expect_err("no medium");
     assert!(e.to_string().contains("--medium"), "{e}");
 }
