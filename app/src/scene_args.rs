@@ -123,7 +123,13 @@ impl SceneArgs {
     /// The medium the options name, if any.
     pub fn medium(&self) -> Result<Option<Medium>> {
         if let Some(name) = &self.medium {
-            let mut m = Medium::resolve(name).with_context(|| format!("--medium {name}"))?;
+            // A file's errors name the file already; a built-in name gets the option's name.
+            let resolved = Medium::resolve(name);
+            let mut m = if name.to_ascii_lowercase().ends_with(".json") {
+                resolved?
+            } else {
+                resolved.with_context(|| format!("--medium {name}"))?
+            };
             if let Some(eta) = self.eta {
                 m = Medium::from_coefficients(&m.name, m.sigma_a_per_mm, m.sigma_s_prime_per_mm, eta)
                     .with_context(|| format!("--medium {name} --eta {eta}"))?;
