@@ -136,7 +136,7 @@ fn help_names_every_subcommand() {
     let o = rouge(&["--help"]);
     assert!(o.status.success());
     let s = stdout(&o);
-    for sub in ["import", "demo", "km", "color", "bench"] {
+    for sub in ["import", "demo", "km", "color", "render", "export", "bench"] {
         assert!(s.contains(sub), "--help lacks {sub}: {s}");
     }
 }
@@ -353,4 +353,28 @@ fn explain_prints_the_frame_plan_and_what_is_skipped() {
     let o = rouge(&["render", "--explain", "--width", "64", "--height", "48"]);
     let s = stdout(&o);
     assert!(s.contains("sss horizontal") && s.contains("3 layer(s)"), "{s}");
+}
+
+#[test]
+fn media_and_mitsuba_export_say_what_is_wrong_and_write_a_scene() {
+    let o = rouge(&["render", "--medium", "jelly", "--out", "never.png"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("skin1") && stderr(&o).contains("jelly"), "{}", stderr(&o));
+    let o = rouge(&["render", "--eta", "1.2", "--out", "never.png"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--eta needs --medium"), "{}", stderr(&o));
+    let o = rouge(&["render", "--sigma-a", "0.1,0.1", "--sigma-s", "1,1,1", "--eta", "1.3", "--out", "never.png"]);
+    assert!(stderr(&o).contains("three values"), "{}", stderr(&o));
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("scene");
+    let args = ["export", "mitsuba", "--mesh", "builtin:wedge", "--medium", "ketchup", "--lights", "back"];
+    let o = rouge(&[&args[..], &["--width", "32", "--height", "24", "--out", out.to_str().expect("utf-8")]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let xml = std::fs::read_to_string(out.join("scene.xml")).expect("scene.xml");
+    assert!(xml.contains("<integrator type=\"volpathmis\">") && xml.contains("skin.ply"));
+    let ply = std::fs::read(out.join("skin.ply")).expect("skin.ply");
+    assert!(ply.starts_with(b"ply\nformat binary_little_endian 1.0\n"));
+    let o = rouge(&["export", "mitsuba", "--light-radius-deg", "50", "--out", out.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--light-radius-deg 50"), "{}", stderr(&o));
 }

@@ -138,9 +138,8 @@ impl Medium {
     }
 
     fn parse(text: &str, path: &Path) -> Result<Medium> {
-        let m: Medium = serde_json::from_str(text).map_err(|e| {
-            ModelError::file(path, format!("not a rouge-medium file: {e}"))
-        })?;
+        let m: Medium =
+            serde_json::from_str(text).map_err(|e| ModelError::file(path, format!("not a rouge-medium file: {e}")))?;
         m.validate().map_err(|message| ModelError::file(path, message))?;
         Ok(m)
     }

@@ -102,6 +102,8 @@ pub struct FramePlan {
     pub kernel: Option<SeparableKernel>,
     /// The render targets the passes use.
     pub targets: Vec<Target>,
+    /// The skin material in words: its medium, albedo and subsurface model.
+    pub material: String,
 }
 
 fn names(targets: &[Target]) -> Vec<String> {
@@ -247,7 +249,21 @@ impl FramePlan {
         targets.push(out);
         targets.sort();
         targets.dedup();
-        Ok(FramePlan { size: (width, height), variant, passes, skipped, shadow_maps, kernel, targets })
+        let skin = &scene.skin;
+        let medium = skin.medium.as_ref().map_or("no medium".to_string(), |m| {
+            format!("medium {} (σa {:?}, σs′ {:?} mm⁻¹, η {})", m.name, m.sigma_a_per_mm, m.sigma_s_prime_per_mm, m.eta)
+        });
+        let profile = skin.subsurface.profile().map_or(String::new(), |p| {
+            format!(", a profile of {} Gaussians up to σ = {:.2} mm", p.gaussians.len(), p.max_sigma_mm())
+        });
+        let material = format!(
+            "skin: {medium}, albedo {:.3}, {:.3}, {:.3}; subsurface {}{profile}",
+            skin.albedo[0],
+            skin.albedo[1],
+            skin.albedo[2],
+            skin.subsurface.name()
+        );
+        Ok(FramePlan { size: (width, height), variant, passes, skipped, shadow_maps, kernel, targets, material })
     }
 
     /// The plan for people: the passes in order with what they read and write, then what is
@@ -267,6 +283,7 @@ impl FramePlan {
             on_off(v.albedo_map),
             on_off(v.normal_map),
         );
+        let _ = writeln!(out, "{}", self.material);
         let _ = writeln!(out, "passes:");
         for (i, p) in self.passes.iter().enumerate() {
             let _ = writeln!(
