@@ -133,8 +133,11 @@ def test_references_have_sidecars_with_a_noise_floor():
 def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     out = tmp_path / "rows.json"
     p = rouge("bench", "translucency", "--references", str(REFERENCES), "--only", "sphere-skimmilk",
-              "--samples", "5", "--profiles", "better-dipole", "--frames", "1", "--json", str(out), timeout=600)
+              "--samples", "5", "--profiles", "better-dipole", "--frames", "1", "--json", str(out),
+              "--plot", str(tmp_path / "plot.png"), timeout=600)
     assert p.returncode == 0, p.stderr
+    png = (tmp_path / "plot.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
     assert {r["model"] for r in rows} == {"none", "screen-space"}
     for r in rows:

@@ -29,9 +29,13 @@ pub struct TranslucencyBenchArgs {
     /// Frames timed per configuration (after two warm-up frames).
     #[arg(long, default_value_t = 3)]
     pub frames: u32,
-    /// Write the rows as JSON here (plot them with python/plot_translucency.py).
+    /// Write the rows as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Draw speed against mean ΔE2000 here (PNG): one panel per scene, a line per profile
+    /// through its sample counts, a cross for no scattering, a diamond for today's skin.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }
 
 /// One row of the table (../shared/DESIGN.md).
@@ -158,10 +162,70 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             });
         }
     }
+    if let Some(path) = &args.plot {
+        let png = plot(&rows)?;
+        rouge_measure::preset::write_atomic(path, &png).with_context(|| format!("{}: cannot write", path.display()))?;
+    }
     let text = serde_json::to_string_pretty(&rows)?;
     if let Some(path) = &args.json {
         rouge_measure::preset::write_atomic(path, text.as_bytes())
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     crate::emit(&text)
+}
+
+/// The speed-against-error plot of `rows`: one chart per scene.
+fn plot(rows: &[Row]) -> Result<Vec<u8>> {
+    use crate::plot_png::{Chart, Marker, Series};
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    let timed = rows.iter().all(|r| r.gpu_ms.is_some());
+    let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
+    let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189]];
+    let charts: Vec<Chart> = scenes
+        .iter()
+        .map(|&scene| {
+            let in_scene: Vec<&Row> = rows.iter().filter(|r| r.scene == scene).collect();
+            let mut series: Vec<Series> = Vec::new();
+            for r in &in_scene {
+                let profile = r.params.get("profile").and_then(|p| p.as_str());
+                let (label, marker, line) = match (r.model.as_str(), profile) {
+                    ("none", _) => ("none".to_string(), Marker::Cross, false),
+                    (_, Some("deon-skin")) => ("today's skin".to_string(), Marker::Diamond, false),
+                    (_, Some(p)) => (p.to_string(), Marker::Dot, true),
+                    (m, None) => (m.to_string(), Marker::Dot, true),
+                };
+                let samples = r.params.get("samples").and_then(|n| n.as_u64()).map(|n| n.to_string());
+                let index = series.iter().position(|s| s.label == label).unwrap_or_else(|| {
+                    let rgb = match marker {
+                        Marker::Cross => [0, 0, 0],
+                        Marker::Diamond => [214, 39, 40],
+                        Marker::Dot => palette[series.iter().filter(|s| s.line).count() % palette.len()],
+                    };
+                    series.push(Series { label: label.clone(), rgb, points: Vec::new(), line, marker });
+                    series.len() - 1
+                });
+                series[index].points.push((x(r), r.delta_e_mean, samples));
+            }
+            for s in series.iter_mut().filter(|s| s.line) {
+                // Label only the first and last sample counts, in order of samples.
+                s.points.sort_by_key(|p| p.2.as_deref().and_then(|n| n.parse::<u32>().ok()).unwrap_or(0));
+                let n = s.points.len();
+                for (i, p) in s.points.iter_mut().enumerate() {
+                    if i != 0 && i + 1 != n {
+                        p.2 = None;
+                    }
+                }
+            }
+            let noise = in_scene.first().map_or(f64::NAN, |r| r.reference_noise_rms);
+            Chart {
+                title: format!("{scene}  (reference noise {noise:.1e})"),
+                x_label: if timed { "GPU ms per frame" } else { "wall ms per frame" }.to_string(),
+                y_label: "mean ΔE2000".to_string(),
+                series,
+            }
+        })
+        .collect();
+    let device = rows.first().map_or(String::new(), |r| r.device.clone());
+    crate::plot_png::render(&format!("Subsurface models against Mitsuba 3: speed against error, {device}"), &charts, 4)
 }

@@ -24,7 +24,7 @@ pub enum BenchCommand {
     /// Translucency: every subsurface model × reference scene × parameter set against Mitsuba 3
     /// references of the same scenes (data/reference/translucency): GPU ms per frame, RMSE of
     /// linear radiance and ΔE2000 (mean, 95th percentile) of the tone-mapped images over the
-    /// object's pixels. Plot the JSON with python/plot_translucency.py.
+    /// object's pixels; `--plot F.png` draws speed against error per scene.
     Translucency(crate::bench_translucency::TranslucencyBenchArgs),
     /// Painting: brush dab to updated frame at 1280×720 with 2048² maps (apply the dab on the
     /// CPU, upload the changed rectangle, render, wait), on the default head.

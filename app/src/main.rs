@@ -12,6 +12,7 @@ mod cmd_import;
 mod cmd_km;
 mod cmd_render;
 mod plot;
+mod plot_png;
 mod scene_args;
 
 use clap::{Parser, Subcommand};
