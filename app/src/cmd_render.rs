@@ -1,8 +1,9 @@
 //! `rouge render`: one frame of the renderer to a PNG (tone-mapped) or an EXR (linear radiance).
 
-use crate::scene_args::{SceneArgs, subsurface_model};
+use crate::scene_args::SceneArgs;
 use anyhow::{Result, bail};
 use clap::Args;
+use rouge_render::SubsurfaceModel;
 use rouge_render::job::render_to_file;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -70,7 +71,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     job.scene.sss.samples = args.sss_samples;
     job.scene.exposure = args.exposure;
     job.scene.specular = !args.no_specular;
-    job.scene.skin.subsurface = subsurface_model(&job.scene.skin, args.subsurface == Subsurface::ScreenSpace);
+    // The material's own kernel (d'Eon's skin profile, or the medium's fitted profile), or none.
+    if args.subsurface == Subsurface::None {
+        job.scene.skin.subsurface = SubsurfaceModel::None;
+    }
     let start = Instant::now();
     let mut prepared = job.prepare()?;
     let loaded = start.elapsed();

@@ -9,7 +9,7 @@ use rouge_model::medium::Medium;
 use rouge_render::diffusion::ProfileModel;
 use rouge_render::job::{LookChoice, RenderJob};
 use rouge_render::profile_fit::FittedProfile;
-use rouge_render::{LightRig, Scene, Skin, SubsurfaceModel};
+use rouge_render::{LightRig, Scene, Skin};
 use std::path::PathBuf;
 
 #[derive(Debug, Clone, Args)]
@@ -221,14 +221,5 @@ impl SceneArgs {
             bail!("--width {} --height {}: each must be 1-16384 pixels", self.width, self.height);
         }
         Ok(())
-    }
-}
-
-/// The skin's subsurface model for `--subsurface` given the material (keeps a medium's profile).
-pub fn subsurface_model(skin: &Skin, screen_space: bool) -> SubsurfaceModel {
-    match (screen_space, &skin.subsurface) {
-        (false, _) => SubsurfaceModel::None,
-        (true, SubsurfaceModel::ScreenSpace { profile }) => SubsurfaceModel::ScreenSpace { profile: profile.clone() },
-        (true, SubsurfaceModel::None) => SubsurfaceModel::skin_screen_space(),
     }
 }

@@ -107,7 +107,7 @@ impl GpuMesh {
 pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
     for g in &mesh.groups {
-        if !g.name.to_ascii_lowercase().contains("eye") {
+        if !g.is_eye() {
             continue;
         }
         let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();

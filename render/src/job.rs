@@ -109,15 +109,31 @@ impl RenderJob {
     /// # Errors
     /// Any file that cannot be loaded (named), or no GPU.
     pub fn prepare(&self) -> Result<Prepared> {
-        let Loaded { mesh, look, scene, camera, .. } = self.load()?;
+        self.prepare_loaded(&self.load()?)
+    }
+
+    /// [`RenderJob::prepare`] from a scene already [loaded](RenderJob::load): opens a GPU and
+    /// uploads it (the textures are read here).
+    ///
+    /// # Errors
+    /// A texture that cannot be loaded (named), or no GPU.
+    pub fn prepare_loaded(&self, loaded: &Loaded) -> Result<Prepared> {
+        let Loaded { mesh, look, scene, camera, .. } = loaded;
         let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
         let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
         let gpu = Gpu::headless()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
-        renderer.set_mesh(&mesh, scene.skin.albedo)?;
+        renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
-        renderer.set_look(&look)?;
-        Ok(Prepared { gpu, renderer, scene, camera, triangles: mesh.triangle_count(), size: (self.width, self.height) })
+        renderer.set_look(look)?;
+        Ok(Prepared {
+            gpu,
+            renderer,
+            scene: scene.clone(),
+            camera: *camera,
+            triangles: mesh.triangle_count(),
+            size: (self.width, self.height),
+        })
     }
 
     /// Loads mesh, look and environment without a GPU (what `rouge export mitsuba` needs), and

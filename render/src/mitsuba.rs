@@ -161,6 +161,25 @@ fn mitsuba_env(env: &EnvMap) -> Vec<[f32; 4]> {
     out
 }
 
+/// The homogeneous medium `interior` of single-scattering albedo `albedo` and extinction
+/// `sigma_t_per_mm`, Henyey-Greenstein `g` (isotropic at 0).
+fn medium_xml(albedo: [f64; 3], sigma_t_per_mm: [f64; 3], g: f64) -> String {
+    let phase = if g == 0.0 {
+        "<phase type=\"isotropic\"/>".to_string()
+    } else {
+        format!("<phase type=\"hg\"><float name=\"g\" value=\"{g}\"/></phase>")
+    };
+    // Mitsuba reads an RGB sigma_t as a reflectance (each channel ≤ 1): write it relative to its
+    // largest channel and put that in `scale`.
+    let scale = sigma_t_per_mm.iter().copied().fold(0.0, f64::max);
+    format!(
+        "    <medium type=\"homogeneous\" id=\"interior\">\n        <rgb name=\"albedo\" value=\"{}\"/>\n        \
+         <rgb name=\"sigma_t\" value=\"{}\"/>\n        <float name=\"scale\" value=\"{scale}\"/>\n        {phase}\n    </medium>\n",
+        rgb(albedo),
+        rgb(sigma_t_per_mm.map(|v| v / scale))
+    )
+}
+
 /// Builds the Mitsuba scene of `input`.
 ///
 /// # Errors
@@ -294,36 +313,20 @@ pub fn export(input: &ExportInput) -> Result<MitsubaScene> {
             let m = skin.medium.as_ref().ok_or_else(|| {
                 RenderError::Invalid("the interior is a medium but the material names none (give --medium)".into())
             })?;
-            let phase = if m.g == 0.0 {
-                "<phase type=\"isotropic\"/>".to_string()
-            } else {
-                format!("<phase type=\"hg\"><float name=\"g\" value=\"{}\"/></phase>", m.g)
-            };
-            // Mitsuba reads an RGB sigma_t as a reflectance (each channel ≤ 1): write it relative
-            // to its largest channel and put that in `scale`.
-            let sigma_t = m.sigma_t_per_mm();
-            let scale = sigma_t.iter().copied().fold(0.0, f64::max);
-            let _ = writeln!(
-                x,
-                "    <medium type=\"homogeneous\" id=\"interior\">\n        <rgb name=\"albedo\" value=\"{}\"/>\n        \
-                 <rgb name=\"sigma_t\" value=\"{}\"/>\n        <float name=\"scale\" value=\"{scale}\"/>\n        {phase}\n    </medium>",
-                rgb(m.albedo()),
-                rgb(sigma_t.map(|v| v / scale))
-            );
+            x.push_str(&medium_xml(m.albedo(), m.sigma_t_per_mm(), m.g));
             format!("{boundary}        <ref name=\"interior\" id=\"interior\"/>\n")
         }
+        // A black absorber: light that enters is gone within a micrometre.
         Interior::Absorber => {
-            x.push_str(
-                "    <medium type=\"homogeneous\" id=\"interior\">\n        <rgb name=\"albedo\" value=\"0, 0, 0\"/>\n        \
-                 <rgb name=\"sigma_t\" value=\"1, 1, 1\"/>\n        \
-                 <float name=\"scale\" value=\"10000\"/>\n    </medium>\n",
-            );
+            x.push_str(&medium_xml([0.0; 3], [1e4; 3], 0.0));
             format!("{boundary}        <ref name=\"interior\" id=\"interior\"/>\n")
         }
     };
-    let is_eye =
-        |t: usize| mesh.groups.iter().any(|g| g.triangles.contains(&t) && g.name.to_ascii_lowercase().contains("eye"));
-    let (eyes, skin_tris): (Vec<usize>, Vec<usize>) = (0..mesh.triangle_count()).partition(|&t| is_eye(t));
+    let mut is_eye = vec![false; mesh.triangle_count()];
+    for g in mesh.groups.iter().filter(|g| g.is_eye()) {
+        is_eye[g.triangles.clone()].fill(true);
+    }
+    let (eyes, skin_tris): (Vec<usize>, Vec<usize>) = (0..mesh.triangle_count()).partition(|&t| is_eye[t]);
     // The medium needs a closed boundary: open loops (the head's neck) get flat caps.
     let (closed, caps) = close_boundary_loops(mesh, &skin_tris);
     let all: Vec<usize> = (0..closed.triangle_count()).collect();

@@ -269,6 +269,14 @@ pub struct TriangleGroup {
     pub triangles: Range<usize>,
 }
 
+impl TriangleGroup {
+    /// Whether the group is an eye (its name contains "eye", any case): the renderer gives its
+    /// vertices an eye's albedo and no scattering, and exports keep it out of the skin's medium.
+    pub fn is_eye(&self) -> bool {
+        self.name.to_ascii_lowercase().contains("eye")
+    }
+}
+
 /// An indexed triangle mesh ready for a vertex buffer: every attribute is per vertex.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TriangleMesh {
