@@ -11,6 +11,7 @@
 #[macro_use]
 pub mod simd;
 
+pub mod analysis;
 pub mod colorimetry;
 pub mod compositing;
 pub mod import;
