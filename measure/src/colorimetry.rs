@@ -24,6 +24,7 @@
 //!   `1.055 L^{1/2.4} − 0.055` above, as colour-science's `eotf_inverse_sRGB`.
 
 use crate::spectrum::{Spectrum, WORKING_LEN};
+use std::borrow::Borrow;
 use std::fmt;
 use std::sync::OnceLock;
 
@@ -334,6 +335,14 @@ impl Colorimeter {
         dispatch!(xyz_many_generic, xyz_many_avx2, xyz_many_avx512, (&self.weights, spectra, out))
     }
 
+    /// [`Colorimeter::xyz_many`] on bare rows of working-grid values (a C-ordered
+    /// `spectra × 81` buffer, as numpy hands it over, read in place).
+    pub fn xyz_many_rows(&self, rows: &[[f64; WORKING_LEN]], out: &mut [[f64; 3]]) {
+        let n = rows.len().min(out.len());
+        let (rows, out) = (&rows[..n], &mut out[..n]);
+        dispatch!(xyz_many_generic, xyz_many_avx2, xyz_many_avx512, (&self.weights, rows, out))
+    }
+
     /// CIELAB of `xyz` relative to this viewing's white.
     ///
     /// # Panics
@@ -356,34 +365,35 @@ impl Colorimeter {
 }
 
 #[inline(always)]
-fn xyz_many_loop(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[f64; 3]]) {
+fn xyz_many_loop<S: Borrow<[f64; WORKING_LEN]>>(w: &[[f64; WORKING_LEN]; 3], spectra: &[S], out: &mut [[f64; 3]]) {
     const LANES: usize = 8;
     const FULL: usize = WORKING_LEN / LANES * LANES;
     for (s, o) in spectra.iter().zip(out.iter_mut()) {
+        let s: &[f64; WORKING_LEN] = s.borrow();
         for c in 0..3 {
             let mut acc = [0.0f64; LANES];
             for base in (0..FULL).step_by(LANES) {
                 for l in 0..LANES {
-                    acc[l] += w[c][base + l] * s.0[base + l];
+                    acc[l] += w[c][base + l] * s[base + l];
                 }
             }
-            let tail: f64 = w[c][FULL..].iter().zip(&s.0[FULL..]).map(|(a, b)| a * b).sum();
+            let tail: f64 = w[c][FULL..].iter().zip(&s[FULL..]).map(|(a, b)| a * b).sum();
             o[c] = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7])) + tail;
         }
     }
 }
 
-fn xyz_many_generic(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[f64; 3]]) {
+fn xyz_many_generic<S: Borrow<[f64; WORKING_LEN]>>(w: &[[f64; WORKING_LEN]; 3], spectra: &[S], out: &mut [[f64; 3]]) {
     xyz_many_loop(w, spectra, out)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn xyz_many_avx2(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[f64; 3]]) {
+fn xyz_many_avx2<S: Borrow<[f64; WORKING_LEN]>>(w: &[[f64; WORKING_LEN]; 3], spectra: &[S], out: &mut [[f64; 3]]) {
     xyz_many_loop(w, spectra, out)
 }
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,fma")]
-fn xyz_many_avx512(w: &[[f64; WORKING_LEN]; 3], spectra: &[Spectrum], out: &mut [[f64; 3]]) {
+fn xyz_many_avx512<S: Borrow<[f64; WORKING_LEN]>>(w: &[[f64; WORKING_LEN]; 3], spectra: &[S], out: &mut [[f64; 3]]) {
     xyz_many_loop(w, spectra, out)
 }
 

@@ -329,6 +329,28 @@ pub fn reflectance_over_background(s_per_mm: f64, k_per_mm: f64, thickness_mm: f
     Ok(compose(layer, LayerRt::opaque(rg)).r)
 }
 
+/// Duncan's mixing rule ([Duncan1940]): the S and K of a mixture are the concentration-weighted
+/// sums of its components' S and K, `S = Σ cᵢ Sᵢ`, `K = Σ cᵢ Kᵢ`, with `cᵢ` the volume fraction
+/// of component `i` and `Sᵢ`, `Kᵢ` its coefficients at concentration 1 (the two-constant form).
+///
+/// Domain: every `cᵢ`, `Sᵢ`, `Kᵢ` finite and ≥ 0; the fractions need not add up to 1 (a binder
+/// with `S = K = 0` takes the rest). Valid while the components scatter independently (low
+/// pigment volume fractions; crowding of TiO₂ above ~10 vol% lowers S below the sum).
+pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -> Result<KmCoefficients, KmError> {
+    let mut mix = KmCoefficients { s_per_mm: 0.0, k_per_mm: 0.0 };
+    for (c, KmCoefficients { s_per_mm, k_per_mm }) in components {
+        check_coefficient("concentration", c)?;
+        check_coefficient("S", s_per_mm)?;
+        check_coefficient("K", k_per_mm)?;
+        mix.s_per_mm = c.mul_add(s_per_mm, mix.s_per_mm);
+        mix.k_per_mm = c.mul_add(k_per_mm, mix.k_per_mm);
+    }
+    if !(mix.s_per_mm.is_finite() && mix.k_per_mm.is_finite()) {
+        return Err(KmError::BadCoefficient { name: "mixture S or K", value: f64::INFINITY });
+    }
+    Ok(mix)
+}
+
 /// [Saunderson1942] correction between the reflectance an instrument measures and the internal
 /// reflectance that Kubelka-Munk describes.
 ///
@@ -398,6 +420,21 @@ impl fmt::Display for KmCoefficients {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn duncan_mix_weights_and_refuses_bad_components() {
+        let a = KmCoefficients { s_per_mm: 10.0, k_per_mm: 1.0 };
+        let b = KmCoefficients { s_per_mm: 2.0, k_per_mm: 8.0 };
+        let m = duncan_mix([(0.25, a), (0.5, b)]).unwrap();
+        assert_eq!(m, KmCoefficients { s_per_mm: 3.5, k_per_mm: 4.25 });
+        assert_eq!(duncan_mix([]).unwrap(), KmCoefficients { s_per_mm: 0.0, k_per_mm: 0.0 });
+        let e = duncan_mix([(0.5, a), (-0.1, b)]).unwrap_err();
+        assert_eq!(e, KmError::BadCoefficient { name: "concentration", value: -0.1 });
+        let nan = KmCoefficients { s_per_mm: f64::NAN, k_per_mm: 1.0 };
+        assert!(matches!(duncan_mix([(0.5, nan)]), Err(KmError::BadCoefficient { name: "S", .. })));
+        let huge = KmCoefficients { s_per_mm: f64::MAX, k_per_mm: 0.0 };
+        assert!(duncan_mix([(1.0, huge), (1.0, huge)]).is_err());
+    }
     use super::*;
 
     #[test]

@@ -78,6 +78,12 @@ impl Spectrum {
     }
 }
 
+impl std::borrow::Borrow<[f64; WORKING_LEN]> for Spectrum {
+    fn borrow(&self) -> &[f64; WORKING_LEN] {
+        &self.0
+    }
+}
+
 impl fmt::Debug for Spectrum {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (lo, hi) = self.min_max();

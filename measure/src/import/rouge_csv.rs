@@ -24,9 +24,16 @@ pub(crate) fn comment_metadata(text: &str) -> BTreeMap<String, String> {
         .collect()
 }
 
-/// Splits a CSV line into trimmed cells (Rouge CSV holds numbers only: no quoting).
-pub(crate) fn cells(line: &str) -> Vec<&str> {
-    line.split(',').map(str::trim).collect()
+/// Splits a CSV line into trimmed cells at `delimiter` (Rouge CSV holds numbers and plain names:
+/// no quoting beyond a pair of double quotes around a whole name, which is removed).
+pub(crate) fn cells(line: &str, delimiter: char) -> Vec<&str> {
+    line.split(delimiter).map(|c| c.trim().trim_matches('"').trim()).collect()
+}
+
+/// The delimiter of a table, from its header line: a comma, or a tab where the header has tabs
+/// and no comma (colour-science's transposed test files).
+fn delimiter(header: &str) -> char {
+    if !header.contains(',') && header.contains('\t') { '\t' } else { ',' }
 }
 
 /// A CSV table of numbers: the header line, its names, and every column's cells.
@@ -35,6 +42,8 @@ struct NumericTable {
     header: String,
     names: Vec<String>,
     columns: Vec<Vec<Cell>>,
+    /// With `labelled` rows: each data row's first cell (a name, not a number).
+    labels: Vec<String>,
 }
 
 impl NumericTable {
@@ -44,24 +53,38 @@ impl NumericTable {
     }
 }
 
+/// The first line that is neither blank nor a `#` comment, with its 1-based number.
+fn header_of(text: &str) -> Option<(usize, &str)> {
+    text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).find(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+}
+
 /// Reads the header, lets `check_header` refuse it before any row is read (so a bad header is
 /// reported at the header), then every data row (`#` comments and blank lines skipped), parsing
-/// each cell as a finite number; errors name the line and column.
+/// each cell as a finite number (with `labelled`, all but the first, which is the row's name);
+/// errors name the line and column.
 fn read_numeric_table(
     path: &Path,
     text: &str,
+    labelled: bool,
     check_header: impl FnOnce(&NumericTable) -> Result<(), ImportError>,
 ) -> Result<NumericTable, ImportError> {
     let mut rows =
         text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
     let (header_line, header) = rows.next().ok_or_else(|| ImportError::file(path, "no header line"))?;
-    let names: Vec<String> = cells(header).iter().map(|c| c.to_string()).collect();
-    let mut table =
-        NumericTable { header_line, header: header.to_string(), columns: vec![Vec::new(); names.len()], names };
+    let delimiter = delimiter(header);
+    let names: Vec<String> = cells(header, delimiter).iter().map(|c| c.to_string()).collect();
+    let mut table = NumericTable {
+        header_line,
+        header: header.to_string(),
+        columns: vec![Vec::new(); names.len()],
+        names,
+        labels: Vec::new(),
+    };
     check_header(&table)?;
     let names = &table.names;
+    let first_number = usize::from(labelled);
     for (line, row) in rows {
-        let c = cells(row);
+        let c = cells(row, delimiter);
         if c.len() != names.len() {
             return Err(ImportError::at(
                 path,
@@ -70,18 +93,23 @@ fn read_numeric_table(
                 format!("{} cells, but the header has {}", c.len(), names.len()),
             ));
         }
-        for (i, (text, column)) in c.iter().zip(table.columns.iter_mut()).enumerate() {
-            let value = parse_number(path, text, line, i + 1, &names[i])?;
+        if labelled {
+            table.labels.push(c[0].to_string());
+        }
+        for (i, (text, column)) in c.iter().zip(table.columns.iter_mut()).enumerate().skip(first_number) {
+            let what = if labelled { format!("`{}` at {} nm", c[0], names[i]) } else { names[i].clone() };
+            let value = parse_number(path, text, line, i + 1, &what)?;
             column.push(Cell { value, line, column: i + 1 });
         }
     }
-    let data_rows = table.columns.first().map_or(0, Vec::len);
-    if data_rows < 2 {
+    let data_rows = if labelled { table.labels.len() } else { table.columns.first().map_or(0, Vec::len) };
+    let least = if labelled { 1 } else { 2 };
+    if data_rows < least {
         return Err(ImportError::at(
             path,
             header_line,
             None,
-            format!("{data_rows} data rows after the header: a spectrum needs at least 2"),
+            format!("{data_rows} data rows after the header: a spectrum needs at least 2 wavelengths"),
         ));
     }
     Ok(table)
@@ -130,7 +158,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
         }
         Ok(index)
     };
-    let table = read_numeric_table(path, text, |t| header_index(t).map(|_| ()))?;
+    let table = read_numeric_table(path, text, false, |t| header_index(t).map(|_| ()))?;
     let index = header_index(&table)?;
     let mut all = table.columns;
     let columns: [Vec<Cell>; 4] = index.map(|i| std::mem::take(&mut all[i]));
@@ -182,41 +210,93 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
     })
 }
 
-/// A table of spectra: a `wavelength_nm` column and one column per sample, the header naming
-/// the samples (the input of `rouge color`). Fractions or percent by the same rule as
-/// measurements; `#` comment lines are skipped.
+/// Names a table's wavelength column may have (case-insensitive): Rouge's own, and the one
+/// colour-science writes and reads.
+const WAVELENGTH_COLUMNS: [&str; 2] = ["wavelength_nm", "wavelength"];
+
+/// A table of spectra (the input of `rouge color`), in either layout colour-science uses:
+///
+/// * **columns**: a `wavelength_nm` (or `wavelength`) column and one column per sample, the header
+///   naming the samples;
+/// * **rows** (transposed): one spectrum per row, its name in the first cell, the wavelengths in
+///   the header after a first cell of any name (`wavelength,380,385,...`).
+///
+/// The layout is read from the header: every cell after the first a number means rows. Cells are
+/// separated by commas, or by tabs when the header has tabs and no comma. Fractions or percent by
+/// the same rule as measurements; `#` comment lines are skipped; errors name line and column.
 pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), ImportError> {
     let metadata = comment_metadata(text);
+    let transposed = header_of(text).is_some_and(|(_, h)| {
+        let c = cells(h, delimiter(h));
+        c.len() >= 3 && c[1..].iter().all(|x| x.parse::<f64>().is_ok_and(f64::is_finite))
+    });
+    let (names, wl, values) = if transposed { spectra_in_rows(path, text)? } else { spectra_in_columns(path, text)? };
+    check_wavelengths(path, &wl)?;
+    let all: Vec<Cell> = values.iter().flatten().copied().collect();
+    let scale = resolve_scale(path, &metadata, &all)?;
+    check_reflectance_range(path, &all, scale.factor())?;
+    let grid: Vec<f64> = wl.iter().map(|c| c.value).collect();
+    let mut out = Vec::with_capacity(names.len());
+    for (name, cells) in names.into_iter().zip(values) {
+        let v = cells.iter().map(|c| c.value * scale.factor()).collect();
+        let s = SampledSpectrum::new(grid.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))?;
+        out.push((name, s));
+    }
+    Ok((out, scale))
+}
+
+/// Sample names, the wavelength cells, and each sample's value cells.
+type SpectraCells = (Vec<String>, Vec<Cell>, Vec<Vec<Cell>>);
+
+fn spectra_in_columns(path: &Path, text: &str) -> Result<SpectraCells, ImportError> {
+    let wavelength_column = |t: &NumericTable| WAVELENGTH_COLUMNS.iter().find_map(|w| t.column(w));
     let check = |t: &NumericTable| -> Result<(), ImportError> {
-        if t.column("wavelength_nm").is_none() {
-            return Err(ImportError::at(path, t.header_line, None, "the header has no `wavelength_nm` column"));
+        if wavelength_column(t).is_none() {
+            return Err(ImportError::at(
+                path,
+                t.header_line,
+                None,
+                format!(
+                    "the header has no `wavelength_nm` or `wavelength` column, and is not a row of wavelengths \
+                     either (found `{}`)",
+                    t.header
+                ),
+            ));
         }
         if t.names.len() < 2 {
-            return Err(ImportError::at(path, t.header_line, None, "no sample columns besides `wavelength_nm`"));
+            return Err(ImportError::at(path, t.header_line, None, "no sample columns besides the wavelengths"));
         }
         if let Some(i) = t.names.iter().position(String::is_empty) {
             return Err(ImportError::at(path, t.header_line, Some(i + 1), "a column has no name"));
         }
         Ok(())
     };
-    let mut table = read_numeric_table(path, text, check)?;
-    let wl_col = table.column("wavelength_nm").unwrap_or(0);
+    let mut table = read_numeric_table(path, text, false, check)?;
+    let wl_col = wavelength_column(&table).unwrap_or(0);
     let wl = std::mem::take(&mut table.columns[wl_col]);
     let sample_cols: Vec<usize> = (0..table.names.len()).filter(|&i| i != wl_col).collect();
-    let names: Vec<&str> = table.names.iter().map(String::as_str).collect();
-    let values: Vec<Vec<Cell>> = sample_cols.iter().map(|&i| std::mem::take(&mut table.columns[i])).collect();
-    check_wavelengths(path, &wl)?;
-    let all: Vec<Cell> = values.iter().flatten().copied().collect();
-    let scale = resolve_scale(path, &metadata, &all)?;
-    check_reflectance_range(path, &all, scale.factor())?;
-    let grid: Vec<f64> = wl.iter().map(|c| c.value).collect();
-    let mut out = Vec::with_capacity(sample_cols.len());
-    for (k, &i) in sample_cols.iter().enumerate() {
-        let v = values[k].iter().map(|c| c.value * scale.factor()).collect();
-        let s = SampledSpectrum::new(grid.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))?;
-        out.push((names[i].to_string(), s));
+    let names = sample_cols.iter().map(|&i| table.names[i].clone()).collect();
+    let values = sample_cols.iter().map(|&i| std::mem::take(&mut table.columns[i])).collect();
+    Ok((names, wl, values))
+}
+
+fn spectra_in_rows(path: &Path, text: &str) -> Result<SpectraCells, ImportError> {
+    let mut table = read_numeric_table(path, text, true, |_| Ok(()))?;
+    let wl = table.names[1..]
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            let value = parse_number(path, n, table.header_line, i + 2, "wavelength")?;
+            Ok(Cell { value, line: table.header_line, column: i + 2 })
+        })
+        .collect::<Result<Vec<Cell>, ImportError>>()?;
+    if let Some((i, _)) = table.labels.iter().enumerate().find(|(_, l)| l.is_empty()) {
+        let line = table.columns[1][i].line;
+        return Err(ImportError::at(path, line, Some(1), "a spectrum has no name"));
     }
-    Ok((out, scale))
+    // Row r's values: the r-th cell of every wavelength column.
+    let values = (0..table.labels.len()).map(|r| table.columns[1..].iter_mut().map(|col| col[r]).collect()).collect();
+    Ok((std::mem::take(&mut table.labels), wl, values))
 }
 
 #[cfg(test)]
@@ -288,5 +368,42 @@ mod tests {
         rows.push_str("480,0.5,7.0,0.1\n");
         let e = parse(p(), &rows).unwrap_err();
         assert_eq!((e.line, e.column), (Some(12), Some(3)), "{e}");
+    }
+
+    #[test]
+    fn spectra_tables_in_both_layouts_and_delimiters() {
+        let columns = "# colour-science writes `wavelength`\nwavelength,1,dark skin\n380,0.048,0.10\n385,0.051,0.12\n390,0.055,0.14\n";
+        let (spectra, scale) = parse_spectra_table(p(), columns).unwrap();
+        assert_eq!(scale, Scale::Fraction { declared: false });
+        let names: Vec<&str> = spectra.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["1", "dark skin"]);
+        assert_eq!(spectra[1].1.wavelengths_nm(), &[380.0, 385.0, 390.0]);
+        assert_eq!(spectra[1].1.values(), &[0.10, 0.12, 0.14]);
+
+        let rows = "wavelength\t380\t385\t390\n1\t0.048\t0.051\t0.055\n\"dark skin\"\t0.10\t0.12\t0.14\n";
+        let (t, _) = parse_spectra_table(p(), rows).unwrap();
+        assert_eq!(t, spectra, "the transposed, tab-separated table reads as the same spectra");
+        let (c, _) = parse_spectra_table(p(), &rows.replace('\t', ",")).unwrap();
+        assert_eq!(c, spectra);
+        let (n, _) = parse_spectra_table(p(), &columns.replace("wavelength,", "wavelength_nm,")).unwrap();
+        assert_eq!(n, spectra);
+    }
+
+    #[test]
+    fn spectra_table_errors_name_line_and_column() {
+        let e = parse_spectra_table(p(), "nm,a\n380,0.1\n390,0.2\n").unwrap_err();
+        assert_eq!(e.line, Some(1));
+        assert!(e.message.contains("no `wavelength_nm` or `wavelength` column"), "{e}");
+        let e = parse_spectra_table(p(), "wavelength,380,390,400\na,0.1,0.2,0.3\nb,0.1,x,0.3\n").unwrap_err();
+        assert_eq!((e.line, e.column), (Some(3), Some(3)), "{e}");
+        assert!(e.message.contains("`b` at 390 nm `x` is not a number"), "{e}");
+        let e = parse_spectra_table(p(), "wavelength,380,390,390\na,0.1,0.2,0.3\n").unwrap_err();
+        assert_eq!((e.line, e.column), (Some(1), Some(4)), "{e}");
+        let e = parse_spectra_table(p(), "wavelength,380,390,400\na,0.1,0.2\n").unwrap_err();
+        assert_eq!(e.line, Some(2), "{e}");
+        let e = parse_spectra_table(p(), "wavelength,380,390,400\na,0.1,0.2,3.0\nb,0.1,0.2,0.3\n").unwrap_err();
+        assert_eq!((e.line, e.column), (Some(2), Some(4)), "{e}");
+        let e = parse_spectra_table(p(), "wavelength,380,390,400\n").unwrap_err();
+        assert!(e.message.contains("0 data rows"), "{e}");
     }
 }
