@@ -10,6 +10,8 @@
 //! - [`paint`]: the brush: the surface map, dabs, strokes.
 //! - [`medium`]: physical participating media (σa, σs′, g, η), the built-in measured ones.
 //! - [`rect`]: the one texel-rectangle type.
+//! - [`thickness`]: local thickness baked per vertex by inward rays ([BarreBrisebois2011]), its
+//!   UV map and on-disk cache.
 
 pub mod document;
 pub mod error;
@@ -18,6 +20,7 @@ pub mod medium;
 pub mod mesh;
 pub mod paint;
 pub mod rect;
+pub mod thickness;
 
 pub use error::{ModelError, Result};
 pub use mesh::{

@@ -151,10 +151,11 @@ impl CellBox {
     }
 }
 
-/// A triangle prepared for rasterising: UVs in pixel space (y down), 3D corners, pixel bounds.
+/// A triangle prepared for rasterising: UVs in pixel space (y down), the attribute at its
+/// corners, pixel bounds.
 pub(super) struct RasterTriangle {
     uv: [Vec2; 3],
-    position: [Vec3; 3],
+    attribute: [Vec3; 3],
     /// Half-open texel bounds (x0, y0, x1, y1) of the texel centres it may cover.
     bounds: [usize; 4],
 }
@@ -184,7 +185,7 @@ impl SurfaceMap {
             return SurfaceMap { slot: Vec::new(), ..empty() };
         }
         let (covered, mut grid) = {
-            let texel_pos = rasterise(mesh, w, h);
+            let texel_pos = rasterise(mesh, &mesh.positions, w, h);
             let covered = dilate_and_collect(&texel_pos, w, h);
             let bounds = covered.iter().fold(None, |b: Option<Bounds>, &(_, p)| {
                 Some(b.map_or(Bounds { min: p, max: p }, |b| Bounds { min: b.min.min(p), max: b.max.max(p) }))
@@ -299,12 +300,19 @@ impl SurfaceMap {
     }
 }
 
-/// Positions per texel (NaN where no triangle covers the texel centre), rasterised in bands of
-/// rows on all cores.
-pub(super) fn rasterise(mesh: &TriangleMesh, w: usize, h: usize) -> Vec<Vec3> {
+/// A per-vertex attribute of `mesh` (`attribute[i]` belongs to vertex i: the positions for the
+/// surface map, baked values for [`crate::thickness::thickness_uv_map`]) interpolated
+/// barycentrically at every texel centre of a `w` × `h` UV map (row 0 at the top, v = 1); NaN
+/// where no triangle covers the texel centre. Triangles with an index out of range of the
+/// attribute or the UVs, non-finite data or no area in UV space are skipped; where UV islands
+/// overlap, the later triangle wins. Rasterised in bands of rows on all cores.
+pub(crate) fn rasterise(mesh: &TriangleMesh, attribute: &[Vec3], w: usize, h: usize) -> Vec<Vec3> {
     let nan = Vec3::splat(f32::NAN);
-    let triangles: Vec<RasterTriangle> =
-        mesh.indices.chunks_exact(3).filter_map(|t| raster_triangle(mesh, [t[0], t[1], t[2]], w, h)).collect();
+    let triangles: Vec<RasterTriangle> = mesh
+        .indices
+        .chunks_exact(3)
+        .filter_map(|t| raster_triangle(mesh, attribute, [t[0], t[1], t[2]], w, h))
+        .collect();
     // Bin the triangles by the bands of rows they touch.
     let bands = h.div_ceil(RASTER_BAND_ROWS);
     let mut binned: Vec<Vec<u32>> = vec![Vec::new(); bands];
@@ -342,17 +350,24 @@ pub(super) fn rasterise(mesh: &TriangleMesh, w: usize, h: usize) -> Vec<Vec3> {
     out
 }
 
-/// Prepares triangle `t` for rasterising; `None` when it is unusable or covers no texel centre.
-pub(super) fn raster_triangle(mesh: &TriangleMesh, t: [u32; 3], w: usize, h: usize) -> Option<RasterTriangle> {
+/// Prepares triangle `t` for rasterising `attribute`; `None` when it is unusable or covers no
+/// texel centre.
+pub(super) fn raster_triangle(
+    mesh: &TriangleMesh,
+    attribute: &[Vec3],
+    t: [u32; 3],
+    w: usize,
+    h: usize,
+) -> Option<RasterTriangle> {
     let mut uv = [Vec2::ZERO; 3];
-    let mut position = [Vec3::ZERO; 3];
+    let mut value = [Vec3::ZERO; 3];
     for k in 0..3 {
         let i = t[k] as usize;
-        let (p, q) = (*mesh.positions.get(i)?, *mesh.uvs.get(i)?);
+        let (p, q) = (*attribute.get(i)?, *mesh.uvs.get(i)?);
         if !(p.is_finite() && q.is_finite()) {
             return None;
         }
-        position[k] = p;
+        value[k] = p;
         uv[k] = Vec2::new(q.x * w as f32, (1.0 - q.y) * h as f32);
     }
     let area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]);
@@ -365,12 +380,12 @@ pub(super) fn raster_triangle(mesh: &TriangleMesh, t: [u32; 3], w: usize, h: usi
     let first = |v: f32, n: usize| ((v - 0.5 - 1.0e-3).ceil().max(0.0) as usize).min(n);
     let end = |v: f32, n: usize| (((v - 0.5 + 1.0e-3).floor() + 1.0).max(0.0) as usize).min(n);
     let bounds = [first(lo.x, w), first(lo.y, h), end(hi.x, w), end(hi.y, h)];
-    (bounds[0] < bounds[2] && bounds[1] < bounds[3]).then_some(RasterTriangle { uv, position, bounds })
+    (bounds[0] < bounds[2] && bounds[1] < bounds[3]).then_some(RasterTriangle { uv, attribute: value, bounds })
 }
 
-/// Writes the interpolated positions of the texels of `rows` (texel rows from `y_band`) that
+/// Writes the interpolated attribute of the texels of `rows` (texel rows from `y_band`) that
 /// triangle `t` covers. Edges are inclusive (a tiny tolerance), so neighbours leave no cracks;
-/// a texel on a shared edge gets the same position from either triangle.
+/// a texel on a shared edge gets the same value from either triangle.
 pub(super) fn raster_into(t: &RasterTriangle, rows: &mut [Vec3], w: usize, y_band: usize) {
     let [a, b, c] = t.uv;
     let area = (b - a).perp_dot(c - a);
@@ -387,17 +402,17 @@ pub(super) fn raster_into(t: &RasterTriangle, rows: &mut [Vec3], w: usize, y_ban
             let lc = (b - a).perp_dot(p - a) * sign;
             if la >= tolerance && lb >= tolerance && lc >= tolerance {
                 let sum = la + lb + lc;
-                *texel = (t.position[0] * la + t.position[1] * lb + t.position[2] * lc) / sum;
+                *texel = (t.attribute[0] * la + t.attribute[1] * lb + t.attribute[2] * lc) / sum;
             }
         }
     }
 }
 
-/// The covered texels after dilating by [`DILATE_TEXELS`], in texel order: (index, position).
-/// A texel no triangle covers (NaN) within the (2·DILATE_TEXELS + 1)² window around a covered
-/// one takes the position of the nearest covered texel in that window (Euclidean distance in
-/// texels, ties in a fixed order). Bands of rows on all cores.
-pub(super) fn dilate_and_collect(src: &[Vec3], w: usize, h: usize) -> Vec<(u32, Vec3)> {
+/// The covered texels of a [`rasterise`]d map after dilating by [`DILATE_TEXELS`], in texel
+/// order: (index, value). A texel no triangle covers (NaN) within the (2·DILATE_TEXELS + 1)²
+/// window around a covered one takes the value of the nearest covered texel in that window
+/// (Euclidean distance in texels, ties in a fixed order). Bands of rows on all cores.
+pub(crate) fn dilate_and_collect(src: &[Vec3], w: usize, h: usize) -> Vec<(u32, Vec3)> {
     const R: i64 = DILATE_TEXELS as i64;
     let mut offsets: Vec<(i64, i64)> = (-R..=R).flat_map(|dy| (-R..=R).map(move |dx| (dx, dy))).collect();
     offsets.retain(|&o| o != (0, 0));
@@ -446,7 +461,7 @@ pub(super) fn dilate_and_collect(src: &[Vec3], w: usize, h: usize) -> Vec<(u32, 
 
 /// Runs `f` on contiguous bands of the rows 0..h, one band per core, and returns the results in
 /// row order.
-pub(super) fn par_rows<T: Send>(h: usize, f: impl Fn(std::ops::Range<usize>) -> T + Sync) -> Vec<T> {
+pub(crate) fn par_rows<T: Send>(h: usize, f: impl Fn(std::ops::Range<usize>) -> T + Sync) -> Vec<T> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, h.max(1));
     let band = h.div_ceil(threads);
     if threads == 1 {
