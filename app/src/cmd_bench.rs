@@ -3,10 +3,8 @@
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use rouge_measure::compositing::{ErrorStats, Method, compositing_error};
-use rouge_measure::import::rouge_csv::parse_spectra_table;
 use rouge_measure::km::{self, LayerRt};
 use rouge_measure::preset::Preset;
-use rouge_measure::spectrum::{Extrapolation, Spectrum};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -85,8 +83,6 @@ pub struct CompositingArgs {
     pub json: Option<PathBuf>,
 }
 
-const SKIN_CSV: &str = include_str!("../../data/skin/colorchecker_skin.csv");
-
 pub fn run(cmd: &BenchCommand) -> Result<()> {
     match cmd {
         BenchCommand::Compositing(args) => compositing(args),
@@ -133,11 +129,7 @@ fn ns_per_pixel(channels: usize) -> f64 {
 
 fn compositing(args: &CompositingArgs) -> Result<()> {
     let presets = load_presets(&args.presets)?;
-    let (skins, _) = parse_spectra_table(Path::new("<embedded>/data/skin/colorchecker_skin.csv"), SKIN_CSV)?;
-    let skins: Vec<(String, Spectrum)> = skins
-        .into_iter()
-        .map(|(n, s)| Ok((n, s.to_working_grid(Extrapolation::Refuse)?.spectrum)))
-        .collect::<Result<_>>()?;
+    let skins = crate::cmd_analyze::embedded_skins()?;
     if let Some(bad) = args.thicknesses_mm.iter().find(|x| !(**x >= 0.0 && x.is_finite())) {
         bail!("thickness {bad} mm must be finite and ≥ 0");
     }

@@ -1,10 +1,12 @@
 //! `rouge`: the painting app (no arguments) and the Rouge command line.
 //!
 //! Every subcommand prints machine-readable JSON on stdout (numbers in the shortest form that
-//! reads back bit-for-bit) except `import` and `demo`, which print a report for people (`--json`
-//! for a machine). Errors: a message on stderr and exit status 2.
+//! reads back bit-for-bit) except `import`, `demo` and `analyze`, which print a report for people
+//! (`--json` for a machine). Errors: a message on stderr and exit status 2.
 
+mod analyze_plot;
 mod bench_translucency;
+mod cmd_analyze;
 mod cmd_bench;
 mod cmd_color;
 mod cmd_export;
@@ -73,6 +75,10 @@ enum Command {
     /// Speed-against-error studies (figures for docs/BENCHMARKS.md).
     #[command(subcommand)]
     Bench(cmd_bench::BenchCommand),
+    /// What formulators ask of S and K: coverage, shade matching over skins, mixing bases
+    /// (tables for people, --json and --plot; docs/FORMULATION.md).
+    #[command(subcommand)]
+    Analyze(cmd_analyze::AnalyzeCommand),
 }
 
 /// Writes `text` and a newline to stdout. A closed pipe (`rouge ... | head`) ends the program
@@ -117,6 +123,7 @@ fn main() -> ExitCode {
         Command::Render(args) => cmd_render::run(&args),
         Command::Export(cmd) => cmd_export::run(&cmd),
         Command::Bench(cmd) => cmd_bench::run(&cmd),
+        Command::Analyze(cmd) => cmd_analyze::run(&cmd),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

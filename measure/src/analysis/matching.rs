@@ -48,7 +48,9 @@ pub fn closest_thickness(
 ) -> Result<(f64, f64, [f64; 3]), AnalysisError> {
     check_thickness("minimum thickness", min_mm)?;
     if !(max_mm >= min_mm && max_mm.is_finite()) {
-        return Err(invalid(format!("thickness range {min_mm}..{max_mm} mm: the maximum must be finite and ≥ the minimum")));
+        return Err(invalid(format!(
+            "thickness range {min_mm}..{max_mm} mm: the maximum must be finite and ≥ the minimum"
+        )));
     }
     let lab_at = |x: f64| lab_of(colorimeter, &layer.reflectance_over(x, skin));
     let de = |x: f64| delta_e_2000_raw(lab_at(x), target_lab);

@@ -118,12 +118,7 @@ mod tests {
     #[test]
     fn simplex_search_finds_interior_and_boundary_minima() {
         let target = [0.2, 0.5, 0.3];
-        let (c, v) = simplex_search(
-            |c| c.iter().zip(&target).map(|(a, b)| (a - b) * (a - b)).sum(),
-            3,
-            10,
-            1e-12,
-        );
+        let (c, v) = simplex_search(|c| c.iter().zip(&target).map(|(a, b)| (a - b) * (a - b)).sum(), 3, 10, 1e-12);
         assert!(v < 1e-20, "{c:?} {v}");
         // Minimum outside the simplex: the closest point on it is (0, 0.5, 0.5).
         let (c, _) = simplex_search(|c| (c[0] + 1.0).powi(2) + (c[1] - c[2]).powi(2), 3, 10, 1e-12);

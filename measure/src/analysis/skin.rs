@@ -24,9 +24,9 @@ pub fn read_skins(path: &Path, extrapolation: Extrapolation) -> Result<Vec<(Stri
     sampled
         .into_iter()
         .map(|(name, s)| {
-            let w = s
-                .to_working_grid(extrapolation)
-                .map_err(|e| ImportError::file(path, format!("skin `{name}`: {e} (--extrapolate holds the end values)")))?;
+            let w = s.to_working_grid(extrapolation).map_err(|e| {
+                ImportError::file(path, format!("skin `{name}`: {e} (--extrapolate holds the end values)"))
+            })?;
             if let Some(i) = w.spectrum.0.iter().position(|v| !(0.0..=1.0).contains(v)) {
                 return Err(ImportError::file(
                     path,

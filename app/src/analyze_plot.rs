@@ -1,0 +1,189 @@
+//! The PNG charts of `rouge analyze` (drawn by `plot_png`): coverage against thickness, and the
+//! skins a product line serves.
+
+use crate::plot_png::{Chart, Marker, Series, render};
+use anyhow::Result;
+use rouge_measure::analysis::coverage::{CoverageRow, HIDING_CONTRAST_RATIO};
+use rouge_measure::analysis::matching::SkinCoverage;
+use rouge_measure::analysis::{Layer, lab_of};
+use rouge_measure::colorimetry::Colorimeter;
+use rouge_measure::spectrum::Spectrum;
+
+/// 61 thicknesses from 0 to the largest of `xs_mm` (at least 50 µm): a smooth curve.
+pub fn curve_mm(xs_mm: &[f64]) -> Vec<f64> {
+    let top = xs_mm.iter().copied().fold(0.05, f64::max);
+    (0..=60).map(|i| top * f64::from(i) / 60.0).collect()
+}
+
+/// Names without the words every name starts with ("Foundation 03 Sand" → "03 Sand"), for legends.
+fn short_names(names: &[&str]) -> Vec<String> {
+    let words: Vec<Vec<&str>> = names.iter().map(|n| n.split_whitespace().collect()).collect();
+    let min_len = words.iter().map(Vec::len).min().unwrap_or(0);
+    let common = (0..min_len.saturating_sub(1)).take_while(|&i| words.iter().all(|w| w[i] == words[0][i])).count();
+    let common = if names.len() > 1 { common } else { 0 };
+    words.iter().map(|w| w[common..].join(" ")).collect()
+}
+
+/// Encoded sRGB of a reflectance, clipped, as 8-bit; darkened if too light to see on white.
+fn swatch(c: &Colorimeter, r: &Spectrum) -> [u8; 3] {
+    let rgb = c.srgb(&c.xyz(r)).map(|v| v.clamp(0.0, 1.0));
+    let luma = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    let k = if luma > 0.8 { 0.8 / luma } else { 1.0 };
+    rgb.map(|v| (v * k * 255.0).round() as u8)
+}
+
+fn line(label: &str, rgb: [u8; 3], points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label: label.into(),
+        rgb,
+        points: points.into_iter().map(|(x, y)| (x, y, None)).collect(),
+        line: true,
+        marker: Marker::Dot,
+    }
+}
+
+/// Contrast ratio and ΔE2000 on each skin against thickness, the 0.98 line and the hiding point.
+pub fn coverage(
+    name: &str,
+    rows: &[CoverageRow],
+    hiding_mm: Option<f64>,
+    skins: &[(String, Spectrum)],
+    c: &Colorimeter,
+) -> Result<Vec<u8>> {
+    let top_um = rows.last().map_or(50.0, |r| r.thickness_mm * 1e3);
+    let mut cr = vec![line(
+        "contrast ratio",
+        [40, 40, 40],
+        rows.iter().map(|r| (r.thickness_mm * 1e3, r.contrast.contrast_ratio)).collect(),
+    )];
+    cr.push(line(
+        "CR 0.98 (hiding)",
+        [170, 170, 170],
+        vec![(0.0, HIDING_CONTRAST_RATIO), (top_um, HIDING_CONTRAST_RATIO)],
+    ));
+    if let Some(x) = hiding_mm.filter(|x| x * 1e3 <= top_um) {
+        cr.push(Series {
+            label: "hiding thickness".into(),
+            rgb: [200, 40, 40],
+            points: vec![(x * 1e3, HIDING_CONTRAST_RATIO, Some(format!("{:.1} µm", x * 1e3)))],
+            line: false,
+            marker: Marker::Diamond,
+        });
+    }
+    let de = skins
+        .iter()
+        .enumerate()
+        .map(|(i, (skin, r))| {
+            line(
+                &format!("ΔE00 on {skin}"),
+                swatch(c, r),
+                rows.iter().map(|row| (row.thickness_mm * 1e3, row.delta_e_on_skin[i])).collect(),
+            )
+        })
+        .collect();
+    let charts = [
+        Chart {
+            title: "Contrast ratio (Y over black / Y over white)".into(),
+            x_label: "thickness (µm)".into(),
+            y_label: "contrast ratio".into(),
+            series: cr,
+        },
+        Chart {
+            title: "Colour change on skin".into(),
+            x_label: "thickness (µm)".into(),
+            y_label: "ΔE2000, bare against covered".into(),
+            series: de,
+        },
+    ];
+    render(&format!("{name}: coverage ({})", c.viewing()), &charts, 2)
+}
+
+/// The skins in L* against b*, each marked in the colour of its best shade (gaps crossed), the
+/// shades' own opaque colours as diamonds; and the best ΔE2000 against the skin's L*.
+pub fn shade_map(
+    shades: &[Layer],
+    skins: &[(String, Spectrum)],
+    cover: &[SkinCoverage],
+    gap_de: f64,
+    target: &str,
+    c: &Colorimeter,
+) -> Result<Vec<u8>> {
+    let mut gamut = Vec::new();
+    let mut errors = Vec::new();
+    let names = short_names(&shades.iter().map(|s| s.name.as_str()).collect::<Vec<_>>());
+    for (i, (s, short)) in shades.iter().zip(&names).enumerate() {
+        let rgb = swatch(c, &s.r_inf());
+        let mine: Vec<&SkinCoverage> = cover.iter().filter(|sc| sc.best.shade == i && !sc.gap).collect();
+        let pts = |f: &dyn Fn(&SkinCoverage) -> (f64, f64)| {
+            mine.iter()
+                .map(|sc| {
+                    let (x, y) = f(sc);
+                    (x, y, None)
+                })
+                .collect::<Vec<_>>()
+        };
+        gamut.push(Series {
+            label: short.clone(),
+            rgb,
+            points: pts(&|sc| (sc.skin_lab[2], sc.skin_lab[0])),
+            line: false,
+            marker: Marker::Dot,
+        });
+        errors.push(Series {
+            label: short.clone(),
+            rgb,
+            points: pts(&|sc| (sc.skin_lab[0], sc.best.delta_e)),
+            line: false,
+            marker: Marker::Dot,
+        });
+        // The shade itself (opaque), a labelled diamond under the same legend entry.
+        let lab = lab_of(c, &s.r_inf());
+        gamut.push(Series {
+            label: short.clone(),
+            rgb,
+            points: vec![(lab[2], lab[0], Some(short.clone()))],
+            line: false,
+            marker: Marker::Diamond,
+        });
+    }
+    let gaps: Vec<&SkinCoverage> = cover.iter().filter(|sc| sc.gap).collect();
+    if !gaps.is_empty() {
+        let label = format!("gap: best ΔE00 > {gap_de}");
+        gamut.push(Series {
+            label: label.clone(),
+            rgb: [220, 30, 30],
+            points: gaps.iter().map(|sc| (sc.skin_lab[2], sc.skin_lab[0], None)).collect(),
+            line: false,
+            marker: Marker::Cross,
+        });
+        errors.push(Series {
+            label,
+            rgb: [220, 30, 30],
+            points: gaps.iter().map(|sc| (sc.skin_lab[0], sc.best.delta_e, None)).collect(),
+            line: false,
+            marker: Marker::Cross,
+        });
+    }
+    let l_range = cover
+        .iter()
+        .map(|sc| sc.skin_lab[0])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), l| (a.min(l), b.max(l)));
+    if l_range.0.is_finite() {
+        errors.push(line("gap threshold", [170, 170, 170], vec![(l_range.0, gap_de), (l_range.1, gap_de)]));
+    }
+    let charts = [
+        Chart {
+            title: format!("{} skins (dots) and the shades (diamonds, opaque)", skins.len()),
+            x_label: "b* (skin)".into(),
+            y_label: "L* (skin)".into(),
+            series: gamut,
+        },
+        Chart {
+            title: format!("Best ΔE2000 to {target}"),
+            x_label: "L* (skin)".into(),
+            y_label: "ΔE2000 of the best shade".into(),
+            series: errors,
+        },
+    ];
+    render(&format!("Shade matching ({})", c.viewing()), &charts, 2)
+}
