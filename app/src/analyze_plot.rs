@@ -146,23 +146,20 @@ pub fn shade_map(
             marker: Marker::Diamond,
         });
     }
-    let gaps: Vec<&SkinCoverage> = cover.iter().filter(|sc| sc.gap).collect();
-    if !gaps.is_empty() {
-        let label = format!("gap: best ΔE00 > {gap_de}");
-        gamut.push(Series {
-            label: label.clone(),
-            rgb: [220, 30, 30],
-            points: gaps.iter().map(|sc| (sc.skin_lab[2], sc.skin_lab[0], None)).collect(),
-            line: false,
-            marker: Marker::Cross,
-        });
-        errors.push(Series {
-            label,
-            rgb: [220, 30, 30],
-            points: gaps.iter().map(|sc| (sc.skin_lab[0], sc.best.delta_e, None)).collect(),
-            line: false,
-            marker: Marker::Cross,
-        });
+    // Gap skins: crosses in the colour of their best shade, under one legend entry.
+    if cover.iter().any(|sc| sc.gap) {
+        let label = format!("gap: best ΔE00 > {gap_de} (cross in its best shade's colour)");
+        let empty =
+            Series { label: label.clone(), rgb: [120, 30, 30], points: Vec::new(), line: false, marker: Marker::Cross };
+        gamut.push(empty.clone());
+        errors.push(empty);
+        for (i, s) in shades.iter().enumerate() {
+            let rgb = swatch(c, &s.r_inf());
+            let gaps: Vec<&SkinCoverage> = cover.iter().filter(|sc| sc.gap && sc.best.shade == i).collect();
+            let series = |points| Series { label: label.clone(), rgb, points, line: false, marker: Marker::Cross };
+            gamut.push(series(gaps.iter().map(|sc| (sc.skin_lab[2], sc.skin_lab[0], None)).collect()));
+            errors.push(series(gaps.iter().map(|sc| (sc.skin_lab[0], sc.best.delta_e, None)).collect()));
+        }
     }
     let l_range = cover
         .iter()
