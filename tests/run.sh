@@ -8,8 +8,9 @@
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
 #      the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
-#   4. runs the Python cross-checks against colour-science and 50-digit mpmath references,
-#      driving the real `rouge` binary.
+#   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure) into .venv;
+#   5. runs the Python cross-checks against colour-science and 50-digit mpmath references,
+#      driving the real `rouge` binary and the `rouge` package.
 # Usage: bash tests/run.sh            (from anywhere; about 5-10 minutes on 2 cores from scratch)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,6 +49,11 @@ cargo test --workspace --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
+
+step "Python package \`rouge\` (py/): wheel built by maturin (release, rouge-measure + pyo3 only), installed into .venv"
+rm -rf target/wheels
+.venv/bin/maturin build --release --locked -m py/Cargo.toml -o target/wheels
+.venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/rouge_cosmetics-*.whl
 
 step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into

@@ -226,10 +226,7 @@ const WAVELENGTH_COLUMNS: [&str; 2] = ["wavelength_nm", "wavelength"];
 /// the same rule as measurements; `#` comment lines are skipped; errors name line and column.
 pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), ImportError> {
     let metadata = comment_metadata(text);
-    let transposed = header_of(text).is_some_and(|(_, h)| {
-        let c = cells(h, delimiter(h));
-        c.len() >= 3 && c[1..].iter().all(|x| x.parse::<f64>().is_ok_and(f64::is_finite))
-    });
+    let transposed = is_transposed(text);
     let (names, wl, values) = if transposed { spectra_in_rows(path, text)? } else { spectra_in_columns(path, text)? };
     check_wavelengths(path, &wl)?;
     let all: Vec<Cell> = values.iter().flatten().copied().collect();
@@ -243,6 +240,19 @@ pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, Samp
         out.push((name, s));
     }
     Ok((out, scale))
+}
+
+/// Whether a table of spectra holds one spectrum per row: its header after the first cell is a
+/// row of wavelengths (numbers within 100-3000 nm), and its first column is not (colour-science
+/// writes `wavelength,1,2,...` with samples named by numbers, and reads the transposed
+/// `wavelength,380,385,...` with rows named `1`, `2`, ...).
+fn is_transposed(text: &str) -> bool {
+    let Some((_, header)) = header_of(text) else { return false };
+    let d = delimiter(header);
+    let nm = |x: &&str| x.parse::<f64>().is_ok_and(|v| (100.0..=3000.0).contains(&v));
+    let head = cells(header, d);
+    let mut rows = text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).skip(1);
+    head.len() >= 3 && head[1..].iter().all(nm) && !rows.all(|l| nm(&cells(l, d)[0]))
 }
 
 /// Sample names, the wavelength cells, and each sample's value cells.
@@ -372,15 +382,16 @@ mod tests {
 
     #[test]
     fn spectra_tables_in_both_layouts_and_delimiters() {
-        let columns = "# colour-science writes `wavelength`\nwavelength,1,dark skin\n380,0.048,0.10\n385,0.051,0.12\n390,0.055,0.14\n";
+        let columns =
+            "# colour-science writes `wavelength`\nwavelength,1,2\n380,0.048,0.10\n385,0.051,0.12\n390,0.055,0.14\n";
         let (spectra, scale) = parse_spectra_table(p(), columns).unwrap();
         assert_eq!(scale, Scale::Fraction { declared: false });
         let names: Vec<&str> = spectra.iter().map(|(n, _)| n.as_str()).collect();
-        assert_eq!(names, ["1", "dark skin"]);
+        assert_eq!(names, ["1", "2"]);
         assert_eq!(spectra[1].1.wavelengths_nm(), &[380.0, 385.0, 390.0]);
         assert_eq!(spectra[1].1.values(), &[0.10, 0.12, 0.14]);
 
-        let rows = "wavelength\t380\t385\t390\n1\t0.048\t0.051\t0.055\n\"dark skin\"\t0.10\t0.12\t0.14\n";
+        let rows = "wavelength\t380\t385\t390\n1\t0.048\t0.051\t0.055\n\"2\"\t0.10\t0.12\t0.14\n";
         let (t, _) = parse_spectra_table(p(), rows).unwrap();
         assert_eq!(t, spectra, "the transposed, tab-separated table reads as the same spectra");
         let (c, _) = parse_spectra_table(p(), &rows.replace('\t', ",")).unwrap();

@@ -1,0 +1,134 @@
+# Type stubs of the `rouge` package (the public API of __init__.py and the compiled _rouge).
+# `ArrayLike` arguments are converted to float64 and broadcast; spectra have wavelength last.
+# Where a colour-science SpectralDistribution / MultiSpectralDistributions is passed (`Spectral`),
+# functions returning spectra return the same kind of object.
+from os import PathLike
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Spectral = Any  # colour.SpectralDistribution | colour.MultiSpectralDistributions
+Array = npt.NDArray[np.float64]
+Result = Array | float | Spectral
+Path = str | PathLike[str]
+
+__version__: str
+DETACH_MIN_LEN: int
+ILLUMINANTS: tuple[str, ...]
+OBSERVERS: tuple[str, ...]
+
+class RougeError(ValueError): ...
+class KubelkaMunkError(RougeError):
+    index: tuple[int, ...] | None
+    wavelength: float | None
+class MeasurementImportError(RougeError):
+    path: str
+    line: int | None
+    column: int | None
+class PresetError(RougeError):
+    path: str
+    wavelength: float | None
+    line: int | None
+    column: int | None
+class SpectrumError(RougeError): ...
+
+def R_to_SK_KubelkaMunk(
+    R_inf: ArrayLike | Spectral, R: ArrayLike | Spectral, R_g: ArrayLike | Spectral, thickness_mm: ArrayLike,
+    *, wavelengths: ArrayLike | None = None,
+) -> tuple[Result, Result]: ...
+def SK_to_R0T_KubelkaMunk(
+    S: ArrayLike | Spectral, K: ArrayLike | Spectral, thickness_mm: ArrayLike, *, wavelengths: ArrayLike | None = None
+) -> tuple[Result, Result]: ...
+def SK_to_R_KubelkaMunk(
+    S: ArrayLike | Spectral, K: ArrayLike | Spectral, thickness_mm: ArrayLike, R_g: ArrayLike | Spectral,
+    *, wavelengths: ArrayLike | None = None,
+) -> Result: ...
+def SK_to_Rinf_KubelkaMunk(
+    S: ArrayLike | Spectral, K: ArrayLike | Spectral, *, wavelengths: ArrayLike | None = None
+) -> Result: ...
+def RT_stack_KubelkaMunk(
+    R0: ArrayLike, T: ArrayLike, R_g: ArrayLike | None = None, *, wavelengths: ArrayLike | None = None
+) -> tuple[Result, Result]: ...
+def R_measured_to_internal_Saunderson(
+    R: ArrayLike | Spectral, n: float = 1.5, K2: float = 0.6, specular_included: bool = True,
+    *, K1: float | None = None, wavelengths: ArrayLike | None = None,
+) -> Result: ...
+def R_internal_to_measured_Saunderson(
+    R: ArrayLike | Spectral, n: float = 1.5, K2: float = 0.6, specular_included: bool = True,
+    *, K1: float | None = None, wavelengths: ArrayLike | None = None,
+) -> Result: ...
+def SK_mix_Duncan(
+    S: ArrayLike, K: ArrayLike, concentrations: ArrayLike, *, wavelengths: ArrayLike | None = None
+) -> tuple[Result, Result]: ...
+
+def working_wavelengths() -> Array: ...
+def resample_to_working_grid(wavelengths: ArrayLike, values: ArrayLike, *, extrapolate: bool = False) -> Array: ...
+def sd_to_XYZ(
+    R: ArrayLike | Spectral, illuminant: str = "D65", observer: str = "CIE 1931 2 Degree Standard Observer",
+    *, wavelengths: ArrayLike | None = None, extrapolate: bool = False,
+) -> Array: ...
+def sd_to_Lab(
+    R: ArrayLike | Spectral, illuminant: str = "D65", observer: str = "CIE 1931 2 Degree Standard Observer",
+    *, wavelengths: ArrayLike | None = None, extrapolate: bool = False,
+) -> Array: ...
+def sd_to_sRGB(
+    R: ArrayLike | Spectral, illuminant: str = "D65", observer: str = "CIE 1931 2 Degree Standard Observer",
+    apply_cctf_encoding: bool = True, *, wavelengths: ArrayLike | None = None, extrapolate: bool = False,
+) -> Array: ...
+def XYZ_to_Lab(XYZ: ArrayLike, illuminant: str = "D65", observer: str = "CIE 1931 2 Degree Standard Observer") -> Array: ...
+def XYZ_to_sRGB(
+    XYZ: ArrayLike, illuminant: str = "D65", observer: str = "CIE 1931 2 Degree Standard Observer",
+    apply_cctf_encoding: bool = True,
+) -> Array: ...
+def delta_E_CIE2000(Lab_1: ArrayLike, Lab_2: ArrayLike) -> Array | float: ...
+
+class Measurement:
+    path: str
+    format: str
+    name: str
+    kind: str | None
+    thickness_mm: float | None
+    instrument: str | None
+    metadata: dict[str, str]
+    scale: str
+    wavelengths: Array
+    R_inf: Array
+    R: Array
+    R_g: Array
+    def to_working_grid(self, extrapolate: bool = False) -> Measurement: ...
+
+def read_measurement(
+    path: Path, *, samples: tuple[str, str, str] | None = None,
+    white_reflectance: float | tuple[ArrayLike, ArrayLike] | None = None,
+) -> Measurement: ...
+def read_measurement_files(R_inf: Path, R: Path, R_g: Path) -> Measurement: ...
+def read_spectra(path: Path, *, as_msds: bool = False) -> Any: ...
+def measurement_to_msds(measurement: Measurement) -> Spectral: ...
+def is_sd(x: Any) -> bool: ...
+
+class Preset:
+    name: str
+    kind: str
+    thickness_mm: float
+    wavelengths: Array
+    S: Array
+    K: Array
+    specular: dict[str, float]
+    measurement: dict[str, Any] | None
+    derived: dict[str, Any]
+    @staticmethod
+    def load(path: Path) -> Preset: ...
+    @staticmethod
+    def from_json(text: str, path: str = "<preset>") -> Preset: ...
+    @staticmethod
+    def from_SK(S: ArrayLike, K: ArrayLike, thickness_mm: float, name: str, kind: str = "other") -> Preset: ...
+    @staticmethod
+    def from_measurement(
+        measurement: Measurement, *, thickness_mm: float | None = None, name: str | None = None,
+        kind: str | None = None, saunderson: dict[str, Any] | None = None, extrapolate: bool = False,
+    ) -> tuple[Preset, dict[str, Any]]: ...
+    def save(self, path: Path) -> None: ...
+    def to_json(self) -> str: ...
+    def to_dict(self) -> dict[str, Any]: ...

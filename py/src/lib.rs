@@ -1,0 +1,22 @@
+//! `rouge._rouge`: the compiled core of the `rouge` Python package, binding `rouge-measure`
+//! (never the renderer). The public API, its colour-science adapters and stubs live in
+//! `py/python/rouge/`.
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod color;
+mod errors;
+mod io;
+mod km;
+
+#[pymodule]
+fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("DETACH_MIN_LEN", arrays::DETACH_MIN_LEN)?;
+    errors::register(m)?;
+    km::register(m)?;
+    color::register(m)?;
+    io::register(m)?;
+    Ok(())
+}
