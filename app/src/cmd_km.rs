@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Subcommand;
-use rouge_measure::km::{self, LayerRt};
+use rouge_measure::km::{self, LayerRt, Saunderson};
 use serde_json::json;
 
 #[derive(Debug, Subcommand)]
@@ -21,6 +21,13 @@ pub enum KmCommand {
         /// Thickness of the layer, mm.
         #[arg(long = "thickness-mm", allow_negative_numbers = true)]
         thickness_mm: f64,
+        /// Convert the three measured reflectances to internal ones first ([Saunderson1942],
+        /// K1 = ((n-1)/(n+1))², specular included), as `rouge import --saunderson-ior` does.
+        #[arg(long = "saunderson-ior")]
+        saunderson_ior: Option<f64>,
+        /// Internal diffuse reflectance K2 of the Saunderson correction.
+        #[arg(long = "saunderson-k2", default_value_t = 0.6, requires = "saunderson_ior")]
+        saunderson_k2: f64,
     },
     /// R0 (over black) and T of a layer of S, K (per mm) and thickness ([Huang2013] eq. 1-2).
     Layer {
@@ -47,8 +54,14 @@ pub enum KmCommand {
 
 pub fn run(cmd: &KmCommand) -> Result<()> {
     let out = match *cmd {
-        KmCommand::Invert { r_inf, r, rg, thickness_mm } => {
-            let c = km::invert_s_k(r_inf, r, rg, thickness_mm)?;
+        KmCommand::Invert { r_inf, r, rg, thickness_mm, saunderson_ior, saunderson_k2 } => {
+            let to_internal = |v: f64| -> Result<f64> {
+                Ok(match saunderson_ior {
+                    None => v,
+                    Some(n) => Saunderson::from_refractive_index(n, saunderson_k2, true)?.to_internal(v),
+                })
+            };
+            let c = km::invert_s_k(to_internal(r_inf)?, to_internal(r)?, to_internal(rg)?, thickness_mm)?;
             json!({"s_per_mm": c.s_per_mm, "k_per_mm": c.k_per_mm})
         }
         KmCommand::Layer { s, k, thickness_mm } => {
