@@ -1,7 +1,9 @@
 //! Local-thickness bake time ([BarreBrisebois2011]) of the render mesh: the default head,
 //! Catmull-Clark twice and triangulated, as `load_mesh(None, 1.0, 2)` gives the renderer
 //! (render/src/job.rs: subdivision 2), at the default settings (64 rays, cutoff 30 mm).
-//! Prints the vertex count and rays/s once; figures in the commit that added it.
+//! Prints the vertex count and rays/s once. Measured 2026-11-23 on the shared 2-core CPU (load
+//! about 5.8 from other builds): 71 346 vertices, 140 864 triangles, 4.57 M rays, median 3.2 s
+//! (2.9-3.6 s), 1.4 M rays/s.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rouge_model::mesh::default_head;
