@@ -114,6 +114,64 @@ def regime(albedo_red: float, tau_red: float, g: float = 0.0) -> dict[str, float
     return row
 
 
+def lab(refl: np.ndarray) -> np.ndarray:
+    """CIELAB (D65, CIE 1931) of a reflectance on 380-780 nm / 5 nm, by colour-science."""
+    import colour
+
+    shape = colour.SpectralShape(380, 780, 5)
+    sd = colour.SpectralDistribution(dict(zip(np.arange(380, 781, 5), refl)))
+    xyz = colour.sd_to_XYZ(sd, colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"], colour.SDS_ILLUMINANTS["D65"],
+                           method="Integration", shape=shape)
+    return colour.XYZ_to_Lab(xyz / 100.0, colour.CCS_ILLUMINANTS["CIE 1931 2 Degree Standard Observer"]["D65"])
+
+
+def ad_spectral(sigma_a: np.ndarray, sigma_s_red: np.ndarray, d_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """Diffuse R0 and T of an index-matched isotropic slab at every wavelength at once."""
+    sigma_t = sigma_a + sigma_s_red
+    b = np.full_like(sigma_t, 1e4) if np.isinf(d_mm) else sigma_t * d_mm
+    s = iad.Sample(a=sigma_s_red / sigma_t, b=b, g=0.0, d=1.0, quad_pts=QUAD)
+    _, _, uru, utu = s.rt()
+    return np.asarray(uru, float), (np.zeros_like(sigma_t) if np.isinf(d_mm) else np.asarray(utu, float))
+
+
+def products(factors: tuple[float, ...] = (0.5, 2.0, 4.0)) -> list[dict]:
+    """The sample products as physical media and what KM predicts of them.
+
+    Each preset's S and K become a medium by the diffusion relations (sigma_a = K/2,
+    sigma_s' = (S + sigma_a/4)/(3/4)); adding-doubling then "measures" it as a lab would (R_inf,
+    and R0 over black at the preset's thickness d0), Rouge inverts S and K per wavelength, and KM's
+    colour of the skin covered by d0 x factor is compared (CIEDE2000, colour-science) with
+    adding-doubling's, over the ColorChecker's light and dark skin."""
+    import colour
+
+    lines = [ln for ln in (REPO / "data" / "skin" / "colorchecker_skin.csv").read_text().splitlines() if not ln.startswith("#")]
+    table = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
+    skins = {"dark_skin": table[:, 1], "light_skin": table[:, 2]}
+    out = []
+    for path in sorted((REPO / "data" / "presets").glob("*.json")):
+        p = json.loads(path.read_text())
+        S, K, d0 = np.array(p["s_per_mm"]), np.array(p["k_per_mm"]), float(p["thickness_mm"])
+        sigma_a = K / 2.0
+        sigma_s = (S + 0.25 * sigma_a) / 0.75
+        r_inf, _ = ad_spectral(sigma_a, sigma_s, np.inf)
+        r0, _ = ad_spectral(sigma_a, sigma_s, d0)
+        sk = [rouge("km", "invert", "--r-inf", repr(float(a)), "--r", repr(float(b)), "--rg", "0", "--thickness-mm", repr(d0))
+              for a, b in zip(r_inf, r0)]
+        row = {"name": p["name"], "d0_mm": d0,
+               "albedo_red_p10_p90": [float(np.percentile(sigma_s / (sigma_a + sigma_s), q)) for q in (10, 90)],
+               "tau_red_p10_p90": [float(np.percentile((sigma_a + sigma_s) * d0, q)) for q in (10, 90)]}
+        for f in factors:
+            x = d0 * f
+            r_ad, t_ad = ad_spectral(sigma_a, sigma_s, x)
+            lay = [rouge("km", "layer", "--s", repr(c["s_per_mm"]), "--k", repr(c["k_per_mm"]), "--thickness-mm", repr(x)) for c in sk]
+            r_km, t_km = np.array([v["r0"] for v in lay]), np.array([v["t"] for v in lay])
+            des = [float(colour.delta_E(lab(over(r_km, t_km, rg)), lab(over(r_ad, t_ad, rg)), method="CIE 2000"))
+                   for rg in skins.values()]
+            row[f"de_x{f:g}"] = max(des)
+        out.append(row)
+    return out
+
+
 ALBEDOS = (0.5, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999)
 TAUS = (0.1, 0.3, 1.0, 3.0, 10.0)
 
@@ -130,7 +188,16 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--json", type=Path)
     ap.add_argument("--g", type=float, default=0.0, help="anisotropy (default 0; 0.8 checks similarity)")
+    ap.add_argument("--products", action="store_true", help="also the sample products' colour on skin (slower)")
     args = ap.parse_args()
+    if args.products:
+        prods = products()
+        print("| product | d0 (um) | a' (p10-p90) | tau' at d0 | max dE00 KM vs AD on skin at d0/2 | at 2 d0 | at 4 d0 |")
+        print("|---|---:|---|---|---:|---:|---:|")
+        for r in prods:
+            a, t = r["albedo_red_p10_p90"], r["tau_red_p10_p90"]
+            print(f"| {r['name']} | {r['d0_mm'] * 1e3:.0f} | {a[0]:.2f}-{a[1]:.2f} | {t[0]:.2f}-{t[1]:.2f} | "
+                  f"{r['de_x0.5']:.2f} | {r['de_x2']:.2f} | {r['de_x4']:.2f} |")
     rows = [regime(a, t, args.g) for a in ALBEDOS for t in TAUS]
     for title, key, fmt in (
         ("S / sigma_s' (diffusion theory: 0.75 - 0.25 (1-a')/a')", "s_ratio", "{:.3f}"),
