@@ -57,6 +57,14 @@ SCENES["hand-skin1-back"] = (
     4096,
     "the hm08 left hand (python/gen_hand.py) in skin1, lit from behind: the fingers glow",
 )
+# The backlit head deformed (a morph toward its bounding sphere, `--morph`): what a local
+# thickness baked on the rest pose gets wrong (paper 004's caveat), rendered on a CPU at 128².
+SCENES["head-skin1-back-morph"] = (
+    ["--mesh", "builtin:head", *BARE, "--lights", "back", "--medium", "skin1", "--morph", "0.3",
+     "--width", "128", "--height", "128"],
+    512,
+    "the backlit head of head-skin1-back morphed 30% toward its bounding sphere (a deformation)",
+)
 for medium in ("marble", "skimmilk", "ketchup"):
     SCENES[f"sphere-{medium}"] = (
         ["--mesh", "builtin:sphere", *BARE, "--lights", "front-left", "--medium", medium, *SIZE],

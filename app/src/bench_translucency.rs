@@ -5,7 +5,10 @@
 use crate::scene_args::{Profile, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser};
-use rouge_render::job::RenderJob;
+use rouge_model::medium::Medium;
+use rouge_model::thickness::BakeSettings;
+use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
+use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::translucency::{ReferenceImage, measure};
 use rouge_render::{Skin, SubsurfaceModel};
 use serde::Serialize;
@@ -33,9 +36,53 @@ pub struct TranslucencyBenchArgs {
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Draw speed against mean ΔE2000 here (PNG): one panel per scene, a line per profile
-    /// through its sample counts, a cross for no scattering, a diamond for today's skin.
+    /// through its sample counts, a cross for no scattering, a diamond for today's skin, a
+    /// square per thickness-translucency configuration.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Rays per vertex of the thickness model's local-thickness bake.
+    #[arg(long, default_value_t = 64)]
+    pub thickness_rays: u32,
+    /// Cutoff (mm) of the local thickness.
+    #[arg(long, default_value_t = 30.0)]
+    pub thickness_cutoff_mm: f32,
+    /// Instead of the table: fit the thickness translucency's distortion, power, scale and
+    /// ambient per medium and local-thickness source to the references (least squares on linear
+    /// radiance) and print the fits (docs/BENCHMARKS.md; the media files carry them).
+    #[arg(long)]
+    pub fit_thickness: bool,
+}
+
+/// One reference scene loaded and uploaded, as a configuration sees it.
+pub struct Scene<'a> {
+    /// The scene's name (its sidecar's).
+    pub name: &'a str,
+    /// Its medium.
+    pub medium: &'a Medium,
+    /// Rouge's frame of it.
+    pub prepared: &'a mut Prepared,
+    /// The reference.
+    pub reference: &'a ReferenceImage,
+}
+
+/// Which local-thickness map a configuration needs uploaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ThicknessMap {
+    /// None (another model, or the shadow-map source).
+    None,
+    /// Baked on the mesh as drawn.
+    Current,
+    /// Baked on the mesh before `--morph`.
+    Rest,
+}
+
+/// One configuration of a scene.
+struct Config {
+    model: &'static str,
+    params: serde_json::Value,
+    skin: Skin,
+    samples: u32,
+    map: ThicknessMap,
 }
 
 /// One row of the table (../shared/DESIGN.md).
@@ -94,6 +141,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         bail!("--samples {n}: each count must be odd, 3-33");
     }
     let mut rows = Vec::new();
+    let mut fit = crate::fit_thickness::Fit::default();
     for (name, sidecar) in sidecars(&args.references, &args.only)? {
         let sidecar_path = args.references.join(format!("{name}.json"));
         let options: Vec<String> = serde_json::from_value(sidecar["rouge_options"].clone())
@@ -108,36 +156,74 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             bail!("{}: the scene names no medium", sidecar_path.display());
         };
         eprintln!("rouge: {name} ({}×{}, reference noise {noise:.2e})", reference.width, reference.height);
-        // (model, params, skin) for every configuration of this scene.
-        let mut configs: Vec<(&str, serde_json::Value, Skin, u32)> = Vec::new();
-        let (better, _) = Skin::from_medium(&medium, Profile::BetterDipole.model());
-        configs.push((
-            "none",
-            json!({"albedo": "better-dipole"}),
-            Skin { subsurface: SubsurfaceModel::None, ..better },
-            0,
-        ));
-        for &profile in &args.profiles {
-            let (skin, fit) = Skin::from_medium(&medium, profile.model());
-            for &n in &args.samples {
-                let params = json!({"profile": fit.model.name(), "samples": n, "fit_error": fit.fit_error});
-                configs.push(("screen-space", params, skin.clone(), n));
-            }
-        }
-        if medium.name.starts_with("skin") {
-            // Today's skin: the ColorChecker albedo and d'Eon's six Gaussians, 11 samples.
-            configs.push(("screen-space", json!({"profile": "deon-skin", "samples": 11}), Skin::default(), 11));
-        }
         // One load and one device per scene; each configuration changes only the skin (its
-        // albedo is per vertex, so the mesh is uploaded again) and the kernel's sample count.
+        // albedo is per vertex, so the mesh is uploaded again), the kernel's sample count and,
+        // for the thickness model, the local-thickness map.
         let mut job: RenderJob = base.clone();
         job.scene.specular = false;
         job.scene.background = [0.0; 3];
         job.scene.exposure = 1.0;
         let loaded = job.load()?;
         let mut prepared = job.prepare_loaded(&loaded)?;
-        for (model, params, skin, samples) in configs {
+        let (better, _) = Skin::from_medium(&medium, Profile::BetterDipole.model());
+        let sources = [true, false].map(|baked| {
+            ThicknessSource::for_medium(baked, Some(&medium), args.thickness_rays, args.thickness_cutoff_mm)
+        });
+        let settings = match &sources[0] {
+            ThicknessSource::Baked(s) => *s,
+            ThicknessSource::ShadowMap { .. } => BakeSettings::default(),
+        };
+        let (current_map, bake) = bake_thickness_map(&loaded.mesh, &settings)?;
+        let rest_map = loaded.rest_mesh.as_ref().map(|m| bake_thickness_map(m, &settings)).transpose()?;
+        let upload = |prepared: &mut Prepared, map: ThicknessMap| -> Result<()> {
+            let map = match map {
+                ThicknessMap::None => None,
+                ThicknessMap::Current => Some(&current_map),
+                ThicknessMap::Rest => rest_map.as_ref().map(|(m, _)| m),
+            };
+            prepared.renderer.set_local_thickness(map.map(|m| (m.width, m.height, m.texels.as_slice())))?;
+            Ok(())
+        };
+        if args.fit_thickness {
+            prepared.renderer.set_mesh(&loaded.mesh, better.albedo)?;
+            prepared.scene.skin = better.clone();
+            for source in &sources {
+                upload(
+                    &mut prepared,
+                    if matches!(source, ThicknessSource::Baked(_)) {
+                        ThicknessMap::Current
+                    } else {
+                        ThicknessMap::None
+                    },
+                )?;
+                let mut scene = Scene { name: &name, medium: &medium, prepared: &mut prepared, reference: &reference };
+                fit.add_scene(&mut scene, source)?;
+            }
+            continue;
+        }
+        let mut configs: Vec<Config> = Vec::new();
+        let plain = |model, params, skin, samples| Config { model, params, skin, samples, map: ThicknessMap::None };
+        configs.push(plain(
+            "none",
+            json!({"albedo": "better-dipole"}),
+            Skin { subsurface: SubsurfaceModel::None, ..better.clone() },
+            0,
+        ));
+        for &profile in &args.profiles {
+            let (skin, fit) = Skin::from_medium(&medium, profile.model());
+            for &n in &args.samples {
+                let params = json!({"profile": fit.model.name(), "samples": n, "fit_error": fit.fit_error});
+                configs.push(plain("screen-space", params, skin.clone(), n));
+            }
+        }
+        if medium.name.starts_with("skin") {
+            // Today's skin: the ColorChecker albedo and d'Eon's six Gaussians, 11 samples.
+            configs.push(plain("screen-space", json!({"profile": "deon-skin", "samples": 11}), Skin::default(), 11));
+        }
+        configs.extend(thickness_configs(&medium, &sources, &better, rest_map.is_some(), bake.seconds));
+        for Config { model, params, skin, samples, map } in configs {
             prepared.renderer.set_mesh(&loaded.mesh, skin.albedo)?;
+            upload(&mut prepared, map)?;
             prepared.scene.skin = skin;
             if samples > 0 {
                 prepared.scene.sss.samples = samples;
@@ -166,6 +252,29 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             });
         }
     }
+    if args.fit_thickness {
+        let fits = fit.solve();
+        for f in &fits {
+            eprintln!(
+                "rouge: {} {}: distortion {}, power {}, scale {:.4}, ambient {:.4}; rmse {:.5} (without the term {:.5}) over {}",
+                f.medium,
+                f.source,
+                f.distortion,
+                f.power,
+                f.scale,
+                f.ambient,
+                f.rmse,
+                f.rmse_without,
+                f.scenes.join(", ")
+            );
+        }
+        let text = serde_json::to_string_pretty(&fits)?;
+        if let Some(path) = &args.json {
+            rouge_measure::preset::write_atomic(path, text.as_bytes())
+                .with_context(|| format!("{}: cannot write", path.display()))?;
+        }
+        return crate::emit(&text);
+    }
     if let Some(path) = &args.plot {
         let png = plot(&rows)?;
         rouge_measure::preset::write_atomic(path, &png).with_context(|| format!("{}: cannot write", path.display()))?;
@@ -176,6 +285,55 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     crate::emit(&text)
+}
+
+/// The thickness model's configurations: each source with the three.js defaults and, where the
+/// medium's file has them, the fitted parameters; on a morphed mesh also the map baked on the
+/// rest pose (what a shipped bake gives once the mesh deforms).
+fn thickness_configs(
+    medium: &Medium,
+    sources: &[ThicknessSource],
+    skin: &Skin,
+    morphed: bool,
+    bake_seconds: f64,
+) -> Vec<Config> {
+    let mut out = Vec::new();
+    for source in sources {
+        let baked = matches!(source, ThicknessSource::Baked(_));
+        let fitted = TranslucencyParams::for_medium(Some(medium), source.name());
+        let mut sets = vec![("three.js", TranslucencyParams::THREE_JS)];
+        if fitted.0 != TranslucencyParams::THREE_JS {
+            sets.push(("fitted", fitted.0));
+        }
+        let poses: &[ThicknessMap] = match (baked, morphed) {
+            (false, _) => &[ThicknessMap::None],
+            (true, false) => &[ThicknessMap::Current],
+            (true, true) => &[ThicknessMap::Current, ThicknessMap::Rest],
+        };
+        for &(which, params) in &sets {
+            for &map in poses {
+                let source_name = match map {
+                    ThicknessMap::Rest => "baked-rest-pose",
+                    _ => source.name(),
+                };
+                let mut p = json!({
+                    "source": source_name,
+                    "params": which,
+                    "distortion": params.distortion,
+                    "power": params.power,
+                    "scale": params.scale,
+                    "ambient": params.ambient,
+                });
+                if baked {
+                    p["bake_s"] = json!(bake_seconds);
+                }
+                let skin =
+                    Skin { subsurface: SubsurfaceModel::Thickness { params, source: source.clone() }, ..skin.clone() };
+                out.push(Config { model: "thickness", params: p, skin, samples: 0, map });
+            }
+        }
+    }
+    out
 }
 
 /// The speed-against-error plot of `rows`: one chart per scene.

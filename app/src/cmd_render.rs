@@ -1,8 +1,10 @@
 //! `rouge render`: one frame of the renderer to a PNG (tone-mapped) or an EXR (linear radiance).
 
 use crate::scene_args::SceneArgs;
+use crate::thickness_args::{BakePose, ThicknessArgs};
 use anyhow::{Result, bail};
 use clap::Args;
+use rouge_model::thickness::CacheUse;
 use rouge_render::SubsurfaceModel;
 use rouge_render::job::render_to_file;
 use std::path::PathBuf;
@@ -25,10 +27,14 @@ pub struct RenderArgs {
     /// Turn off every specular lobe.
     #[arg(long)]
     pub no_specular: bool,
-    /// Subsurface model of the skin: the screen-space separable kernel of d'Eon's skin profile,
-    /// or none (the diffuse light stays where it entered).
+    /// Subsurface model of the skin: the screen-space separable kernel of d'Eon's skin profile
+    /// (or of the --medium's profile), fast thickness translucency (light through thin parts
+    /// from behind: ears, nostrils; [BarreBrisebois2011]), or none (the diffuse light stays
+    /// where it entered).
     #[arg(long, value_enum, default_value_t = Subsurface::ScreenSpace)]
     pub subsurface: Subsurface,
+    #[command(flatten)]
+    pub thickness: ThicknessArgs,
     /// Print the frame plan (the passes that run, in order, with what each reads and writes, and
     /// what is skipped and why) on stdout; renders too when --out is given.
     #[arg(long)]
@@ -45,6 +51,8 @@ pub enum Subsurface {
     None,
     /// Separable screen-space kernel ([Jimenez2015]).
     ScreenSpace,
+    /// Fast thickness translucency ([BarreBrisebois2011]).
+    Thickness,
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -72,12 +80,29 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     job.scene.exposure = args.exposure;
     job.scene.specular = !args.no_specular;
     // The material's own kernel (d'Eon's skin profile, or the medium's fitted profile), or none.
-    if args.subsurface == Subsurface::None {
-        job.scene.skin.subsurface = SubsurfaceModel::None;
+    match args.subsurface {
+        Subsurface::None => job.scene.skin.subsurface = SubsurfaceModel::None,
+        Subsurface::ScreenSpace => {}
+        Subsurface::Thickness => {
+            job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref())?;
+            job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
+        }
     }
     let start = Instant::now();
     let mut prepared = job.prepare()?;
     let loaded = start.elapsed();
+    if let Some(bake) = &prepared.thickness_bake {
+        eprintln!(
+            "rouge: local thickness of {} vertices: {} ({:.2} s to bake)",
+            bake.vertices,
+            match bake.cache {
+                CacheUse::Hit => "from the cache",
+                CacheUse::Miss => "baked and cached",
+                CacheUse::Off => "baked (no cache directory)",
+            },
+            bake.seconds
+        );
+    }
     let display = args.out.as_ref().is_none_or(|out| !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")));
     if args.explain {
         let plan = prepared.renderer.plan(&prepared.scene, args.scene.width, args.scene.height, display)?;

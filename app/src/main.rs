@@ -13,9 +13,11 @@ mod cmd_export;
 mod cmd_import;
 mod cmd_km;
 mod cmd_render;
+mod fit_thickness;
 mod plot;
 mod plot_png;
 mod scene_args;
+mod thickness_args;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -81,6 +81,10 @@ pub struct SceneArgs {
     /// diffusion [Christensen2015]. docs/BENCHMARKS.md says which matches the path tracer best.
     #[arg(long, value_enum, default_value_t = Profile::BetterDipole)]
     pub profile: Profile,
+    /// Morph the mesh toward its bounding sphere by this fraction (0 to 1): a deformation for
+    /// testing what depends on the rest pose (the baked local thickness of --subsurface thickness).
+    #[arg(long, default_value_t = 0.0)]
+    pub morph: f32,
 }
 
 /// `--lights` values.
@@ -189,6 +193,8 @@ impl SceneArgs {
             yaw_deg: self.yaw,
             pitch_deg: self.pitch,
             scene,
+            morph: self.morph,
+            thickness_bake_rest_pose: false,
         };
         self.note_regions(&job);
         Ok((job, fit))
@@ -215,8 +221,11 @@ impl SceneArgs {
         }
     }
 
-    /// Checks the image size.
+    /// Checks the image size and the morph.
     pub fn check(&self) -> Result<()> {
+        if !(0.0..=1.0).contains(&self.morph) {
+            bail!("--morph {}: must be 0 to 1", self.morph);
+        }
         if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
             bail!("--width {} --height {}: each must be 1-16384 pixels", self.width, self.height);
         }

@@ -41,6 +41,29 @@ pub struct Medium {
     /// Anything a user of the values should know (disagreements between copies, choices made).
     #[serde(default)]
     pub notes: String,
+    /// The thickness-translucency parameters fitted to the path tracer for this medium, one per
+    /// local-thickness source ([BarreBrisebois2011]; `rouge bench translucency --fit-thickness`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub translucency: Vec<FittedTranslucency>,
+}
+
+/// Parameters of the fast thickness translucency ([BarreBrisebois2011]) fitted by least squares
+/// to Mitsuba 3 references of a medium (docs/BENCHMARKS.md), with what they were fitted on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FittedTranslucency {
+    /// The local-thickness source fitted: `baked` or `shadow-map`.
+    pub source: String,
+    /// Distortion δ of the light vector by the normal.
+    pub distortion: f64,
+    /// Power p of the view-dependent back lobe (> 0).
+    pub power: f64,
+    /// Scale s of the back lobe (≥ 0).
+    pub scale: f64,
+    /// Ambient translucency a (≥ 0).
+    pub ambient: f64,
+    /// The reference scenes (data/reference/translucency/) fitted on, and the error.
+    #[serde(default)]
+    pub fitted_on: String,
 }
 
 /// The names of the built-in media, in the order of [Jensen2001]'s table.
@@ -98,6 +121,7 @@ impl Medium {
             source: String::new(),
             checked_against: Vec::new(),
             notes: String::new(),
+            translucency: Vec::new(),
         };
         m.validate().map_err(ModelError::Invalid)?;
         Ok(m)
@@ -170,6 +194,22 @@ impl Medium {
         }
         if !(self.eta.is_finite() && (1.0..=3.0).contains(&self.eta)) {
             return Err(format!("eta = {}: must lie in [1, 3] (inside over outside)", self.eta));
+        }
+        for t in &self.translucency {
+            let ok = t.distortion.is_finite()
+                && t.power.is_finite()
+                && t.power > 0.0
+                && t.scale.is_finite()
+                && t.scale >= 0.0
+                && t.ambient.is_finite()
+                && t.ambient >= 0.0;
+            if !ok {
+                return Err(format!(
+                    "translucency {{distortion {}, power {}, scale {}, ambient {}}}: need finite values, power > 0, \
+                     scale and ambient ≥ 0",
+                    t.distortion, t.power, t.scale, t.ambient
+                ));
+            }
         }
         Ok(())
     }

@@ -9,10 +9,11 @@
 //! without an environment. Shaders are specialised per [`Variant`] accordingly.
 
 use crate::error::{RenderError, Result};
+use crate::local_thickness::ThicknessSource;
 use crate::passes::sss::Direction;
 use crate::passes::{composite, gbuffer, lighting};
 use crate::scene::{LightKind, Scene, SubsurfaceModel};
-use crate::shader::Variant;
+use crate::shader::{ThicknessVariant, Variant};
 use crate::sss::SeparableKernel;
 use crate::targets::Target;
 use crate::uniforms::MAX_LIGHTS;
@@ -27,6 +28,8 @@ pub struct Uploaded {
     pub albedo_map: bool,
     /// A normal map is bound.
     pub normal_map: bool,
+    /// A baked local-thickness map is bound ([`crate::Renderer::set_local_thickness`]).
+    pub local_thickness_map: bool,
 }
 
 /// The output of a frame.
@@ -56,6 +59,8 @@ pub enum Step {
     Gbuffer,
     /// Lighting through the cosmetic stack.
     Lighting,
+    /// Thickness translucency added to the skin's diffuse radiance.
+    Thickness,
     /// One direction of the screen-space scattering blur.
     Sss(Direction),
     /// Composition of `skin` (diffuse or scattered) with the surface radiance.
@@ -155,6 +160,7 @@ impl FramePlan {
                 skipped.push(skip(format!("shadow pass for light {light} ({kind})"), "the light casts no shadow"));
             }
         }
+        let thickness = thickness_variant(scene, uploaded, shadow_maps, &mut skipped)?;
         let variant = Variant {
             layers: uploaded.layers,
             shadows: shadow_maps > 0,
@@ -162,6 +168,7 @@ impl FramePlan {
             display: settings.display,
             albedo_map: uploaded.albedo_map,
             normal_map: uploaded.normal_map,
+            thickness,
         };
 
         // G-buffer.
@@ -174,6 +181,9 @@ impl FramePlan {
         }
         if variant.normal_map {
             gbuffer_reads.push("normal map".into());
+        }
+        if variant.thickness == ThicknessVariant::Baked {
+            gbuffer_reads.push("local-thickness map".into());
         }
         let mut gbuffer_writes = gbuffer::outputs(variant);
         gbuffer_writes.push(Target::Depth);
@@ -203,10 +213,26 @@ impl FramePlan {
             writes: names(&lighting::outputs(variant)),
         });
 
+        if variant.thickness != ThicknessVariant::Off {
+            let mut reads = names(&crate::passes::thickness::inputs());
+            if variant.thickness == ThicknessVariant::ShadowMap {
+                reads.push("shadow maps".into());
+            }
+            passes.push(PlannedPass {
+                step: Step::Thickness,
+                reads,
+                writes: vec![format!("{} (added)", Target::Diffuse.name())],
+            });
+        }
+
         // The skin's subsurface model.
         let kernel = match &scene.skin.subsurface {
             SubsurfaceModel::None => {
                 skipped.push(skip("SSS passes", "the skin's subsurface model is none"));
+                None
+            }
+            SubsurfaceModel::Thickness { .. } => {
+                skipped.push(skip("SSS passes", "the skin's subsurface model is thickness"));
                 None
             }
             SubsurfaceModel::ScreenSpace { profile } => {
@@ -256,8 +282,22 @@ impl FramePlan {
         let profile = skin.subsurface.profile().map_or(String::new(), |p| {
             format!(", a profile of {} Gaussians up to σ = {:.2} mm", p.gaussians.len(), p.max_sigma_mm())
         });
+        let thickness_text = match &skin.subsurface {
+            SubsurfaceModel::Thickness { params, source } => {
+                let (falloff, cutoff) = source.falloff();
+                format!(
+                    " (distortion {}, power {}, scale {}, ambient {}; {} local thickness, falloff {falloff:?} to {cutoff} mm)",
+                    params.distortion,
+                    params.power,
+                    params.scale,
+                    params.ambient,
+                    source.name()
+                )
+            }
+            _ => String::new(),
+        };
         let material = format!(
-            "skin: {medium}, albedo {:.3}, {:.3}, {:.3}; subsurface {}{profile}",
+            "skin: {medium}, albedo {:.3}, {:.3}, {:.3}; subsurface {}{profile}{thickness_text}",
             skin.albedo[0],
             skin.albedo[1],
             skin.albedo[2],
@@ -305,6 +345,49 @@ impl FramePlan {
     }
 }
 
+/// Which thickness translucency the frame runs: off unless the skin's model is `thickness`; the
+/// baked source needs its map uploaded; the shadow-map source needs a light with a shadow map
+/// (lights without one get no term, and the pass is skipped when none has one).
+fn thickness_variant(
+    scene: &Scene,
+    uploaded: Uploaded,
+    shadow_maps: u32,
+    skipped: &mut Vec<Skipped>,
+) -> Result<ThicknessVariant> {
+    let SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface else {
+        skipped.push(skip("thickness pass and local-thickness target", "no material uses the thickness model"));
+        return Ok(ThicknessVariant::Off);
+    };
+    params.check()?;
+    if scene.lights.is_empty() {
+        skipped.push(skip("thickness pass and local-thickness target", "the scene has no light"));
+        return Ok(ThicknessVariant::Off);
+    }
+    match source {
+        ThicknessSource::Baked(_) if !uploaded.local_thickness_map => Err(RenderError::Invalid(
+            "the thickness model's baked source needs a local-thickness map: bake one and upload it with \
+             Renderer::set_local_thickness (rouge render does both)"
+                .into(),
+        )),
+        ThicknessSource::Baked(_) => Ok(ThicknessVariant::Baked),
+        ThicknessSource::ShadowMap { .. } => {
+            for (i, l) in scene.lights.iter().enumerate() {
+                if !l.shadows {
+                    skipped.push(skip(
+                        format!("thickness translucency of light {i}"),
+                        "the shadow-map source reads the light's shadow map, and the light casts no shadow",
+                    ));
+                }
+            }
+            if shadow_maps == 0 {
+                skipped.push(skip("thickness pass and local-thickness target", "no light has a shadow map"));
+                return Ok(ThicknessVariant::Off);
+            }
+            Ok(ThicknessVariant::ShadowMap)
+        }
+    }
+}
+
 fn on_off(b: bool) -> &'static str {
     if b { "on" } else { "off" }
 }
@@ -315,6 +398,7 @@ pub fn step_name(step: Step) -> String {
         Step::Shadow { layer, .. } => format!("shadow {layer}"),
         Step::Gbuffer => "gbuffer".into(),
         Step::Lighting => "lighting".into(),
+        Step::Thickness => "thickness".into(),
         Step::Sss(d) => d.label().into(),
         Step::Composite { .. } => "composite".into(),
     }
@@ -335,9 +419,12 @@ mod tests {
 
     #[test]
     fn the_studio_frame_runs_every_pass() {
-        let plan =
-            FramePlan::new(&Scene::studio(), Uploaded { layers: 3, albedo_map: false, normal_map: false }, settings())
-                .expect("plan");
+        let plan = FramePlan::new(
+            &Scene::studio(),
+            Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false },
+            settings(),
+        )
+        .expect("plan");
         assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "sss horizontal", "sss vertical", "composite"]);
         assert!(plan.targets.contains(&Target::ThicknessA) && !plan.targets.contains(&Target::ThicknessB));
         let text = plan.explain();
@@ -349,8 +436,12 @@ mod tests {
     fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
         let mut scene = Scene::white_light(Vec3::Z);
         scene.skin.subsurface = SubsurfaceModel::None;
-        let plan = FramePlan::new(&scene, Uploaded { layers: 0, albedo_map: false, normal_map: false }, settings())
-            .expect("plan");
+        let plan = FramePlan::new(
+            &scene,
+            Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+            settings(),
+        )
+        .expect("plan");
         assert_eq!(steps(&plan), ["gbuffer", "lighting", "composite"]);
         assert_eq!(plan.passes[2].step, Step::Composite { skin: Target::Diffuse });
         for t in [Target::ThicknessA, Target::ThicknessB, Target::SssScratch, Target::Scattered, Target::ExitT] {
@@ -362,14 +453,18 @@ mod tests {
         }
         scene.skin.subsurface = SubsurfaceModel::skin_screen_space();
         scene.sss.width = 0.0;
-        let plan = FramePlan::new(&scene, Uploaded { layers: 0, albedo_map: false, normal_map: false }, settings())
-            .expect("plan");
+        let plan = FramePlan::new(
+            &scene,
+            Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+            settings(),
+        )
+        .expect("plan");
         assert!(plan.explain().contains("the SSS width is 0"));
     }
 
     #[test]
     fn bad_requests_are_errors() {
-        let up = Uploaded { layers: 0, albedo_map: false, normal_map: false };
+        let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false };
         let scene = Scene::studio();
         assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
         assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());

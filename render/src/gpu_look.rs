@@ -193,6 +193,8 @@ pub struct SkinTextures {
     pub albedo: Option<wgpu::TextureView>,
     /// Tangent-space normal map (+Y up).
     pub normal: Option<wgpu::TextureView>,
+    /// The baked local thickness (Rgba16Float, rgb white = thin), for the thickness model.
+    pub local_thickness: Option<wgpu::TextureView>,
 }
 
 impl SkinTextures {
@@ -229,6 +231,42 @@ impl SkinTextures {
         Ok(SkinTextures {
             albedo: albedo.map(|a| upload(a, wgpu::TextureFormat::Rgba8UnormSrgb, "albedo map")).transpose()?,
             normal: normal.map(|n| upload(n, wgpu::TextureFormat::Rgba8Unorm, "normal map")).transpose()?,
+            local_thickness: None,
         })
     }
+}
+
+/// Uploads a baked local-thickness map (RGBA f32 texels, row 0 at v = 1) as Rgba16Float.
+///
+/// # Errors
+/// [`RenderError::Invalid`] for an empty map or a texel count other than `width × height`.
+pub fn upload_local_thickness(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    width: u32,
+    height: u32,
+    texels: &[[f32; 4]],
+) -> Result<wgpu::TextureView> {
+    if width == 0 || height == 0 || texels.len() != width as usize * height as usize {
+        return Err(RenderError::Invalid(format!(
+            "local-thickness map {width}×{height} with {} texels: need width × height > 0",
+            texels.len()
+        )));
+    }
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+    let t =
+        texture(device, "SkinTextures::local thickness", (width, height), 1, crate::targets::HDR_FORMAT, usage, &[]);
+    let halves: Vec<u16> = texels.iter().flatten().map(|&v| half::f16::from_f32(v).to_bits()).collect();
+    queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: &t,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytemuck::cast_slice(&halves),
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(8 * width), rows_per_image: Some(height) },
+        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+    );
+    Ok(view(&t))
 }

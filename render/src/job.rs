@@ -9,11 +9,17 @@
 use crate::env::EnvMap;
 use crate::error::{RenderError, Result};
 use crate::gpu::Gpu;
+use crate::local_thickness::ThicknessSource;
 use crate::renderer::Renderer;
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, Scene, SubsurfaceModel};
 use rouge_model::look::Look;
 use rouge_model::mesh::Bounds;
+use rouge_model::mesh::TriangleMesh;
 pub use rouge_model::mesh::load_mesh;
+use rouge_model::thickness::{
+    BakeSettings, CacheUse, UvMap, bake_local_thickness_cached, default_cache_dir, morph_to_bounding_sphere,
+    thickness_uv_map,
+};
 use std::path::{Path, PathBuf};
 
 /// Which look to render.
@@ -54,6 +60,12 @@ pub struct RenderJob {
     pub pitch_deg: f32,
     /// The scene (lights, skin, SSS settings, exposure).
     pub scene: Scene,
+    /// Morph of the mesh toward its bounding sphere, 0 (none) to 1: a deformation for testing
+    /// what depends on the rest pose ([`rouge_model::thickness::morph_to_bounding_sphere`]).
+    pub morph: f32,
+    /// Bake the thickness model's local thickness on the undeformed mesh (a map baked once, as
+    /// shipped) rather than on the mesh as drawn.
+    pub thickness_bake_rest_pose: bool,
 }
 
 impl Default for RenderJob {
@@ -71,6 +83,8 @@ impl Default for RenderJob {
             yaw_deg: 0.0,
             pitch_deg: 0.0,
             scene: Scene::studio(),
+            morph: 0.0,
+            thickness_bake_rest_pose: false,
         }
     }
 }
@@ -101,6 +115,63 @@ pub struct Prepared {
     pub triangles: usize,
     /// Image size.
     pub size: (u32, u32),
+    /// The local-thickness bake, when the skin's model is `thickness` with the baked source.
+    pub thickness_bake: Option<BakeReport>,
+}
+
+/// How a local-thickness bake went.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeReport {
+    /// Vertices baked.
+    pub vertices: usize,
+    /// Seconds the bake took (for a cache hit: the bake that wrote the cache).
+    pub seconds: f64,
+    /// Whether it came from the cache.
+    pub cache: CacheUse,
+}
+
+/// `mesh` with the eyes' triangles left out (vertices kept, so values stay per vertex): an eye
+/// is not the skin's medium, and light does not cross it toward the lids, so a ray into the
+/// interior that would meet an eyeball goes on through the socket instead (and usually leaves
+/// the cutoff, reading as thick).
+fn without_eyes(mesh: &TriangleMesh) -> TriangleMesh {
+    let mut out = mesh.clone();
+    if mesh.groups.iter().any(|g| g.is_eye()) {
+        out.indices = mesh
+            .groups
+            .iter()
+            .filter(|g| !g.is_eye())
+            .flat_map(|g| mesh.indices[3 * g.triangles.start..3 * g.triangles.end].iter().copied())
+            .collect();
+        out.groups = Vec::new();
+    }
+    out
+}
+
+/// Side of the baked local-thickness map in the mesh's UV space, texels.
+pub const LOCAL_THICKNESS_MAP_SIDE: u32 = 1024;
+
+/// Bakes (or reads from the cache, [`default_cache_dir`]) the local thickness of `mesh` with
+/// `settings` and rasterises it into a UV map of [`LOCAL_THICKNESS_MAP_SIDE`]².
+///
+/// # Errors
+/// [`RenderError::Invalid`] with the baker's message.
+pub fn bake_thickness_map(mesh: &TriangleMesh, settings: &BakeSettings) -> Result<(UvMap, BakeReport)> {
+    let fail = |e: rouge_model::thickness::ThicknessError| RenderError::Invalid(e.to_string());
+    let cache = default_cache_dir();
+    let skin = without_eyes(mesh);
+    let mesh = &skin;
+    // A cache that cannot be written costs a bake, not the frame.
+    let (bake, cache_use) = match bake_local_thickness_cached(mesh, settings, cache.as_deref()) {
+        Err(rouge_model::thickness::ThicknessError::Cache { path, source }) => {
+            log::warn!("local thickness cache {}: {source}; baking without it", path.display());
+            bake_local_thickness_cached(mesh, settings, None).map_err(fail)?
+        }
+        other => other.map_err(fail)?,
+    };
+    let side = LOCAL_THICKNESS_MAP_SIDE;
+    let map = thickness_uv_map(mesh, &bake.value, side, side).map_err(fail)?;
+    Ok((map, BakeReport { vertices: mesh.vertex_count(), seconds: bake.bake_seconds, cache: cache_use }))
 }
 
 impl RenderJob {
@@ -118,7 +189,7 @@ impl RenderJob {
     /// # Errors
     /// A texture that cannot be loaded (named), or no GPU.
     pub fn prepare_loaded(&self, loaded: &Loaded) -> Result<Prepared> {
-        let Loaded { mesh, look, scene, camera, .. } = loaded;
+        let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
         let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
         let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
         let gpu = Gpu::headless()?;
@@ -126,6 +197,13 @@ impl RenderJob {
         renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
         renderer.set_look(look)?;
+        let mut thickness_bake = None;
+        if let SubsurfaceModel::Thickness { source: ThicknessSource::Baked(settings), .. } = &scene.skin.subsurface {
+            let bake_mesh = if self.thickness_bake_rest_pose { rest_mesh.as_ref().unwrap_or(mesh) } else { mesh };
+            let (map, report) = bake_thickness_map(bake_mesh, settings)?;
+            renderer.set_local_thickness(Some((map.width, map.height, &map.texels)))?;
+            thickness_bake = Some(report);
+        }
         Ok(Prepared {
             gpu,
             renderer,
@@ -133,6 +211,7 @@ impl RenderJob {
             camera: *camera,
             triangles: mesh.triangle_count(),
             size: (self.width, self.height),
+            thickness_bake,
         })
     }
 
@@ -153,12 +232,18 @@ impl RenderJob {
             scene.environment = Some(env.sh_irradiance());
         }
         let mut mesh = load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?;
+        let mut rest_mesh = None;
+        if self.morph != 0.0 {
+            let morphed = morph_to_bounding_sphere(&mesh, self.morph)
+                .map_err(|e| RenderError::Invalid(format!("--morph {}: {e}", self.morph)))?;
+            rest_mesh = Some(std::mem::replace(&mut mesh, morphed));
+        }
         if self.normal_map.is_some() {
             mesh.generate_tangents()?;
         }
         let bounds = Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
         let camera = Camera::framing(&bounds, self.yaw_deg, self.pitch_deg);
-        Ok(Loaded { mesh, look, scene, env, camera })
+        Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
 }
 
@@ -175,6 +260,8 @@ pub struct Loaded {
     pub env: Option<EnvMap>,
     /// The camera framing the mesh.
     pub camera: Camera,
+    /// The mesh before the morph, when the job morphs it.
+    pub rest_mesh: Option<rouge_model::mesh::TriangleMesh>,
 }
 
 impl Prepared {

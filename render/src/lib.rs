@@ -18,6 +18,7 @@ pub mod gpu;
 pub mod gpu_look;
 pub mod gpu_mesh;
 pub mod job;
+pub mod local_thickness;
 pub mod mitsuba;
 pub mod passes;
 pub mod profile_fit;

@@ -13,6 +13,7 @@ use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
 use crate::passes::shadow::ShadowPass;
 use crate::passes::sss::SssPass;
+use crate::passes::thickness::{ThicknessPass, ThicknessUniform};
 use crate::passes::{FrameContext, FrameEncoder, Shared};
 use crate::profiler::{PassTiming, Profiler};
 use crate::scene::{Camera, Scene};
@@ -58,6 +59,7 @@ struct Passes {
     gbuffer: GbufferPass,
     lighting: LightingPass,
     sss: SssPass,
+    thickness: ThicknessPass,
     composite: CompositePass,
 }
 
@@ -99,6 +101,7 @@ impl Renderer {
             gbuffer: GbufferPass::new(&shared),
             lighting: LightingPass::new(&shared),
             sss: SssPass::new(&shared),
+            thickness: ThicknessPass::new(&shared),
             composite: CompositePass::new(&shared),
         };
         Renderer {
@@ -142,7 +145,27 @@ impl Renderer {
             return Err(RenderError::Invalid("a normal map needs a mesh with tangents (generate them first)".into()));
         }
         let (device, queue) = (&self.shared.device, &self.shared.queue);
-        self.textures = validated(device, "texture upload", || SkinTextures::upload(device, queue, albedo, normal))?;
+        let local_thickness = self.textures.local_thickness.take();
+        let uploaded = validated(device, "texture upload", || SkinTextures::upload(device, queue, albedo, normal));
+        self.textures = SkinTextures { local_thickness, ..uploaded? };
+        Ok(())
+    }
+
+    /// Sets or clears the baked local thickness of the thickness translucency
+    /// ([`crate::local_thickness`]): RGBA texels in the mesh's UV space, row 0 at v = 1, rgb in
+    /// [0, 1] with white = thin (what [`rouge_model::thickness::thickness_uv_map`] makes).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for an empty map or one whose texel count is not width × height.
+    pub fn set_local_thickness(&mut self, map: Option<(u32, u32, &[[f32; 4]])>) -> Result<()> {
+        let (device, queue) = (&self.shared.device, &self.shared.queue);
+        self.textures.local_thickness = map
+            .map(|(w, h, texels)| {
+                validated(device, "local thickness upload", || {
+                    crate::gpu_look::upload_local_thickness(device, queue, w, h, texels)
+                })
+            })
+            .transpose()?;
         Ok(())
     }
 
@@ -217,6 +240,7 @@ impl Renderer {
             layers: self.look.layers,
             albedo_map: self.textures.albedo.is_some(),
             normal_map: self.textures.normal.is_some(),
+            local_thickness_map: self.textures.local_thickness.is_some(),
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
         FramePlan::new(scene, uploaded, FrameSettings { width, height, display, max_side })
@@ -255,6 +279,10 @@ impl Renderer {
         let view = FrameView::new(camera, &mesh.bounds, plan.size);
         let frame = FrameUniform::new(scene, camera, &view, &mesh.bounds, plan.size, (look.layers, look.params));
         shared.write_frame(&frame);
+        if let crate::scene::SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface {
+            let (falloff, cutoff_mm) = source.falloff();
+            passes.thickness.write_uniform(shared, &ThicknessUniform::new(*params, falloff, cutoff_mm));
+        }
         if let Some(kernel) = &plan.kernel {
             passes.sss.write_uniforms(shared, kernel, scene.sss.width, scene.sss.follow_mm, scene.sss.samples);
         }
@@ -275,6 +303,7 @@ impl Renderer {
                 Step::Shadow { light, layer } => passes.shadow.record(shared, &mut enc, mesh, light, layer)?,
                 Step::Gbuffer => passes.gbuffer.record(ctx, &mut enc, mesh, look, textures)?,
                 Step::Lighting => passes.lighting.record(ctx, &mut enc, look, &shadow_maps)?,
+                Step::Thickness => passes.thickness.record(ctx, &mut enc, &shadow_maps)?,
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
                 Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
             }

@@ -4,6 +4,7 @@
 use crate::diffusion::ProfileModel;
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
+use crate::local_thickness::{ThicknessSource, TranslucencyParams};
 use crate::profile_fit::FittedProfile;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
@@ -95,6 +96,9 @@ pub struct Light {
     pub irradiance: [f32; 3],
     /// Whether the light casts shadows (one shadow map each).
     pub shadows: bool,
+    /// This light's multiplier of the thickness translucency's back lobe (the talk's per-light
+    /// `fLTScale`, [BarreBrisebois2011]; the material's fitted scale times this). 1 by default.
+    pub translucency_scale: f32,
 }
 
 /// Skin: albedo, specular and scattering.
@@ -126,6 +130,14 @@ pub enum SubsurfaceModel {
         /// The diffusion profile the kernel is built from.
         profile: DiffusionProfile,
     },
+    /// Fast thickness translucency ([BarreBrisebois2011], [`crate::local_thickness`]): light
+    /// through thin parts from behind, one full-screen pass and a local-thickness G-buffer target.
+    Thickness {
+        /// Distortion, power, scale, ambient.
+        params: TranslucencyParams,
+        /// Where the local thickness comes from.
+        source: ThicknessSource,
+    },
 }
 
 impl SubsurfaceModel {
@@ -139,6 +151,7 @@ impl SubsurfaceModel {
         match self {
             SubsurfaceModel::None => "none",
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
+            SubsurfaceModel::Thickness { .. } => "thickness",
         }
     }
 
@@ -146,7 +159,7 @@ impl SubsurfaceModel {
     pub fn profile(&self) -> Option<&DiffusionProfile> {
         match self {
             SubsurfaceModel::ScreenSpace { profile } => Some(profile),
-            SubsurfaceModel::None => None,
+            SubsurfaceModel::None | SubsurfaceModel::Thickness { .. } => None,
         }
     }
 }
@@ -294,16 +307,19 @@ impl Scene {
                     kind: LightKind::Directional { toward: Vec3::new(-0.5, 0.45, 0.75).normalize() },
                     irradiance: [2.9, 2.75, 2.55],
                     shadows: true,
+                    translucency_scale: 1.0,
                 },
                 Light {
                     kind: LightKind::Point { position: Vec3::new(450.0, -20.0, 500.0) },
                     irradiance: [0.55, 0.6, 0.68],
                     shadows: false,
+                    translucency_scale: 1.0,
                 },
                 Light {
                     kind: LightKind::Directional { toward: Vec3::new(0.35, 0.55, -0.75).normalize() },
                     irradiance: [1.3, 1.3, 1.35],
                     shadows: false,
+                    translucency_scale: 1.0,
                 },
             ],
             environment: Some(ShIrradiance::studio()),
@@ -341,6 +357,7 @@ impl Scene {
                 kind: LightKind::Directional { toward: toward.normalize() },
                 irradiance: [std::f32::consts::PI; 3],
                 shadows: false,
+                translucency_scale: 1.0,
             }],
             environment: None,
             background: [0.0; 3],

@@ -12,6 +12,17 @@ use crate::passes::Pass;
 /// Most cosmetic layers a look may have (two RGBA16F thickness targets).
 pub const MAX_LAYERS: usize = 8;
 
+/// Which local thickness the thickness translucency reads ([`crate::local_thickness`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ThicknessVariant {
+    /// No material uses the thickness model: no target, no pass.
+    Off,
+    /// The baked map, sampled in the G-buffer pass.
+    Baked,
+    /// Each light's shadow map, read in the thickness pass.
+    ShadowMap,
+}
+
 /// What a scene and look need compiled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Variant {
@@ -27,23 +38,36 @@ pub struct Variant {
     pub albedo_map: bool,
     /// A tangent-space normal map perturbs the normals.
     pub normal_map: bool,
+    /// The thickness translucency and its local-thickness source.
+    pub thickness: ThicknessVariant,
 }
 
 impl Variant {
     /// The variant with every flag off and no layers.
-    pub const BARE: Variant =
-        Variant { layers: 0, shadows: false, env: false, display: false, albedo_map: false, normal_map: false };
+    pub const BARE: Variant = Variant {
+        layers: 0,
+        shadows: false,
+        env: false,
+        display: false,
+        albedo_map: false,
+        normal_map: false,
+        thickness: ThicknessVariant::Off,
+    };
 
     /// Every variant, for validating all shader sources.
     pub fn all() -> impl Iterator<Item = Variant> {
-        (0..=MAX_LAYERS as u32).flat_map(|layers| {
-            (0..32u32).map(move |bits| Variant {
-                layers,
-                shadows: bits & 1 != 0,
-                env: bits & 2 != 0,
-                display: bits & 4 != 0,
-                albedo_map: bits & 8 != 0,
-                normal_map: bits & 16 != 0,
+        let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
+        (0..=MAX_LAYERS as u32).flat_map(move |layers| {
+            (0..32u32).flat_map(move |bits| {
+                thickness.into_iter().map(move |thickness| Variant {
+                    layers,
+                    shadows: bits & 1 != 0,
+                    env: bits & 2 != 0,
+                    display: bits & 4 != 0,
+                    albedo_map: bits & 8 != 0,
+                    normal_map: bits & 16 != 0,
+                    thickness,
+                })
             })
         })
     }
@@ -53,17 +77,25 @@ impl Variant {
         let none = Variant::BARE;
         match pass {
             Pass::Shadow | Pass::Sss | Pass::DepthCopy => none,
-            Pass::Gbuffer => {
-                Variant { layers: self.layers, albedo_map: self.albedo_map, normal_map: self.normal_map, ..none }
-            }
+            Pass::Gbuffer => Variant {
+                layers: self.layers,
+                albedo_map: self.albedo_map,
+                normal_map: self.normal_map,
+                thickness: self.thickness,
+                ..none
+            },
+            Pass::Thickness => Variant { thickness: self.thickness, ..none },
             Pass::Lighting => Variant { layers: self.layers, shadows: self.shadows, env: self.env, ..none },
             Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
         }
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 8] {
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 11] {
         [
+            ("THICKNESS", self.thickness != ThicknessVariant::Off),
+            ("THICKNESS_MAP", self.thickness == ThicknessVariant::Baked),
+            ("THICKNESS_LIGHT", self.thickness == ThicknessVariant::ShadowMap),
             ("LAYERS_A", self.layers > 0),
             ("LAYERS_B", self.layers > 4),
             ("SHADOWS", self.shadows),

@@ -5,7 +5,8 @@
 //!
 //! Per sample the G-buffer writes 32 bytes at most (WebGPU's default limit):
 //! `normal` Rgba16Float (world normal, w = coverage), `albedo` Rgba8UnormSrgb (a = skin flag),
-//! `thickness_a`/`thickness_b` Rgba16Float (layers 0-3 / 4-7), depth Depth32Float.
+//! `thickness_a`/`thickness_b` Rgba16Float (layers 0-3 / 4-7), `local thickness` Rgb10a2Unorm
+//! (with the thickness translucency only), depth Depth32Float.
 
 use crate::error::{RenderError, Result};
 use crate::wgpu_util::texture;
@@ -15,6 +16,10 @@ use std::collections::HashMap;
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the albedo target.
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Format of the local-thickness target: 10 bits per colour channel for the thickness, the
+/// 2-bit alpha for the translucency material id (0: none), so that the G-buffer stays within
+/// WebGPU's 32 bytes per sample with eight layers ([BarreBrisebois2011] packs it the same way).
+pub const LOCAL_THICKNESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgb10a2Unorm;
 /// Format of radiance and thickness targets.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of depth buffers and shadow maps.
@@ -90,6 +95,8 @@ pub enum Target {
     ThicknessA,
     /// Thickness (mm) of layers 4-7.
     ThicknessB,
+    /// Local thickness of the thickness translucency (rgb, white = thin) and its material id (a).
+    LocalThickness,
     /// Depth buffer.
     Depth,
     /// Skin radiance before scattering.
@@ -116,6 +123,7 @@ impl Target {
             Target::Albedo => "albedo",
             Target::ThicknessA => "thickness 0-3",
             Target::ThicknessB => "thickness 4-7",
+            Target::LocalThickness => "local thickness",
             Target::Depth => "depth",
             Target::Diffuse => "diffuse",
             Target::SssScratch => "sss scratch",
@@ -132,6 +140,7 @@ impl Target {
         match self {
             Target::Normal => NORMAL_FORMAT,
             Target::Albedo => ALBEDO_FORMAT,
+            Target::LocalThickness => LOCAL_THICKNESS_FORMAT,
             Target::Depth => DEPTH_FORMAT,
             Target::Display => formats.display,
             Target::Linear => formats.linear,

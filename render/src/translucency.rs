@@ -90,6 +90,21 @@ pub struct Measured {
     pub error: ErrorFigures,
 }
 
+/// Renders `p`'s linear frame (the size of `reference`) and returns it with the mask of the
+/// pixels compared: drawn as skin by Rouge and fully covered in the reference.
+///
+/// # Errors
+/// The renderer's errors.
+pub fn compared_pixels(p: &mut Prepared, reference: &ReferenceImage) -> Result<(Vec<[f32; 3]>, Vec<bool>)> {
+    let (w, h) = p.size;
+    p.renderer.render(&p.scene, &p.camera, w, h, false)?;
+    let cap = p.renderer.capture()?;
+    let scattered: Vec<[f32; 3]> = cap.scattered.iter().map(|v| [v[0], v[1], v[2]]).collect();
+    let image = final_image(&cap, &scattered);
+    let mask = (0..image.len()).map(|i| cap.diffuse[i][3] > 0.5 && reference.coverage[i] > 0.999).collect();
+    Ok((image, mask))
+}
+
 /// Times `frames` frames of `p` and compares its linear frame with `reference`.
 ///
 /// # Errors
@@ -103,11 +118,7 @@ pub fn measure(p: &mut Prepared, reference: &ReferenceImage, frames: u32) -> Res
         )));
     }
     let times = frame_times(p, frames)?;
-    p.renderer.render(&p.scene, &p.camera, w, h, false)?;
-    let cap = p.renderer.capture()?;
-    let scattered: Vec<[f32; 3]> = cap.scattered.iter().map(|v| [v[0], v[1], v[2]]).collect();
-    let image = final_image(&cap, &scattered);
-    let mask: Vec<bool> = (0..image.len()).map(|i| cap.diffuse[i][3] > 0.5 && reference.coverage[i] > 0.999).collect();
+    let (image, mask) = compared_pixels(p, reference)?;
     let (rmse, delta_e_mean, delta_e_p95, _) = compare(&image, &reference.rgb, &mask, 1.0);
     let pixels = mask.iter().filter(|&&m| m).count();
     Ok(Measured {

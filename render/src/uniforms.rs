@@ -3,6 +3,7 @@
 //! matrices. Keep in sync with common.wgsl; tests/shaders.rs checks the layouts with naga.
 
 use crate::passes::sss::SssUniform;
+use crate::passes::thickness::ThicknessUniform;
 use crate::scene::{Camera, LightKind, Scene};
 use crate::shader::MAX_LAYERS;
 use bytemuck::{Pod, Zeroable};
@@ -24,6 +25,9 @@ pub struct LightUniform {
     pub color: [f32; 4],
     /// Shadow layer (or −1), bias, normal offset, texel size.
     pub shadow: [f32; 4],
+    /// Thickness translucency scale, near and far plane of the shadow projection (mm), 1 for a
+    /// perspective projection.
+    pub translucency: [f32; 4],
     /// Light's view-projection for its shadow map.
     pub shadow_view_proj: [[f32; 4]; 4],
 }
@@ -145,25 +149,26 @@ pub fn light_uniforms(scene: &Scene, bounds: &Bounds) -> [LightUniform; MAX_LIGH
             position,
             color: [l.irradiance[0], l.irradiance[1], l.irradiance[2], d2],
             shadow: [-1.0, 0.0, 0.0, 0.0],
+            translucency: [l.translucency_scale, 0.0, 0.0, 0.0],
             ..Default::default()
         };
         if l.shadows {
             let up = if (light_pos - centre).normalize_or_zero().abs().y > 0.95 { Vec3::Z } else { Vec3::Y };
             let light_view = glam::camera::rh::view::look_at_mat4(light_pos, centre, up);
-            let proj = match to_centre {
-                None => glam::camera::rh::proj::directx::orthographic(
-                    -radius,
-                    radius,
-                    -radius,
-                    radius,
-                    0.5 * radius,
-                    4.5 * radius,
-                ),
+            let (proj, near, far, perspective) = match to_centre {
+                None => {
+                    let (near, far) = (0.5 * radius, 4.5 * radius);
+                    let proj =
+                        glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, near, far);
+                    (proj, near, far, 0.0)
+                }
                 Some(d) => {
                     let half = (radius / d).clamp(0.05, 0.99).asin() * 1.05;
-                    glam::camera::rh::proj::directx::perspective(2.0 * half, 1.0, (d - radius).max(1.0), d + radius)
+                    let (near, far) = ((d - radius).max(1.0), d + radius);
+                    (glam::camera::rh::proj::directx::perspective(2.0 * half, 1.0, near, far), near, far, 1.0)
                 }
             };
+            u.translucency = [l.translucency_scale, near, far, perspective];
             let texel_mm = 2.0 * radius / SHADOW_MAP_SIZE as f32;
             u.shadow = [shadow_layer as f32, 0.0005, 1.5 * texel_mm, 1.0 / SHADOW_MAP_SIZE as f32];
             u.shadow_view_proj = (proj * light_view).to_cols_array_2d();
@@ -207,10 +212,20 @@ pub fn uniform_layouts() -> Vec<UniformLayout> {
                 ("position", offset_of!(LightUniform, position)),
                 ("color", offset_of!(LightUniform, color)),
                 ("shadow", offset_of!(LightUniform, shadow)),
+                ("translucency", offset_of!(LightUniform, translucency)),
                 ("shadow_view_proj", offset_of!(LightUniform, shadow_view_proj)),
             ],
         ),
         ("Layer", size_of::<LayerUniform>(), vec![("params", offset_of!(LayerUniform, params))]),
+        (
+            "ThicknessPass",
+            size_of::<ThicknessUniform>(),
+            vec![
+                ("materials", offset_of!(ThicknessUniform, materials)),
+                ("falloff", offset_of!(ThicknessUniform, falloff)),
+                ("kind", offset_of!(ThicknessUniform, kind)),
+            ],
+        ),
         (
             "SssPass",
             size_of::<SssUniform>(),

@@ -126,6 +126,16 @@ pub fn color(v: &wgpu::TextureView, clear: wgpu::Color) -> Option<wgpu::RenderPa
     })
 }
 
+/// A colour attachment that keeps what the target holds (for passes that add to it) and stores.
+pub fn color_load(v: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view: v,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
+    })
+}
+
 /// A depth attachment cleared to the far plane and stored.
 pub fn depth_clear(v: &wgpu::TextureView) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
     Some(wgpu::RenderPassDepthStencilAttachment {

@@ -333,6 +333,7 @@ fn point_light_shadows_and_an_exr_environment_render() {
         kind: LightKind::Point { position: Vec3::new(-300.0, 200.0, 400.0) },
         irradiance: [3.0; 3],
         shadows: true,
+        translucency_scale: 1.0,
     }];
     // An environment from an EXR file: bright above, dark below.
     let dir = tempfile::tempdir().expect("tempdir");

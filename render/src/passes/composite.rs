@@ -47,7 +47,8 @@ impl CompositePass {
             vertices: Vertices::Fullscreen,
             vs: "vs_fullscreen",
             fs: Some("fs_composite"),
-            targets: vec![format],
+            targets: vec![Some(format)],
+            blend: None,
             depth: None,
         })?;
         let exit_t = if key.layers > 0 { Some(targets.view(Target::ExitT)?) } else { None };

@@ -44,7 +44,8 @@ impl DepthCopyPass {
             vertices: Vertices::Fullscreen,
             vs: "vs_fullscreen",
             fs: Some("fs_depth_copy"),
-            targets: vec![OUTPUT_FORMAT],
+            targets: vec![Some(OUTPUT_FORMAT)],
+            blend: None,
             depth: None,
         })?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {

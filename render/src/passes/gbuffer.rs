@@ -1,12 +1,15 @@
 //! G-buffer pass: world normals and coverage, albedo with the skin flag, the cosmetic layers'
-//! thickness (mm) sampled from their maps, and depth (shaders/gbuffer.wgsl). The thickness
-//! targets exist only in variants with layers: 0-3 with any layer, 4-7 with more than four.
+//! thickness (mm) sampled from their maps, the local thickness and material id of the thickness
+//! translucency, and depth (shaders/gbuffer.wgsl). The thickness targets exist only in variants
+//! with layers: 0-3 with any layer, 4-7 with more than four; the local thickness only when a
+//! material uses the thickness model. Each target keeps its location (4 for the local thickness)
+//! whatever the others, so a left-out target leaves its location empty.
 
 use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
 use crate::error::Result;
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
-use crate::shader::Variant;
+use crate::shader::{ThicknessVariant, Variant};
 use crate::targets::Target;
 use crate::wgpu_util::{color, depth_clear, float_tex, layout, sampler, sampler_entry, tex, tex_entry};
 
@@ -17,16 +20,24 @@ pub struct GbufferPass {
     pipelines: Pipelines,
 }
 
-/// The colour targets a variant writes, in location order.
-pub fn outputs(variant: Variant) -> Vec<Target> {
-    let mut t = vec![Target::Normal, Target::Albedo];
-    if variant.layers > 0 {
-        t.push(Target::ThicknessA);
-    }
-    if variant.layers > 4 {
-        t.push(Target::ThicknessB);
+/// The colour targets a variant writes, by location (`None` where the variant leaves one out).
+pub fn slots(variant: Variant) -> Vec<Option<Target>> {
+    let mut t = vec![
+        Some(Target::Normal),
+        Some(Target::Albedo),
+        (variant.layers > 0).then_some(Target::ThicknessA),
+        (variant.layers > 4).then_some(Target::ThicknessB),
+        (variant.thickness != ThicknessVariant::Off).then_some(Target::LocalThickness),
+    ];
+    while t.last() == Some(&None) {
+        t.pop();
     }
     t
+}
+
+/// The colour targets a variant writes, in location order.
+pub fn outputs(variant: Variant) -> Vec<Target> {
+    slots(variant).into_iter().flatten().collect()
 }
 
 impl GbufferPass {
@@ -40,6 +51,7 @@ impl GbufferPass {
                 sampler_entry(1, wgpu::SamplerBindingType::Filtering),
                 float_tex(2, true),
                 float_tex(3, true),
+                float_tex(4, true),
             ],
         );
         GbufferPass { layout, pipelines: Pipelines::default() }
@@ -60,7 +72,7 @@ impl GbufferPass {
     ) -> Result<()> {
         let (shared, targets) = (ctx.shared, ctx.targets);
         let key = ctx.variant.for_pass(Pass::Gbuffer);
-        let outs = outputs(key);
+        let slots = slots(key);
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
             pass: Pass::Gbuffer,
             variant: key,
@@ -68,7 +80,8 @@ impl GbufferPass {
             vertices: Vertices::Mesh,
             vs: "vs_gbuffer",
             fs: Some("fs_gbuffer"),
-            targets: outs.iter().map(|t| t.format(shared.formats)).collect(),
+            targets: slots.iter().map(|t| t.map(|t| t.format(shared.formats))).collect(),
+            blend: None,
             depth: Some(wgpu::DepthBiasState::default()),
         })?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -79,11 +92,13 @@ impl GbufferPass {
                 sampler(1, &shared.linear_sampler),
                 tex(2, textures.albedo.as_ref().unwrap_or(&shared.dummy)),
                 tex(3, textures.normal.as_ref().unwrap_or(&shared.dummy)),
+                tex(4, textures.local_thickness.as_ref().unwrap_or(&shared.dummy)),
             ],
         });
-        let views = outs.iter().map(|&t| targets.view(t)).collect::<Result<Vec<_>>>()?;
+        let views = slots.iter().map(|t| t.map(|t| targets.view(t)).transpose()).collect::<Result<Vec<_>>>()?;
         let depth = targets.view(Target::Depth)?;
-        let attachments: Vec<_> = views.iter().map(|v| color(v, wgpu::Color::TRANSPARENT)).collect();
+        let attachments: Vec<_> =
+            views.iter().map(|v| v.as_ref().and_then(|v| color(v, wgpu::Color::TRANSPARENT))).collect();
         let mut pass = enc.begin("gbuffer", &attachments, depth_clear(&depth));
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);

@@ -81,7 +81,8 @@ impl LightingPass {
             vertices: Vertices::Fullscreen,
             vs: "vs_fullscreen",
             fs: Some("fs_lighting"),
-            targets: vec![HDR_FORMAT; outs.len()],
+            targets: vec![Some(HDR_FORMAT); outs.len()],
+            blend: None,
             depth: None,
         })?;
         let optional = |wanted: bool, t: Target| -> Result<Option<wgpu::TextureView>> {

@@ -11,6 +11,7 @@ pub mod gbuffer;
 pub mod lighting;
 pub mod shadow;
 pub mod sss;
+pub mod thickness;
 
 use crate::error::Result;
 use crate::profiler::Profiler;
@@ -30,6 +31,8 @@ pub enum Pass {
     Lighting,
     /// One direction of the separable blur.
     Sss,
+    /// Thickness translucency ([BarreBrisebois2011]), added to the skin's diffuse radiance.
+    Thickness,
     /// Composition and tone mapping.
     Composite,
     /// Depth into a colour target, for readback where depth cannot be copied (GL).
@@ -38,8 +41,8 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass.
-    pub const ALL: [Pass; 6] =
-        [Pass::Shadow, Pass::Gbuffer, Pass::Lighting, Pass::Sss, Pass::Composite, Pass::DepthCopy];
+    pub const ALL: [Pass; 7] =
+        [Pass::Shadow, Pass::Gbuffer, Pass::Lighting, Pass::Sss, Pass::Thickness, Pass::Composite, Pass::DepthCopy];
 
     /// The pass's WGSL file name (for errors).
     pub fn file_name(self) -> &'static str {
@@ -48,6 +51,7 @@ impl Pass {
             Pass::Gbuffer => "shaders/gbuffer.wgsl",
             Pass::Lighting => "shaders/lighting.wgsl",
             Pass::Sss => "shaders/sss.wgsl",
+            Pass::Thickness => "shaders/thickness.wgsl",
             Pass::Composite => "shaders/composite.wgsl",
             Pass::DepthCopy => "shaders/depth_copy.wgsl",
         }
@@ -60,6 +64,7 @@ impl Pass {
             Pass::Gbuffer => include_str!("../shaders/gbuffer.wgsl"),
             Pass::Lighting => include_str!("../shaders/lighting.wgsl"),
             Pass::Sss => include_str!("../shaders/sss.wgsl"),
+            Pass::Thickness => include_str!("../shaders/thickness.wgsl"),
             Pass::Composite => include_str!("../shaders/composite.wgsl"),
             Pass::DepthCopy => include_str!("../shaders/depth_copy.wgsl"),
         }
@@ -168,8 +173,10 @@ pub struct PipelineSpec<'a> {
     pub vs: &'a str,
     /// Fragment entry point, if any.
     pub fs: Option<&'a str>,
-    /// Colour target formats.
-    pub targets: Vec<wgpu::TextureFormat>,
+    /// Colour target formats by location (`None`: a location the variant leaves out).
+    pub targets: Vec<Option<wgpu::TextureFormat>>,
+    /// Blending into the colour targets (`None`: replace).
+    pub blend: Option<wgpu::BlendState>,
     /// Depth test and write with this bias, if the pass has a depth buffer.
     pub depth: Option<wgpu::DepthBiasState>,
 }
@@ -199,7 +206,13 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
     let targets: Vec<Option<wgpu::ColorTargetState>> = spec
         .targets
         .iter()
-        .map(|&format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL }))
+        .map(|format| {
+            format.map(|format| wgpu::ColorTargetState {
+                format,
+                blend: spec.blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        })
         .collect();
     Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(&label),

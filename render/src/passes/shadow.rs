@@ -83,6 +83,7 @@ impl ShadowPass {
             vs: "vs_shadow",
             fs: None,
             targets: vec![],
+            blend: None,
             depth: Some(wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }),
         })?;
         let target = self.maps.create_view(&wgpu::TextureViewDescriptor {

@@ -108,7 +108,8 @@ impl SssPass {
             vertices: Vertices::Fullscreen,
             vs: "vs_fullscreen",
             fs: Some("fs_sss"),
-            targets: vec![HDR_FORMAT],
+            targets: vec![Some(HDR_FORMAT)],
+            blend: None,
             depth: None,
         })?;
         let (src, dst) = direction.targets();

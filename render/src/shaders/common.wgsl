@@ -10,6 +10,9 @@ struct Light {
     color: vec4<f32>,
     // x: shadow map layer or -1, y: depth bias, z: normal offset (mm), w: shadow map texel size (uv).
     shadow: vec4<f32>,
+    // x: the light's scale of the thickness translucency, y: near and z: far plane of its shadow
+    // projection (mm), w: 1 for a perspective (point light) projection, 0 for orthographic.
+    translucency: vec4<f32>,
     shadow_view_proj: mat4x4<f32>,
 }
 
@@ -50,6 +53,34 @@ fn linear_depth(d: f32) -> f32 {
     let n = frame.projection.y;
     let f = frame.projection.z;
     return n * f / (f - d * (f - n));
+}
+
+// World position (mm) of the pixel at `frag` (pixel coordinates) with depth-buffer value `depth`.
+fn world_at(frag: vec2<f32>, depth: f32) -> vec3<f32> {
+    let ndc = vec2<f32>(frag.x * frame.viewport.z * 2.0 - 1.0, 1.0 - frag.y * frame.viewport.w * 2.0);
+    let world_h = frame.inv_view_proj * vec4<f32>(ndc, depth, 1.0);
+    return world_h.xyz / world_h.w;
+}
+
+// How a light arrives at `world`: the unit vector toward it and its irradiance at normal
+// incidence there (a point light's falls off with the squared distance from the scene centre's).
+struct Arrival {
+    l: vec3<f32>,
+    e: vec3<f32>,
+}
+
+fn light_arrival(light: Light, world: vec3<f32>) -> Arrival {
+    var a: Arrival;
+    a.e = light.color.rgb;
+    if light.position.w == 0.0 {
+        a.l = light.position.xyz;
+    } else {
+        let d = light.position.xyz - world;
+        let d2 = max(dot(d, d), 1e-6);
+        a.l = d * inverseSqrt(d2);
+        a.e = a.e * (light.color.w / d2);
+    }
+    return a;
 }
 
 struct FullscreenOut {

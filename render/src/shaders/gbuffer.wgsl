@@ -7,6 +7,8 @@
 // Skin albedo texture (sRGB, read linear) and tangent-space normal map, when the scene has them.
 @group(1) @binding(2) var albedo_map: texture_2d<f32>;
 @group(1) @binding(3) var normal_map: texture_2d<f32>;
+// The baked local thickness ([BarreBrisebois2011]; rgb, white = thin) in the mesh's UV space.
+@group(1) @binding(4) var local_thickness_map: texture_2d<f32>;
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -49,6 +51,11 @@ struct GbufferOut {
 //#if LAYERS_B
     // thickness (mm) of layers 4-7
     @location(3) thickness_b: vec4<f32>,
+//#endif
+//#if THICKNESS
+    // rgb: local thickness (white = thin; 1 with the shadow-map source, which reads it per
+    // light later), a: translucency material id / 3 (0: none, 1: skin)
+    @location(4) local_thickness: vec4<f32>,
 //#endif
 }
 
@@ -93,6 +100,16 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
         b[i - 4u] = layer_thickness(in.uv, i) * in.albedo.a;
     }
     out.thickness_b = b;
+//#endif
+//#if THICKNESS
+    let skin = select(0.0, 1.0, in.albedo.a > 0.5);
+    var local = vec3<f32>(1.0);
+//#endif
+//#if THICKNESS_MAP
+    local = clamp(textureSampleLevel(local_thickness_map, map_sampler, tex_uv, 0.0).rgb, vec3<f32>(0.0), vec3<f32>(1.0));
+//#endif
+//#if THICKNESS
+    out.local_thickness = vec4<f32>(local * skin, skin / 3.0);
 //#endif
     return out;
 }

@@ -128,9 +128,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     let albedo = albedo_skin.rgb;
     let is_skin = albedo_skin.a > 0.5;
     let depth = textureLoad(gb_depth, p, 0).r;
-    let ndc = vec2<f32>(frag.x * frame.viewport.z * 2.0 - 1.0, 1.0 - frag.y * frame.viewport.w * 2.0);
-    let world_h = frame.inv_view_proj * vec4<f32>(ndc, depth, 1.0);
-    let world = world_h.xyz / world_h.w;
+    let world = world_at(frag.xy, depth);
     let v = normalize(frame.camera_pos.xyz - world);
 
     // Cosmetic stack, bottom to top: R seen from above, R seen from below (from the skin), T.
@@ -167,16 +165,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     var specular = vec3<f32>(0.0);
     for (var li = 0u; li < frame.counts.x; li++) {
         let light = frame.lights[li];
-        var l: vec3<f32>;
-        var e = light.color.rgb;
-        if light.position.w == 0.0 {
-            l = light.position.xyz;
-        } else {
-            let d = light.position.xyz - world;
-            let d2 = max(dot(d, d), 1e-6);
-            l = d * inverseSqrt(d2);
-            e = e * (light.color.w / d2);
-        }
+        let arrival = light_arrival(light, world);
+        let l = arrival.l;
+        let e = arrival.e;
         let n_dot_l = dot(n, l);
         if n_dot_l <= 0.0 {
             continue;
