@@ -79,8 +79,8 @@ pub struct MatchArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Target colour as CIELAB `L,a,b` (default: each bare skin itself, "your shade").
-    #[arg(long, value_name = "L,a,b", value_delimiter = ',', num_args = 3, allow_hyphen_values = true)]
-    pub target: Option<Vec<f64>>,
+    #[arg(long, value_name = "L,a,b", value_parser = parse_lab)]
+    pub target: Option<[f64; 3]>,
     /// Thickness range searched, µm, `MIN:MAX` (default: 0:100 with --target; the wear
     /// thickness --wear-um for "your shade", where less product is always closer to bare skin).
     #[arg(long = "thickness-um", value_name = "MIN:MAX")]
@@ -104,16 +104,9 @@ pub struct MixArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Target colour as CIELAB `L,a,b`.
-    #[arg(
-        long,
-        value_name = "L,a,b",
-        value_delimiter = ',',
-        num_args = 3,
-        allow_hyphen_values = true,
-        required_unless_present = "target_preset",
-        conflicts_with = "target_preset"
-    )]
-    pub target: Option<Vec<f64>>,
+    #[arg(long, value_name = "L,a,b", value_parser = parse_lab, required_unless_present = "target_preset",
+          conflicts_with = "target_preset")]
+    pub target: Option<[f64; 3]>,
     /// Target: the colour of this preset (R∞, or over the skin at --thickness-um).
     #[arg(long = "target-preset")]
     pub target_preset: Option<String>,
@@ -124,6 +117,18 @@ pub struct MixArgs {
     /// Which sample of --skin to use.
     #[arg(long)]
     pub sample: Option<String>,
+}
+
+/// `L,a,b` → three finite numbers.
+fn parse_lab(text: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>().map_err(|_| format!("`{p}` is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [l, a, b] if v.iter().all(|x| x.is_finite()) => Ok([*l, *a, *b]),
+        _ => Err(format!("`{text}`: expected three finite numbers L,a,b")),
+    }
 }
 
 const SKIN_CSV: &str = include_str!("../../data/skin/colorchecker_skin.csv");
@@ -266,7 +271,7 @@ fn run_match(args: &MatchArgs) -> Result<()> {
     let skins = skins(&args.common)?;
     let c = Colorimeter::get(viewing(&args.common));
     let target = match &args.target {
-        Some(v) => Target::Lab([v[0], v[1], v[2]]),
+        Some(lab) => Target::Lab(*lab),
         None => Target::BareSkin,
     };
     let range = match (&args.thickness_um, target) {
@@ -346,7 +351,7 @@ fn run_mix(args: &MixArgs) -> Result<()> {
         Some((_, r, x)) => lab_of(cm, &l.reflectance_over(*x, r)),
     };
     let (target_lab, target_name, target_layer) = match (&args.target, &args.target_preset) {
-        (Some(v), _) => ([v[0], v[1], v[2]], format!("L*a*b* {}", lab_text([v[0], v[1], v[2]])), None),
+        (Some(lab), _) => (*lab, format!("L*a*b* {}", lab_text(*lab)), None),
         (None, Some(p)) => {
             let (preset, layer) = load_layer(p)?;
             (colour_under(c, &layer), preset.name, Some(layer))

@@ -1,0 +1,96 @@
+//! `rouge analyze coverage|match|mix` through the binary: tables, JSON, PNG plots, and errors
+//! that name the file, line and column.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn rouge(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rouge"))
+        .args(args)
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+        .output()
+        .expect("run rouge")
+}
+
+fn stdout(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+const FOUNDATIONS: [&str; 5] = [
+    "foundation_01_porcelain",
+    "foundation_02_ivory",
+    "foundation_03_sand",
+    "foundation_04_caramel",
+    "data/presets/foundation_05_espresso.json",
+];
+
+#[test]
+fn coverage_prints_the_table_writes_json_and_a_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let (json, png) = (dir.path().join("c.json"), dir.path().join("c.png"));
+    let args = ["analyze", "coverage", "builtin:foundation_02_ivory", "--json", json.to_str().unwrap(), "--plot"];
+    let out = stdout(&rouge(&[&args[..], &[png.to_str().unwrap()]].concat()));
+    assert!(out.contains("hiding thickness (contrast ratio 0.98): 77.96 µm"), "{out}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert!((rows[0]["contrast_ratio"].as_f64().unwrap() - 0.01 / 0.80).abs() < 1e-12);
+    assert_eq!(v["skins"].as_array().unwrap().len(), 2);
+    let img = image::open(&png).unwrap();
+    assert!(img.width() >= 800 && img.height() >= 300);
+}
+
+#[test]
+fn match_finds_the_shade_a_synthetic_skin_was_made_from() {
+    // A skin the colour of 60 µm of Caramel over the ColorChecker's light skin, as a table.
+    let dir = tempfile::tempdir().unwrap();
+    let skin = dir.path().join("skin.csv");
+    let preset = rouge_measure::Preset::load(Path::new("../data/presets/foundation_04_caramel.json")).unwrap();
+    let layer = rouge_measure::analysis::Layer::from_preset(&preset).unwrap();
+    let rows: String = rouge_measure::spectrum::working_wavelengths_nm()
+        .iter()
+        .zip(layer.reflectance_over(f64::INFINITY, &rouge_measure::Spectrum::constant(0.3)).0)
+        .map(|(nm, r)| format!("{nm},{r}\n"))
+        .collect();
+    std::fs::write(&skin, format!("wavelength_nm,caramel_skin\n{rows}")).unwrap();
+    let json = dir.path().join("m.json");
+    let mut args = vec!["analyze", "match"];
+    args.extend(FOUNDATIONS);
+    args.extend(["--skin", skin.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    let out = stdout(&rouge(&args));
+    assert!(out.contains("Foundation 04 Caramel") && out.contains("0 of 1 skins in gaps"), "{out}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["skins"][0]["best_shade"], "Foundation 04 Caramel");
+    assert!(v["skins"][0]["delta_e"].as_f64().unwrap() < 1e-9);
+}
+
+#[test]
+fn mix_reaches_a_mixture_of_its_bases() {
+    let out = stdout(&rouge(&[
+        "analyze",
+        "mix",
+        "foundation_01_porcelain",
+        "foundation_04_caramel",
+        "--target-preset",
+        "foundation_04_caramel",
+    ]));
+    let line = out.lines().find(|l| l.trim_start().starts_with("Foundation 04 Caramel")).unwrap();
+    assert!(line.ends_with(" 1.0000") && out.contains("ΔE2000 0.000"), "{out}");
+}
+
+#[test]
+fn bad_inputs_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let skin = dir.path().join("skin.csv");
+    std::fs::write(&skin, "wavelength_nm,a\n380,0.3\n390,oops\n").unwrap();
+    let o = rouge(&["analyze", "coverage", "foundation_02_ivory", "--skin", skin.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("skin.csv:3:2"), "{err}");
+    let o = rouge(&["analyze", "coverage", "no_such_preset"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("built-in: blush_01_petal"));
+    let o = rouge(&["analyze", "mix", "foundation_01_porcelain", "foundation_04_caramel", "--target", "50,0"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expected three finite numbers"));
+    let o = rouge(&["analyze", "match", "foundation_01_porcelain", "--thickness-um", "20:10"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the maximum is below the minimum"));
+}
