@@ -4,6 +4,7 @@
 
 use pyo3::prelude::*;
 
+mod analysis;
 mod arrays;
 mod color;
 mod errors;
@@ -18,5 +19,6 @@ fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     km::register(m)?;
     color::register(m)?;
     io::register(m)?;
+    analysis::register(m)?;
     Ok(())
 }

@@ -132,3 +132,21 @@ class Preset:
     def save(self, path: Path) -> None: ...
     def to_json(self) -> str: ...
     def to_dict(self) -> dict[str, Any]: ...
+
+# Formulation analyses (rouge_measure::analysis, docs/FORMULATION.md). Spectra: 81 values on
+# the working grid 380-780 nm / 5 nm; thickness in mm.
+def SK_to_coverage(
+    S: ArrayLike, K: ArrayLike, thickness_mm: ArrayLike, *, skins: ArrayLike | None = None,
+    black: float = 0.01, white: float = 0.80, illuminant: str = "D65",
+    observer: str = "CIE 1931 2 Degree Standard Observer",
+) -> dict[str, Any]: ...
+def match_shades(
+    shades: list[tuple[ArrayLike, ArrayLike]], skins: ArrayLike, thickness_mm: tuple[float, float], *,
+    target_Lab: tuple[float, float, float] | None = None, gap_delta_E: float = 2.0, illuminant: str = "D65",
+    observer: str = "CIE 1931 2 Degree Standard Observer",
+) -> list[dict[str, Any]]: ...
+def fit_mix_Duncan(
+    bases: list[tuple[ArrayLike, ArrayLike]], target_Lab: tuple[float, float, float], *,
+    skin: ArrayLike | None = None, thickness_mm: float | None = None, illuminant: str = "D65",
+    observer: str = "CIE 1931 2 Degree Standard Observer",
+) -> dict[str, Any]: ...
