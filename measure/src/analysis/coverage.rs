@@ -158,11 +158,8 @@ pub fn coverage_table(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::grey_layer as layer;
     use crate::colorimetry::Viewing;
-
-    fn layer(s: f64, k: f64) -> Layer {
-        Layer::new("test", Spectrum::constant(s), Spectrum::constant(k)).unwrap()
-    }
 
     #[test]
     fn contrast_limits_and_edges() {

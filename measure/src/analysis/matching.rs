@@ -144,11 +144,8 @@ pub fn product_line_coverage(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::grey_layer as layer;
     use crate::colorimetry::Viewing;
-
-    fn layer(s: f64, k: f64) -> Layer {
-        Layer::new("test", Spectrum::constant(s), Spectrum::constant(k)).unwrap()
-    }
 
     #[test]
     fn closest_thickness_recovers_a_thickness() {

@@ -119,3 +119,9 @@ pub fn check_reflectance(what: &str, r: &Spectrum) -> Result<(), AnalysisError> 
 pub fn lab_of(colorimeter: &Colorimeter, r: &Spectrum) -> [f64; 3] {
     colorimeter.lab(&colorimeter.xyz(r)).lab
 }
+
+/// A layer with the same S and K at every wavelength, for tests.
+#[cfg(test)]
+pub(crate) fn grey_layer(s_per_mm: f64, k_per_mm: f64) -> Layer {
+    Layer::new("grey", Spectrum::constant(s_per_mm), Spectrum::constant(k_per_mm)).expect("finite, ≥ 0")
+}
