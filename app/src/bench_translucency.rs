@@ -185,6 +185,10 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             Ok(())
         };
         if args.fit_thickness {
+            if job.morph != 0.0 {
+                eprintln!("  (deformed: measured, not fitted on)");
+                continue;
+            }
             prepared.renderer.set_mesh(&loaded.mesh, better.albedo)?;
             prepared.scene.skin = better.clone();
             for source in &sources {
@@ -344,6 +348,8 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     let timed = rows.iter().all(|r| r.gpu_ms.is_some());
     let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
     let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189]];
+    let thickness_palette =
+        [[140, 86, 75], [227, 119, 194], [127, 127, 127], [188, 189, 34], [23, 190, 207], [255, 187, 120]];
     let charts: Vec<Chart> = scenes
         .iter()
         .map(|&scene| {
@@ -351,8 +357,12 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
             let mut series: Vec<Series> = Vec::new();
             for r in &in_scene {
                 let profile = r.params.get("profile").and_then(|p| p.as_str());
+                let thickness = |key: &str| r.params.get(key).and_then(|v| v.as_str()).unwrap_or("?").to_string();
                 let (label, marker, line) = match (r.model.as_str(), profile) {
                     ("none", _) => ("none".to_string(), Marker::Cross, false),
+                    ("thickness", _) => {
+                        (format!("thickness {} {}", thickness("source"), thickness("params")), Marker::Square, false)
+                    }
                     (_, Some("deon-skin")) => ("today's skin".to_string(), Marker::Diamond, false),
                     (_, Some(p)) => (p.to_string(), Marker::Dot, true),
                     (m, None) => (m.to_string(), Marker::Dot, true),
@@ -362,6 +372,10 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
                     let rgb = match marker {
                         Marker::Cross => [0, 0, 0],
                         Marker::Diamond => [214, 39, 40],
+                        Marker::Square => {
+                            thickness_palette
+                                [series.iter().filter(|s| s.marker == Marker::Square).count() % thickness_palette.len()]
+                        }
                         Marker::Dot => palette[series.iter().filter(|s| s.line).count() % palette.len()],
                     };
                     series.push(Series { label: label.clone(), rgb, points: Vec::new(), line, marker });

@@ -19,7 +19,11 @@ use std::collections::BTreeMap;
 /// Distortions δ searched.
 pub const DISTORTIONS: [f32; 7] = [0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0];
 /// Powers p searched.
-pub const POWERS: [f32; 8] = [1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0];
+pub const POWERS: [f32; 10] = [0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0];
+/// Largest scale the fit may choose: ten times three.js's default. Without a bound, a medium
+/// whose baked thickness is nearly 0 everywhere (ketchup's σ_tr in green and blue) buys a few
+/// pixels with scales in the tens of thousands, a preset no artist could use.
+pub const MAX_SCALE: f64 = 100.0;
 
 /// Sums of the normal equations of one grid cell over scenes: with r = R − I₀,
 /// `[B₁·B₁ B₁·B₂; B₁·B₂ B₂·B₂] [s a]ᵀ = [B₁·r B₂·r]ᵀ`, and r·r for the residual.
@@ -65,22 +69,22 @@ impl NormalEquations {
             .max(0.0)
     }
 
-    /// The minimiser over s, a ≥ 0 and its sum of squared residuals: the unconstrained solution
-    /// when it lies in the quadrant, else the best of the two edges and the origin (the
-    /// objective is convex, so one of these is the constrained minimum).
+    /// The minimiser over 0 ≤ s ≤ [`MAX_SCALE`], a ≥ 0 and its sum of squared residuals: the
+    /// unconstrained solution when it lies in the box, else the best of the box's edges and
+    /// corners (the objective is convex, so one of these is the constrained minimum).
     fn solve(&self) -> (f64, f64, f64) {
-        let mut candidates = vec![(0.0, 0.0)];
+        let clamp_s = |s: f64| s.clamp(0.0, MAX_SCALE);
+        // The best a ≥ 0 for a given s.
+        let a_for = |s: f64| if self.a22 > 0.0 { ((self.b2 - s * self.a12) / self.a22).max(0.0) } else { 0.0 };
+        let mut candidates = vec![(0.0, 0.0), (MAX_SCALE, 0.0), (0.0, a_for(0.0)), (MAX_SCALE, a_for(MAX_SCALE))];
         if self.a11 > 0.0 {
-            candidates.push(((self.b1 / self.a11).max(0.0), 0.0));
-        }
-        if self.a22 > 0.0 {
-            candidates.push((0.0, (self.b2 / self.a22).max(0.0)));
+            candidates.push((clamp_s(self.b1 / self.a11), 0.0));
         }
         let det = self.a11 * self.a22 - self.a12 * self.a12;
         if det > 1e-12 * (self.a11 * self.a22).max(f64::MIN_POSITIVE) {
             let s = (self.b1 * self.a22 - self.b2 * self.a12) / det;
             let a = (self.a11 * self.b2 - self.a12 * self.b1) / det;
-            if s >= 0.0 && a >= 0.0 {
+            if (0.0..=MAX_SCALE).contains(&s) && a >= 0.0 {
                 candidates.push((s, a));
             }
         }
@@ -127,6 +131,7 @@ impl Fit {
     /// # Errors
     /// The renderer's errors.
     pub fn add_scene(&mut self, scene: &mut Scene<'_>, source: &ThicknessSource) -> Result<()> {
+        // (Deformed scenes are for testing the sources, not for fitting: the caller leaves them out.)
         let medium = scene.medium.name.clone();
         let model = |distortion, power, scale, ambient| SubsurfaceModel::Thickness {
             params: TranslucencyParams { distortion, power, scale, ambient },
@@ -210,5 +215,11 @@ mod tests {
         e.add(&base, &lobe, &ambient, &dark, &[true; 3]);
         let (s, a, _) = e.solve();
         assert_eq!((s, a), (0.0, 0.0));
+        // A reference that asks for more than the largest scale gets the largest scale.
+        let bright: Vec<[f32; 3]> =
+            base.iter().zip(&b1).map(|(x, p)| std::array::from_fn(|c| x[c] + 500.0 * p[c])).collect();
+        let mut e = NormalEquations::default();
+        e.add(&base, &lobe, &ambient, &bright, &[true; 3]);
+        assert_eq!(e.solve().0, MAX_SCALE);
     }
 }

@@ -19,6 +19,8 @@ pub enum Marker {
     Cross,
     /// A filled diamond.
     Diamond,
+    /// A filled square.
+    Square,
 }
 
 /// One series: points joined by a line (or not), each with a marker and an optional label.
@@ -164,26 +166,7 @@ fn draw_chart(c: &mut Canvas, chart: &Chart, (ox, oy): (f64, f64)) {
         }
         for (x, y, label) in &points {
             let (px, py) = (sx(*x), sy(*y));
-            match s.marker {
-                Marker::Dot => c.fill(&Circle::new((px, py), 3.0).to_path(0.1), s.rgb),
-                Marker::Diamond => {
-                    let mut d = BezPath::new();
-                    d.move_to((px, py - 6.0));
-                    d.line_to((px + 5.0, py));
-                    d.line_to((px, py + 6.0));
-                    d.line_to((px - 5.0, py));
-                    d.close_path();
-                    c.fill(&d, s.rgb);
-                }
-                Marker::Cross => {
-                    let mut x = BezPath::new();
-                    x.move_to((px - 5.0, py - 5.0));
-                    x.line_to((px + 5.0, py + 5.0));
-                    x.move_to((px - 5.0, py + 5.0));
-                    x.line_to((px + 5.0, py - 5.0));
-                    c.stroke(&x, 2.0, s.rgb);
-                }
-            }
+            draw_marker(c, s.marker, (px, py), s.rgb);
             if let Some(label) = label {
                 c.text(label, (px + 4.0, py - 4.0), 9.0, 0.0, false, [40, 40, 40]);
             }
@@ -192,6 +175,31 @@ fn draw_chart(c: &mut Canvas, chart: &Chart, (ox, oy): (f64, f64)) {
     c.text(&chart.title, (ox + PANEL_W / 2.0, oy + 18.0), 12.0, 0.5, false, [20, 20, 20]);
     c.text(&chart.x_label, (plot.x0 + plot.width() / 2.0, oy + PANEL_H - 10.0), 11.0, 0.5, false, [20, 20, 20]);
     c.text(&chart.y_label, (ox + 14.0, plot.y0 + plot.height() / 2.0), 11.0, 0.5, true, [20, 20, 20]);
+}
+
+/// Draws `marker` centred on `at`.
+fn draw_marker(c: &mut Canvas, marker: Marker, (px, py): (f64, f64), rgb: [u8; 3]) {
+    match marker {
+        Marker::Dot => c.fill(&Circle::new((px, py), 3.5).to_path(0.1), rgb),
+        Marker::Square => c.fill(&Rect::new(px - 4.0, py - 4.0, px + 4.0, py + 4.0).to_path(0.1), rgb),
+        Marker::Diamond => {
+            let mut d = BezPath::new();
+            d.move_to((px, py - 6.0));
+            d.line_to((px + 5.0, py));
+            d.line_to((px, py + 6.0));
+            d.line_to((px - 5.0, py));
+            d.close_path();
+            c.fill(&d, rgb);
+        }
+        Marker::Cross => {
+            let mut x = BezPath::new();
+            x.move_to((px - 5.0, py - 5.0));
+            x.line_to((px + 5.0, py + 5.0));
+            x.move_to((px - 5.0, py + 5.0));
+            x.line_to((px + 5.0, py - 5.0));
+            c.stroke(&x, 2.0, rgb);
+        }
+    }
 }
 
 /// Draws `charts` in a grid of `columns`, with a title and one legend of every series label,
@@ -231,26 +239,7 @@ pub fn render(title: &str, charts: &[Chart], columns: usize) -> Result<Vec<u8>> 
     let total: f64 = seen.iter().map(|(l, _, _)| 24.0 + c.text_width(l, 11.0)).sum();
     let (mut x, y) = ((f64::from(width) - total) / 2.0, f64::from(height) - legend / 2.0);
     for (label, rgb, marker) in seen {
-        match marker {
-            Marker::Cross => {
-                let mut p = BezPath::new();
-                p.move_to((x, y - 8.0));
-                p.line_to((x + 8.0, y));
-                p.move_to((x, y));
-                p.line_to((x + 8.0, y - 8.0));
-                c.stroke(&p, 2.0, rgb);
-            }
-            Marker::Diamond => {
-                let mut d = BezPath::new();
-                d.move_to((x + 4.0, y - 10.0));
-                d.line_to((x + 8.0, y - 4.0));
-                d.line_to((x + 4.0, y + 2.0));
-                d.line_to((x, y - 4.0));
-                d.close_path();
-                c.fill(&d, rgb);
-            }
-            Marker::Dot => c.fill(&Circle::new((x + 4.0, y - 4.0), 4.0).to_path(0.1), rgb),
-        }
+        draw_marker(&mut c, marker, (x + 4.0, y - 4.0), rgb);
         c.text(&label, (x + 12.0, y), 11.0, 0.0, false, [20, 20, 20]);
         x += 24.0 + c.text_width(&label, 11.0);
     }

@@ -135,8 +135,7 @@ impl SceneArgs {
                 resolved.with_context(|| format!("--medium {name}"))?
             };
             if let Some(eta) = self.eta {
-                m = Medium::from_coefficients(&m.name, m.sigma_a_per_mm, m.sigma_s_prime_per_mm, eta)
-                    .with_context(|| format!("--medium {name} --eta {eta}"))?;
+                m = m.with_eta(eta).with_context(|| format!("--medium {name} --eta {eta}"))?;
             }
             return Ok(Some(m));
         }

@@ -378,3 +378,50 @@ fn media_and_mitsuba_export_say_what_is_wrong_and_write_a_scene() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--light-radius-deg 50"), "{}", stderr(&o));
 }
+
+#[test]
+fn thickness_translucency_renders_a_glowing_wedge_and_refuses_bad_parameters() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("wedge.png");
+    let args = ["render", "--mesh", "builtin:wedge", "--subsurface", "thickness", "--medium", "skin1", "--lights"];
+    let o = rouge(&[&args[..], &["back", "--look", "bare", "--width", "48", "--height", "32", "--explain"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = stdout(&o);
+    // skin1's parameters fitted to the path tracer (data/media/skin1.json).
+    for line in
+        ["thickness        normal, albedo, depth, local thickness", "local-thickness map", "distortion 0.75, power 1"]
+    {
+        assert!(s.contains(line), "{line:?} missing:\n{s}");
+    }
+    // Per light, from the shadow map: no bake, and the light's shadow map is read.
+    let o = Command::new(env!("CARGO_BIN_EXE_rouge"))
+        .args(args)
+        .args([
+            "back",
+            "--thickness-source",
+            "shadow-map",
+            "--look",
+            "bare",
+            "--width",
+            "48",
+            "--height",
+            "32",
+            "--out",
+        ])
+        .arg(&out)
+        .current_dir(root())
+        .output()
+        .expect("run rouge");
+    assert!(o.status.success() && out.exists(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("local thickness of"), "the shadow-map source bakes nothing: {}", stderr(&o));
+    for (bad, says) in [
+        (&["--translucency", "0.1,2,10"][..], "DISTORTION,POWER,SCALE,AMBIENT"),
+        (&["--translucency", "0.1,-2,10,0"][..], "power -2"),
+        (&["--thickness-cutoff-mm", "0"][..], "--thickness-cutoff-mm 0"),
+        (&["--morph", "1.5"][..], "--morph 1.5"),
+    ] {
+        let o = rouge(&[&args[..], &["back", "--out", "never.png"], bad].concat());
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        assert!(stderr(&o).contains(says), "{bad:?}: {}", stderr(&o));
+    }
+}

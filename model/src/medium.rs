@@ -127,6 +127,17 @@ impl Medium {
         Ok(m)
     }
 
+    /// This medium with the boundary's relative index of refraction `eta` instead of its own;
+    /// everything else (coefficients, provenance, fitted parameters) kept.
+    ///
+    /// # Errors
+    /// [`ModelError::Invalid`] for η outside [1, 3].
+    pub fn with_eta(&self, eta: f64) -> Result<Medium> {
+        let m = Medium { eta, ..self.clone() };
+        m.validate().map_err(ModelError::Invalid)?;
+        Ok(m)
+    }
+
     /// A built-in medium by name ([`BUILTIN_MEDIA`]).
     ///
     /// # Errors

@@ -463,6 +463,49 @@ mod tests {
     }
 
     #[test]
+    fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
+        use crate::local_thickness::{ThicknessSource, TranslucencyParams};
+        let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true };
+        let mut scene = Scene::rig(crate::scene::LightRig::Back);
+        // Not used: neither the pass nor the target.
+        let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+        assert!(!steps(&plan).contains(&"thickness".to_string()));
+        assert!(!plan.targets.contains(&Target::LocalThickness));
+        assert!(plan.explain().contains("no material uses the thickness model"));
+        // Baked: the G-buffer samples the map, the pass adds to the diffuse radiance, no SSS.
+        let params = TranslucencyParams::THREE_JS;
+        let baked = ThicknessSource::for_medium(true, None, 8, 20.0);
+        scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone() };
+        let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+        assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
+        assert!(plan.targets.contains(&Target::LocalThickness) && plan.kernel.is_none());
+        assert_eq!(plan.variant.thickness, ThicknessVariant::Baked);
+        assert!(plan.passes[1].reads.contains(&"local-thickness map".to_string()));
+        // The baked source without its map is an error that says what to do.
+        let none = Uploaded { local_thickness_map: false, ..up };
+        let err = FramePlan::new(&scene, none, settings()).expect_err("no map");
+        assert!(err.to_string().contains("set_local_thickness"), "{err}");
+        // Shadow-map source: lights without a shadow map get no term, and with none the pass goes.
+        scene.skin.subsurface =
+            SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(false, None, 8, 20.0) };
+        let plan = FramePlan::new(&scene, none, settings()).expect("plan");
+        assert_eq!(plan.variant.thickness, ThicknessVariant::ShadowMap);
+        assert!(plan.passes.iter().any(|p| p.step == Step::Thickness && p.reads.contains(&"shadow maps".into())));
+        scene.lights[0].shadows = false;
+        let plan = FramePlan::new(&scene, none, settings()).expect("plan");
+        assert!(!plan.targets.contains(&Target::LocalThickness));
+        let text = plan.explain();
+        assert!(
+            text.contains("no light has a shadow map") && text.contains("thickness translucency of light 0"),
+            "{text}"
+        );
+        // Parameters out of their domain.
+        scene.skin.subsurface =
+            SubsurfaceModel::Thickness { params: TranslucencyParams { power: -1.0, ..params }, source: baked };
+        assert!(FramePlan::new(&scene, up, settings()).is_err());
+    }
+
+    #[test]
     fn bad_requests_are_errors() {
         let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false };
         let scene = Scene::studio();

@@ -12,7 +12,7 @@
 //!
 //! Code: edits go through the egui-free [`crate::editor::Editor`]; `edit.rs` uploads what each
 //! edit changed. One file per panel (`layers.rs`, `brush.rs`, `materials_panel.rs`, `menu.rs`,
-//! `viewport.rs`); `viewport.rs` also holds the view and GPU state, `session.rs` the background
+//! `viewport.rs`, `translucency.rs` for the subsurface model); `viewport.rs` also holds the view and GPU state, `session.rs` the background
 //! jobs (mesh preparation, autosave, recovery, the window screenshot).
 
 mod brush;
@@ -22,6 +22,7 @@ pub mod materials;
 mod materials_panel;
 mod menu;
 mod session;
+mod translucency;
 mod viewport;
 
 use crate::editor::Editor;
@@ -311,6 +312,8 @@ impl eframe::App for RougeApp {
                 self.project_folder_panel(ui);
                 ui.separator();
                 self.light_panel(ui);
+                ui.separator();
+                self.subsurface_panel(ui);
             });
         });
         egui::Panel::right("materials").default_size(320.0).show(ui, |ui| self.materials_panel(ui));

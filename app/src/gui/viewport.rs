@@ -1,6 +1,7 @@
 //! The viewport: orbit camera, lights, picking on the GPU depth buffer, frames into egui
 //! native textures (with the bare-skin half of the before/after split), input and overlays.
 
+use super::translucency::{LocalThicknessState, SubsurfaceChoice};
 use super::*;
 
 /// Orbit camera state (the renderer's `Camera` is derived from it and the mesh bounds).
@@ -23,8 +24,11 @@ impl Default for Orbit {
 #[derive(Debug)]
 pub(super) struct ViewState {
     pub(super) orbit: Orbit,
-    /// The studio scene with the key light below applied ([`ViewState::update_lights`]).
-    scene: Scene,
+    /// The studio scene with the key light below applied ([`ViewState::update_lights`]) and
+    /// the subsurface model ([`RougeApp::apply_subsurface`]).
+    pub(super) scene: Scene,
+    /// The skin's subsurface model in the viewport.
+    pub(super) subsurface: SubsurfaceChoice,
     pub(super) light_yaw_deg: f32,
     pub(super) light_pitch_deg: f32,
     pub(super) light_intensity: f32,
@@ -43,6 +47,7 @@ impl Default for ViewState {
         ViewState {
             orbit: Orbit::default(),
             scene: Scene::studio(),
+            subsurface: SubsurfaceChoice::ScreenSpace,
             light_yaw_deg: -34.0,
             light_pitch_deg: 27.0,
             light_intensity: 1.0,
@@ -106,6 +111,8 @@ pub(super) struct GpuState {
     /// The size of the last frame, in pixels.
     pub(super) frame_size: (u32, u32),
     last_frame_ms: f64,
+    /// The baked local thickness of the mesh, for the translucency.
+    pub(super) local_thickness: LocalThicknessState,
 }
 
 impl std::fmt::Debug for GpuState {
@@ -130,6 +137,7 @@ impl GpuState {
             bare_texture: None,
             frame_size: (0, 0),
             last_frame_ms: 0.0,
+            local_thickness: LocalThicknessState::Missing,
         }
     }
 
@@ -139,9 +147,16 @@ impl GpuState {
     /// As [`Renderer::set_mesh`]; the previous mesh stays.
     pub(super) fn set_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
         self.renderer.set_mesh(&mesh, skin_albedo)?;
+        self.renderer.set_local_thickness(None)?;
+        self.local_thickness = LocalThicknessState::Missing;
         self.bare = None;
         self.mesh = Some(mesh);
         Ok(())
+    }
+
+    /// A copy of the mesh for a bake on another thread.
+    pub(super) fn mesh_for_bake(&self) -> Option<TriangleMesh> {
+        self.mesh.clone()
     }
 
     pub(super) fn has_mesh(&self) -> bool {
@@ -245,6 +260,7 @@ impl RougeApp {
         }
         let start = Instant::now();
         self.view.update_lights();
+        self.apply_subsurface();
         if let Err(e) = self.gpu.render(&self.view.scene, &camera, size) {
             self.ui.message = Some((false, e.to_string()));
         }
@@ -263,6 +279,7 @@ impl RougeApp {
     pub fn screenshot(&mut self, path: &Path, size: (u32, u32)) -> Result<()> {
         let camera = self.camera().context("no mesh yet")?;
         self.view.update_lights();
+        self.apply_subsurface();
         self.gpu.renderer.render(&self.view.scene, &camera, size.0, size.1, true)?;
         let pixels = self.gpu.renderer.read_display()?;
         write_png(path, size.0, size.1, &pixels)?;
@@ -342,6 +359,11 @@ impl RougeApp {
                 self.view.orbit.zoom = (self.view.orbit.zoom * (1.0 + scroll * 0.002)).clamp(0.3, 8.0);
                 self.view.needs_render = true;
             }
+        }
+        if self.baking() {
+            // Pick up the bake when it lands.
+            self.view.needs_render = true;
+            ui.ctx().request_repaint_after(Duration::from_millis(100));
         }
         if self.view.needs_render || size != self.gpu.frame_size {
             self.render(size);
