@@ -92,6 +92,8 @@ struct Row {
     model: String,
     params: serde_json::Value,
     gpu_ms: Option<f64>,
+    /// GPU ms of each pass (the thickness pass's own cost is `thickness`).
+    pass_ms: std::collections::BTreeMap<String, f64>,
     wall_ms: f64,
     rmse: f64,
     delta_e_mean: f64,
@@ -245,6 +247,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
                 model: model.to_string(),
                 params,
                 gpu_ms: m.gpu_ms,
+                pass_ms: m.pass_ms.iter().cloned().collect(),
                 wall_ms: m.wall_ms,
                 rmse: m.error.rmse,
                 delta_e_mean: m.error.delta_e_mean,
@@ -348,6 +351,15 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     let timed = rows.iter().all(|r| r.gpu_ms.is_some());
     let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
     let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189]];
+    // One colour per thickness configuration in every chart.
+    let mut thickness_labels: Vec<String> = Vec::new();
+    for r in rows.iter().filter(|r| r.model == "thickness") {
+        let get = |key: &str| r.params.get(key).and_then(|v| v.as_str()).unwrap_or("?").to_string();
+        let label = format!("thickness {} {}", get("source"), get("params"));
+        if !thickness_labels.contains(&label) {
+            thickness_labels.push(label);
+        }
+    }
     let thickness_palette =
         [[140, 86, 75], [227, 119, 194], [127, 127, 127], [188, 189, 34], [23, 190, 207], [255, 187, 120]];
     let charts: Vec<Chart> = scenes
@@ -373,8 +385,8 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
                         Marker::Cross => [0, 0, 0],
                         Marker::Diamond => [214, 39, 40],
                         Marker::Square => {
-                            thickness_palette
-                                [series.iter().filter(|s| s.marker == Marker::Square).count() % thickness_palette.len()]
+                            let k = thickness_labels.iter().position(|l| *l == label).unwrap_or(0);
+                            thickness_palette[k % thickness_palette.len()]
                         }
                         Marker::Dot => palette[series.iter().filter(|s| s.line).count() % palette.len()],
                     };

@@ -192,6 +192,30 @@ fn before_after_split_shows_bare_skin_left_of_the_line() {
 }
 
 #[test]
+fn the_subsurface_panel_switches_to_translucency_once_the_bake_lands() {
+    use rouge_app::gui::SubsurfaceChoice;
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    assert_eq!(h.state().subsurface_in_use().0, "screen-space");
+    h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessPerLight);
+    h.run_steps(2);
+    assert_eq!(h.state().subsurface_in_use(), ("thickness", false));
+    h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessBaked);
+    h.run_steps(2);
+    // Until the bake lands the viewport keeps the screen-space kernel.
+    let start = std::time::Instant::now();
+    while h.state().subsurface_in_use().1 {
+        assert_eq!(h.state().subsurface_in_use().0, "screen-space");
+        assert!(start.elapsed().as_secs() < 120, "the bake did not land in 2 minutes");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        h.run_steps(1);
+    }
+    h.run_steps(2);
+    assert_eq!(h.state().subsurface_in_use(), ("thickness", false));
+    assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
+}
+
+#[test]
 fn paint_on_the_scanned_head_when_available() {
     let Some(path) = std::env::var_os("ROUGE_SCAN_HEAD") else {
         eprintln!(

@@ -230,9 +230,8 @@ mod tests {
     fn sigma_tr_of_skin1_is_the_diffusion_rate() {
         let m = Medium::builtin("skin1").expect("skin1");
         let s = sigma_tr_per_mm(&m);
-        for c in 0..3 {
-            let (a, sp) = (m.sigma_a_per_mm[c], m.sigma_s_prime_per_mm[c]);
-            assert!((s[c] * s[c] - 3.0 * a * (a + sp)).abs() < 1e-12);
+        for ((s, a), sp) in s.iter().zip(m.sigma_a_per_mm).zip(m.sigma_s_prime_per_mm) {
+            assert!((s * s - 3.0 * a * (a + sp)).abs() < 1e-12);
         }
         assert!(s[0] < s[1] && s[1] < s[2], "red travels farthest in skin: {s:?}");
     }

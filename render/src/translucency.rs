@@ -80,12 +80,14 @@ pub struct ErrorFigures {
 }
 
 /// One frame's cost and error.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct Measured {
     /// Sum of the passes' GPU times, ms (timestamp queries), if the adapter has them.
     pub gpu_ms: Option<f64>,
     /// Mean wall time of a frame, ms.
     pub wall_ms: f64,
+    /// GPU ms per pass (timestamp queries), when the adapter has them.
+    pub pass_ms: Vec<(String, f64)>,
     /// Error against the reference.
     pub error: ErrorFigures,
 }
@@ -124,6 +126,7 @@ pub fn measure(p: &mut Prepared, reference: &ReferenceImage, frames: u32) -> Res
     Ok(Measured {
         gpu_ms: times.gpu_frame_ms,
         wall_ms: times.wall_frame_ms,
+        pass_ms: times.passes,
         error: ErrorFigures { rmse, delta_e_mean, delta_e_p95, pixels },
     })
 }

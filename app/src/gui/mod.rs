@@ -23,6 +23,7 @@ mod materials_panel;
 mod menu;
 mod session;
 mod translucency;
+pub use translucency::SubsurfaceChoice;
 mod viewport;
 
 use crate::editor::Editor;
@@ -185,6 +186,18 @@ impl RougeApp {
         self.view.split = on;
         self.view.split_at = at.clamp(0.0, 1.0);
         self.view.needs_render = true;
+    }
+
+    /// Chooses the skin's subsurface model in the viewport (the Subsurface panel's choice).
+    pub fn set_subsurface(&mut self, choice: SubsurfaceChoice) {
+        self.view.subsurface = choice;
+        self.view.needs_render = true;
+    }
+
+    /// The subsurface model the viewport's last frame used (`screen-space`, `thickness`, `none`),
+    /// and whether a local-thickness bake is still running.
+    pub fn subsurface_in_use(&self) -> (&'static str, bool) {
+        (self.view.scene.skin.subsurface.name(), self.baking())
     }
 
     /// A point on the lips of the default head (the centre of the lipstick layer's texels).

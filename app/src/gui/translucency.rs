@@ -16,7 +16,7 @@ use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 
 /// The subsurface models the viewport offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum SubsurfaceChoice {
+pub enum SubsurfaceChoice {
     /// d'Eon's skin profile through the separable kernel.
     ScreenSpace,
     /// Thickness translucency with the baked local thickness.

@@ -1,0 +1,101 @@
+"""Where the thickness translucency ([BarreBrisebois2011]) is right and where it fails: the
+backlit reference scenes rendered by `rouge render` with no subsurface term and with the
+thickness model (baked and per-light local thickness, parameters fitted to the path tracer),
+next to the Mitsuba 3 reference and the per-pixel error (docs/BENCHMARKS.md, docs/TRANSLUCENCY.md).
+
+    python python/thickness_figure.py --rouge target/release/rouge --out docs/images/thickness_translucency.png
+
+Each row is a scene; columns: reference, none, baked, per light (tone-mapped alike), then the
+absolute error of the baked and per-light frames (linear radiance, 0 to --error-max, black to
+white). Pixels outside the reference's coverage are black.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import mitsuba_ref  # noqa: E402
+
+REFS = HERE.parent / "data" / "reference" / "translucency"
+SCENES = ["head-skin1-back", "hand-skin1-back", "head-skin1-back-morph", "wedge-marble"]
+MODELS = [
+    ("none", ["--subsurface", "none"]),
+    ("baked", ["--subsurface", "thickness", "--thickness-source", "baked"]),
+    ("per light", ["--subsurface", "thickness", "--thickness-source", "shadow-map"]),
+]
+
+
+def tone(rgb: np.ndarray, exposure: float) -> np.ndarray:
+    """Reinhard on each channel, then the sRGB curve, as 8-bit."""
+    x = np.clip(rgb * exposure, 0.0, None)
+    x = x / (1.0 + x)
+    x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+    return (np.clip(x, 0.0, 1.0) * 255 + 0.5).astype(np.uint8)
+
+
+def render(rouge: str, options: list[str], extra: list[str], out: Path) -> np.ndarray:
+    cmd = [rouge, "render", *options, *extra, "--no-specular", "--out", str(out)]
+    subprocess.run(cmd, check=True, capture_output=True, cwd=HERE.parent)
+    return mitsuba_ref.read_exr(out)[..., :3]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
+    ap.add_argument("--out", type=Path, default=HERE.parent / "docs" / "images" / "thickness_translucency.png")
+    ap.add_argument("--exposure", type=float, default=8.0)
+    ap.add_argument("--error-max", type=float, default=0.1)
+    ap.add_argument("--size", type=int, default=192, help="each tile's side, pixels")
+    a = ap.parse_args()
+
+    import mitsuba as mi
+    from PIL import Image, ImageDraw
+
+    mi.set_variant("scalar_rgb")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene in SCENES:
+            sidecar = json.loads((REFS / f"{scene}.json").read_text())
+            ref = mitsuba_ref.read_exr(REFS / sidecar["image"])
+            covered = ref[..., 3] > 0.999
+            tiles = [tone(ref[..., :3], a.exposure)]
+            errors = []
+            for name, extra in MODELS:
+                img = render(a.rouge, sidecar["rouge_options"], extra, Path(tmp) / f"{scene}-{name}.exr")
+                img[~covered] = 0.0
+                tiles.append(tone(img, a.exposure))
+                if name != "none":
+                    err = np.abs(img - ref[..., :3]).mean(axis=-1) / a.error_max
+                    errors.append((np.clip(err, 0.0, 1.0)[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
+            row = [Image.fromarray(t).resize((a.size, a.size), Image.NEAREST) for t in tiles + errors]
+            rows.append((scene, row))
+    labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
+    pad, head = 4, 18
+    w = len(labels) * (a.size + pad) + pad
+    h = head + len(rows) * (a.size + head + pad)
+    sheet = Image.new("RGB", (w, h), (255, 255, 255))
+    draw = ImageDraw.Draw(sheet)
+    for i, label in enumerate(labels):
+        draw.text((pad + i * (a.size + pad) + 4, 3), label, fill=(0, 0, 0))
+    for r, (scene, row) in enumerate(rows):
+        y = head + r * (a.size + head + pad)
+        draw.text((pad + 4, y + 2), scene, fill=(0, 0, 0))
+        for i, tile in enumerate(row):
+            sheet.paste(tile, (pad + i * (a.size + pad), y + head))
+    a.out.parent.mkdir(parents=True, exist_ok=True)
+    sheet.save(a.out)
+    print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()
