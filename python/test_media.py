@@ -92,7 +92,7 @@ def test_files_match_table():
 @pytest.mark.parametrize("path", media_files(), ids=lambda p: p.stem)
 def test_schema(path: Path):
     m = json.loads(path.read_text(encoding="utf-8"))
-    assert set(m) == KEYS, f"extra {sorted(set(m) - KEYS)}, missing {sorted(KEYS - set(m))}"
+    assert set(m) - {"translucency"} == KEYS, f"extra {sorted(set(m) - KEYS)}, missing {sorted(KEYS - set(m))}"
     assert m["schema"] == "rouge-medium"
     assert m["version"] == 1 and isinstance(m["version"], int)
     assert m["name"] == path.stem
@@ -110,6 +110,17 @@ def test_schema(path: Path):
     # The table gives sigma_s' only: the files state the isotropic equivalent.
     assert m["g"] == 0.0
     assert isinstance(m["eta"], float) and math.isfinite(m["eta"]) and 1.0 < m["eta"] < 2.0
+    # Optional: the thickness model's parameters fitted to the path tracer, one per source
+    # (`rouge bench translucency --fit-thickness`, docs/BENCHMARKS.md).
+    fits = m.get("translucency", [])
+    assert isinstance(fits, list)
+    assert len({f["source"] for f in fits}) == len(fits), "one fit per source"
+    for f in fits:
+        assert set(f) == {"source", "distortion", "power", "scale", "ambient", "fitted_on"}, f
+        assert f["source"] in ("baked", "shadow-map"), f
+        assert all(math.isfinite(f[k]) for k in ("distortion", "power", "scale", "ambient")), f
+        assert f["power"] > 0 and 0 <= f["scale"] <= 100 and f["ambient"] >= 0, f
+        assert "RMSE" in f["fitted_on"] and "--fit-thickness" in f["fitted_on"], f
 
 
 @pytest.mark.parametrize("name", sorted(CITED))

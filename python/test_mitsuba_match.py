@@ -139,9 +139,17 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     png = (tmp_path / "plot.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
-    assert {r["model"] for r in rows} == {"none", "screen-space"}
+    assert {r["model"] for r in rows} == {"none", "screen-space", "thickness"}
     for r in rows:
         assert r["pixels"] > 1000 and np.isfinite([r["rmse"], r["delta_e_mean"], r["delta_e_p95"]]).all(), r
     none = next(r for r in rows if r["model"] == "none")
     kernel = next(r for r in rows if r["model"] == "screen-space")
     assert kernel["rmse"] != none["rmse"]
+    # The thickness model: both sources, three.js's and the fitted parameters; fitted per light,
+    # skim milk's sphere comes closer to the path tracer than with no term.
+    thickness = {(r["params"]["source"], r["params"]["params"]): r for r in rows if r["model"] == "thickness"}
+    assert set(thickness) == {(s, p) for s in ("baked", "shadow-map") for p in ("three.js", "fitted")}
+    assert thickness[("shadow-map", "fitted")]["rmse"] < none["rmse"]
+    # With timestamp queries (lavapipe has them) the thickness pass has its own time.
+    assert all("thickness" in r["pass_ms"] for r in thickness.values() if r["pass_ms"]), "no thickness pass time"
+    assert thickness[("baked", "three.js")]["params"]["bake_s"] >= 0

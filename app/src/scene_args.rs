@@ -4,6 +4,8 @@
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use rouge_measure::Extrapolation;
+use rouge_measure::analysis::skin::read_skins;
 use rouge_model::look::{Look, ThicknessSource};
 use rouge_model::medium::Medium;
 use rouge_render::diffusion::ProfileModel;
@@ -81,6 +83,15 @@ pub struct SceneArgs {
     /// diffusion [Christensen2015]. docs/BENCHMARKS.md says which matches the path tracer best.
     #[arg(long, value_enum, default_value_t = Profile::BetterDipole)]
     pub profile: Profile,
+    /// Skin reflectance for the skin's colour: a CSV table (`wavelength_nm` or `wavelength` and
+    /// one column per skin, or one skin per row) or a CGATS file, e.g. a measured skin of your
+    /// own or one of python/skin_gamut.py's skins; the first skin unless --skin-sample names one.
+    /// Spectra not covering 380-780 nm have their end values held.
+    #[arg(long, conflicts_with_all = ["medium", "sigma_a"])]
+    pub skin: Option<PathBuf>,
+    /// Which skin of --skin.
+    #[arg(long, requires = "skin")]
+    pub skin_sample: Option<String>,
     /// Morph the mesh toward its bounding sphere by this fraction (0 to 1): a deformation for
     /// testing what depends on the rest pose (the baked local thickness of --subsurface thickness).
     #[arg(long, default_value_t = 0.0)]
@@ -172,6 +183,18 @@ impl SceneArgs {
         let mut scene = Scene::rig(rig);
         if self.no_environment {
             scene.environment = None;
+        }
+        if let Some(path) = &self.skin {
+            let skins = read_skins(path, Extrapolation::Constant)?;
+            let names = || skins.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ");
+            let (_, spectrum) = match &self.skin_sample {
+                Some(name) => skins
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .with_context(|| format!("{}: no skin `{name}` (it has {})", path.display(), names()))?,
+                None => skins.first().with_context(|| format!("{}: no skin spectra", path.display()))?,
+            };
+            scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(spectrum) };
         }
         let mut fit = None;
         if let Some(medium) = self.medium()? {

@@ -425,3 +425,24 @@ fn thickness_translucency_renders_a_glowing_wedge_and_refuses_bad_parameters() {
         assert!(stderr(&o).contains(says), "{bad:?}: {}", stderr(&o));
     }
 }
+
+#[test]
+fn a_skin_reflectance_file_sets_the_skin_colour_and_a_missing_sample_is_named() {
+    let args = ["render", "--skin", "data/skin/colorchecker_skin.csv", "--look", "bare", "--explain"];
+    let o = rouge(&[&args[..], &["--skin-sample", "dark_skin", "--width", "32", "--height", "24"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let dark = stdout(&o);
+    let o = rouge(&[&args[..], &["--skin-sample", "light_skin", "--width", "32", "--height", "24"]].concat());
+    let light = stdout(&o);
+    let albedo = |s: &str| -> f64 {
+        let line = s.lines().find(|l| l.starts_with("skin: ")).expect("the skin line of the plan");
+        let at = line.find("albedo ").expect("albedo") + 7;
+        line[at..].split(',').next().and_then(|v| v.trim().parse().ok()).expect("a number")
+    };
+    assert!(albedo(&dark) < 0.6 * albedo(&light), "dark {} light {}", albedo(&dark), albedo(&light));
+    let o = rouge(&[&args[..], &["--skin-sample", "olive", "--out", "never.png"]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no skin `olive`") && stderr(&o).contains("dark_skin, light_skin"), "{}", stderr(&o));
+    let o = rouge(&["render", "--skin", "data/skin/colorchecker_skin.csv", "--medium", "skin1", "--out", "never.png"]);
+    assert_eq!(o.status.code(), Some(2), "--skin and --medium both set the skin");
+}

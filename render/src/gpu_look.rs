@@ -213,20 +213,7 @@ impl SkinTextures {
             if w == 0 || h == 0 {
                 return Err(RenderError::Invalid(format!("{label}: empty image")));
             }
-            let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-            let t = texture(device, &format!("SkinTextures::{label}"), (w, h), 1, format, usage, &[]);
-            queue.write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &t,
-                    mip_level: 0,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                img.as_raw(),
-                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
-                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-            );
-            Ok(view(&t))
+            Ok(upload_2d(device, queue, &format!("SkinTextures::{label}"), (w, h), format, img.as_raw(), 4))
         };
         Ok(SkinTextures {
             albedo: albedo.map(|a| upload(a, wgpu::TextureFormat::Rgba8UnormSrgb, "albedo map")).transpose()?,
@@ -253,10 +240,32 @@ pub fn upload_local_thickness(
             texels.len()
         )));
     }
-    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-    let t =
-        texture(device, "SkinTextures::local thickness", (width, height), 1, crate::targets::HDR_FORMAT, usage, &[]);
     let halves: Vec<u16> = texels.iter().flatten().map(|&v| half::f16::from_f32(v).to_bits()).collect();
+    let format = crate::targets::HDR_FORMAT;
+    Ok(upload_2d(
+        device,
+        queue,
+        "SkinTextures::local thickness",
+        (width, height),
+        format,
+        bytemuck::cast_slice(&halves),
+        8,
+    ))
+}
+
+/// A sampled 2D texture of `size` and `format` holding `bytes` (rows of `bytes_per_texel` ×
+/// width, top row first), and its view.
+fn upload_2d(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    bytes: &[u8],
+    bytes_per_texel: u32,
+) -> wgpu::TextureView {
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+    let t = texture(device, label, (width, height), 1, format, usage, &[]);
     queue.write_texture(
         wgpu::TexelCopyTextureInfo {
             texture: &t,
@@ -264,9 +273,13 @@ pub fn upload_local_thickness(
             origin: wgpu::Origin3d::ZERO,
             aspect: wgpu::TextureAspect::All,
         },
-        bytemuck::cast_slice(&halves),
-        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(8 * width), rows_per_image: Some(height) },
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(bytes_per_texel * width),
+            rows_per_image: Some(height),
+        },
         wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
-    Ok(view(&t))
+    view(&t)
 }
