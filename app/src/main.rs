@@ -63,8 +63,10 @@ enum Command {
     Km(cmd_km::KmCommand),
     /// Colour of spectra: XYZ, CIELAB, linear and encoded sRGB as a JSON array.
     ///
-    /// FILE is a CSV with a `wavelength_nm` column and one column per sample (reflectance as
-    /// fractions or percent), on any grid covering 380-780 nm (resampled with Sprague).
+    /// FILE is a CSV with a `wavelength_nm` (or `wavelength`, as colour-science writes) column and
+    /// one column per sample, or transposed: one sample per row with the wavelengths in the header
+    /// (reflectance as fractions or percent), on any grid covering 380-780 nm (resampled with
+    /// Sprague).
     Color(cmd_color::ColorArgs),
     /// Render the face with makeup: one frame to a PNG (tone-mapped) or an EXR (linear).
     ///
