@@ -409,7 +409,16 @@ def fmt4(x: float) -> str:
     return "0.0000" if s == "-0.0000" else s
 
 
-def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
+CROP_NAMES = ("P", "body", "neck_loop", "neck", "crown", "head_face_ids", "topo", "boundary", "eye_groups",
+              "eye_face_ids", "eye_info", "head_verts", "nose_tip", "chin", "chin_to_crown_mm", "eye_y", "ear",
+              "origin", "all_face_ids", "out_v", "out_vt", "vmap", "tmap")
+
+
+def crop(obj: Obj) -> dict:
+    """The head cut out of hm08: its faces, the output vertex order (`out_v`: hm08 vertex index
+    of each output vertex, ascending), the origin in hundredths of a mm, and the landmarks the
+    header and the masks use; keyed by CROP_NAMES. python/gen_head_targets.py crops the targets
+    with it, so they follow this file's vertex order."""
     P = obj.P
     body = obj.group_faces("body")
     body_polys = [[c[0] for c in obj.faces[i]] for i in body]
@@ -468,6 +477,14 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     assert all(c[1] >= 0 for i in all_face_ids for c in obj.faces[i]), "faces without uv"
     vmap = {v: k for k, v in enumerate(out_v)}
     tmap = {t: k for k, t in enumerate(out_vt)}
+    return {k: v for k, v in locals().items() if k in CROP_NAMES}
+
+
+def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
+    c = crop(obj)
+    (P, body, neck_loop, neck, crown, head_face_ids, topo, boundary, eye_groups, eye_face_ids, eye_info, head_verts,
+     nose_tip, chin, chin_to_crown_mm, eye_y, ear, origin, all_face_ids, out_v, out_vt, vmap, tmap) = (
+        c[k] for k in CROP_NAMES)
     vi = np.array(obj.v_int, dtype=np.int64)[out_v]
     cmm = vi - np.array(origin, dtype=np.int64)  # hundredths of a mm, exact
     X = cmm / 100.0  # mm
