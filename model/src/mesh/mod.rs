@@ -4,12 +4,14 @@
 //! scans come in arbitrary units (metres, centimetres, millimetres).
 
 mod cap;
+pub mod deform;
 mod gltf;
 mod load;
 mod obj;
 pub mod shapes;
 mod subdivide;
 mod tangents;
+pub mod targets;
 
 use std::collections::HashMap;
 use std::ops::Range;
@@ -183,18 +185,7 @@ impl Mesh {
     /// Replaces the normals by area-weighted smooth vertex normals, one per position
     /// (`Corner::normal == Corner::position`). Vertices with no area get +Z instead of NaN.
     pub fn recompute_normals(&mut self) {
-        let mut acc = vec![Vec3::ZERO; self.positions.len()];
-        for face in &self.faces {
-            // Newell's method: the vector area (twice the area times the unit normal).
-            let n = polygon_vector_area(&self.positions, &face.corners);
-            if !n.is_finite() {
-                continue;
-            }
-            for c in &face.corners {
-                acc[c.position as usize] += n;
-            }
-        }
-        self.normals = acc.into_iter().map(|n| n.try_normalize().unwrap_or(Vec3::Z)).collect();
+        self.normals = vertex_normals(&self.positions, &self.faces);
         for face in &mut self.faces {
             for c in &mut face.corners {
                 c.normal = c.position;
@@ -206,10 +197,17 @@ impl Mesh {
     /// diagonal) into an indexed triangle mesh with one vertex per unique
     /// (position, uv, normal) triple. Faces whose corners are all the same point are dropped.
     pub fn triangulate(&self) -> TriangleMesh {
+        self.triangulate_with_sources().0
+    }
+
+    /// [`Mesh::triangulate`], and the position index each triangle-mesh vertex came from.
+    pub(crate) fn triangulate_with_sources(&self) -> (TriangleMesh, Vec<u32>) {
         let mut out = TriangleMesh::default();
+        let mut sources = Vec::new();
         let mut map: HashMap<Corner, u32> = HashMap::new();
         let mut vertex = |c: Corner, out: &mut TriangleMesh| -> u32 {
             *map.entry(c).or_insert_with(|| {
+                sources.push(c.position);
                 out.positions.push(self.positions[c.position as usize]);
                 out.uvs.push(self.uvs[c.uv as usize]);
                 out.normals.push(self.normals[c.normal as usize].try_normalize().unwrap_or(Vec3::Z));
@@ -254,7 +252,7 @@ impl Mesh {
                 triangles: start..out.indices.len() / 3,
             });
         }
-        out
+        (out, sources)
     }
 }
 
@@ -321,6 +319,23 @@ impl TriangleMesh {
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
     }
+}
+
+/// Area-weighted smooth normals of `faces` over `positions`, one per position (+Z where a
+/// vertex has no area): the sum of the vector areas of the faces around each vertex, normalised.
+pub(crate) fn vertex_normals(positions: &[Vec3], faces: &[Face]) -> Vec<Vec3> {
+    let mut acc = vec![Vec3::ZERO; positions.len()];
+    for face in faces {
+        // Newell's method: the vector area (twice the area times the unit normal).
+        let n = polygon_vector_area(positions, &face.corners);
+        if !n.is_finite() {
+            continue;
+        }
+        for c in &face.corners {
+            acc[c.position as usize] += n;
+        }
+    }
+    acc.into_iter().map(|n| n.try_normalize().unwrap_or(Vec3::Z)).collect()
 }
 
 /// Newell's vector area of a polygon: its direction is the normal, its length twice the area.

@@ -1,4 +1,7 @@
-//! Catmull-Clark subdivision with boundary rules and face-varying linear UVs.
+//! Catmull-Clark subdivision with boundary rules and face-varying linear UVs, split into what
+//! depends on the connectivity ([`StepTopology`], computed once) and what depends on the
+//! positions ([`StepTopology::positions`]), so a deforming mesh re-runs only the latter
+//! ([`super::deform::SubdivisionPlan`]).
 
 use std::collections::HashMap;
 
@@ -27,69 +30,92 @@ impl Mesh {
     pub fn catmull_clark(&self, levels: u32) -> Mesh {
         let mut mesh = self.clone();
         for _ in 0..levels {
-            mesh = mesh.subdivide_once();
+            let step = StepTopology::new(&mesh);
+            let positions = step.positions(&mesh.positions);
+            mesh = Mesh { positions, ..step.children(&mesh) };
         }
         if levels > 0 {
             mesh.recompute_normals();
         }
         mesh
     }
+}
 
-    fn subdivide_once(&self) -> Mesh {
-        let nv = self.positions.len();
-        // Edges and their adjacent face counts.
-        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut edge_list: Vec<(u32, u32)> = Vec::new();
-        let mut edge_faces: Vec<u32> = Vec::new();
-        let mut edge_face_sum: Vec<Vec3> = Vec::new();
-        let face_points: Vec<Vec3> = self
-            .faces
-            .iter()
-            .map(|f| {
-                f.corners.iter().map(|c| self.positions[c.position as usize]).sum::<Vec3>() / f.corners.len() as f32
-            })
-            .collect();
-        for (fi, f) in self.faces.iter().enumerate() {
+/// The connectivity of one subdivision step: the parent's faces, edges and which faces each
+/// edge borders, in the order the position rules sum them.
+#[derive(Debug, Clone)]
+pub(crate) struct StepTopology {
+    /// Parent vertex count.
+    nv: usize,
+    /// Parent faces' corner positions, flattened; face `f` is `corners[face_start[f]..face_start[f + 1]]`.
+    corners: Vec<u32>,
+    face_start: Vec<usize>,
+    /// Edge of each flattened corner: from that corner to the next one of its face.
+    corner_edge: Vec<u32>,
+    /// Edges (smaller position first), in the order first met.
+    edges: Vec<(u32, u32)>,
+    /// Faces bordering each edge.
+    edge_faces: Vec<u32>,
+}
+
+impl StepTopology {
+    pub(crate) fn new(mesh: &Mesh) -> StepTopology {
+        let mut ids: HashMap<(u32, u32), u32> = HashMap::new();
+        let (mut corners, mut corner_edge, mut edges, mut edge_faces) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut face_start = Vec::with_capacity(mesh.faces.len() + 1);
+        face_start.push(0);
+        for f in &mesh.faces {
             let k = f.corners.len();
             for i in 0..k {
                 let key = edge_key(f.corners[i].position, f.corners[(i + 1) % k].position);
-                let id = *edges.entry(key).or_insert_with(|| {
-                    edge_list.push(key);
+                let id = *ids.entry(key).or_insert_with(|| {
+                    edges.push(key);
                     edge_faces.push(0);
-                    edge_face_sum.push(Vec3::ZERO);
-                    (edge_list.len() - 1) as u32
-                }) as usize;
-                edge_faces[id] += 1;
-                edge_face_sum[id] += face_points[fi];
+                    (edges.len() - 1) as u32
+                });
+                edge_faces[id as usize] += 1;
+                corners.push(f.corners[i].position);
+                corner_edge.push(id);
             }
+            face_start.push(corners.len());
         }
-        let ne = edge_list.len();
-        let is_boundary = |e: usize| edge_faces[e] != 2;
+        StepTopology { nv: mesh.positions.len(), corners, face_start, corner_edge, edges, edge_faces }
+    }
 
-        // Edge points.
-        let edge_points: Vec<Vec3> = (0..ne)
-            .map(|e| {
-                let (a, b) = edge_list[e];
-                let mid = (self.positions[a as usize] + self.positions[b as usize]) * 0.5;
-                if is_boundary(e) { mid } else { (mid * 2.0 + edge_face_sum[e]) * 0.25 }
+    fn face(&self, f: usize) -> std::ops::Range<usize> {
+        self.face_start[f]..self.face_start[f + 1]
+    }
+
+    /// The child positions from the parent's: the moved parent vertices, then one point per
+    /// edge, then one per face (the Catmull-Clark rules of [`Mesh::catmull_clark`]).
+    pub(crate) fn positions(&self, parent: &[Vec3]) -> Vec<Vec3> {
+        let (nv, ne, nf) = (self.nv, self.edges.len(), self.face_start.len() - 1);
+        let face_points: Vec<Vec3> = (0..nf)
+            .map(|f| {
+                let r = self.face(f);
+                let k = r.len() as f32;
+                self.corners[r].iter().map(|&c| parent[c as usize]).sum::<Vec3>() / k
             })
             .collect();
-
-        // Vertex accumulators.
+        let mut edge_face_sum = vec![Vec3::ZERO; ne];
         let mut face_sum = vec![Vec3::ZERO; nv];
         let mut face_count = vec![0u32; nv];
-        for (fi, f) in self.faces.iter().enumerate() {
-            for c in &f.corners {
-                face_sum[c.position as usize] += face_points[fi];
-                face_count[c.position as usize] += 1;
+        for (f, fp) in face_points.iter().enumerate() {
+            for i in self.face(f) {
+                edge_face_sum[self.corner_edge[i] as usize] += *fp;
+                face_sum[self.corners[i] as usize] += *fp;
+                face_count[self.corners[i] as usize] += 1;
             }
         }
+        let is_boundary = |e: usize| self.edge_faces[e] != 2;
+        let mut out = Vec::with_capacity(nv + ne + nf);
         let mut mid_sum = vec![Vec3::ZERO; nv];
         let mut valence = vec![0u32; nv];
         let mut bnd_sum = vec![Vec3::ZERO; nv];
         let mut bnd_count = vec![0u32; nv];
-        for (e, &(a, b)) in edge_list.iter().enumerate() {
-            let (pa, pb) = (self.positions[a as usize], self.positions[b as usize]);
+        for (e, &(a, b)) in self.edges.iter().enumerate() {
+            let (pa, pb) = (parent[a as usize], parent[b as usize]);
             let mid = (pa + pb) * 0.5;
             for (v, other) in [(a as usize, pb), (b as usize, pa)] {
                 mid_sum[v] += mid;
@@ -100,47 +126,48 @@ impl Mesh {
                 }
             }
         }
-        let mut positions: Vec<Vec3> = (0..nv)
-            .map(|v| {
-                let p = self.positions[v];
-                if face_count[v] == 0 || valence[v] == 0 {
-                    p
-                } else if bnd_count[v] == 2 {
-                    (p * 6.0 + bnd_sum[v]) / 8.0
-                } else if bnd_count[v] > 0 {
-                    p
-                } else {
-                    let n = valence[v] as f32;
-                    let f = face_sum[v] / face_count[v] as f32;
-                    let r = mid_sum[v] / valence[v] as f32;
-                    (f + 2.0 * r + (n - 3.0) * p) / n
-                }
-            })
-            .collect();
-        positions.extend_from_slice(&edge_points);
-        positions.extend_from_slice(&face_points);
+        out.extend((0..nv).map(|v| {
+            let p = parent[v];
+            if face_count[v] == 0 || valence[v] == 0 {
+                p
+            } else if bnd_count[v] == 2 {
+                (p * 6.0 + bnd_sum[v]) / 8.0
+            } else if bnd_count[v] > 0 {
+                p
+            } else {
+                let n = valence[v] as f32;
+                let f = face_sum[v] / face_count[v] as f32;
+                let r = mid_sum[v] / valence[v] as f32;
+                (f + 2.0 * r + (n - 3.0) * p) / n
+            }
+        }));
+        out.extend(self.edges.iter().enumerate().map(|(e, &(a, b))| {
+            let mid = (parent[a as usize] + parent[b as usize]) * 0.5;
+            if is_boundary(e) { mid } else { (mid * 2.0 + edge_face_sum[e]) * 0.25 }
+        }));
+        out.extend_from_slice(&face_points);
+        out
+    }
 
-        // Face-varying linear UVs: original UVs kept, then edge midpoints, then face centroids.
-        let mut uvs = self.uvs.clone();
+    /// The child mesh's faces, UVs and groups (positions empty, normals +Z: the caller fills
+    /// them). Face-varying linear UVs: the parent's kept, then edge midpoints, then face centroids.
+    pub(crate) fn children(&self, parent: &Mesh) -> Mesh {
+        let (nv, ne) = (self.nv, self.edges.len());
+        let mut uvs = parent.uvs.clone();
         let mut uv_edges: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut faces = Vec::with_capacity(self.corner_count());
-        let mut groups = Vec::with_capacity(self.groups.len());
-        let mut face_start = vec![0usize; self.faces.len() + 1];
-        for (fi, f) in self.faces.iter().enumerate() {
-            face_start[fi + 1] = face_start[fi] + f.corners.len();
-        }
-        for (fi, f) in self.faces.iter().enumerate() {
+        let mut faces = Vec::with_capacity(self.corners.len());
+        for (fi, f) in parent.faces.iter().enumerate() {
             let k = f.corners.len();
             let fp = (nv + ne + fi) as u32;
             let fuv = uvs.len() as u32;
-            uvs.push(f.corners.iter().map(|c| self.uvs[c.uv as usize]).sum::<Vec2>() / k as f32);
+            uvs.push(f.corners.iter().map(|c| parent.uvs[c.uv as usize]).sum::<Vec2>() / k as f32);
             // Edge child corners: edge i runs from corner i to corner i + 1.
             let mut edge_corner = Vec::with_capacity(k);
             for i in 0..k {
                 let (a, b) = (f.corners[i], f.corners[(i + 1) % k]);
-                let e = edges.get(&edge_key(a.position, b.position)).copied().unwrap_or(0);
+                let e = self.corner_edge[self.face_start[fi] + i];
                 let uv = *uv_edges.entry(edge_key(a.uv, b.uv)).or_insert_with(|| {
-                    uvs.push((self.uvs[a.uv as usize] + self.uvs[b.uv as usize]) * 0.5);
+                    uvs.push((parent.uvs[a.uv as usize] + parent.uvs[b.uv as usize]) * 0.5);
                     (uvs.len() - 1) as u32
                 });
                 let p = (nv as u32) + e;
@@ -158,12 +185,15 @@ impl Mesh {
                 });
             }
         }
-        for g in &self.groups {
-            let start = face_start[g.faces.start.min(self.faces.len())];
-            let end = face_start[g.faces.end.min(self.faces.len())];
-            groups.push(Group { name: g.name.clone(), material: g.material.clone(), faces: start..end });
-        }
-        let normals = vec![Vec3::Z; positions.len()];
-        Mesh { positions, normals, uvs, faces, groups }
+        let groups = parent
+            .groups
+            .iter()
+            .map(|g| {
+                let at = |f: usize| self.face_start[f.min(parent.faces.len())];
+                Group { name: g.name.clone(), material: g.material.clone(), faces: at(g.faces.start)..at(g.faces.end) }
+            })
+            .collect();
+        let count = nv + ne + parent.faces.len();
+        Mesh { positions: Vec::new(), normals: vec![Vec3::Z; count], uvs, faces, groups }
     }
 }
