@@ -27,6 +27,10 @@ pub enum BenchCommand {
     /// Painting: brush dab to updated frame at 1280×720 with 2048² maps (apply the dab on the
     /// CPU, upload the changed rectangle, render, wait), on the default head.
     Paint(PaintBenchArgs),
+    /// Deforming the default head per frame (expression sliders, the app's animation): apply
+    /// the targets, subdivide (planned topology against afresh), re-upload, render; ms per frame
+    /// at subdivision levels 0, 1 and 2.
+    Deform(crate::bench_deform::DeformBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -89,6 +93,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Render(args) => render(args),
         BenchCommand::Paint(args) => paint(args),
         BenchCommand::Translucency(args) => crate::bench_translucency::run(args),
+        BenchCommand::Deform(args) => crate::bench_deform::run(args),
     }
 }
 

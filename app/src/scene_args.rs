@@ -9,7 +9,7 @@ use rouge_measure::analysis::skin::read_skins;
 use rouge_model::look::{Look, ThicknessSource};
 use rouge_model::medium::Medium;
 use rouge_render::diffusion::ProfileModel;
-use rouge_render::job::{LookChoice, RenderJob};
+use rouge_render::job::{FacePose, LookChoice, RenderJob};
 use rouge_render::profile_fit::FittedProfile;
 use rouge_render::{LightRig, Scene, Skin};
 use std::path::PathBuf;
@@ -96,6 +96,17 @@ pub struct SceneArgs {
     /// testing what depends on the rest pose (the baked local thickness of --subsurface thickness).
     #[arg(long, default_value_t = 0.0)]
     pub morph: f32,
+    /// Expression of the default head: NAME=WEIGHT,... (NAME alone: weight 1) with weights 0 to 1, each NAME a preset
+    /// (neutral, smile, surprise, blink, talk) or a Face Units target (ARKit names: jawOpen,
+    /// mouthSmileLeft, eyeBlinkRight, browInnerUp, ...; data/heads/hm08_targets.txt lists them).
+    /// A unit's total over presets and itself is clamped to 1.
+    #[arg(long)]
+    pub expression: Option<String>,
+    /// Face shape of the default head: NAME=WEIGHT,... from MakeHuman's targets (age, weight,
+    /// gender, head-oval, nose-hump, chin-width, ...: -1 to 1, or 0 to 1 for one-sided shapes
+    /// such as head-oval).
+    #[arg(long)]
+    pub shape: Option<String>,
 }
 
 /// `--lights` values.
@@ -217,6 +228,7 @@ impl SceneArgs {
             scene,
             morph: self.morph,
             thickness_bake_rest_pose: false,
+            face: self.face()?,
         };
         self.note_regions(&job);
         Ok((job, fit))
@@ -241,6 +253,15 @@ impl SceneArgs {
                 mesh.display()
             );
         }
+    }
+
+    /// The expression and face shape the options give (names checked when the job loads).
+    pub fn face(&self) -> Result<FacePose> {
+        let parse = |spec: &Option<String>, option: &str| match spec {
+            Some(s) => FacePose::parse_weights(s, option),
+            None => Ok(Default::default()),
+        };
+        Ok(FacePose { expression: parse(&self.expression, "--expression")?, shape: parse(&self.shape, "--shape")? })
     }
 
     /// Checks the image size and the morph.

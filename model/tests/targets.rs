@@ -175,8 +175,10 @@ fn unknown_names_and_bad_weights_are_named() {
     assert!(err.contains("smile=1.5") && err.contains("0 to 1"), "{err}");
     let err = t.resolve(&pose(&[], &[("head-oval", -0.5)])).expect_err("one-sided").to_string();
     assert!(err.contains("head-oval=-0.5"), "{err}");
-    let err = FacePose::parse_weights("smile=0.8,jawOpen", "--expression").expect_err("syntax").to_string();
-    assert!(err.contains("--expression") && err.contains("`jawOpen`"), "{err}");
+    let err = FacePose::parse_weights("smile=0.8,=0.3", "--expression").expect_err("syntax").to_string();
+    assert!(err.contains("--expression") && err.contains("`=0.3`"), "{err}");
+    let bare = FacePose::parse_weights("blink, jawOpen=0.25", "--expression").expect("bare name");
+    assert_eq!((bare["blink"], bare["jawOpen"]), (1.0, 0.25));
     let err = FacePose::parse_weights("smile=lots", "--expression").expect_err("number").to_string();
     assert!(err.contains("`lots`"), "{err}");
     let mut few = default_head().expect("head").positions;

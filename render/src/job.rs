@@ -15,7 +15,11 @@ use crate::scene::{Camera, Scene, SubsurfaceModel};
 use rouge_model::look::Look;
 use rouge_model::mesh::Bounds;
 use rouge_model::mesh::TriangleMesh;
+use rouge_model::mesh::default_head;
+use rouge_model::mesh::deform::SubdivisionPlan;
 pub use rouge_model::mesh::load_mesh;
+pub use rouge_model::mesh::targets::FacePose;
+use rouge_model::mesh::targets::{TargetError, TargetSet};
 use rouge_model::thickness::{
     BakeSettings, CacheUse, UvMap, bake_local_thickness_cached, default_cache_dir, morph_to_bounding_sphere,
     thickness_uv_map,
@@ -66,6 +70,9 @@ pub struct RenderJob {
     /// Bake the thickness model's local thickness on the undeformed mesh (a map baked once, as
     /// shipped) rather than on the mesh as drawn.
     pub thickness_bake_rest_pose: bool,
+    /// Expression and face shape of the default head (its morph targets), applied before
+    /// subdivision; the neutral, unshaped head is then the rest mesh.
+    pub face: FacePose,
 }
 
 impl Default for RenderJob {
@@ -85,6 +92,7 @@ impl Default for RenderJob {
             scene: Scene::studio(),
             morph: 0.0,
             thickness_bake_rest_pose: false,
+            face: FacePose::default(),
         }
     }
 }
@@ -231,12 +239,17 @@ impl RenderJob {
         if let Some(env) = &env {
             scene.environment = Some(env.sh_irradiance());
         }
-        let mut mesh = load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?;
-        let mut rest_mesh = None;
+        let (mut mesh, mut rest_mesh) = if self.face.is_neutral() {
+            (load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?, None)
+        } else {
+            let (rest, posed) = posed_default_head(self.mesh.as_deref(), &self.face, self.subdivision)?;
+            (posed, Some(rest))
+        };
         if self.morph != 0.0 {
             let morphed = morph_to_bounding_sphere(&mesh, self.morph)
                 .map_err(|e| RenderError::Invalid(format!("--morph {}: {e}", self.morph)))?;
-            rest_mesh = Some(std::mem::replace(&mut mesh, morphed));
+            let before = std::mem::replace(&mut mesh, morphed);
+            rest_mesh.get_or_insert(before);
         }
         if self.normal_map.is_some() {
             mesh.generate_tangents()?;
@@ -245,6 +258,28 @@ impl RenderJob {
         let camera = Camera::framing(&bounds, self.yaw_deg, self.pitch_deg);
         Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
+}
+
+/// The default head subdivided `levels` times at rest (neutral, unshaped) and in `face`'s pose,
+/// sharing triangles and UVs. `mesh` must be absent or `builtin:head`: the targets are the
+/// default head's.
+///
+/// # Errors
+/// Another mesh; unknown target names or weights out of range (naming `--expression`/`--shape`).
+pub fn posed_default_head(mesh: Option<&Path>, face: &FacePose, levels: u32) -> Result<(TriangleMesh, TriangleMesh)> {
+    if let Some(p) = mesh.filter(|p| p.to_str() != Some("builtin:head")) {
+        return Err(RenderError::Invalid(format!(
+            "--expression/--shape move the default head's vertices; {} is another mesh (leave out --mesh)",
+            p.display()
+        )));
+    }
+    let invalid = |e: TargetError| RenderError::Invalid(e.to_string());
+    let base = default_head().map_err(rouge_model::ModelError::from)?;
+    let mut positions = base.positions.clone();
+    TargetSet::default_head().map_err(invalid)?.apply(face, &mut positions).map_err(invalid)?;
+    let plan = SubdivisionPlan::new(&base, levels);
+    let posed = plan.mesh(&positions);
+    Ok((plan.rest().clone(), posed))
 }
 
 /// A job's scene loaded on the CPU.
@@ -260,7 +295,8 @@ pub struct Loaded {
     pub env: Option<EnvMap>,
     /// The camera framing the mesh.
     pub camera: Camera,
-    /// The mesh before the morph, when the job morphs it.
+    /// The mesh before the morph and the face's targets (the neutral, unshaped head), when the
+    /// job deforms it.
     pub rest_mesh: Option<rouge_model::mesh::TriangleMesh>,
 }
 

@@ -187,8 +187,8 @@ impl FacePose {
         self.expression.values().chain(self.shape.values()).all(|&w| w == 0.0)
     }
 
-    /// Parses `NAME=W,NAME=W` (what `--expression` and `--shape` take); `option` names the
-    /// option in errors. Names are checked by [`TargetSet::resolve`].
+    /// Parses `NAME=W,NAME=W` (what `--expression` and `--shape` take; `NAME` alone is weight 1);
+    /// `option` names the option in errors. Names are checked by [`TargetSet::resolve`].
     ///
     /// # Errors
     /// [`TargetError::Syntax`] naming the option and the item at fault.
@@ -196,7 +196,10 @@ impl FacePose {
         let fail = |message: String| TargetError::Syntax { option: option.into(), spec: spec.into(), message };
         let mut out = BTreeMap::new();
         for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            let (name, w) = item.split_once('=').ok_or_else(|| fail(format!("`{item}`: give NAME=WEIGHT")))?;
+            let (name, w) = item.split_once('=').unwrap_or((item, "1"));
+            if name.trim().is_empty() {
+                return Err(fail(format!("`{item}`: give NAME=WEIGHT (or NAME alone for weight 1)")));
+            }
             let w: f32 =
                 w.trim().parse().map_err(|_| fail(format!("`{item}`: the weight `{}` is not a number", w.trim())))?;
             if !w.is_finite() {

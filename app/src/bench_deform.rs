@@ -1,0 +1,149 @@
+//! `rouge bench deform`: what a deforming frame costs on the default head (the app's animation
+//! and expression sliders): apply the targets, subdivide, re-upload the mesh, render. Per
+//! subdivision level, the planned path ([`SubdivisionPlan`]: topology once, positions per frame)
+//! against subdividing and triangulating afresh each frame.
+
+use anyhow::{Context, Result};
+use clap::Args;
+use rouge_model::mesh::default_head;
+use rouge_model::mesh::deform::SubdivisionPlan;
+use rouge_model::mesh::targets::{FacePose, TargetSet, expression_cycle};
+use rouge_render::job::{LookChoice, RenderJob};
+use serde::Serialize;
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Debug, Args)]
+pub struct DeformBenchArgs {
+    /// Frame width.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Frame height.
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Frames timed per level (poses along the app's expression cycle).
+    #[arg(long, default_value_t = 20)]
+    pub frames: usize,
+    /// Subdivision levels to time.
+    #[arg(long, value_delimiter = ',', default_values_t = [0u32, 1, 2])]
+    pub levels: Vec<u32>,
+    /// Also write the rows as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// Mean milliseconds per frame of each step, at one subdivision level.
+#[derive(Debug, Serialize)]
+struct Row {
+    level: u32,
+    triangles: usize,
+    vertices: usize,
+    plan_build_ms: f64,
+    targets_ms: f64,
+    subdivide_planned_ms: f64,
+    subdivide_fresh_ms: f64,
+    upload_ms: f64,
+    render_ms: f64,
+    frame_ms: f64,
+    device: String,
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+pub fn run(args: &DeformBenchArgs) -> Result<()> {
+    if args.frames == 0 {
+        anyhow::bail!("--frames 0: time at least one frame");
+    }
+    let targets = TargetSet::default_head()?;
+    let base = default_head()?;
+    let mut rows = Vec::new();
+    for &level in &args.levels {
+        if level > 3 {
+            anyhow::bail!("--levels {level}: use 0 to 3");
+        }
+        let job = RenderJob {
+            look: LookChoice::Default,
+            width: args.width,
+            height: args.height,
+            subdivision: level,
+            ..RenderJob::default()
+        };
+        let mut p = job.prepare()?;
+        let t = Instant::now();
+        let plan = SubdivisionPlan::new(&base, level);
+        let plan_build_ms = ms(t);
+        let mut mesh = plan.rest().clone();
+        let albedo = p.scene.skin.albedo;
+        let (mut tg, mut sp, mut sf, mut up, mut rd) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in 0..args.frames {
+            let pose = FacePose { expression: expression_cycle(i as f64 * 0.25), ..FacePose::default() };
+            let t = Instant::now();
+            let mut positions = base.positions.clone();
+            targets.apply(&pose, &mut positions)?;
+            tg += ms(t);
+            let t = Instant::now();
+            plan.update(&positions, &mut mesh);
+            sp += ms(t);
+            let t = Instant::now();
+            let mut fresh = base.clone();
+            fresh.positions = positions;
+            black_box(fresh.catmull_clark(level).triangulate());
+            sf += ms(t);
+            let t = Instant::now();
+            p.renderer.set_mesh(&mesh, albedo)?;
+            p.renderer.wait()?;
+            up += ms(t);
+            let t = Instant::now();
+            p.renderer.render(&p.scene, &p.camera, args.width, args.height, true)?;
+            p.renderer.wait()?;
+            rd += ms(t);
+        }
+        let n = args.frames as f64;
+        rows.push(Row {
+            level,
+            triangles: mesh.triangle_count(),
+            vertices: mesh.vertex_count(),
+            plan_build_ms,
+            targets_ms: tg / n,
+            subdivide_planned_ms: sp / n,
+            subdivide_fresh_ms: sf / n,
+            upload_ms: up / n,
+            render_ms: rd / n,
+            frame_ms: (tg + sp + up + rd) / n,
+            device: p.gpu.describe(),
+        });
+    }
+    let mut out = format!(
+        "Deforming frame on the default head, {}×{}, default look, {} poses of the expression cycle per level; {}\n\
+         | level | triangles | plan (once) | targets | subdivide: planned | subdivide: afresh | upload | render + wait | frame (planned) |\n\
+         |---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        args.width,
+        args.height,
+        args.frames,
+        rows.first().map_or(String::new(), |r| r.device.clone())
+    );
+    for r in &rows {
+        out += &format!(
+            "| {} | {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} ms | {:.2} ms | {:.1} ms | {:.1} ms |\n",
+            r.level,
+            r.triangles,
+            r.plan_build_ms,
+            r.targets_ms,
+            r.subdivide_planned_ms,
+            r.subdivide_fresh_ms,
+            r.upload_ms,
+            r.render_ms,
+            r.frame_ms
+        );
+    }
+    crate::emit(out.trim_end())?;
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&rows)?;
+        rouge_measure::preset::write_atomic(path, text.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
+}
