@@ -232,3 +232,29 @@ fn the_subdivision_plan_matches_a_fresh_subdivision() {
     assert_eq!((got.indices.len(), &got.uvs), (plan.rest().indices.len(), &plan.rest().uvs));
     assert!(got.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
 }
+
+#[test]
+fn the_face_is_saved_with_the_project() {
+    use rouge_model::document::{Document, FACE_FILE, LOOK_FILE};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut doc = Document::default_project();
+    doc.face = pose(&[("smile", 0.8), ("jawOpen", 0.3)], &[("age", -0.4), ("head-oval", 1.0)]);
+    doc.save_project(dir.path()).expect("save");
+    let back = Document::open_project(dir.path()).expect("open");
+    assert_eq!(back.face, doc.face);
+    // A project saved before faces (no face.json) opens with the neutral head.
+    std::fs::remove_file(dir.path().join(FACE_FILE)).expect("remove");
+    assert!(Document::open_project(dir.path()).expect("old project").face.is_neutral());
+    // A bad face file is named, with the line or the unknown target.
+    let path = dir.path().join(FACE_FILE);
+    std::fs::write(&path, "{\"format\": \"rouge-face\", \"version\": 1, \"expression\": {\"smle\": 1}}").expect("w");
+    let err = Document::open_project(dir.path()).expect_err("unknown").to_string();
+    assert!(err.contains(FACE_FILE) && err.contains("smile"), "{err}");
+    std::fs::write(&path, "{\"format\": \"rouge-face\",\n \"version\": 2}").expect("w");
+    let err = Document::open_project(dir.path()).expect_err("version").to_string();
+    assert!(err.contains("version 2"), "{err}");
+    std::fs::write(&path, "{\"format\": \"rouge-face\",\n \"version\": 1, \"shape\": {\"age\": \"old\"}}").expect("w");
+    let err = Document::open_project(dir.path()).expect_err("syntax").to_string();
+    assert!(err.contains("line 2"), "{err}");
+    assert!(dir.path().join(LOOK_FILE).is_file());
+}

@@ -20,6 +20,7 @@
 mod history;
 mod project;
 
+use crate::mesh::targets::FacePose;
 use project::{layer_files, look_layer};
 
 use crate::error::{ModelError, Result};
@@ -38,6 +39,10 @@ pub const MAX_MULTIPLIER: f32 = 10.0;
 pub const HISTORY_BUDGET_BYTES: usize = 1 << 30;
 /// The look document of a project folder.
 pub const LOOK_FILE: &str = "look.json";
+
+/// The project file holding the face's expression and shape ([`FacePose`], `rouge-face` v1);
+/// projects without it open with the neutral head.
+pub const FACE_FILE: &str = "face.json";
 /// The folder of a project's thickness maps.
 pub const MAPS_DIR: &str = "maps";
 /// The folder of a project's presets (those not built in).
@@ -170,6 +175,9 @@ pub struct Document {
     pub name: String,
     /// Layers, bottom (on the skin) to top.
     pub layers: Vec<PaintLayer>,
+    /// The default head's expression and face shape the look is shown on (saved in the
+    /// project's `face.json`; not part of the undo history).
+    pub face: FacePose,
     history: History,
     stroke: Option<OpenStroke>,
 }
@@ -205,7 +213,7 @@ impl Document {
                 multiplier: 1.0,
             })
             .collect();
-        Document { name: look.name.clone(), layers, history: History::new(), stroke: None }
+        Document { name: look.name.clone(), layers, face: FacePose::default(), history: History::new(), stroke: None }
     }
 
     /// A new project: the default look ([`Look::default_look`]), named "Untitled".

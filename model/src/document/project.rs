@@ -2,6 +2,7 @@
 //! folders"): content-hashed file names, atomic writes, stale files removed after `look.json`.
 
 use super::*;
+use crate::mesh::targets::TargetSet;
 
 impl Document {
     // --------------------------------------------------------------------------------------
@@ -27,6 +28,7 @@ impl Document {
         let look_path = dir.join(LOOK_FILE);
         let look = Look::load(&look_path)?;
         let mut doc = Document::from_look(&look);
+        doc.face = read_face(&dir.join(FACE_FILE))?;
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
@@ -102,7 +104,7 @@ impl Document {
 
     /// Deletes the autosave in `dir`: `look.json` first (so that a partial clear is no longer
     /// offered for recovery), then the project's map and preset files, then their folders if
-    /// empty. Nothing to delete is not an error.
+    /// empty, and the face file. Nothing to delete is not an error.
     pub fn clear_recovery(dir: &Path) -> Result<()> {
         let look = dir.join(LOOK_FILE);
         match std::fs::remove_file(&look) {
@@ -111,6 +113,7 @@ impl Document {
             Err(e) => return Err(ModelError::file(&look, e)),
         }
         remove_unreferenced(dir, &HashSet::new())?;
+        let _ = std::fs::remove_file(dir.join(FACE_FILE));
         for sub in [MAPS_DIR, PRESETS_DIR] {
             // Only if empty: files that are not Rouge's stay, and so does their folder.
             let _ = std::fs::remove_dir(dir.join(sub));
@@ -301,6 +304,7 @@ pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
             keep.insert(PathBuf::from(PRESETS_DIR).join(file));
         }
     }
+    write_face(&doc.face, &dir.join(FACE_FILE))?;
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
     let look = Look { name: doc.name.clone(), layers };
@@ -308,6 +312,46 @@ pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
     // The project is saved; a file that cannot be deleted now is deleted by a later save.
     let _ = remove_unreferenced(dir, &keep);
     Ok(())
+}
+
+/// The face file's schema: `{"format": "rouge-face", "version": 1, "expression": {NAME: W},
+/// "shape": {NAME: W}}` (docs/FORMATS.md).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct FaceFile {
+    format: String,
+    version: u32,
+    #[serde(flatten)]
+    face: FacePose,
+}
+
+const FACE_FORMAT: &str = "rouge-face";
+
+/// Writes the face atomically (also when neutral, so a reopened project says so).
+fn write_face(face: &FacePose, path: &Path) -> Result<()> {
+    let file = FaceFile { format: FACE_FORMAT.into(), version: 1, face: face.clone() };
+    let text = serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(path, e))? + "\n";
+    write_atomic(path, text.as_bytes()).map_err(|e| ModelError::file(path, e))
+}
+
+/// Reads a project's face: neutral when the file is absent (projects saved before faces);
+/// errors name the file, line and column, or the unknown target (with near names).
+pub(super) fn read_face(path: &Path) -> Result<FacePose> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(FacePose::default()),
+        Err(e) => return Err(ModelError::file(path, e)),
+    };
+    let file: FaceFile = serde_json::from_str(&text)
+        .map_err(|e| ModelError::file(path, format!("line {}, column {}: {e}", e.line(), e.column())))?;
+    if file.format != FACE_FORMAT || file.version != 1 {
+        return Err(ModelError::file(
+            path,
+            format!("format {:?} version {}: expected {FACE_FORMAT:?} version 1", file.format, file.version),
+        ));
+    }
+    let targets = TargetSet::default_head().map_err(|e| ModelError::file(path, e))?;
+    targets.resolve(&file.face).map_err(|e| ModelError::file(path, e))?;
+    Ok(file.face)
 }
 
 /// Deletes the map and preset files of the project in `dir` (named as Rouge names them) that
