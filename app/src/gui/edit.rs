@@ -51,6 +51,7 @@ impl RougeApp {
     }
 
     pub(super) fn begin_stroke(&mut self) {
+        self.refresh_surface();
         self.editor.begin_stroke();
     }
 

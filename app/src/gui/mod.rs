@@ -17,6 +17,8 @@
 
 mod brush;
 mod edit;
+mod expression;
+mod face;
 mod layers;
 pub mod materials;
 mod materials_panel;
@@ -32,7 +34,7 @@ use egui::{Color32, Key, Modifiers, Pos2, Rect, Sense, Vec2};
 use glam::Vec3;
 use materials::Library;
 use rouge_model::document::{Change, Document};
-use rouge_model::mesh::TriangleMesh;
+use rouge_model::mesh::{Bounds, TriangleMesh};
 use rouge_model::paint::{Brush, BrushMode, SurfaceMap};
 use rouge_render::job::{load_mesh, write_png};
 use rouge_render::renderer::LayerInput;
@@ -93,6 +95,8 @@ pub struct RougeApp {
     gpu: GpuState,
     /// Mesh preparation, autosave timing and the window screenshot ([`session`]).
     jobs: Jobs,
+    /// The posed default head: expression, shape, animation ([`face`]).
+    face: face::FaceState,
     /// Status message, edit buffers and the recovery offer.
     ui: UiState,
 }
@@ -146,6 +150,7 @@ impl RougeApp {
             view: ViewState::default(),
             gpu: GpuState::new(rs),
             jobs: Jobs::default(),
+            face: face::FaceState::default(),
             ui,
             options,
         };
@@ -258,6 +263,7 @@ impl RougeApp {
         self.options.project = Some(dir.to_owned());
         self.ui.project_path = dir.display().to_string();
         self.apply_change(change);
+        self.pose_from_document();
         Ok(())
     }
 
@@ -301,6 +307,7 @@ impl eframe::App for RougeApp {
             ui.ctx().request_repaint_after(Duration::from_millis(50));
         }
         self.shortcuts(ui.ctx());
+        self.animate_face(ui.ctx());
         self.autosave();
         egui::Panel::top("menu").show(ui, |ui| self.menu(ui));
         egui::Panel::bottom("status").show(ui, |ui| {
@@ -327,6 +334,9 @@ impl eframe::App for RougeApp {
                 self.light_panel(ui);
                 ui.separator();
                 self.subsurface_panel(ui);
+                ui.separator();
+                self.expression_panel(ui);
+                self.face_panel(ui);
             });
         });
         egui::Panel::right("materials").default_size(320.0).show(ui, |ui| self.materials_panel(ui));

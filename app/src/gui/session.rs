@@ -69,8 +69,10 @@ impl RougeApp {
                 }
                 self.editor.set_surface(Some(surface));
                 self.view.reset_orbit();
+                self.view.framing = None;
                 self.sync_layers();
                 self.ui.mesh_name = label;
+                self.pose_from_document();
             }
             Err(e) => self.ui.message = Some((false, e)),
         }
@@ -91,6 +93,7 @@ impl RougeApp {
                         Ok(doc) => {
                             let c = self.editor.replace_document(doc);
                             self.apply_change(c);
+                            self.pose_from_document();
                         }
                         Err(e) => self.ui.message = Some((false, e.to_string())),
                     }

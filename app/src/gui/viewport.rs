@@ -40,6 +40,9 @@ pub(super) struct ViewState {
     pub(super) rect: Rect,
     /// Something shown changed since the last frame: draw a new one.
     pub(super) needs_render: bool,
+    /// Bounds the camera frames instead of the drawn mesh's (the posed head frames its rest
+    /// pose, so the view holds still while the face moves).
+    pub(super) framing: Option<rouge_model::mesh::Bounds>,
 }
 
 impl Default for ViewState {
@@ -56,6 +59,7 @@ impl Default for ViewState {
             split_at: 0.5,
             rect: Rect::NOTHING,
             needs_render: true,
+            framing: None,
         }
     }
 }
@@ -63,7 +67,7 @@ impl Default for ViewState {
 impl ViewState {
     /// The camera framing `renderer`'s mesh from the orbit; `None` before a mesh is set.
     fn camera(&self, renderer: &Renderer) -> Option<Camera> {
-        let bounds = renderer.mesh_bounds()?;
+        let bounds = self.framing.or_else(|| renderer.mesh_bounds())?;
         let mut c = Camera::framing(&bounds, self.orbit.yaw_deg, self.orbit.pitch_deg);
         c.distance /= self.orbit.zoom;
         c.target += self.orbit.pan_mm;
@@ -149,6 +153,18 @@ impl GpuState {
         self.renderer.set_mesh(&mesh, skin_albedo)?;
         self.renderer.set_local_thickness(None)?;
         self.local_thickness = LocalThicknessState::Missing;
+        self.bare = None;
+        self.mesh = Some(mesh);
+        Ok(())
+    }
+
+    /// Uploads the posed head (same triangles and UVs as the mesh it replaces), keeping the
+    /// local thickness, which lies in UV space and so follows the skin.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_mesh`]; the previous mesh stays.
+    pub(super) fn set_posed_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
+        self.renderer.set_mesh(&mesh, skin_albedo)?;
         self.bare = None;
         self.mesh = Some(mesh);
         Ok(())

@@ -1,0 +1,169 @@
+//! The posed default head (expression and face shape through its morph targets) and the "Face"
+//! panel (shape sliders). Posing re-runs only what depends on the positions (a
+//! [`SubdivisionPlan`] made on first use): targets, subdivision rules, normals, upload. The
+//! UV-space maps (layers, masks, baked local thickness) stay, so the makeup follows the skin;
+//! the brush's surface map is rebuilt from the posed mesh before the next stroke, so picking
+//! and dabs use the deformed positions and strokes land in the same UV maps.
+
+use super::*;
+use rouge_model::mesh::default_head;
+use rouge_model::mesh::deform::SubdivisionPlan;
+use rouge_model::mesh::targets::{FacePose, TargetSet};
+
+/// Subdivision of the painted default head (what `start_mesh` loads).
+const HEAD_LEVELS: u32 = 2;
+
+/// The posing state: the plan, the base positions, the animation clock.
+#[derive(Debug, Default)]
+pub(super) struct FaceState {
+    /// The default head's base positions and its subdivision plan, made on the first pose.
+    plan: Option<(Vec<Vec3>, SubdivisionPlan)>,
+    /// The posed mesh (updated in place), and whether the viewport shows it.
+    mesh: Option<TriangleMesh>,
+    /// The surface map predates the last pose.
+    surface_stale: bool,
+    /// Playing the expression cycle; its clock in seconds and the last tick.
+    pub(super) animate: bool,
+    clock_s: f64,
+    last_tick: Option<Instant>,
+}
+
+impl RougeApp {
+    /// The face (expression and shape) of the document.
+    pub fn face(&self) -> &FacePose {
+        &self.editor.document().face
+    }
+
+    /// Sets the document's face and poses the viewport's head.
+    ///
+    /// # Errors
+    /// Unknown target names or weights out of range; a mesh other than the default head.
+    pub fn set_face(&mut self, pose: FacePose) -> Result<()> {
+        TargetSet::default_head()?.resolve(&pose)?;
+        self.editor.document_mut().face = pose.clone();
+        self.pose_head(&pose).map_err(anyhow::Error::msg)
+    }
+
+    /// Plays or stops the expression cycle (neutral, smile, blink, talk, surprise).
+    pub fn set_animation(&mut self, on: bool) {
+        self.face.animate = on;
+        self.face.last_tick = None;
+        if !on {
+            let pose = self.face().clone();
+            self.show_pose(&pose);
+        }
+    }
+
+    /// Rebuilds the brush's surface map from the posed mesh if a pose changed it (the app does
+    /// this when a stroke begins).
+    pub fn refresh_surface(&mut self) {
+        if !self.face.surface_stale {
+            return;
+        }
+        if let Some(mesh) = &self.face.mesh {
+            let size = rouge_model::document::MAP_SIZE;
+            self.editor.set_surface(Some(Arc::new(SurfaceMap::build(mesh, size, size))));
+        }
+        self.face.surface_stale = false;
+    }
+
+    /// Poses the head, showing an error in the status line.
+    pub(super) fn show_pose(&mut self, pose: &FacePose) {
+        if let Err(e) = self.pose_head(pose) {
+            self.ui.message = Some((false, e));
+        }
+    }
+
+    /// After a new mesh or document: pose the default head as the document says.
+    pub(super) fn pose_from_document(&mut self) {
+        self.face.mesh = None;
+        let pose = self.face().clone();
+        if !pose.is_neutral() {
+            self.show_pose(&pose);
+        }
+    }
+
+    /// Moves the default head to `pose` and uploads it (the local thickness stays).
+    fn pose_head(&mut self, pose: &FacePose) -> std::result::Result<(), String> {
+        if self.options.mesh.is_some() {
+            return Err("expressions and face shapes move the default head's vertices; this mesh has no targets".into());
+        }
+        if self.face.mesh.is_none() && pose.is_neutral() {
+            return Ok(());
+        }
+        let targets = TargetSet::default_head().map_err(|e| e.to_string())?;
+        if self.face.plan.is_none() {
+            let head = default_head().map_err(|e| e.to_string())?;
+            let plan = SubdivisionPlan::new(&head, HEAD_LEVELS);
+            self.face.plan = Some((head.positions, plan));
+        }
+        let Some((base, plan)) = &self.face.plan else { return Ok(()) };
+        let mut positions = base.clone();
+        targets.apply(pose, &mut positions).map_err(|e| e.to_string())?;
+        let mesh = self.face.mesh.get_or_insert_with(|| plan.rest().clone());
+        plan.update(&positions, mesh);
+        self.view.framing = Bounds::of(&plan.rest().positions);
+        self.gpu.set_posed_mesh(mesh.clone(), self.view.skin_albedo()).map_err(|e| e.to_string())?;
+        self.face.surface_stale = true;
+        self.view.needs_render = true;
+        Ok(())
+    }
+
+    /// Advances the expression cycle (not during a stroke, which paints on the pose it began on).
+    pub(super) fn animate_face(&mut self, ctx: &egui::Context) {
+        if !self.face.animate || !self.ready() {
+            return;
+        }
+        let now = Instant::now();
+        if !self.editor.stroking() {
+            self.face.clock_s += self.face.last_tick.map_or(0.0, |t| (now - t).as_secs_f64());
+            let pose = FacePose {
+                expression: rouge_model::mesh::targets::expression_cycle(self.face.clock_s),
+                shape: self.face().shape.clone(),
+            };
+            self.show_pose(&pose);
+        }
+        self.face.last_tick = Some(now);
+        ctx.request_repaint();
+    }
+
+    /// The "Face" panel: MakeHuman shape sliders (two-sided -1 to 1, one-sided 0 to 1).
+    pub(super) fn face_panel(&mut self, ui: &mut egui::Ui) {
+        let Ok(targets) = TargetSet::default_head() else { return };
+        egui::CollapsingHeader::new("Face").default_open(false).show(ui, |ui| {
+            if self.options.mesh.is_some() {
+                ui.label("Face shapes move the default head only.");
+                return;
+            }
+            let mut shape = self.face().shape.clone();
+            let mut changed = ui.button("Reset shape").clicked() && !shape.is_empty();
+            if changed {
+                shape.clear();
+            }
+            for s in &targets.shapes {
+                let (lo, hi) = s.range();
+                let mut w = shape.get(&s.name).copied().unwrap_or(0.0);
+                if ui.add(egui::Slider::new(&mut w, lo..=hi).text(&s.name)).changed() {
+                    set_weight(&mut shape, &s.name, w);
+                    changed = true;
+                }
+            }
+            if changed {
+                let pose = FacePose { shape, ..self.face().clone() };
+                self.editor.document_mut().face = pose.clone();
+                if !self.face.animate {
+                    self.show_pose(&pose);
+                }
+            }
+        });
+    }
+}
+
+/// Sets `name` to `w`, dropping zero weights so a saved face lists only what moves.
+pub(super) fn set_weight(map: &mut std::collections::BTreeMap<String, f32>, name: &str, w: f32) {
+    if w == 0.0 {
+        map.remove(name);
+    } else {
+        map.insert(name.to_string(), w);
+    }
+}
