@@ -1,19 +1,26 @@
 //! 3D painting of cosmetic thickness maps ([Huang2013] future work: "paint the film on the face").
 //!
-//! A designer paints thickness in millimetres directly on the head. The brush is a ball in 3D:
-//! its radius is millimetres on the surface (straight-line distance in 3D, not distance in UV),
-//! so a stroke carries on across UV seams and every UV island is painted at the same size
-//! whatever its texel density.
+//! A designer paints thickness in millimetres directly on the head. The brush's radius is
+//! millimetres on the surface, so a stroke carries on across UV seams and every UV island is
+//! painted at the same size whatever its texel density; and it reaches texels *along the
+//! surface*, not through the air, so a dab on the upper lip of a closed mouth leaves the lower lip
+//! alone (as it does lids, nostrils and the folds of the ear).
 //!
-//! - [`SurfaceMap`] says where each texel of a UV map lies on the surface. It is built once per
-//!   mesh and map size: every triangle is rasterised in UV space, the 3D position interpolated
+//! - [`SurfaceMap`] says where each texel of a UV map lies on the surface and which way it faces.
+//!   It is built once per mesh and map size (any [`TriangleMesh`]: a deformed head with the same
+//!   UVs too): every triangle is rasterised in UV space, the 3D position and normal interpolated
 //!   barycentrically at each texel centre, then the covered area is dilated by two texels so
 //!   bilinear sampling at island edges (UV seams) reads painted values. Covered texels are
-//!   bucketed in a uniform 3D grid (cells of about 2 mm) for radius queries.
-//! - [`apply_dab`] paints, erases or smooths the texels within the brush radius of a surface
-//!   point, and of its mirror image across the face's midplane when the brush says so.
+//!   bucketed in a uniform 3D grid (cells of about 2 mm); each knows its triangle, and the
+//!   mesh's vertices, welded across UV seams, form the graph brush paths run on.
+//! - [`apply_dab`] / [`apply_dab_in_view`] paint, erase or smooth the texels a dab reaches
+//!   ([`Reach`]: along the surface by default, or the old 3D ball), optionally only those facing
+//!   the painter and not hidden in the frame ([`PaintView`]), and the same around its mirror
+//!   image across a [`MirrorPlane`] when the brush says so.
 //! - [`StrokeSpacer`] turns mouse moves into evenly spaced dab centres on the surface, so a fast
-//!   move leaves no gaps; [`stroke`] applies a whole polyline.
+//!   move leaves no gaps; [`stroke`] applies a whole polyline; [`LazyMouse`] steadies a hand.
+//! - [`fill`] fills a region mask, a UV island or every covered texel; [`BrushPreset`] holds the
+//!   brushes of a makeup kit.
 //!
 //! Pixel convention as in [`crate::look`]: row 0 is the top of the image; pixel (x, y) has its
 //! centre at u = (x + 0.5) / w, v = 1 − (y + 0.5) / h (OBJ UVs, v up).
@@ -24,14 +31,25 @@
 //! [`apply_dab_split`] gives one rectangle per side: the two sides lie far apart in UV, and
 //! their union is mostly texture that did not change.
 
+mod fill;
+mod presets;
+mod reach;
+mod stroke;
 mod surface;
+mod symmetry;
 
+pub use fill::*;
+pub use presets::*;
+pub use reach::{DepthImage, OCCLUSION_TOLERANCE_MM, PATH_STRETCH, PaintView, Reach};
+pub use stroke::*;
 pub use surface::*;
+pub use symmetry::*;
 
+use std::collections::HashMap;
 use std::fmt;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
-use glam::{Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::look::{MAX_THICKNESS_MM, ThicknessMap};
 use crate::mesh::{Bounds, TriangleMesh};
@@ -64,29 +82,68 @@ pub enum BrushMode {
     Smooth,
 }
 
+/// The shape of a dab's weight between `hardness · radius` and the radius ([`Brush::weight`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Falloff {
+    /// 1 − smoothstep: soft at both ends (a blending brush).
+    Smooth,
+    /// 1 − t: a straight ramp (a sponge).
+    Linear,
+    /// √(1 − t²): full almost to the edge, then a quick fall (a liner, a lip brush).
+    Sphere,
+}
+
+impl Falloff {
+    /// Every falloff, for menus.
+    pub const ALL: [Falloff; 3] = [Falloff::Smooth, Falloff::Linear, Falloff::Sphere];
+
+    /// Its name in menus and presets.
+    pub fn name(self) -> &'static str {
+        match self {
+            Falloff::Smooth => "smooth",
+            Falloff::Linear => "linear",
+            Falloff::Sphere => "sphere",
+        }
+    }
+}
+
 /// A brush for [`apply_dab`]: all lengths in millimetres on the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Brush {
     /// What a dab does.
     pub mode: BrushMode,
-    /// Radius, mm of 3D distance, in (0, 100].
+    /// Radius, mm (along the surface with [`Reach::Surface`]), in (0, 100].
     pub radius_mm: f32,
     /// Target thickness of [`BrushMode::Paint`], mm, in [0, 10].
     pub thickness_mm: f32,
     /// Fraction of the way to the target one dab goes at the centre, in [0, 1].
     pub flow: f32,
-    /// Falloff, in [0, 1]: the weight is 1 within `hardness · radius` and falls to 0 at the
-    /// radius along a smoothstep (see [`Brush::weight`]); 1 = flat to the edge, 0 = smooth
-    /// falloff from the centre.
+    /// Hardness, in [0, 1]: the weight is 1 within `hardness · radius` and falls to 0 at the
+    /// radius along `falloff` (see [`Brush::weight`]); 1 = flat to the edge, 0 = falloff from
+    /// the centre.
     pub hardness: f32,
-    /// Also paints the mirror image across the face's midplane ([`SurfaceMap::mirror_x`]).
+    /// The shape of the fall from `hardness · radius` to the radius.
+    pub falloff: Falloff,
+    /// Also paints the mirror image across `mirror_plane`.
     pub mirror: bool,
+    /// The symmetry plane; `None` = the x plane through the centre of the mesh's bounds
+    /// ([`MirrorPlane::fitted`]), the default head's midplane.
+    pub mirror_plane: Option<MirrorPlane>,
     /// Distance between dabs along a stroke, as a fraction of the radius, in [0.05, 2].
     pub spacing: f32,
+    /// How far a dab reaches: along the surface (default) or through the air.
+    pub reach: Reach,
+    /// Only texels facing the painter (normal toward the eye of the [`PaintView`]) are painted,
+    /// and the walk along the surface stops at the silhouette.
+    pub front_faces_only: bool,
+    /// Texels hidden behind other geometry in the painter's frame are not painted.
+    pub occlusion: bool,
 }
 
 impl Default for Brush {
-    /// Paint, 6 mm, 15 µm (a foundation film), flow 0.35, hardness 0.3, mirrored, spacing 0.25.
+    /// Paint, 6 mm, 15 µm (a foundation film), flow 0.35, hardness 0.3, smooth falloff, mirrored
+    /// across the fitted midplane, spacing 0.25, along the surface, front faces only, occlusion
+    /// on: the safe settings for lips, lids and nostrils.
     fn default() -> Self {
         Brush {
             mode: BrushMode::Paint,
@@ -94,16 +151,21 @@ impl Default for Brush {
             thickness_mm: 0.015,
             flow: 0.35,
             hardness: 0.3,
+            falloff: Falloff::Smooth,
             mirror: true,
+            mirror_plane: None,
             spacing: 0.25,
+            reach: Reach::Surface,
+            front_faces_only: true,
+            occlusion: true,
         }
     }
 }
 
 impl Brush {
-    /// The weight of a texel `distance_mm` from the dab centre, in [0, 1]: with r the radius and
-    /// h the hardness, 1 for d ≤ h·r, 1 − smoothstep(h·r, r, d) between (smoothstep(t) =
-    /// t²(3 − 2t) with t = (d − h·r)/(r − h·r)), and 0 for d ≥ r. Never NaN (0 for a NaN
+    /// The weight of a texel `distance_mm` from the dab centre, in [0, 1]: with r the radius, h
+    /// the hardness and t = (d − h·r)/(r − h·r), 1 for d ≤ h·r, then by the falloff 1 − t²(3 − 2t)
+    /// (smooth), 1 − t (linear) or √(1 − t²) (sphere), and 0 for d ≥ r. Never NaN (0 for a NaN
     /// distance or radius).
     pub fn weight(&self, distance_mm: f32) -> f32 {
         let (d, r) = (distance_mm.abs(), self.radius_mm);
@@ -115,7 +177,26 @@ impl Brush {
             return 1.0;
         }
         let t = ((d - inner) / (r - inner)).clamp(0.0, 1.0);
-        1.0 - t * t * (3.0 - 2.0 * t)
+        match self.falloff {
+            Falloff::Smooth => 1.0 - t * t * (3.0 - 2.0 * t),
+            Falloff::Linear => 1.0 - t,
+            Falloff::Sphere => (1.0 - t * t).max(0.0).sqrt(),
+        }
+    }
+
+    /// The symmetry plane on `surface`: `mirror_plane`, or the fitted x plane.
+    pub fn plane(&self, surface: &SurfaceMap) -> MirrorPlane {
+        self.mirror_plane.unwrap_or_else(|| MirrorPlane::fitted(Axis::X, surface))
+    }
+
+    /// This brush at a pen pressure in [0, 1] (1 or a non-finite value: unchanged): radius and
+    /// flow scaled by 0.25 + 0.75·pressure, as a pen lightly pressed lays a thinner, lighter line.
+    pub fn with_pressure(&self, pressure: f32) -> Brush {
+        if !pressure.is_finite() {
+            return *self;
+        }
+        let k = 0.25 + 0.75 * pressure.clamp(0.0, 1.0);
+        Brush { radius_mm: (self.radius_mm * k).max(0.05), flow: self.flow * k, ..*self }
     }
 
     /// Checks every field against its range.
@@ -132,27 +213,24 @@ impl Brush {
         check("thickness_mm", t, (0.0..=MAX_THICKNESS_MM).contains(&t), "[0, 10] mm")?;
         check("flow", self.flow, (0.0..=1.0).contains(&self.flow), "[0, 1]")?;
         check("hardness", self.hardness, (0.0..=1.0).contains(&self.hardness), "[0, 1]")?;
-        check("spacing", self.spacing, (0.05..=2.0).contains(&self.spacing), "[0.05, 2] (fraction of the radius)")
+        check("spacing", self.spacing, (0.05..=2.0).contains(&self.spacing), "[0.05, 2] (fraction of the radius)")?;
+        match self.mirror_plane {
+            Some(p) if !p.offset_mm.is_finite() => {
+                Err(format!("brush mirror plane offset {} mm along {} is not finite", p.offset_mm, p.axis.name()))
+            }
+            _ => Ok(()),
+        }
     }
 }
 
 // ------------------------------------------------------------------------------------------
 // Dabs and strokes
 
-/// One dab at surface point `centre` (plus its mirror image when `brush.mirror`).
+/// One dab at surface point `centre` (plus its mirror image when `brush.mirror`), seen from
+/// nowhere in particular: [`apply_dab_in_view`] without a view (no facing or occlusion test).
 ///
-/// Each covered texel within the radius of a centre gets a = flow · w(d), with d its 3D distance
-/// to the nearer centre and w [`Brush::weight`] (overlapping mirror dabs near the midplane count
-/// once), then: Paint t += (target − t)·a; Erase t −= t·a; Smooth t += (m − t)·a with m the mean
-/// thickness of the covered texels within the radius of that centre. Results are clamped to
-/// [0, 10] mm and never NaN (a non-finite texel counts as 0). Only covered texels change.
-///
-/// Returns the rectangle of texels whose value changed (empty if none). Nothing changes for a
-/// brush that fails [`Brush::validate`], a non-finite centre, or a map whose size differs from
-/// the surface map's.
-///
-/// With the mirror on, the two sides usually lie far apart in UV, so this rectangle spans much
-/// texture that did not change; [`apply_dab_split`] gives one rectangle per side.
+/// With the mirror on, the two sides usually lie far apart in UV, so the returned rectangle
+/// spans much texture that did not change; [`apply_dab_split`] gives one rectangle per side.
 pub fn apply_dab(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> TexelRect {
     let [a, b] = apply_dab_split(map, surface, brush, centre);
     a.union(b)
@@ -161,6 +239,32 @@ pub fn apply_dab(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, ce
 /// [`apply_dab`], returning the rectangles of changed texels nearer `centre` and nearer its
 /// mirror image (empty without the mirror), for uploading the two sides separately.
 pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Brush, centre: Vec3) -> [TexelRect; 2] {
+    apply_dab_in_view(map, surface, brush, centre, None)
+}
+
+/// One dab at surface point `centre`, and one at its mirror image across `brush.plane()` (moved
+/// onto the nearest surface within the radius; none where there is no surface that close) when
+/// `brush.mirror`, as seen from `view`.
+///
+/// The texels each centre reaches are those of [`Reach`] (along the surface by default), less
+/// those facing away from `view.eye` with `brush.front_faces_only` and those hidden in
+/// `view.depth` with `brush.occlusion` (without a view neither test applies). Each reached
+/// texel gets a = flow · w(d), with d its distance from the nearer centre and w
+/// [`Brush::weight`] (overlapping mirror dabs near the plane count once), then: Paint
+/// t += (target − t)·a; Erase t −= t·a; Smooth t += (m − t)·a with m the mean thickness of the
+/// texels that centre reaches. Results are clamped to [0, 10] mm and never NaN (a non-finite
+/// texel counts as 0). Only covered texels change.
+///
+/// Returns the rectangles of texels whose value changed nearer `centre` and nearer its mirror
+/// image (empty if none). Nothing changes for a brush that fails [`Brush::validate`], a
+/// non-finite centre, or a map whose size differs from the surface map's.
+pub fn apply_dab_in_view(
+    map: &mut ThicknessMap,
+    surface: &SurfaceMap,
+    brush: &Brush,
+    centre: Vec3,
+    view: Option<&PaintView>,
+) -> [TexelRect; 2] {
     let n = surface.width as usize * surface.height as usize;
     if (map.width, map.height) != (surface.width, surface.height)
         || map.mm.len() != n
@@ -170,56 +274,51 @@ pub fn apply_dab_split(map: &mut ThicknessMap, surface: &SurfaceMap, brush: &Bru
     {
         return [TexelRect::EMPTY; 2];
     }
-    let r = brush.radius_mm;
-    let r2 = r * r;
-    let mirrored = surface.mirror(centre);
-    let centres: &[Vec3] =
-        if brush.mirror && mirrored.distance_squared(centre) > 1.0e-8 { &[centre, mirrored] } else { &[centre] };
-
-    // The cell boxes to visit, merged when they touch so no texel is visited twice.
-    let grid = &surface.grid;
-    let mut boxes: Vec<CellBox> =
-        centres.iter().filter_map(|c| grid.range(*c - Vec3::splat(r), *c + Vec3::splat(r))).collect();
-    if boxes.len() == 2 && boxes[0].touches(&boxes[1]) {
-        boxes = vec![boxes[0].union(&boxes[1])];
+    let mut centres = vec![centre];
+    if brush.mirror {
+        let image = brush.plane(surface).reflect(centre);
+        let on_surface = match brush.reach {
+            Reach::Ball => Some(image),
+            Reach::Surface => surface.nearest_on_surface(image, brush.radius_mm),
+        };
+        if let Some(c) = on_surface.filter(|c| c.distance_squared(centre) > 1.0e-8) {
+            centres.push(c);
+        }
     }
-
-    // Texels within the radius: (slot, weight, index of the nearer centre).
-    let mut hits: Vec<(u32, f32, u8)> = Vec::new();
-    let (mut sum, mut count) = ([0.0f64; 2], [0usize; 2]);
-    let smooth = brush.mode == BrushMode::Smooth;
     let texel = |t: f32| if t.is_finite() { t } else { 0.0 };
-    for cells in boxes {
-        grid.for_each_run(cells, |run| {
-            for s in run {
-                let p = surface.points[s];
-                let mut nearest = (f32::INFINITY, 0u8);
-                for (k, c) in centres.iter().enumerate() {
-                    let d2 = p.distance_squared(*c);
-                    if d2 < r2 {
-                        if smooth {
-                            sum[k] += f64::from(texel(map.mm[surface.texels[s] as usize]));
-                            count[k] += 1;
-                        }
-                        if d2 < nearest.0 {
-                            nearest = (d2, k as u8);
-                        }
-                    }
-                }
-                if nearest.0 < r2 {
-                    let w = brush.weight(nearest.0.sqrt());
-                    if w > 0.0 {
-                        hits.push((s as u32, w, nearest.1));
-                    }
+    // Per centre, the texels it reaches; a texel reached by both goes to the nearer.
+    let reached: Vec<reach::Reached> = centres.iter().map(|&c| reach::reached(surface, brush, c, view)).collect();
+    let mean = reached.iter().map(|hits| {
+        if brush.mode != BrushMode::Smooth || hits.is_empty() {
+            return 0.0;
+        }
+        let sum: f64 = hits.iter().map(|&(s, _)| f64::from(texel(map.mm[surface.texels[s as usize] as usize]))).sum();
+        (sum / hits.len() as f64) as f32
+    });
+    let mean: Vec<f32> = mean.collect();
+    let mut hits: Vec<(u32, f32, u8)> = Vec::new();
+    match &reached[..] {
+        [one] => hits.extend(one.iter().map(|&(s, d)| (s, d, 0))),
+        [a, b] => {
+            let mut nearest: HashMap<u32, (f32, u8)> = a.iter().map(|&(s, d)| (s, (d, 0))).collect();
+            for &(s, d) in b {
+                let e = nearest.entry(s).or_insert((d, 1));
+                if d < e.0 {
+                    *e = (d, 1);
                 }
             }
-        });
+            hits.extend(nearest.into_iter().map(|(s, (d, k))| (s, d, k)));
+        }
+        _ => {}
     }
 
-    let mean = [0, 1].map(|k| if count[k] > 0 { (sum[k] / count[k] as f64) as f32 } else { 0.0 });
     let mut dirty = [TexelRect::EMPTY; 2];
     let width = surface.width as usize;
-    for (s, w, k) in hits {
+    for (s, d, k) in hits {
+        let w = brush.weight(d);
+        if w <= 0.0 {
+            continue;
+        }
         let i = surface.texels[s as usize] as usize;
         let old = map.mm[i];
         let t = texel(old);

@@ -23,10 +23,17 @@ pub struct SurfaceMap {
     pub(super) points: Vec<Vec3>,
     /// Texel index (y · width + x) of each entry of `points`.
     pub(super) texels: Vec<u32>,
+    /// Unit surface normal of each entry of `points` (interpolated from the mesh's vertex
+    /// normals; NaN where the mesh has none, which every facing test passes).
+    pub(super) normals: Vec<Vec3>,
+    /// The mesh triangle under each entry of `points` (index into `graph.triangles`).
+    pub(super) tri: Vec<u32>,
+    /// The mesh's vertices welded and joined along its edges, for paths along the surface.
+    pub(super) graph: super::reach::MeshGraph,
     /// The uniform grid over `points`.
     pub(super) grid: Grid,
-    /// x of the symmetry plane, mm.
-    pub(super) mirror_x: f32,
+    /// Centre of the mesh's bounds, mm: the fitted symmetry plane passes through it.
+    pub(super) centre: Vec3,
 }
 
 impl fmt::Debug for SurfaceMap {
@@ -35,8 +42,9 @@ impl fmt::Debug for SurfaceMap {
             .field("width", &self.width)
             .field("height", &self.height)
             .field("covered", &self.points.len())
+            .field("graph_vertices", &self.graph.vertices())
             .field("grid", &self.grid)
-            .field("mirror_x", &self.mirror_x)
+            .field("centre", &self.centre)
             .finish()
     }
 }
@@ -137,20 +145,6 @@ pub(super) struct CellBox {
     hi: [usize; 3],
 }
 
-impl CellBox {
-    /// Whether two boxes overlap or touch (then one query over their union visits each cell once).
-    pub(super) fn touches(&self, other: &CellBox) -> bool {
-        (0..3).all(|a| self.lo[a] <= other.hi[a] + 1 && other.lo[a] <= self.hi[a] + 1)
-    }
-
-    pub(super) fn union(&self, other: &CellBox) -> CellBox {
-        CellBox {
-            lo: [0, 1, 2].map(|a| self.lo[a].min(other.lo[a])),
-            hi: [0, 1, 2].map(|a| self.hi[a].max(other.hi[a])),
-        }
-    }
-}
-
 /// A triangle prepared for rasterising: UVs in pixel space (y down), the attribute at its
 /// corners, pixel bounds.
 pub(super) struct RasterTriangle {
@@ -162,24 +156,32 @@ pub(super) struct RasterTriangle {
 
 impl SurfaceMap {
     /// Rasterises every triangle of `mesh` into a `width` × `height` UV map (barycentric
-    /// interpolation of the 3D positions at texel centres), dilates the covered area by two
-    /// texels, and buckets the covered texels in a 3D grid. Triangles with indices out of range,
-    /// non-finite data or no area in UV space are skipped; where UV islands overlap, the later
-    /// triangle wins. An empty mesh or a zero size gives a map that covers nothing.
+    /// interpolation of the 3D positions and normals at texel centres), dilates the covered area
+    /// by two texels, buckets the covered texels in a 3D grid, notes the triangle under each
+    /// texel, and welds the mesh's vertices into a graph for paths along the surface. Triangles
+    /// with indices out of range, non-finite data or no area in UV space are skipped; where UV
+    /// islands overlap, the later triangle wins. An empty mesh or a zero size gives a map that
+    /// covers nothing.
+    ///
+    /// Any [`TriangleMesh`] works: a deformed head (an expression, a face shape) with the same
+    /// UVs gives the deformed surface; build again whenever the positions change.
     ///
     /// Uses all available cores (`std::thread::scope`) for rasterising and dilating.
     pub fn build(mesh: &TriangleMesh, width: u32, height: u32) -> SurfaceMap {
         let (w, h) = (width as usize, height as usize);
-        let mirror_x = Bounds::of(&mesh.positions).map_or(0.0, |b| b.center().x);
-        let mirror_x = if mirror_x.is_finite() { mirror_x } else { 0.0 };
+        let centre = Bounds::of(&mesh.positions).map_or(Vec3::ZERO, |b| b.center());
+        let centre = if centre.is_finite() { centre } else { Vec3::ZERO };
         let empty = || SurfaceMap {
             width,
             height,
             slot: vec![UNCOVERED; w * h],
             points: Vec::new(),
             texels: Vec::new(),
+            normals: Vec::new(),
+            tri: Vec::new(),
+            graph: super::reach::MeshGraph::default(),
             grid: Grid::empty(),
-            mirror_x,
+            centre,
         };
         if w == 0 || h == 0 || w.checked_mul(h).is_none_or(|n| n >= UNCOVERED as usize) {
             return SurfaceMap { slot: Vec::new(), ..empty() };
@@ -214,7 +216,10 @@ impl SurfaceMap {
             slot[i as usize] = s;
         }
         grid.starts = starts;
-        SurfaceMap { width, height, slot, points, texels, grid, mirror_x }
+        let normals = texel_normals(mesh, &texels, w, h);
+        let tri = texel_triangles(mesh, &texels, w, h);
+        let graph = super::reach::MeshGraph::of(mesh);
+        SurfaceMap { width, height, slot, points, texels, normals, tri, graph, grid, centre }
     }
 
     /// Number of covered texels (rasterised or in the dilation ring).
@@ -232,14 +237,35 @@ impl SurfaceMap {
         self.points.get(s as usize).copied()
     }
 
-    /// x of the symmetry plane (the mesh bounds' centre x), mm: 0 for the default head.
+    /// x of the fitted symmetry plane (the mesh bounds' centre x), mm: 0 for the default head.
     pub fn mirror_x(&self) -> f32 {
-        self.mirror_x
+        self.centre.x
     }
 
-    /// The mirror image of `p` across the plane x = [`SurfaceMap::mirror_x`].
+    /// The centre of the mesh's bounds, mm (where [`MirrorPlane::fitted`] planes pass).
+    pub fn centre(&self) -> Vec3 {
+        self.centre
+    }
+
+    /// The mirror image of `p` across the fitted plane x = [`SurfaceMap::mirror_x`].
     pub fn mirror(&self, p: Vec3) -> Vec3 {
-        Vec3::new(2.0 * self.mirror_x - p.x, p.y, p.z)
+        MirrorPlane::fitted(Axis::X, self).reflect(p)
+    }
+
+    /// The unit normal of texel (x, y) (interpolated from the mesh's vertex normals); `None`
+    /// where the texel is not covered or the mesh has no usable normal there.
+    pub fn normal(&self, x: u32, y: u32) -> Option<Vec3> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let s = *self.slot.get(y as usize * self.width as usize + x as usize)?;
+        self.normals.get(s as usize).copied().filter(|n| n.is_finite())
+    }
+
+    /// Number of the mesh's vertices once welded by position (UV seams joined): the vertices of
+    /// the graph brush paths run on.
+    pub fn welded_vertices(&self) -> usize {
+        self.graph.vertices()
     }
 
     /// The position of the covered texel closest to `p` within `max_mm` (3D distance), for
@@ -249,6 +275,18 @@ impl SurfaceMap {
     /// Searches grid cells in growing shells around `p` and stops once no closer point can
     /// remain, so the cost depends on the distance to the answer, not on `max_mm`.
     pub fn nearest_on_surface(&self, p: Vec3, max_mm: f32) -> Option<Vec3> {
+        self.nearest_slot(p, max_mm).map(|s| self.points[s])
+    }
+
+    /// The texel (x, y) whose surface position is closest to `p` within `max_mm`, as
+    /// [`SurfaceMap::nearest_on_surface`]: what lies under a picked point.
+    pub fn nearest_texel(&self, p: Vec3, max_mm: f32) -> Option<(u32, u32)> {
+        let i = self.texels[self.nearest_slot(p, max_mm)?];
+        Some((i % self.width, i / self.width))
+    }
+
+    /// Index into `points` of the covered texel closest to `p` within `max_mm`.
+    pub(super) fn nearest_slot(&self, p: Vec3, max_mm: f32) -> Option<usize> {
         if !p.is_finite() || max_mm.is_nan() || max_mm < 0.0 || self.points.is_empty() {
             return None;
         }
@@ -256,7 +294,7 @@ impl SurfaceMap {
         let grid = &self.grid;
         let c = grid.coords(p);
         let dims = grid.dims.map(|d| d as i64);
-        let mut best: Option<Vec3> = None;
+        let mut best: Option<usize> = None;
         let mut best_d2 = max_mm * max_mm;
         let shells = (max_mm / grid.cell_mm).ceil() as i64 + 1;
         for k in 0..=shells {
@@ -276,7 +314,7 @@ impl SurfaceMap {
                     let d2 = self.points[i].distance_squared(p);
                     if d2 <= best_d2 {
                         best_d2 = d2;
-                        best = Some(self.points[i]);
+                        best = Some(i);
                     }
                 }
             };
@@ -298,6 +336,68 @@ impl SurfaceMap {
         }
         best
     }
+}
+
+/// The unit normal of each covered texel `texels[i]` (texel indices of a `w` × `h` map): the
+/// mesh's vertex normals rasterised like the positions; a texel of the dilation ring takes the
+/// nearest rasterised normal within [`DILATE_TEXELS`]; NaN where there is none (a mesh without
+/// normals).
+fn texel_normals(mesh: &TriangleMesh, texels: &[u32], w: usize, h: usize) -> Vec<Vec3> {
+    let nan = Vec3::splat(f32::NAN);
+    if mesh.normals.len() != mesh.positions.len() || texels.is_empty() {
+        return vec![nan; texels.len()];
+    }
+    let raster = rasterise(mesh, &mesh.normals, w, h);
+    let r = DILATE_TEXELS as i64;
+    texels
+        .iter()
+        .map(|&i| {
+            if raster[i as usize].is_finite() {
+                return raster[i as usize].normalize_or(nan);
+            }
+            let (x, y) = ((i as usize % w) as i64, (i as usize / w) as i64);
+            let mut best = (i64::MAX, nan);
+            for dy in -r..=r {
+                for dx in -r..=r {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                        continue;
+                    }
+                    let n = raster[ny as usize * w + nx as usize];
+                    if n.is_finite() && dx * dx + dy * dy < best.0 {
+                        best = (dx * dx + dy * dy, n);
+                    }
+                }
+            }
+            best.1.normalize_or(nan)
+        })
+        .collect()
+}
+
+/// The index of the triangle under each covered texel `texels[i]` of a `w` × `h` map (the
+/// dilation ring takes its nearest covered texel's, as for the positions); `u32::MAX` where
+/// none. The rasteriser interpolates per-vertex attributes, so each triangle gets three vertices
+/// of its own carrying its index (exact in f32 up to 2²⁴ triangles).
+fn texel_triangles(mesh: &TriangleMesh, texels: &[u32], w: usize, h: usize) -> Vec<u32> {
+    let n = mesh.indices.len() / 3;
+    let corner_uv = |i: u32| mesh.uvs.get(i as usize).copied().unwrap_or(Vec2::NAN);
+    let unshared = TriangleMesh {
+        uvs: mesh.indices.iter().map(|&i| corner_uv(i)).collect(),
+        indices: (0..(3 * n) as u32).collect(),
+        ..TriangleMesh::default()
+    };
+    let ids: Vec<Vec3> = (0..3 * n).map(|c| Vec3::splat((c / 3) as f32)).collect();
+    let mut id_of = vec![f32::NAN; w * h];
+    for (i, v) in dilate_and_collect(&rasterise(&unshared, &ids, w, h), w, h) {
+        id_of[i as usize] = v.x;
+    }
+    texels
+        .iter()
+        .map(|&i| {
+            let id = id_of[i as usize].round();
+            if id >= 0.0 && (id as usize) < n { id as u32 } else { u32::MAX }
+        })
+        .collect()
 }
 
 /// A per-vertex attribute of `mesh` (`attribute[i]` belongs to vertex i: the positions for the
