@@ -8,6 +8,7 @@
 //! width is 0; no thickness targets, table lookups or layer lobes for a bare look; no SH code
 //! without an environment. Shaders are specialised per [`Variant`] accordingly.
 
+use crate::aa::EdgeAa;
 use crate::error::{RenderError, Result};
 use crate::local_thickness::ThicknessSource;
 use crate::passes::sss::Direction;
@@ -43,6 +44,8 @@ pub struct FrameSettings {
     pub display: bool,
     /// The largest texture side the device takes.
     pub max_side: u32,
+    /// Discontinuity edge overdraw ([Sander2001]).
+    pub aa: EdgeAa,
 }
 
 /// One step of the frame.
@@ -67,6 +70,11 @@ pub enum Step {
     Composite {
         /// The skin radiance composed.
         skin: Target,
+    },
+    /// Discontinuity edges drawn over the display image ([Sander2001]).
+    EdgeOverdraw {
+        /// Silhouettes and near-silhouette sharp edges sorted back to front on the CPU.
+        sorted: bool,
     },
 }
 
@@ -267,6 +275,8 @@ impl FramePlan {
             writes: names(&[out]),
         });
 
+        edge_overdraw_step(settings.aa, variant.display, &mut passes, &mut skipped);
+
         let mut targets: Vec<Target> = gbuffer_writes;
         targets.extend(lighting::outputs(variant));
         if kernel.is_some() {
@@ -388,6 +398,29 @@ fn thickness_variant(
     }
 }
 
+/// The edge overdraw after composition, when the frame asks for it and has a display image to
+/// blend into (the linear output is Rgba32Float, which cannot be blended without an extension).
+fn edge_overdraw_step(aa: EdgeAa, display: bool, passes: &mut Vec<PlannedPass>, skipped: &mut Vec<Skipped>) {
+    let sorted = match aa {
+        EdgeAa::Off => {
+            skipped.push(skip("edge overdraw", "edge antialiasing is off"));
+            return;
+        }
+        EdgeAa::Unsorted(_) => false,
+        EdgeAa::Sorted(_) => true,
+    };
+    if !display {
+        skipped.push(skip("edge overdraw", "a linear frame has no display image to blend the edges into"));
+        return;
+    }
+    let order = if sorted { "silhouettes sorted back to front" } else { "classified on the GPU, unsorted" };
+    passes.push(PlannedPass {
+        step: Step::EdgeOverdraw { sorted },
+        reads: vec![format!("mesh edges ({order})"), "display (a copy)".into()],
+        writes: vec![format!("{} (blended), depth tested", Target::Display.name())],
+    });
+}
+
 fn on_off(b: bool) -> &'static str {
     if b { "on" } else { "off" }
 }
@@ -401,6 +434,7 @@ pub fn step_name(step: Step) -> String {
         Step::Thickness => "thickness".into(),
         Step::Sss(d) => d.label().into(),
         Step::Composite { .. } => "composite".into(),
+        Step::EdgeOverdraw { .. } => "edge overdraw".into(),
     }
 }
 
@@ -410,7 +444,7 @@ mod tests {
     use glam::Vec3;
 
     fn settings() -> FrameSettings {
-        FrameSettings { width: 64, height: 48, display: true, max_side: 8192 }
+        FrameSettings { width: 64, height: 48, display: true, max_side: 8192, aa: EdgeAa::Off }
     }
 
     fn steps(plan: &FramePlan) -> Vec<String> {

@@ -10,10 +10,13 @@
 //! - [`renderer`]: uploads and the frame itself; [`targets`], [`shader`], [`uniforms`],
 //!   [`profiler`] and [`wgpu_util`] serve it.
 
+pub mod aa;
+pub mod aa_study;
 pub mod diffusion;
 pub mod env;
 pub mod error;
 pub mod frame;
+pub mod edges;
 pub mod gpu;
 pub mod gpu_look;
 pub mod gpu_mesh;
@@ -26,6 +29,7 @@ pub mod profiler;
 pub mod renderer;
 pub mod scene;
 pub mod shader;
+pub mod silhouettes;
 pub mod specular;
 pub mod sss;
 pub mod study;

@@ -9,6 +9,7 @@ use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
 use crate::passes::composite::CompositePass;
 use crate::passes::depth_copy::{self, DepthCopyPass};
+use crate::passes::edge_overdraw::{EdgeOverdrawPass, GpuEdges};
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
 use crate::passes::shadow::ShadowPass;
@@ -61,6 +62,7 @@ struct Passes {
     sss: SssPass,
     thickness: ThicknessPass,
     composite: CompositePass,
+    edge_overdraw: EdgeOverdrawPass,
 }
 
 /// What the last frame was, for readback and picking.
@@ -88,6 +90,10 @@ pub struct Renderer {
     profiling: bool,
     timings: Vec<PassTiming>,
     last: Option<LastFrame>,
+    /// The mesh's discontinuity edges ([`crate::edges`]), and the edge antialiasing of frames.
+    edges: Option<GpuEdges>,
+    edge_aa: crate::aa::EdgeAa,
+    edge_stats: crate::silhouettes::FrameEdgeStats,
 }
 
 impl Renderer {
@@ -103,6 +109,7 @@ impl Renderer {
             sss: SssPass::new(&shared),
             thickness: ThicknessPass::new(&shared),
             composite: CompositePass::new(&shared),
+            edge_overdraw: EdgeOverdrawPass::new(&shared),
         };
         Renderer {
             passes,
@@ -115,6 +122,9 @@ impl Renderer {
             profiling: false,
             timings: Vec::new(),
             last: None,
+            edges: None,
+            edge_aa: crate::aa::EdgeAa::Off,
+            edge_stats: Default::default(),
             shared,
         }
     }
@@ -131,7 +141,41 @@ impl Renderer {
     pub fn set_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
         let device = &self.shared.device;
         self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo))?);
+        self.edges = None;
+        if self.edge_aa != crate::aa::EdgeAa::Off {
+            self.prepare_edges(mesh);
+        }
         Ok(())
+    }
+
+    /// Preprocesses the discontinuity edges of `mesh` ([`crate::edges::EdgeSet::new`]) and
+    /// uploads them; [`Renderer::set_mesh`] does it when edge antialiasing is on, and
+    /// [`Renderer::set_edge_aa`] needs it done before a frame with edges.
+    pub fn prepare_edges(&mut self, mesh: &TriangleMesh) {
+        let set = crate::edges::EdgeSet::new(mesh, crate::edges::EdgeOptions::default());
+        let frames = crate::silhouettes::EdgeFrames::new(set);
+        self.edges = Some(GpuEdges::upload(&self.shared.device, frames));
+    }
+
+    /// Sets the edge antialiasing of the following frames. A frame with edges needs the mesh's
+    /// edges ([`Renderer::prepare_edges`], done by [`Renderer::set_mesh`] once this is on).
+    pub fn set_edge_aa(&mut self, aa: crate::aa::EdgeAa) {
+        self.edge_aa = aa;
+    }
+
+    /// The edge antialiasing of the following frames.
+    pub fn edge_aa(&self) -> crate::aa::EdgeAa {
+        self.edge_aa
+    }
+
+    /// The preprocessed edges of the mesh, when prepared.
+    pub fn edges(&self) -> Option<&crate::silhouettes::EdgeFrames> {
+        self.edges.as_ref().map(|e| &e.frames)
+    }
+
+    /// Edge counts of the last frame drawn with sorted edges (zero otherwise).
+    pub fn edge_stats(&self) -> crate::silhouettes::FrameEdgeStats {
+        self.edge_stats
     }
 
     /// Sets or clears the skin albedo texture (sRGB-encoded RGBA8, in the mesh's UV space, row 0
@@ -243,7 +287,7 @@ impl Renderer {
             local_thickness_map: self.textures.local_thickness.is_some(),
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
-        FramePlan::new(scene, uploaded, FrameSettings { width, height, display, max_side })
+        FramePlan::new(scene, uploaded, FrameSettings { width, height, display, max_side, aa: self.edge_aa })
     }
 
     /// Renders one frame of `scene` seen by `camera` at `width` × `height`: the tone-mapped
@@ -269,7 +313,9 @@ impl Renderer {
     /// Records the passes of `plan` in order and submits them.
     fn record_and_submit(&mut self, plan: &FramePlan, scene: &Scene, camera: &Camera) -> Result<wgpu::Texture> {
         let display = plan.variant.display;
-        let Renderer { shared, passes, targets, mesh, textures, look, profiler, profiling, timings, last, .. } = self;
+        let Renderer {
+            shared, passes, targets, mesh, textures, look, profiler, profiling, timings, last, edges, edge_aa, ..
+        } = self;
         let mesh =
             mesh.as_ref().ok_or_else(|| RenderError::Invalid("no mesh to render: call set_mesh first".into()))?;
         let device = &shared.device;
@@ -306,6 +352,21 @@ impl Renderer {
                 Step::Thickness => passes.thickness.record(ctx, &mut enc, &shadow_maps)?,
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
                 Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
+                Step::EdgeOverdraw { sorted } => {
+                    let edges = edges.as_ref().ok_or_else(|| {
+                        RenderError::Invalid("edge antialiasing needs the mesh's edges: call prepare_edges".into())
+                    })?;
+                    let coverage = match *edge_aa {
+                        crate::aa::EdgeAa::Unsorted(c) | crate::aa::EdgeAa::Sorted(c) => c,
+                        crate::aa::EdgeAa::Off => crate::aa::EdgeCoverage::TwoSided,
+                    };
+                    let list = sorted.then(|| {
+                        let (list, stats) = edges.frames.frame(camera.position(), true);
+                        self.edge_stats = stats;
+                        list
+                    });
+                    passes.edge_overdraw.record(ctx, &mut enc, edges, coverage, list.as_deref())?;
+                }
             }
         }
         let FrameEncoder { mut encoder, profiler } = enc;

@@ -76,7 +76,7 @@ impl Variant {
     pub fn for_pass(self, pass: Pass) -> Variant {
         let none = Variant::BARE;
         match pass {
-            Pass::Shadow | Pass::Sss | Pass::DepthCopy => none,
+            Pass::Shadow | Pass::Sss | Pass::DepthCopy | Pass::EdgeOverdraw => none,
             Pass::Gbuffer => Variant {
                 layers: self.layers,
                 albedo_map: self.albedo_map,

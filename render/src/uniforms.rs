@@ -227,6 +227,14 @@ pub fn uniform_layouts() -> Vec<UniformLayout> {
             ],
         ),
         (
+            "EdgePass",
+            size_of::<crate::passes::edge_overdraw::EdgeUniform>(),
+            vec![
+                ("params", offset_of!(crate::passes::edge_overdraw::EdgeUniform, params)),
+                ("flags", offset_of!(crate::passes::edge_overdraw::EdgeUniform, flags)),
+            ],
+        ),
+        (
             "SssPass",
             size_of::<SssUniform>(),
             vec![

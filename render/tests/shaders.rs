@@ -104,10 +104,12 @@ fn rust_and_wgsl_uniform_layouts_match() {
     let lighting = parse(Pass::Lighting, variant);
     let sss = parse(Pass::Sss, variant);
     let thickness = parse(Pass::Thickness, variant);
+    let edges = parse(Pass::EdgeOverdraw, variant);
     for (name, size, fields) in uniform_layouts() {
         let module = match name {
             "SssPass" => &sss,
             "ThicknessPass" => &thickness,
+            "EdgePass" => &edges,
             _ => &lighting,
         };
         let mut layouter = naga::proc::Layouter::default();

@@ -7,6 +7,7 @@
 
 pub mod composite;
 pub mod depth_copy;
+pub mod edge_overdraw;
 pub mod gbuffer;
 pub mod lighting;
 pub mod shadow;
@@ -37,12 +38,22 @@ pub enum Pass {
     Composite,
     /// Depth into a colour target, for readback where depth cannot be copied (GL).
     DepthCopy,
+    /// Discontinuity edge overdraw ([Sander2001]) over the composited image.
+    EdgeOverdraw,
 }
 
 impl Pass {
     /// Every pass.
-    pub const ALL: [Pass; 7] =
-        [Pass::Shadow, Pass::Gbuffer, Pass::Lighting, Pass::Sss, Pass::Thickness, Pass::Composite, Pass::DepthCopy];
+    pub const ALL: [Pass; 8] = [
+        Pass::Shadow,
+        Pass::Gbuffer,
+        Pass::Lighting,
+        Pass::Sss,
+        Pass::Thickness,
+        Pass::Composite,
+        Pass::DepthCopy,
+        Pass::EdgeOverdraw,
+    ];
 
     /// The pass's WGSL file name (for errors).
     pub fn file_name(self) -> &'static str {
@@ -54,6 +65,7 @@ impl Pass {
             Pass::Thickness => "shaders/thickness.wgsl",
             Pass::Composite => "shaders/composite.wgsl",
             Pass::DepthCopy => "shaders/depth_copy.wgsl",
+            Pass::EdgeOverdraw => "shaders/edge_overdraw.wgsl",
         }
     }
 
@@ -67,6 +79,7 @@ impl Pass {
             Pass::Thickness => include_str!("../shaders/thickness.wgsl"),
             Pass::Composite => include_str!("../shaders/composite.wgsl"),
             Pass::DepthCopy => include_str!("../shaders/depth_copy.wgsl"),
+            Pass::EdgeOverdraw => include_str!("../shaders/edge_overdraw.wgsl"),
         }
     }
 }
@@ -156,6 +169,8 @@ pub enum Vertices {
     Mesh,
     /// The mesh's positions only.
     MeshPositions,
+    /// One discontinuity edge per instance ([`edge_overdraw::instance_layout`]).
+    EdgeInstances,
 }
 
 /// What differs between the passes' pipelines.
@@ -202,6 +217,7 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
         Vertices::Fullscreen => vec![],
         Vertices::Mesh => vec![Some(crate::gpu_mesh::full_layout())],
         Vertices::MeshPositions => vec![Some(crate::gpu_mesh::position_layout())],
+        Vertices::EdgeInstances => vec![Some(edge_overdraw::instance_layout())],
     };
     let targets: Vec<Option<wgpu::ColorTargetState>> = spec
         .targets
@@ -226,7 +242,8 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
         primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
         depth_stencil: spec.depth.map(|bias| wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
+            // A blended pass (the edge overdraw) tests depth but never writes it.
+            depth_write_enabled: Some(spec.blend.is_none()),
             depth_compare: Some(wgpu::CompareFunction::Less),
             stencil: Default::default(),
             bias,

@@ -1,0 +1,211 @@
+//! Discontinuity edge overdraw ([Sander2001], shaders/edge_overdraw.wgsl) after composition:
+//! the display image is copied, and each discontinuity edge is drawn over it as a screen-space
+//! quad with the analytic box-filter coverage of its face's side, shaded with that face's lit
+//! colour read from the copy one pixel into the face's side, "over" blended, depth tested
+//! against the G-buffer's depth and not written (chains of edges get no gaps, section 3.4).
+//!
+//! Two feeds of the same shader: every edge of the mesh, uploaded once, with the vertex stage
+//! classifying each instance and collapsing the hidden ones (brute force on the GPU, no CPU work
+//! per frame), or the CPU's list of the edges to draw in their sorted order
+//! ([`crate::silhouettes::EdgeFrames::frame`]).
+
+use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use crate::aa::EdgeCoverage;
+use crate::error::Result;
+use crate::silhouettes::{EdgeFrames, EdgeInstance};
+use crate::targets::Target;
+use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, texture, uniform_entry, view};
+use bytemuck::{Pod, Zeroable};
+
+/// Fraction of its distance from the eye by which an edge is pulled toward the eye for the depth
+/// test, so that it wins against its own faces (whose depth near a silhouette changes fast) and
+/// loses against surfaces a few percent nearer: the paper's polygon offset (section 4), applied
+/// to the edges instead of the mesh so that the G-buffer pass is untouched.
+pub const DEPTH_PULL: f32 = 0.01;
+
+/// The pass's uniform, as `EdgePass` in shaders/edge_overdraw.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct EdgeUniform {
+    /// x: bloat (pixels), y: depth pull, z: τ, w: unused.
+    pub params: [f32; 4],
+    /// x: 1 for two-sided coverage, y: 1 for a closed mesh.
+    pub flags: [u32; 4],
+}
+
+impl EdgeUniform {
+    /// The uniform for `coverage` on a mesh that is `closed` or not.
+    pub fn new(coverage: EdgeCoverage, closed: bool) -> EdgeUniform {
+        let (bloat, two_sided) = match coverage {
+            EdgeCoverage::Line => (0.5, 0),
+            EdgeCoverage::TwoSided => (0.0, 1),
+        };
+        EdgeUniform {
+            params: [bloat, DEPTH_PULL, crate::edges::BLEND_THRESHOLD, 0.0],
+            flags: [two_sided, u32::from(closed), 0, 0],
+        }
+    }
+}
+
+/// The per-instance vertex layout of [`EdgeInstance`].
+pub fn instance_layout() -> wgpu::VertexBufferLayout<'static> {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Uint32, 2 => Float32x3, 3 => Float32x3, 4 => Float32x3
+    ];
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<EdgeInstance>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &ATTRIBUTES,
+    }
+}
+
+/// Vertices per instance: two quads (the double draw), six vertices each.
+const VERTICES: u32 = 12;
+
+/// The mesh's edges on the GPU.
+#[derive(Debug)]
+pub struct GpuEdges {
+    /// The CPU side: preprocessed edges and the per-frame search.
+    pub frames: EdgeFrames,
+    /// Every edge that may be drawn (the brute-force feed).
+    all: wgpu::Buffer,
+}
+
+impl GpuEdges {
+    /// Uploads the edges of `frames`.
+    pub fn upload(device: &wgpu::Device, frames: EdgeFrames) -> GpuEdges {
+        let all = instance_buffer(device, &frames.all_instances());
+        GpuEdges { frames, all }
+    }
+}
+
+fn instance_buffer(device: &wgpu::Device, instances: &[EdgeInstance]) -> wgpu::Buffer {
+    use wgpu::util::DeviceExt;
+    // A zero-sized vertex buffer cannot be bound: keep one (never drawn) instance.
+    let zero = [EdgeInstance::zeroed()];
+    let data: &[EdgeInstance] = if instances.is_empty() { &zero } else { instances };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("EdgeOverdrawPass::instances"),
+        contents: bytemuck::cast_slice(data),
+        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+/// The edge overdraw pass.
+#[derive(Debug)]
+pub struct EdgeOverdrawPass {
+    layout: wgpu::BindGroupLayout,
+    pipelines: Pipelines,
+    uniform: wgpu::Buffer,
+    /// The copy of the composited image the shader reads.
+    copy: Option<wgpu::Texture>,
+    /// This frame's sorted instances, grown as needed.
+    sorted: Option<(wgpu::Buffer, usize)>,
+}
+
+impl EdgeOverdrawPass {
+    /// The pass on `shared`'s device.
+    pub fn new(shared: &Shared) -> EdgeOverdrawPass {
+        let device = &shared.device;
+        let layout = layout(
+            device,
+            "EdgeOverdrawPass::layout",
+            &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT), float_tex(1, false)],
+        );
+        let uniform =
+            crate::wgpu_util::uniform_buffer(device, "EdgeOverdrawPass::uniform", std::mem::size_of::<EdgeUniform>());
+        EdgeOverdrawPass { layout, pipelines: Pipelines::default(), uniform, copy: None, sorted: None }
+    }
+
+    /// Records the pass over [`Target::Display`]: all of `edges` classified on the GPU, or, when
+    /// `sorted` holds this frame's list ([`EdgeFrames::frame`]), that list in its order.
+    ///
+    /// # Errors
+    /// When the pipeline cannot be built or a target is missing.
+    pub fn record(
+        &mut self,
+        ctx: FrameContext<'_>,
+        enc: &mut FrameEncoder<'_>,
+        edges: &GpuEdges,
+        coverage: EdgeCoverage,
+        sorted: Option<&[EdgeInstance]>,
+    ) -> Result<()> {
+        let (shared, targets) = (ctx.shared, ctx.targets);
+        let device = &shared.device;
+        let key = ctx.variant.for_pass(Pass::EdgeOverdraw);
+        let format = Target::Display.format(shared.formats);
+        let blend = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::SrcAlpha,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
+        };
+        let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
+            pass: Pass::EdgeOverdraw,
+            variant: key,
+            layout: &self.layout,
+            vertices: Vertices::EdgeInstances,
+            vs: "vs_edge",
+            fs: Some("fs_edge"),
+            targets: vec![Some(format)],
+            blend: Some(blend),
+            depth: Some(wgpu::DepthBiasState::default()),
+        })?;
+        let display = targets
+            .get(Target::Display)
+            .ok_or_else(|| crate::RenderError::Gpu("the display target was not created".into()))?;
+        let size = (display.width(), display.height());
+        if self.copy.as_ref().is_none_or(|c| (c.width(), c.height()) != size || c.format() != format) {
+            let usage = wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::TEXTURE_BINDING;
+            self.copy = Some(texture(device, "EdgeOverdrawPass::copy", size, 1, format, usage, &[]));
+        }
+        let copy = self.copy.as_ref().ok_or_else(|| crate::RenderError::Gpu("no copy texture".into()))?;
+        enc.encoder.copy_texture_to_texture(
+            display.as_image_copy(),
+            copy.as_image_copy(),
+            wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
+        );
+        shared.queue.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&EdgeUniform::new(coverage, edges.frames.set.closed)),
+        );
+        let (buffer, count) = match sorted {
+            None => (&edges.all, edges.frames.set.edges.len()),
+            Some(list) => {
+                if self.sorted.as_ref().is_none_or(|(_, cap)| *cap < list.len()) {
+                    self.sorted = Some((instance_buffer(device, list), list.len().max(1)));
+                } else if let Some((b, _)) = &self.sorted {
+                    shared.queue.write_buffer(b, 0, bytemuck::cast_slice(list));
+                }
+                let (b, _) = self.sorted.as_ref().ok_or_else(|| crate::RenderError::Gpu("no edge buffer".into()))?;
+                (b, list.len())
+            }
+        };
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("EdgeOverdrawPass::group"),
+            layout: &self.layout,
+            entries: &[buf(0, &self.uniform), tex(1, &view(copy))],
+        });
+        let out = targets.view(Target::Display)?;
+        let depth = targets.view(Target::Depth)?;
+        let depth_attachment = wgpu::RenderPassDepthStencilAttachment {
+            view: &depth,
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+            stencil_ops: None,
+        };
+        let mut pass = enc.begin("edge overdraw", &[color_load(&out)], Some(depth_attachment));
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &shared.frame_group, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.set_vertex_buffer(0, buffer.slice(..));
+        pass.draw(0..VERTICES, 0..count as u32);
+        Ok(())
+    }
+}
