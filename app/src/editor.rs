@@ -7,7 +7,10 @@ use glam::Vec3;
 use rouge_measure::preset::Preset;
 use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
-use rouge_model::paint::{Brush, StrokeSpacer, SurfaceMap, apply_dab_split};
+use rouge_model::look::ThicknessMap;
+use rouge_model::paint::{
+    Brush, FillRegion, LazyMouse, PaintView, StrokeSpacer, SurfaceMap, apply_dab_in_view, fill,
+};
 use std::sync::Arc;
 
 /// Why a dab was refused.
@@ -28,13 +31,34 @@ pub struct Editor {
     surface: Option<Arc<SurfaceMap>>,
     spacer: Option<StrokeSpacer>,
     stroke_dabs: Vec<Vec3>,
+    /// Where the painter looks from (facing and occlusion tests); `None` paints unseen.
+    pub view: Option<PaintView>,
+    /// The lazy-mouse string, mm (0 = off).
+    pub stabiliser_mm: f32,
+    lazy: Option<LazyMouse>,
+    /// Pen or touch pressure of the current input in [0, 1]; `None` for a mouse.
+    pub pressure: Option<f32>,
+    /// The last dab of the last finished stroke, where a straight stroke starts.
+    last_end: Option<Vec3>,
 }
 
 impl Editor {
     /// An editor on `doc` with its top layer active and the default brush; no surface yet.
     pub fn new(doc: Document) -> Editor {
         let active = doc.layers.len().saturating_sub(1);
-        Editor { doc, brush: Brush::default(), active, surface: None, spacer: None, stroke_dabs: Vec::new() }
+        Editor {
+            doc,
+            brush: Brush::default(),
+            active,
+            surface: None,
+            spacer: None,
+            stroke_dabs: Vec::new(),
+            view: None,
+            stabiliser_mm: 0.0,
+            lazy: None,
+            pressure: None,
+            last_end: None,
+        }
     }
 
     /// The document.
@@ -75,6 +99,8 @@ impl Editor {
     /// Sets the surface map of a newly prepared mesh (ending any stroke).
     pub fn set_surface(&mut self, surface: Option<Arc<SurfaceMap>>) {
         self.spacer = None;
+        self.lazy = None;
+        self.last_end = None;
         self.surface = surface;
     }
 
@@ -110,6 +136,66 @@ impl Editor {
         self.doc.end_stroke()
     }
 
+    /// Fills the active layer inside `region` with the brush's thickness, as one undo step
+    /// (`rouge_model::paint::fill`). Returns the document's change.
+    ///
+    /// # Errors
+    /// No surface map yet, a hidden active layer, or what the fill refuses (a texel off the
+    /// mesh, a thickness out of range), as a message.
+    pub fn fill(&mut self, region: FillRegion<'_>) -> Result<Change, String> {
+        let surface = self.surface.clone().ok_or("fill: the mesh is still being prepared")?;
+        if self.render_index(self.active).is_none() {
+            return Err(StrokeError::HiddenLayer.to_string());
+        }
+        let thickness = self.brush.thickness_mm;
+        let rect = match self.doc.begin_stroke(self.active) {
+            Some(map) => fill(map, &surface, region, thickness),
+            None => Ok(TexelRect::EMPTY),
+        };
+        match rect {
+            Ok(rect) => {
+                self.doc.note_dirty(rect);
+                Ok(self.doc.end_stroke())
+            }
+            Err(e) => {
+                self.doc.end_stroke();
+                Err(e)
+            }
+        }
+    }
+
+    /// The active layer's thickness under the surface point `world` (the painted map × the
+    /// layer's multiplier, what renders), mm; `None` without a surface map or off the mesh.
+    pub fn thickness_at(&self, world: Vec3) -> Option<f32> {
+        let (x, y) = self.surface.as_ref()?.nearest_texel(world, 2.0)?;
+        let layer = self.doc.layers.get(self.active)?;
+        let map: &ThicknessMap = &layer.map;
+        Some(map.texel(x, y) * layer.multiplier)
+    }
+
+    /// A straight stroke from the end of the last stroke to the surface point `to` (Shift-click):
+    /// evenly spaced dabs on the segment, each moved onto the surface, as one undo step. With no
+    /// earlier stroke it is a single dab at `to`.
+    ///
+    /// # Errors
+    /// [`StrokeError::HiddenLayer`] when the active layer is hidden.
+    pub fn straight_stroke(&mut self, to: Vec3) -> Result<Vec<Change>, StrokeError> {
+        let from = self.last_end;
+        let stabiliser = std::mem::replace(&mut self.stabiliser_mm, 0.0);
+        self.begin_stroke();
+        let mut changes = Vec::new();
+        let mut result = Ok(());
+        for p in from.into_iter().chain([to]) {
+            match self.stroke_to(p) {
+                Ok(c) => changes.extend(c),
+                Err(e) => result = Err(e),
+            }
+        }
+        changes.extend(self.end_stroke());
+        self.stabiliser_mm = stabiliser;
+        result.map(|()| changes)
+    }
+
     /// Undoes the last stroke or layer edit.
     pub fn undo(&mut self) -> Change {
         let change = self.doc.undo();
@@ -127,6 +213,7 @@ impl Editor {
     /// Opens a stroke on the active layer (ending any open one).
     pub fn begin_stroke(&mut self) {
         self.spacer = None;
+        self.lazy = (self.stabiliser_mm > 0.0).then(|| LazyMouse::new(self.stabiliser_mm));
         self.stroke_dabs.clear();
         let _ = self.doc.begin_stroke(self.active);
     }
@@ -151,6 +238,14 @@ impl Editor {
         if self.render_index(self.active).is_none() {
             return Err(StrokeError::HiddenLayer);
         }
+        // The stabiliser's brush point, moved onto the surface by the spacer.
+        let world = match &mut self.lazy {
+            Some(lazy) => match lazy.follow(world) {
+                Some(p) => p,
+                None => return Ok(Vec::new()),
+            },
+            None => world,
+        };
         let dabs = match &mut self.spacer {
             Some(s) => s.move_to(world, &surface),
             None => {
@@ -172,6 +267,10 @@ impl Editor {
             if self.render_index(self.active).is_some() {
                 changes = self.dab(&last, &surface);
             }
+        }
+        self.lazy = None;
+        if let Some(&last) = self.stroke_dabs.last() {
+            self.last_end = Some(last);
         }
         changes.push(self.doc.end_stroke());
         changes
@@ -207,11 +306,14 @@ impl Editor {
             return Vec::new();
         }
         let layer = self.active;
-        let brush = self.brush;
+        let brush = match self.pressure {
+            Some(p) => self.brush.with_pressure(p),
+            None => self.brush,
+        };
         let mut sides = [TexelRect::EMPTY; 2];
         if let Some(map) = self.doc.stroke_map(layer) {
             for &c in dabs {
-                let [a, b] = apply_dab_split(map, surface, &brush, c);
+                let [a, b] = apply_dab_in_view(map, surface, &brush, c, self.view.as_ref());
                 sides = [sides[0].union(a), sides[1].union(b)];
             }
         }

@@ -102,7 +102,7 @@ pub struct RougeApp {
 }
 
 /// What the panels keep between frames that is neither document nor view.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 struct UiState {
     /// The status line: (ok, text).
     message: Option<(bool, String)>,
@@ -114,6 +114,8 @@ struct UiState {
     recovery_offer: bool,
     /// The mesh being painted, as the menu bar names it.
     mesh_name: String,
+    /// Where the brush panel's Fill button fills.
+    fill: brush::FillTarget,
 }
 
 impl std::fmt::Debug for RougeApp {
@@ -143,6 +145,7 @@ impl RougeApp {
             project_path: options.project.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
             recovery_offer: options.autosave && Document::recovery_available(&options.recovery_dir()),
             mesh_name: "default head (hm08, CC0)".into(),
+            fill: brush::FillTarget::Whole,
         };
         let mut app = RougeApp {
             editor: Editor::new(doc),
@@ -319,9 +322,14 @@ impl eframe::App for RougeApp {
                     ui.colored_label(Color32::LIGHT_RED, m);
                 }
                 None => {
-                    ui.label("Left drag: paint · Alt+drag / right drag: orbit · Shift+right / middle drag: pan · wheel: zoom · F: reset");
+                    ui.label("Left drag: paint · Shift+click: straight line · [ ]: size · Alt+drag / right drag: orbit · Shift+right / middle drag: pan · wheel: zoom · F: reset");
                 }
             });
+            if let Some(mm) = self.view.hover_mm {
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    ui.monospace(format!("active layer under the cursor: {:.1} µm", mm * 1000.0));
+                });
+            }
         });
         egui::Panel::left("layers").default_size(270.0).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {

@@ -3,6 +3,7 @@
 
 use super::translucency::{LocalThicknessState, SubsurfaceChoice};
 use super::*;
+use rouge_model::paint::PaintView;
 
 /// Orbit camera state (the renderer's `Camera` is derived from it and the mesh bounds).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +44,13 @@ pub(super) struct ViewState {
     /// Bounds the camera frames instead of the drawn mesh's (the posed head frames its rest
     /// pose, so the view holds still while the face moves).
     pub(super) framing: Option<rouge_model::mesh::Bounds>,
+    /// Draw the brush's symmetry plane on the skin.
+    pub(super) show_plane: bool,
+    /// Where the plane cuts the surface, for that plane (cached).
+    pub(super) plane_trace: Option<(rouge_model::paint::MirrorPlane, Vec<(Vec3, Vec3)>)>,
+    /// The surface point under the cursor, and the active layer's thickness there (mm).
+    pub(super) hover_world: Option<Vec3>,
+    pub(super) hover_mm: Option<f32>,
 }
 
 impl Default for ViewState {
@@ -60,6 +68,10 @@ impl Default for ViewState {
             rect: Rect::NOTHING,
             needs_render: true,
             framing: None,
+            show_plane: true,
+            plane_trace: None,
+            hover_world: None,
+            hover_mm: None,
         }
     }
 }
@@ -356,6 +368,23 @@ impl RougeApp {
                 self.view.needs_render = true;
             }
         } else if self.ready() && !alt {
+            self.editor.view = self.camera().map(|c| PaintView { eye: c.position(), depth: None });
+            self.editor.pressure = ui.input(|i| {
+                i.events.iter().rev().find_map(|e| match e {
+                    egui::Event::Touch { force, .. } => *force,
+                    _ => None,
+                })
+            });
+            if shift
+                && response.clicked_by(egui::PointerButton::Primary)
+                && let Some(pos) = response.interact_pointer_pos()
+                && let Some(w) = self.pick(pos)
+            {
+                match self.editor.straight_stroke(w) {
+                    Ok(changes) => self.apply_changes(changes),
+                    Err(e) => self.ui.message = Some((false, e.to_string())),
+                }
+            }
             if response.drag_started_by(egui::PointerButton::Primary) {
                 self.begin_stroke();
             }
@@ -412,6 +441,10 @@ impl RougeApp {
                 Color32::WHITE,
             );
         }
+        self.brush_keys(ui.ctx());
+        self.draw_symmetry(ui);
+        self.view.hover_world = response.hover_pos().and_then(|h| self.pick(h));
+        self.view.hover_mm = self.view.hover_world.and_then(|w| self.editor.thickness_at(w));
         // Brush outline under the cursor (its screen radius at the surface's depth).
         if let Some(hover) = response.hover_pos()
             && !alt

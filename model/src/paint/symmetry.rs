@@ -95,6 +95,15 @@ impl MirrorPlane {
         q
     }
 
+    /// The covered texels within `tolerance_mm` of the plane, (position, normal), at most about
+    /// 20 000 of them (evenly thinned): where the plane cuts the surface, for drawing it.
+    pub fn trace(&self, surface: &SurfaceMap, tolerance_mm: f32) -> Vec<(Vec3, Vec3)> {
+        let near: Vec<usize> =
+            (0..surface.points.len()).filter(|&s| self.distance(surface.points[s]).abs() <= tolerance_mm).collect();
+        let step = (near.len() / 20_000).max(1);
+        near.into_iter().step_by(step).map(|s| (surface.points[s], surface.normals[s])).collect()
+    }
+
     /// Signed distance of `p` from the plane, mm.
     pub fn distance(&self, p: Vec3) -> f32 {
         p[self.axis.index()] - self.offset_mm
