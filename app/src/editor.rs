@@ -8,9 +8,7 @@ use rouge_measure::preset::Preset;
 use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
 use rouge_model::look::ThicknessMap;
-use rouge_model::paint::{
-    Brush, FillRegion, LazyMouse, PaintView, StrokeSpacer, SurfaceMap, apply_dab_in_view, fill,
-};
+use rouge_model::paint::{Brush, FillRegion, LazyMouse, PaintView, StrokeSpacer, SurfaceMap, apply_dab_in_view, fill};
 use std::sync::Arc;
 
 /// Why a dab was refused.

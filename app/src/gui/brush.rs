@@ -61,12 +61,16 @@ impl RougeApp {
             }
         });
         ui.add(egui::Slider::new(&mut self.editor.stabiliser_mm, 0.0..=15.0).text("stabiliser (mm of string)"))
-            .on_hover_text("Lazy mouse: the brush trails the pointer by this much, so a shaky hand draws a steady line");
+            .on_hover_text(
+                "Lazy mouse: the brush trails the pointer by this much, so a shaky hand draws a steady line",
+            );
         let brush = &mut self.editor.brush;
         let mut on_surface = brush.reach == Reach::Surface;
         if ui
             .checkbox(&mut on_surface, "Stay on the surface")
-            .on_hover_text("Paint reaches along the skin, not through the air: closed lips, lids and nostrils stay apart")
+            .on_hover_text(
+                "Paint reaches along the skin, not through the air: closed lips, lids and nostrils stay apart",
+            )
             .changed()
         {
             brush.reach = if on_surface { Reach::Surface } else { Reach::Ball };
@@ -108,12 +112,16 @@ impl RougeApp {
     fn fill_ui(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             egui::ComboBox::from_id_salt("fill target").selected_text(self.ui.fill.label()).show_ui(ui, |ui| {
-                for t in Region::all().map(FillTarget::Region).into_iter().chain([FillTarget::Island, FillTarget::Whole])
+                for t in
+                    Region::all().map(FillTarget::Region).into_iter().chain([FillTarget::Island, FillTarget::Whole])
                 {
                     ui.selectable_value(&mut self.ui.fill, t, t.label());
                 }
             });
-            if ui.button("Fill").on_hover_text("Fill the active layer at the brush's thickness (one undo step)").clicked()
+            if ui
+                .button("Fill")
+                .on_hover_text("Fill the active layer at the brush's thickness (one undo step)")
+                .clicked()
             {
                 self.fill_active();
             }
@@ -125,10 +133,12 @@ impl RougeApp {
         let result = match self.ui.fill {
             FillTarget::Region(r) => self.editor.fill(FillRegion::Mask(r.mask())),
             FillTarget::Whole => self.editor.fill(FillRegion::Whole),
-            FillTarget::Island => match self.view.hover_world.and_then(|w| self.editor.surface()?.nearest_texel(w, 2.0)) {
-                Some((x, y)) => self.editor.fill(FillRegion::Island { x, y }),
-                None => Err("fill: point at the head first (the island under the cursor)".into()),
-            },
+            FillTarget::Island => {
+                match self.view.hover_world.and_then(|w| self.editor.surface()?.nearest_texel(w, 2.0)) {
+                    Some((x, y)) => self.editor.fill(FillRegion::Island { x, y }),
+                    None => Err("fill: point at the head first (the island under the cursor)".into()),
+                }
+            }
         };
         match result {
             Ok(change) => {
