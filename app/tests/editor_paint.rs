@@ -85,7 +85,7 @@ fn a_straight_stroke_lays_dabs_on_the_segment() {
         let t = (*d - a).dot(dir);
         let off = (*d - a - dir * t).length();
         // Each dab sits on a texel centre of the surface map (0.1 mm apart).
-        assert!(off < 0.1 && t >= -1e-3 && t <= len + 1e-3, "dab {d} is {off} mm off the segment");
+        assert!(off < 0.1 && t >= -0.1 && t <= len + 0.1, "dab {d} is {off} mm off the segment");
     }
     let want = (len / spacing).floor() as usize;
     assert!(dabs.len() >= want && dabs.len() <= want + 2, "{} dabs, {want} spacings", dabs.len());
@@ -117,10 +117,11 @@ fn the_stabiliser_steadies_a_stroke_and_pressure_thins_it() {
     let width = |pressure: f32| {
         let mut e = editor(plane());
         e.pressure = Some(pressure);
+        let before = bits(&e);
         e.begin_stroke();
         e.stroke_to(Vec3::ZERO).expect("visible layer");
         e.end_stroke();
-        e.document().layers[e.active()].map.mm.iter().filter(|v| **v > 0.0).count()
+        bits(&e).iter().zip(&before).filter(|(a, b)| a != b).count()
     };
     assert!(width(0.2) * 3 < width(1.0));
     // The readout: the active layer's thickness under a point.
