@@ -31,6 +31,11 @@ pub enum BenchCommand {
     /// the targets, subdivide (planned topology against afresh), re-upload, render; ms per frame
     /// at subdivision levels 0, 1 and 2.
     Deform(crate::bench_deform::DeformBenchArgs),
+    /// Edge antialiasing ([Sander2001] edge overdraw, unsorted and sorted, the paper's line and
+    /// two-sided coverage) against supersampling on turning meshes (head, cube, wedge): RMSE and
+    /// ΔE2000 near discontinuities and the crawl between frames against a k×k supersampled
+    /// reference, ms per frame, the paper's table 1 edge counts; `--plot F.png`.
+    Aa(crate::bench_aa::AaBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -94,6 +99,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Paint(args) => paint(args),
         BenchCommand::Translucency(args) => crate::bench_translucency::run(args),
         BenchCommand::Deform(args) => crate::bench_deform::run(args),
+        BenchCommand::Aa(args) => crate::bench_aa::run(args),
     }
 }
 

@@ -35,6 +35,15 @@ pub struct RenderArgs {
     pub subsurface: Subsurface,
     #[command(flatten)]
     pub thickness: ThicknessArgs,
+    /// Antialiasing: none, edges (discontinuity edge overdraw [Sander2001], unsorted),
+    /// edges-sorted (silhouettes sorted back to front), ssaa2 or ssaa4 (supersampling k×k, PNG
+    /// only); msaa4 is refused (no multisampled G-buffer). docs/BENCHMARKS.md compares them.
+    #[arg(long, default_value = "none")]
+    pub aa: String,
+    /// Coverage of the edge overdraw: two-sided (exact box coverage on both sides of an edge,
+    /// the default: closest to supersampling) or line (the paper's width-1 line, one side).
+    #[arg(long, value_enum, default_value_t = AaCoverage::TwoSided)]
+    pub aa_coverage: AaCoverage,
     /// Print the frame plan (the passes that run, in order, with what each reads and writes, and
     /// what is skipped and why) on stdout; renders too when --out is given.
     #[arg(long)]
@@ -53,6 +62,15 @@ pub enum Subsurface {
     ScreenSpace,
     /// Fast thickness translucency ([BarreBrisebois2011]).
     Thickness,
+}
+
+/// `--aa-coverage` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum AaCoverage {
+    /// Exact box-filter coverage on both sides of each edge.
+    TwoSided,
+    /// The paper's antialiased line of width 1, one side, sharp edges blended by β′.
+    Line,
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -88,8 +106,18 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
         }
     }
+    let aa = rouge_render::aa::AaMode::parse(&args.aa)?;
+    let coverage = match args.aa_coverage {
+        AaCoverage::TwoSided => rouge_render::aa::EdgeCoverage::TwoSided,
+        AaCoverage::Line => rouge_render::aa::EdgeCoverage::Line,
+    };
     let start = Instant::now();
-    let mut prepared = job.prepare()?;
+    let loaded_scene = job.load()?;
+    let mut prepared = job.prepare_loaded(&loaded_scene)?;
+    let supersample = rouge_render::aa_study::apply_mode(&mut prepared.renderer, aa, coverage)?;
+    if aa != rouge_render::aa::AaMode::None && supersample == 1 {
+        prepared.renderer.prepare_edges(&loaded_scene.mesh);
+    }
     let loaded = start.elapsed();
     if let Some(bake) = &prepared.thickness_bake {
         eprintln!(
@@ -111,7 +139,22 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let Some(out) = &args.out else {
         return Ok(());
     };
-    render_to_file(&mut prepared, out)?;
+    if supersample > 1 {
+        if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+            bail!("--aa {}: supersampling writes PNG only", args.aa);
+        }
+        let (w, h) = prepared.size;
+        let linear = rouge_render::aa_study::render_linear_srgb(
+            &mut prepared.renderer,
+            &prepared.scene,
+            &prepared.camera,
+            (w, h),
+            supersample,
+        )?;
+        rouge_render::job::write_png(out, w, h, &rouge_render::aa::encode_srgb8(&linear))?;
+    } else {
+        render_to_file(&mut prepared, out)?;
+    }
     eprintln!(
         "rouge: wrote {} ({}×{}, {} triangles, {} layers) on {} in {:.2} s (loading {:.2} s)",
         out.display(),
