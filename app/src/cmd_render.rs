@@ -1,5 +1,6 @@
 //! `rouge render`: one frame of the renderer to a PNG (tone-mapped) or an EXR (linear radiance).
 
+use crate::dipole_args::DipoleArgs;
 use crate::scene_args::SceneArgs;
 use crate::thickness_args::{BakePose, ThicknessArgs};
 use anyhow::{Result, bail};
@@ -7,6 +8,7 @@ use clap::Args;
 use rouge_model::thickness::CacheUse;
 use rouge_render::SubsurfaceModel;
 use rouge_render::job::render_to_file;
+use rouge_render::passes::dipole::DipoleKind;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -35,6 +37,8 @@ pub struct RenderArgs {
     pub subsurface: Subsurface,
     #[command(flatten)]
     pub thickness: ThicknessArgs,
+    #[command(flatten)]
+    pub dipole: DipoleArgs,
     /// Antialiasing: none, edges (discontinuity edge overdraw [Sander2001], unsorted),
     /// edges-sorted (silhouettes sorted back to front), ssaa2 or ssaa4 (supersampling k×k, PNG
     /// only); msaa4 is refused (no multisampled G-buffer). docs/BENCHMARKS.md compares them.
@@ -62,6 +66,11 @@ pub enum Subsurface {
     ScreenSpace,
     /// Fast thickness translucency ([BarreBrisebois2011]).
     Thickness,
+    /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
+    /// radiance maps ([DirDipoleThesis]).
+    DirectionalDipole,
+    /// Jensen's standard dipole ([Jensen2001]) in the same passes, for comparison.
+    StandardDipole,
 }
 
 /// `--aa-coverage` values.
@@ -105,6 +114,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref())?;
             job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
         }
+        Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,
+        Subsurface::StandardDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Standard)?,
     }
     let aa = rouge_render::aa::AaMode::parse(&args.aa)?;
     let coverage = match args.aa_coverage {
@@ -139,6 +150,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let Some(out) = &args.out else {
         return Ok(());
     };
+    // Progressive convergence of the dipole maps: accumulate the frames before the written one.
+    if matches!(prepared.scene.skin.subsurface, SubsurfaceModel::Dipole { .. }) {
+        for _ in 1..args.dipole.dipole_frames {
+            let (w, h) = prepared.size;
+            prepared.renderer.render(&prepared.scene, &prepared.camera, w, h, false)?;
+        }
+    }
     if supersample > 1 {
         if !out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
             bail!("--aa {}: supersampling writes PNG only", args.aa);

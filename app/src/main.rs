@@ -15,6 +15,7 @@ mod cmd_export;
 mod cmd_import;
 mod cmd_km;
 mod cmd_render;
+mod dipole_args;
 mod fit_thickness;
 mod plot;
 mod plot_png;

@@ -183,6 +183,12 @@ impl ChannelProfile {
         self.c_phi * phi + self.c_e * e
     }
 
+    /// The classic dipole's GPU constants: α′, σ_tr (mm⁻¹), z_r and z_v (mm) (the standard dipole
+    /// of shaders/dipole_common.wgsl).
+    pub fn classic_constants(&self) -> [f64; 4] {
+        [self.alpha_prime, self.sigma_tr, self.z_r, self.z_v]
+    }
+
     /// Total diffuse reflectance Rd = ∫ R(r) 2πr dr, closed form (module doc).
     pub fn total(&self) -> f64 {
         match self.model {

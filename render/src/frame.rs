@@ -64,6 +64,15 @@ pub enum Step {
     Lighting,
     /// Thickness translucency added to the skin's diffuse radiance.
     Thickness,
+    /// The dipole models' light G-buffer, one view per directional light.
+    DipoleLight {
+        /// Light views.
+        slots: u32,
+    },
+    /// The dipole models' K radiance maps.
+    DipoleRadiance,
+    /// The dipole models' combination, added to the skin's diffuse radiance.
+    DipoleCombine,
     /// One direction of the screen-space scattering blur.
     Sss(Direction),
     /// Composition of `skin` (diffuse or scattered) with the surface radiance.
@@ -169,6 +178,7 @@ impl FramePlan {
             }
         }
         let thickness = thickness_variant(scene, uploaded, shadow_maps, &mut skipped)?;
+        let dipole_slots = dipole_slots(scene, &mut skipped)?;
         let variant = Variant {
             layers: uploaded.layers,
             shadows: shadow_maps > 0,
@@ -177,6 +187,7 @@ impl FramePlan {
             albedo_map: uploaded.albedo_map,
             normal_map: uploaded.normal_map,
             thickness,
+            dipole: dipole_slots.is_some(),
         };
 
         // G-buffer.
@@ -233,8 +244,39 @@ impl FramePlan {
             });
         }
 
+        if let (Some(slots), SubsurfaceModel::Dipole { kind, settings }) = (dipole_slots, &scene.skin.subsurface) {
+            passes.push(PlannedPass {
+                step: Step::DipoleLight { slots },
+                reads: vec![format!("mesh, {slots} directional light(s)")],
+                writes: vec![format!("light G-buffer ({slots}×{}², normals + depth)", settings.light_map_px)],
+            });
+            passes.push(PlannedPass {
+                step: Step::DipoleRadiance,
+                reads: vec!["mesh".into(), "light G-buffer".into()],
+                writes: vec![format!(
+                    "{} radiance maps {}² ({} {} samples a texel{})",
+                    settings.directions,
+                    settings.map_px,
+                    settings.samples,
+                    kind.name(),
+                    if settings.progressive { ", accumulated over frames" } else { "" }
+                )],
+            });
+            let mut reads = names(&crate::passes::dipole::combine::inputs());
+            reads.push("radiance maps".into());
+            passes.push(PlannedPass {
+                step: Step::DipoleCombine,
+                reads,
+                writes: vec![format!("{} (added)", Target::Diffuse.name())],
+            });
+        }
+
         // The skin's subsurface model.
         let kernel = match &scene.skin.subsurface {
+            SubsurfaceModel::Dipole { kind, .. } => {
+                skipped.push(skip("SSS passes", format!("the skin's subsurface model is {}", kind.name())));
+                None
+            }
             SubsurfaceModel::None => {
                 skipped.push(skip("SSS passes", "the skin's subsurface model is none"));
                 None
@@ -355,6 +397,36 @@ impl FramePlan {
     }
 }
 
+/// The light views of the dipole passes when the skin's model is a dipole: one per directional
+/// light (point lights get no subsurface light from it, and the plan says so); `None` otherwise.
+fn dipole_slots(scene: &Scene, skipped: &mut Vec<Skipped>) -> Result<Option<u32>> {
+    let SubsurfaceModel::Dipole { kind, settings } = &scene.skin.subsurface else {
+        skipped.push(skip("dipole passes", "no material uses a dipole model"));
+        return Ok(None);
+    };
+    settings.check()?;
+    if scene.skin.medium.is_none() {
+        return Err(RenderError::Invalid(format!(
+            "the {} model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)",
+            kind.name()
+        )));
+    }
+    for (i, l) in scene.lights.iter().enumerate() {
+        if matches!(l.kind, LightKind::Point { .. }) {
+            skipped.push(skip(
+                format!("dipole light G-buffer of light {i} (point)"),
+                "the dipole passes take directional lights",
+            ));
+        }
+    }
+    let slots = crate::passes::dipole::dipole_lights(scene).len().min(MAX_LIGHTS) as u32;
+    if slots == 0 {
+        skipped.push(skip("dipole passes", "the scene has no directional light"));
+        return Ok(None);
+    }
+    Ok(Some(slots))
+}
+
 /// Which thickness translucency the frame runs: off unless the skin's model is `thickness`; the
 /// baked source needs its map uploaded; the shadow-map source needs a light with a shadow map
 /// (lights without one get no term, and the pass is skipped when none has one).
@@ -432,6 +504,9 @@ pub fn step_name(step: Step) -> String {
         Step::Gbuffer => "gbuffer".into(),
         Step::Lighting => "lighting".into(),
         Step::Thickness => "thickness".into(),
+        Step::DipoleLight { .. } => "dipole light".into(),
+        Step::DipoleRadiance => "dipole radiance".into(),
+        Step::DipoleCombine => "dipole combine".into(),
         Step::Sss(d) => d.label().into(),
         Step::Composite { .. } => "composite".into(),
         Step::EdgeOverdraw { .. } => "edge overdraw".into(),

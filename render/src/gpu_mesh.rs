@@ -96,9 +96,15 @@ impl GpuMesh {
 
     /// Binds the buffers and draws every triangle.
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.draw_instance(pass, 0);
+    }
+
+    /// Draws every triangle as instance `instance` (a shader's `instance_index` then selects a
+    /// view, as the dipole passes' directions and lights do).
+    pub fn draw_instance(&self, pass: &mut wgpu::RenderPass<'_>, instance: u32) {
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..1);
+        pass.draw_indexed(0..self.index_count, 0, instance..instance + 1);
     }
 }
 

@@ -13,6 +13,7 @@
 pub mod aa;
 pub mod aa_study;
 pub mod diffusion;
+pub mod directional_dipole;
 pub mod env;
 pub mod error;
 pub mod frame;

@@ -9,6 +9,10 @@ use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
 use crate::passes::composite::CompositePass;
 use crate::passes::depth_copy::{self, DepthCopyPass};
+use crate::passes::dipole::combine::DipoleCombinePass;
+use crate::passes::dipole::light::DipoleLightPass;
+use crate::passes::dipole::radiance::DipoleRadiancePass;
+use crate::passes::dipole::{DipoleResources, DipoleUniform, state_key};
 use crate::passes::edge_overdraw::{EdgeOverdrawPass, GpuEdges};
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
@@ -61,6 +65,9 @@ struct Passes {
     lighting: LightingPass,
     sss: SssPass,
     thickness: ThicknessPass,
+    dipole_light: DipoleLightPass,
+    dipole_radiance: DipoleRadiancePass,
+    dipole_combine: DipoleCombinePass,
     composite: CompositePass,
     edge_overdraw: EdgeOverdrawPass,
 }
@@ -94,6 +101,10 @@ pub struct Renderer {
     edges: Option<GpuEdges>,
     edge_aa: crate::aa::EdgeAa,
     edge_stats: crate::silhouettes::FrameEdgeStats,
+    /// The dipole models' maps and their accumulation.
+    dipole: DipoleResources,
+    /// Counts mesh uploads (the dipole maps depend on the mesh).
+    mesh_generation: u64,
 }
 
 impl Renderer {
@@ -108,6 +119,9 @@ impl Renderer {
             lighting: LightingPass::new(&shared),
             sss: SssPass::new(&shared),
             thickness: ThicknessPass::new(&shared),
+            dipole_light: DipoleLightPass::new(&shared.device),
+            dipole_radiance: DipoleRadiancePass::new(&shared.device),
+            dipole_combine: DipoleCombinePass::new(&shared.device),
             composite: CompositePass::new(&shared),
             edge_overdraw: EdgeOverdrawPass::new(&shared),
         };
@@ -125,6 +139,8 @@ impl Renderer {
             edges: None,
             edge_aa: crate::aa::EdgeAa::Off,
             edge_stats: Default::default(),
+            dipole: DipoleResources::new(device, formats.min_array_layers),
+            mesh_generation: 0,
             shared,
         }
     }
@@ -141,6 +157,7 @@ impl Renderer {
     pub fn set_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
         let device = &self.shared.device;
         self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo))?);
+        self.mesh_generation += 1;
         self.edges = None;
         if self.edge_aa != crate::aa::EdgeAa::Off {
             self.prepare_edges(mesh);
@@ -314,7 +331,21 @@ impl Renderer {
     fn record_and_submit(&mut self, plan: &FramePlan, scene: &Scene, camera: &Camera) -> Result<wgpu::Texture> {
         let display = plan.variant.display;
         let Renderer {
-            shared, passes, targets, mesh, textures, look, profiler, profiling, timings, last, edges, edge_aa, ..
+            shared,
+            passes,
+            targets,
+            mesh,
+            textures,
+            look,
+            profiler,
+            profiling,
+            timings,
+            last,
+            edges,
+            edge_aa,
+            dipole,
+            mesh_generation,
+            ..
         } = self;
         let mesh =
             mesh.as_ref().ok_or_else(|| RenderError::Invalid("no mesh to render: call set_mesh first".into()))?;
@@ -328,6 +359,19 @@ impl Renderer {
         if let crate::scene::SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface {
             let (falloff, cutoff_mm) = source.falloff();
             passes.thickness.write_uniform(shared, &ThicknessUniform::new(*params, falloff, cutoff_mm));
+        }
+        let mut dipole_blend = 1.0;
+        if let (crate::scene::SubsurfaceModel::Dipole { kind, settings }, Some(medium)) =
+            (&scene.skin.subsurface, &scene.skin.medium)
+            && plan.variant.dipole
+        {
+            let slots = crate::passes::dipole::dipole_lights(scene).len().min(crate::uniforms::MAX_LIGHTS) as u32;
+            dipole.ensure(device, settings, slots, shared.formats.min_array_layers);
+            let key = state_key(*kind, medium, settings, scene, *mesh_generation);
+            let (frame_index, blend) = dipole.next_frame(key, settings.progressive);
+            dipole_blend = blend;
+            let u = DipoleUniform::new(*kind, medium, settings, scene, &mesh.bounds, frame_index);
+            shared.queue.write_buffer(&dipole.uniform, 0, bytemuck::bytes_of(&u));
         }
         if let Some(kernel) = &plan.kernel {
             passes.sss.write_uniforms(shared, kernel, scene.sss.width, scene.sss.follow_mm, scene.sss.samples);
@@ -350,6 +394,15 @@ impl Renderer {
                 Step::Gbuffer => passes.gbuffer.record(ctx, &mut enc, mesh, look, textures)?,
                 Step::Lighting => passes.lighting.record(ctx, &mut enc, look, &shadow_maps)?,
                 Step::Thickness => passes.thickness.record(ctx, &mut enc, &shadow_maps)?,
+                Step::DipoleLight { slots } => passes.dipole_light.record(ctx, &mut enc, mesh, dipole, slots)?,
+                Step::DipoleRadiance => {
+                    let directions = match &scene.skin.subsurface {
+                        crate::scene::SubsurfaceModel::Dipole { settings, .. } => settings.directions,
+                        _ => 0,
+                    };
+                    passes.dipole_radiance.record(ctx, &mut enc, mesh, dipole, directions, dipole_blend)?
+                }
+                Step::DipoleCombine => passes.dipole_combine.record(ctx, &mut enc, dipole)?,
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
                 Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
                 Step::EdgeOverdraw { sorted } => {
@@ -381,6 +434,11 @@ impl Renderer {
         *last = Some(LastFrame { variant, sss_ran: plan.kernel.is_some(), view, depth: std::sync::Mutex::new(None) });
         let out = if display { Target::Display } else { Target::Linear };
         targets.get(out).cloned().ok_or_else(|| RenderError::Gpu("the output target was not created".into()))
+    }
+
+    /// Frames of samples the dipole models' radiance maps hold (progressive accumulation).
+    pub fn dipole_frames(&self) -> u32 {
+        self.dipole.frames_accumulated()
     }
 
     /// Waits for the GPU to finish the submitted work.

@@ -5,6 +5,7 @@ use crate::diffusion::ProfileModel;
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
 use crate::local_thickness::{ThicknessSource, TranslucencyParams};
+use crate::passes::dipole::{DipoleKind, DipoleSettings};
 use crate::profile_fit::FittedProfile;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
@@ -138,6 +139,16 @@ pub enum SubsurfaceModel {
         /// Where the local thickness comes from.
         source: ThicknessSource,
     },
+    /// The directional dipole ([Frisvad2014]) or the standard dipole ([Jensen2001]) of the
+    /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
+    /// ([DirDipoleThesis], `crate::passes::dipole`). Takes over the skin's direct light; needs
+    /// `Skin::medium`.
+    Dipole {
+        /// Which BSSRDF.
+        kind: DipoleKind,
+        /// Samples, directions, map sizes, the artifact fixes, progressive accumulation.
+        settings: DipoleSettings,
+    },
 }
 
 impl SubsurfaceModel {
@@ -152,6 +163,7 @@ impl SubsurfaceModel {
             SubsurfaceModel::None => "none",
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
             SubsurfaceModel::Thickness { .. } => "thickness",
+            SubsurfaceModel::Dipole { kind, .. } => kind.name(),
         }
     }
 
@@ -159,7 +171,7 @@ impl SubsurfaceModel {
     pub fn profile(&self) -> Option<&DiffusionProfile> {
         match self {
             SubsurfaceModel::ScreenSpace { profile } => Some(profile),
-            SubsurfaceModel::None | SubsurfaceModel::Thickness { .. } => None,
+            SubsurfaceModel::None | SubsurfaceModel::Thickness { .. } | SubsurfaceModel::Dipole { .. } => None,
         }
     }
 }

@@ -40,6 +40,8 @@ pub struct Variant {
     pub normal_map: bool,
     /// The thickness translucency and its local-thickness source.
     pub thickness: ThicknessVariant,
+    /// A dipole model takes over the skin's direct light (the lighting pass leaves it out).
+    pub dipole: bool,
 }
 
 impl Variant {
@@ -52,13 +54,14 @@ impl Variant {
         albedo_map: false,
         normal_map: false,
         thickness: ThicknessVariant::Off,
+        dipole: false,
     };
 
     /// Every variant, for validating all shader sources.
     pub fn all() -> impl Iterator<Item = Variant> {
         let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
         (0..=MAX_LAYERS as u32).flat_map(move |layers| {
-            (0..32u32).flat_map(move |bits| {
+            (0..64u32).flat_map(move |bits| {
                 thickness.into_iter().map(move |thickness| Variant {
                     layers,
                     shadows: bits & 1 != 0,
@@ -67,6 +70,7 @@ impl Variant {
                     albedo_map: bits & 8 != 0,
                     normal_map: bits & 16 != 0,
                     thickness,
+                    dipole: bits & 32 != 0,
                 })
             })
         })
@@ -77,6 +81,7 @@ impl Variant {
         let none = Variant::BARE;
         match pass {
             Pass::Shadow | Pass::Sss | Pass::DepthCopy | Pass::EdgeOverdraw => none,
+            Pass::DipoleLight | Pass::DipoleRadiance | Pass::DipoleCombine => none,
             Pass::Gbuffer => Variant {
                 layers: self.layers,
                 albedo_map: self.albedo_map,
@@ -85,14 +90,17 @@ impl Variant {
                 ..none
             },
             Pass::Thickness => Variant { thickness: self.thickness, ..none },
-            Pass::Lighting => Variant { layers: self.layers, shadows: self.shadows, env: self.env, ..none },
+            Pass::Lighting => {
+                Variant { layers: self.layers, shadows: self.shadows, env: self.env, dipole: self.dipole, ..none }
+            }
             Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
         }
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 11] {
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 12] {
         [
+            ("DIPOLE", self.dipole),
             ("THICKNESS", self.thickness != ThicknessVariant::Off),
             ("THICKNESS_MAP", self.thickness == ThicknessVariant::Baked),
             ("THICKNESS_LIGHT", self.thickness == ThicknessVariant::ShadowMap),
@@ -126,6 +134,7 @@ pub fn shader_source(pass: Pass, variant: Variant, encode_srgb: bool) -> Result<
 fn insertion(name: &str) -> Option<&'static str> {
     match name {
         "sh_eval" => Some(crate::env::WGSL_SH_EVAL),
+        "dipole_common" => Some(include_str!("shaders/dipole_common.wgsl")),
         _ => None,
     }
 }

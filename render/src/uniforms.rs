@@ -2,6 +2,7 @@
 //! they are built from the scene and the camera: view and projection, lights with their shadow
 //! matrices. Keep in sync with common.wgsl; tests/shaders.rs checks the layouts with naga.
 
+use crate::passes::dipole::DipoleUniform;
 use crate::passes::sss::SssUniform;
 use crate::passes::thickness::ThicknessUniform;
 use crate::scene::{Camera, LightKind, Scene};
@@ -126,6 +127,19 @@ impl FrameUniform {
     }
 }
 
+/// An orthographic view-projection looking at the sphere (`centre`, `radius`) from the direction
+/// `toward` (from the centre toward the eye), enclosing it, with its near and far planes (mm):
+/// what the shadow maps of directional lights and the dipole passes' views use.
+pub fn orthographic_toward(toward: Vec3, centre: Vec3, radius: f32) -> (Mat4, f32, f32) {
+    let t = toward.normalize_or(Vec3::Z);
+    let eye = centre + t * 2.5 * radius;
+    let up = if t.abs().y > 0.95 { Vec3::Z } else { Vec3::Y };
+    let view = glam::camera::rh::view::look_at_mat4(eye, centre, up);
+    let (near, far) = (0.5 * radius, 4.5 * radius);
+    let proj = glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, near, far);
+    (proj * view, near, far)
+}
+
 /// The lights of `scene` around a mesh with `bounds`; shadowing lights get consecutive shadow
 /// map layers in scene order, with an orthographic (directional) or perspective (point) matrix
 /// that encloses the mesh's bounding sphere.
@@ -153,25 +167,24 @@ pub fn light_uniforms(scene: &Scene, bounds: &Bounds) -> [LightUniform; MAX_LIGH
             ..Default::default()
         };
         if l.shadows {
-            let up = if (light_pos - centre).normalize_or_zero().abs().y > 0.95 { Vec3::Z } else { Vec3::Y };
-            let light_view = glam::camera::rh::view::look_at_mat4(light_pos, centre, up);
-            let (proj, near, far, perspective) = match to_centre {
+            let (view_proj, near, far, perspective) = match to_centre {
                 None => {
-                    let (near, far) = (0.5 * radius, 4.5 * radius);
-                    let proj =
-                        glam::camera::rh::proj::directx::orthographic(-radius, radius, -radius, radius, near, far);
-                    (proj, near, far, 0.0)
+                    let (view_proj, near, far) = orthographic_toward(light_pos - centre, centre, radius);
+                    (view_proj, near, far, 0.0)
                 }
                 Some(d) => {
+                    let up = if (light_pos - centre).normalize_or_zero().abs().y > 0.95 { Vec3::Z } else { Vec3::Y };
+                    let light_view = glam::camera::rh::view::look_at_mat4(light_pos, centre, up);
                     let half = (radius / d).clamp(0.05, 0.99).asin() * 1.05;
                     let (near, far) = ((d - radius).max(1.0), d + radius);
-                    (glam::camera::rh::proj::directx::perspective(2.0 * half, 1.0, near, far), near, far, 1.0)
+                    let proj = glam::camera::rh::proj::directx::perspective(2.0 * half, 1.0, near, far);
+                    (proj * light_view, near, far, 1.0)
                 }
             };
             u.translucency = [l.translucency_scale, near, far, perspective];
             let texel_mm = 2.0 * radius / SHADOW_MAP_SIZE as f32;
             u.shadow = [shadow_layer as f32, 0.0005, 1.5 * texel_mm, 1.0 / SHADOW_MAP_SIZE as f32];
-            u.shadow_view_proj = (proj * light_view).to_cols_array_2d();
+            u.shadow_view_proj = view_proj.to_cols_array_2d();
             shadow_layer += 1;
         }
         *slot = u;
@@ -217,6 +230,25 @@ pub fn uniform_layouts() -> Vec<UniformLayout> {
             ],
         ),
         ("Layer", size_of::<LayerUniform>(), vec![("params", offset_of!(LayerUniform, params))]),
+        (
+            "DipolePass",
+            size_of::<DipoleUniform>(),
+            vec![
+                ("channel", offset_of!(DipoleUniform, channel)),
+                ("extra", offset_of!(DipoleUniform, extra)),
+                ("boundary", offset_of!(DipoleUniform, boundary)),
+                ("classic", offset_of!(DipoleUniform, classic)),
+                ("sampling", offset_of!(DipoleUniform, sampling)),
+                ("fixes", offset_of!(DipoleUniform, fixes)),
+                ("counts", offset_of!(DipoleUniform, counts)),
+                ("light_view_proj", offset_of!(DipoleUniform, light_view_proj)),
+                ("light_inv_view_proj", offset_of!(DipoleUniform, light_inv_view_proj)),
+                ("light_info", offset_of!(DipoleUniform, light_info)),
+                ("dir_view_proj", offset_of!(DipoleUniform, dir_view_proj)),
+                ("dir_axis", offset_of!(DipoleUniform, dir_axis)),
+                ("dir_planes", offset_of!(DipoleUniform, dir_planes)),
+            ],
+        ),
         (
             "ThicknessPass",
             size_of::<ThicknessUniform>(),

@@ -43,10 +43,11 @@ fn every_shader_variant_validates() {
             }
         }
     }
-    assert_eq!(Variant::all().count(), 9 * 32 * 3);
+    assert_eq!(Variant::all().count(), 9 * 64 * 3);
     // G-buffer: 9 layer counts × albedo × normal map × 3 thickness variants; thickness: 3;
-    // lighting: 9 × shadows × env; composite: 2 × display; shadow, SSS, depth copy: 1 each.
-    let per_encoding = 9 * 4 * 3 + 3 + 9 * 4 + 2 * 2 + 3;
+    // lighting: 9 × shadows × env × dipole; composite: 2 × display; shadow, SSS, depth copy,
+    // edge overdraw and the three dipole passes: 1 each.
+    let per_encoding = 9 * 4 * 3 + 3 + 9 * 8 + 2 * 2 + 4 + 3;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -65,6 +66,7 @@ fn variants_compile_only_what_the_scene_uses() {
         albedo_map: true,
         normal_map: true,
         thickness: ThicknessVariant::Baked,
+        dipole: false,
     };
     let src = source(Pass::Lighting, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
@@ -99,17 +101,20 @@ fn rust_and_wgsl_uniform_layouts_match() {
         albedo_map: true,
         normal_map: true,
         thickness: ThicknessVariant::ShadowMap,
+        dipole: true,
     };
     // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
     let lighting = parse(Pass::Lighting, variant);
     let sss = parse(Pass::Sss, variant);
     let thickness = parse(Pass::Thickness, variant);
     let edges = parse(Pass::EdgeOverdraw, variant);
+    let dipole = parse(Pass::DipoleRadiance, variant);
     for (name, size, fields) in uniform_layouts() {
         let module = match name {
             "SssPass" => &sss,
             "ThicknessPass" => &thickness,
             "EdgePass" => &edges,
+            "DipolePass" => &dipole,
             _ => &lighting,
         };
         let mut layouter = naga::proc::Layouter::default();

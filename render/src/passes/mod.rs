@@ -7,6 +7,7 @@
 
 pub mod composite;
 pub mod depth_copy;
+pub mod dipole;
 pub mod edge_overdraw;
 pub mod gbuffer;
 pub mod lighting;
@@ -40,11 +41,17 @@ pub enum Pass {
     DepthCopy,
     /// Discontinuity edge overdraw ([Sander2001]) over the composited image.
     EdgeOverdraw,
+    /// The dipole models' light G-buffer.
+    DipoleLight,
+    /// The dipole models' radiance maps.
+    DipoleRadiance,
+    /// The dipole models' combination.
+    DipoleCombine,
 }
 
 impl Pass {
     /// Every pass.
-    pub const ALL: [Pass; 8] = [
+    pub const ALL: [Pass; 11] = [
         Pass::Shadow,
         Pass::Gbuffer,
         Pass::Lighting,
@@ -53,6 +60,9 @@ impl Pass {
         Pass::Composite,
         Pass::DepthCopy,
         Pass::EdgeOverdraw,
+        Pass::DipoleLight,
+        Pass::DipoleRadiance,
+        Pass::DipoleCombine,
     ];
 
     /// The pass's WGSL file name (for errors).
@@ -65,6 +75,9 @@ impl Pass {
             Pass::Thickness => "shaders/thickness.wgsl",
             Pass::Composite => "shaders/composite.wgsl",
             Pass::DepthCopy => "shaders/depth_copy.wgsl",
+            Pass::DipoleLight => "shaders/dipole_light.wgsl",
+            Pass::DipoleRadiance => "shaders/dipole_radiance.wgsl",
+            Pass::DipoleCombine => "shaders/dipole_combine.wgsl",
             Pass::EdgeOverdraw => "shaders/edge_overdraw.wgsl",
         }
     }
@@ -79,6 +92,9 @@ impl Pass {
             Pass::Thickness => include_str!("../shaders/thickness.wgsl"),
             Pass::Composite => include_str!("../shaders/composite.wgsl"),
             Pass::DepthCopy => include_str!("../shaders/depth_copy.wgsl"),
+            Pass::DipoleLight => include_str!("../shaders/dipole_light.wgsl"),
+            Pass::DipoleRadiance => include_str!("../shaders/dipole_radiance.wgsl"),
+            Pass::DipoleCombine => include_str!("../shaders/dipole_combine.wgsl"),
             Pass::EdgeOverdraw => include_str!("../shaders/edge_overdraw.wgsl"),
         }
     }

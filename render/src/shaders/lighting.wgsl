@@ -191,12 +191,19 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
             specular += e_n * lobes;
         }
     }
+    // The skin's diffuse light: a dipole model (render/src/passes/dipole) takes over the lights'.
+    var skin_irradiance = irradiance;
+//#if DIPOLE
+    skin_irradiance = vec3<f32>(0.0);
+//#endif
 //#if ENV
-    irradiance += max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
+    let env_e = max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
+    irradiance += env_e;
+    skin_irradiance += env_e;
 //#endif
 
     if is_skin {
-        out.diffuse = vec4<f32>(albedo * irradiance * t / (1.0 - r_below * albedo) / PI, 1.0);
+        out.diffuse = vec4<f32>(albedo * skin_irradiance * t / (1.0 - r_below * albedo) / PI, 1.0);
         out.surface = vec4<f32>(r_top * irradiance / PI + specular, 1.0);
     } else {
         out.diffuse = vec4<f32>(0.0);

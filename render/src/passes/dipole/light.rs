@@ -1,0 +1,66 @@
+//! Dipole light G-buffer pass (shaders/dipole_light.wgsl): the mesh from each directional light,
+//! orthographically, into a layer of the light normals and depths ([DirDipoleThesis] step 1).
+
+use super::super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
+use super::{DipoleResources, layer_view};
+use crate::error::Result;
+use crate::gpu_mesh::GpuMesh;
+use crate::shader::Variant;
+use crate::targets::HDR_FORMAT;
+use crate::wgpu_util::{buf, color, depth_clear, layout, uniform_entry};
+
+/// The light G-buffer pass.
+#[derive(Debug)]
+pub struct DipoleLightPass {
+    layout: wgpu::BindGroupLayout,
+    pipelines: Pipelines,
+}
+
+impl DipoleLightPass {
+    /// The pass on `device`.
+    pub fn new(device: &wgpu::Device) -> DipoleLightPass {
+        let layout =
+            layout(device, "DipoleLightPass::layout", &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)]);
+        DipoleLightPass { layout, pipelines: Pipelines::default() }
+    }
+
+    /// Records `slots` light views of `mesh`.
+    ///
+    /// # Errors
+    /// When the pipeline cannot be built.
+    pub fn record(
+        &mut self,
+        ctx: FrameContext<'_>,
+        enc: &mut FrameEncoder<'_>,
+        mesh: &GpuMesh,
+        res: &DipoleResources,
+        slots: u32,
+    ) -> Result<()> {
+        let shared = ctx.shared;
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
+            pass: Pass::DipoleLight,
+            variant: Variant::BARE,
+            layout: &self.layout,
+            vertices: Vertices::Mesh,
+            vs: "vs_dipole_light",
+            fs: Some("fs_dipole_light"),
+            targets: vec![Some(HDR_FORMAT)],
+            blend: None,
+            depth: Some(wgpu::DepthBiasState::default()),
+        })?;
+        let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("DipoleLightPass::group"),
+            layout: &self.layout,
+            entries: &[buf(0, &res.uniform)],
+        });
+        for slot in 0..slots {
+            let (normals, depth) = (layer_view(&res.light_normals, slot), layer_view(&res.light_depths, slot));
+            let mut pass = enc.begin("dipole light", &[color(&normals, wgpu::Color::TRANSPARENT)], depth_clear(&depth));
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &shared.frame_group, &[]);
+            pass.set_bind_group(1, &group, &[]);
+            mesh.draw_instance(&mut pass, slot);
+        }
+        Ok(())
+    }
+}
