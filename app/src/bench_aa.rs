@@ -103,6 +103,7 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
             reference_k: args.reference,
             modes: modes.clone(),
             timed_frames: args.timed_frames,
+            gpu_classify: true,
         };
         let rows = aa_study::run(&mut r, &scene, &mesh, &study)?;
         let views: Vec<f32> = (0..100).map(|i| i as f32 * 3.6).collect();

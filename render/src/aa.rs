@@ -98,9 +98,7 @@ impl AaMode {
 
 /// Linear sRGB of an sRGB-encoded RGBA8 image.
 pub fn decode_srgb8(rgba: &[u8]) -> Vec<[f32; 3]> {
-    rgba.chunks_exact(4)
-        .map(|p| std::array::from_fn(|c| srgb_decode(f64::from(p[c]) / 255.0) as f32))
-        .collect()
+    rgba.chunks_exact(4).map(|p| std::array::from_fn(|c| srgb_decode(f64::from(p[c]) / 255.0) as f32)).collect()
 }
 
 /// An sRGB-encoded RGBA8 image (alpha 255) from linear sRGB.
@@ -121,10 +119,7 @@ pub fn encode_srgb8(linear: &[[f32; 3]]) -> Vec<u8> {
 /// [`RenderError::Invalid`] when the image is not `k·w × k·h` pixels or k is 0.
 pub fn box_downsample(linear: &[[f32; 3]], (w, h): (usize, usize), k: usize) -> Result<Vec<[f32; 3]>> {
     if k == 0 || linear.len() != w * h * k * k {
-        return Err(RenderError::Invalid(format!(
-            "cannot box-filter {} pixels to {w}×{h} by {k}×{k}",
-            linear.len()
-        )));
+        return Err(RenderError::Invalid(format!("cannot box-filter {} pixels to {w}×{h} by {k}×{k}", linear.len())));
     }
     let big_w = w * k;
     let norm = 1.0 / (k * k) as f32;

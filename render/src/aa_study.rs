@@ -4,12 +4,12 @@
 //! crawl between consecutive frames ([`crate::aa::crawl`]); cost per frame; and the edge counts
 //! of [Sander2001] table 1.
 
+use crate::Renderer;
 use crate::aa::{self, AaMode, EdgeAa, EdgeCoverage};
 use crate::error::Result;
 use crate::scene::{Camera, Scene};
 use crate::silhouettes::{EdgeClass, FrameEdgeStats, classify};
 use crate::uniforms::FrameView;
-use crate::Renderer;
 use std::time::Instant;
 
 /// What to measure.
@@ -27,6 +27,9 @@ pub struct AaStudy {
     pub modes: Vec<(AaMode, EdgeCoverage)>,
     /// Frames timed per mode (the median is reported).
     pub timed_frames: u32,
+    /// Also measure unsorted two-sided overdraw with every edge classified on the GPU
+    /// ([`Renderer::set_edge_gpu_classify`]), the row `edges-gpu`.
+    pub gpu_classify: bool,
 }
 
 /// One mode's results over the sequence.
@@ -72,7 +75,13 @@ pub struct EdgeTable {
 ///
 /// # Errors
 /// As [`Renderer::render`].
-pub fn render_linear_srgb(r: &mut Renderer, scene: &Scene, camera: &Camera, (w, h): (u32, u32), k: u32) -> Result<Vec<[f32; 3]>> {
+pub fn render_linear_srgb(
+    r: &mut Renderer,
+    scene: &Scene,
+    camera: &Camera,
+    (w, h): (u32, u32),
+    k: u32,
+) -> Result<Vec<[f32; 3]>> {
     r.render(scene, camera, w * k, h * k, true)?;
     let linear = aa::decode_srgb8(&r.read_display()?);
     if k == 1 { Ok(linear) } else { aa::box_downsample(&linear, (w as usize, h as usize), k as usize) }
@@ -116,7 +125,12 @@ pub fn edge_mask(r: &Renderer, camera: &Camera, (w, h): (u32, u32)) -> Vec<bool>
 ///
 /// # Errors
 /// As [`Renderer::render`]; [`crate::RenderError::Invalid`] without a mesh or for `msaa4`.
-pub fn run(r: &mut Renderer, scene: &Scene, mesh: &rouge_model::mesh::TriangleMesh, study: &AaStudy) -> Result<Vec<AaRow>> {
+pub fn run(
+    r: &mut Renderer,
+    scene: &Scene,
+    mesh: &rouge_model::mesh::TriangleMesh,
+    study: &AaStudy,
+) -> Result<Vec<AaRow>> {
     r.prepare_edges(mesh);
     let bounds = r.mesh_bounds().ok_or_else(|| crate::RenderError::Invalid("no mesh".into()))?;
     let cameras: Vec<Camera> =
@@ -129,8 +143,13 @@ pub fn run(r: &mut Renderer, scene: &Scene, mesh: &rouge_model::mesh::TriangleMe
         masks.push(edge_mask(r, camera, study.size));
     }
     let mut rows = Vec::new();
-    for &(mode, coverage) in &study.modes {
+    let mut runs: Vec<(AaMode, EdgeCoverage, bool)> = study.modes.iter().map(|&(m, c)| (m, c, false)).collect();
+    if study.gpu_classify {
+        runs.push((AaMode::Edges, EdgeCoverage::TwoSided, true));
+    }
+    for (mode, coverage, gpu) in runs {
         let k = apply_mode(r, mode, coverage)?;
+        r.set_edge_gpu_classify(gpu);
         let mut images = Vec::new();
         let (mut rmse, mut de) = (0.0, 0.0);
         for (i, camera) in cameras.iter().enumerate() {
@@ -157,8 +176,9 @@ pub fn run(r: &mut Renderer, scene: &Scene, mesh: &rouge_model::mesh::TriangleMe
         times.sort_by(f64::total_cmp);
         let n = cameras.len().max(1) as f64;
         let edge_mode = matches!(mode, AaMode::Edges | AaMode::EdgesSorted);
+        r.set_edge_gpu_classify(false);
         rows.push(AaRow {
-            mode: mode.name(),
+            mode: if gpu { "edges-gpu".into() } else { mode.name() },
             coverage: edge_mode.then_some(coverage),
             rmse: rmse / n,
             delta_e_mean: de / n,

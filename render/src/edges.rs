@@ -261,9 +261,11 @@ pub fn orient_chains(edges: &mut [Edge]) {
             loop {
                 let e = edges[current];
                 let end = if forward { e.p1 } else { e.p0 };
-                let Some(next) = at.get(&key(end)).filter(|v| v.len() == 2).and_then(|v| {
-                    v.iter().copied().find(|&n| n != current && !done[n])
-                }) else {
+                let Some(next) = at
+                    .get(&key(end))
+                    .filter(|v| v.len() == 2)
+                    .and_then(|v| v.iter().copied().find(|&n| n != current && !done[n]))
+                else {
                     break;
                 };
                 let n = edges[next];
@@ -290,7 +292,12 @@ pub fn cube(side_mm: f32) -> rouge_model::mesh::Mesh {
     use rouge_model::mesh::{Corner, Face, Group, Mesh};
     let h = 0.5 * side_mm;
     let mut mesh = Mesh::default();
-    mesh.uvs = vec![glam::Vec2::new(0.0, 0.0), glam::Vec2::new(1.0, 0.0), glam::Vec2::new(1.0, 1.0), glam::Vec2::new(0.0, 1.0)];
+    mesh.uvs = vec![
+        glam::Vec2::new(0.0, 0.0),
+        glam::Vec2::new(1.0, 0.0),
+        glam::Vec2::new(1.0, 1.0),
+        glam::Vec2::new(0.0, 1.0),
+    ];
     for i in 0..8u32 {
         let s = |bit: u32| if i & bit != 0 { h } else { -h };
         mesh.positions.push(Vec3::new(s(1), s(2), s(4)));

@@ -101,6 +101,7 @@ pub struct Renderer {
     edges: Option<GpuEdges>,
     edge_aa: crate::aa::EdgeAa,
     edge_stats: crate::silhouettes::FrameEdgeStats,
+    edge_gpu_classify: bool,
     /// The dipole models' maps and their accumulation.
     dipole: DipoleResources,
     /// Counts mesh uploads (the dipole maps depend on the mesh).
@@ -139,6 +140,7 @@ impl Renderer {
             edges: None,
             edge_aa: crate::aa::EdgeAa::Off,
             edge_stats: Default::default(),
+            edge_gpu_classify: false,
             dipole: DipoleResources::new(device, formats.min_array_layers),
             mesh_generation: 0,
             shared,
@@ -178,6 +180,12 @@ impl Renderer {
     /// edges ([`Renderer::prepare_edges`], done by [`Renderer::set_mesh`] once this is on).
     pub fn set_edge_aa(&mut self, aa: crate::aa::EdgeAa) {
         self.edge_aa = aa;
+    }
+
+    /// Whether unsorted edge overdraw feeds every edge to the GPU, whose vertex stage classifies
+    /// each (brute force, no CPU work per frame), instead of the CPU's list (the default).
+    pub fn set_edge_gpu_classify(&mut self, on: bool) {
+        self.edge_gpu_classify = on;
     }
 
     /// The edge antialiasing of the following frames.
@@ -413,8 +421,11 @@ impl Renderer {
                         crate::aa::EdgeAa::Unsorted(c) | crate::aa::EdgeAa::Sorted(c) => c,
                         crate::aa::EdgeAa::Off => crate::aa::EdgeCoverage::TwoSided,
                     };
-                    let list = sorted.then(|| {
-                        let (list, stats) = edges.frames.frame(camera.position(), true);
+                    // The CPU's list (search, classification, sort when asked) unless the GPU is to
+                    // classify every edge: `rouge bench aa` measured the list faster (the vertex
+                    // stage over every edge of the head costs more than the CPU's search).
+                    let list = (sorted || !self.edge_gpu_classify).then(|| {
+                        let (list, stats) = edges.frames.frame(camera.position(), sorted);
                         self.edge_stats = stats;
                         list
                     });

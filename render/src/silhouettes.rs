@@ -179,7 +179,8 @@ impl EdgeFrames {
             let dist = d.length();
             if dist > c.radius && c.half_angle < std::f32::consts::FRAC_PI_2 {
                 let theta = (c.axis.dot(d) / dist).clamp(-1.0, 1.0).acos();
-                let front = theta + c.half_angle < std::f32::consts::PI && dist * (theta + c.half_angle).cos() > c.radius;
+                let front =
+                    theta + c.half_angle < std::f32::consts::PI && dist * (theta + c.half_angle).cos() > c.radius;
                 let back = dist * (theta - c.half_angle).max(0.0).cos() + c.radius < 0.0;
                 if front || back {
                     continue;

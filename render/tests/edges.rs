@@ -210,14 +210,25 @@ fn a_turning_cube_with_edge_overdraw_is_closer_to_supersampling_and_crawls_less(
             (AaMode::Ssaa(2), EdgeCoverage::TwoSided),
         ],
         timed_frames: 1,
+        gpu_classify: true,
     };
     let rows = aa_study::run(&mut r, &scene, &mesh, &study).expect("study");
     for row in &rows {
-        eprintln!("{:>12} {:?}: rmse {:.4} ΔE {:.2} crawl {:.4}", row.mode, row.coverage, row.rmse, row.delta_e_mean, row.crawl);
+        eprintln!(
+            "{:>12} {:?}: rmse {:.4} ΔE {:.2} crawl {:.4}",
+            row.mode, row.coverage, row.rmse, row.delta_e_mean, row.crawl
+        );
         assert!(row.rmse.is_finite() && row.crawl.is_finite());
     }
     let (none, sorted, ssaa2) = (&rows[0], &rows[1], &rows[4]);
     assert!(sorted.rmse < 0.6 * none.rmse, "edge overdraw {:.4} vs none {:.4}", sorted.rmse, none.rmse);
     assert!(rows[3].rmse < 0.6 * none.rmse, "unsorted {:.4} vs none {:.4}", rows[3].rmse, none.rmse);
     assert!(sorted.crawl < ssaa2.crawl, "crawl: edges {:.4} vs ssaa2 {:.4}", sorted.crawl, ssaa2.crawl);
+    // The GPU's classification draws what the CPU's list draws.
+    assert!(
+        (rows[5].rmse - rows[3].rmse).abs() < 1e-3,
+        "GPU classify {:.4} vs CPU list {:.4}",
+        rows[5].rmse,
+        rows[3].rmse
+    );
 }

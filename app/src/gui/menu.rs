@@ -104,6 +104,19 @@ impl RougeApp {
                 if ui.checkbox(&mut self.view.environment, "Environment light").changed() {
                     self.view.needs_render = true;
                 }
+                use rouge_render::aa::{EdgeAa, EdgeCoverage};
+                ui.label("Antialiasing");
+                let current = self.gpu.renderer.edge_aa();
+                for (aa, name) in [
+                    (EdgeAa::Off, "None"),
+                    (EdgeAa::Unsorted(EdgeCoverage::TwoSided), "Edges"),
+                    (EdgeAa::Sorted(EdgeCoverage::TwoSided), "Edges, sorted"),
+                ] {
+                    if ui.radio(current == aa, name).clicked() {
+                        self.gpu.set_edge_aa(aa);
+                        self.view.needs_render = true;
+                    }
+                }
             });
             ui.separator();
             let modified = if self.editor.document().is_modified() { " •" } else { "" };

@@ -4,10 +4,11 @@
 //! colour read from the copy one pixel into the face's side, "over" blended, depth tested
 //! against the G-buffer's depth and not written (chains of edges get no gaps, section 3.4).
 //!
-//! Two feeds of the same shader: every edge of the mesh, uploaded once, with the vertex stage
-//! classifying each instance and collapsing the hidden ones (brute force on the GPU, no CPU work
-//! per frame), or the CPU's list of the edges to draw in their sorted order
-//! ([`crate::silhouettes::EdgeFrames::frame`]).
+//! Two feeds of the same shader: the CPU's list of the edges to draw, in their order
+//! ([`crate::silhouettes::EdgeFrames::frame`]; the default, measured faster), or every edge of
+//! the mesh, uploaded once, with the vertex stage classifying each instance and collapsing the
+//! hidden ones (brute force on the GPU, no CPU work per frame;
+//! [`crate::Renderer::set_edge_gpu_classify`]).
 
 use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
 use crate::aa::EdgeCoverage;
