@@ -243,3 +243,64 @@ fn paint_on_the_scanned_head_when_available() {
         h.state().message()
     );
 }
+
+#[test]
+fn a_smile_slider_poses_the_face_and_painting_lands_on_the_deformed_face() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let lips_before = h.state().lip_point().expect("lipstick on the lips");
+    // The panel is folded at the bottom of the left column: scroll to it, open it.
+    h.get_by_label("Expression").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_label("Expression").click_accesskit();
+    h.run_steps(2);
+    let slider = || egui::accesskit::Role::Slider;
+    h.get_by_role_and_label(slider(), "smile").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_role_and_label(slider(), "smile").set_value_accesskit(1.0);
+    h.run_steps(3);
+    assert_eq!(h.state().face().expression.get("smile"), Some(&1.0), "{:?}", h.state().face());
+    assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
+    // The brush's surface follows the pose: the lipstick's texels now sit on the smiling lips.
+    h.state_mut().refresh_surface();
+    let lips_after = h.state().lip_point().expect("lipstick on the lips");
+    assert!(lips_after.distance(lips_before) > 0.5, "lips at {lips_before} and {lips_after}");
+
+    // Paint across the posed cheek: dabs are picked on the deformed face and land in the UV map.
+    let layer = 0;
+    h.state_mut().set_active_layer(layer);
+    {
+        let b = h.state_mut().brush_mut();
+        (b.radius_mm, b.mirror, b.thickness_mm, b.flow) = (6.0, false, 0.05, 0.8);
+    }
+    let before = h.state().document().layers[layer].map.clone();
+    let points = cheek_stroke(h.state());
+    h.state_mut().paint_stroke_screen(&points);
+    h.run_steps(2);
+    let after = h.state().document().layers[layer].map.clone();
+    let dabs = h.state().last_stroke_dabs().to_vec();
+    assert!(dabs.len() >= 3, "{} dabs", dabs.len());
+    let surface = h.state().surface().expect("surface");
+    let (mut changed, mut far) = (0, 0);
+    for y in 0..after.height {
+        for x in 0..after.width {
+            let i = (y * after.width + x) as usize;
+            if after.mm[i] != before.mm[i] {
+                changed += 1;
+                far += usize::from(!surface.position(x, y).is_some_and(|p| dabs.iter().any(|d| p.distance(*d) <= 6.5)));
+            }
+        }
+    }
+    assert!(changed > 200 && far == 0, "{changed} texels changed, {far} far from the posed dabs");
+
+    // The project keeps the face; the animation plays without touching it.
+    h.state_mut().set_animation(true);
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    h.run_steps(3);
+    h.state_mut().set_animation(false);
+    let project = tempfile::tempdir().expect("tempdir");
+    h.state_mut().save_project_to(project.path()).expect("save");
+    h.state_mut().set_face(Default::default()).expect("neutral");
+    h.state_mut().open_project_from(project.path()).expect("open");
+    assert_eq!(h.state().face().expression.get("smile"), Some(&1.0));
+}

@@ -1,7 +1,7 @@
 //! The "Expression" panel: the presets (smile, surprise, blink, talk) and the 51 Face Units as
 //! sliders, "Neutral", and the animation toggle that plays the expression cycle.
 
-use super::face::set_weight;
+use super::face::weight_slider;
 use super::*;
 use rouge_model::mesh::targets::{EXPRESSION_PRESETS, FacePose, TargetSet};
 
@@ -23,27 +23,15 @@ impl RougeApp {
                 expression.clear();
             }
             for p in EXPRESSION_PRESETS.iter().filter(|p| !p.units.is_empty()) {
-                let mut w = expression.get(p.name).copied().unwrap_or(0.0);
-                if ui.add(egui::Slider::new(&mut w, 0.0..=1.0).text(p.name)).changed() {
-                    set_weight(&mut expression, p.name, w);
-                    changed = true;
-                }
+                changed |= weight_slider(ui, &mut expression, p.name, (0.0, 1.0));
             }
             egui::CollapsingHeader::new("Face Units").default_open(false).show(ui, |ui| {
                 for (name, _) in &targets.expressions {
-                    let mut w = expression.get(name).copied().unwrap_or(0.0);
-                    if ui.add(egui::Slider::new(&mut w, 0.0..=1.0).text(name)).changed() {
-                        set_weight(&mut expression, name, w);
-                        changed = true;
-                    }
+                    changed |= weight_slider(ui, &mut expression, name, (0.0, 1.0));
                 }
             });
             if changed {
-                let pose = FacePose { expression, ..self.face().clone() };
-                self.editor.document_mut().face = pose.clone();
-                if !self.face.animate {
-                    self.show_pose(&pose);
-                }
+                self.edit_face(FacePose { expression, ..self.face().clone() });
             }
         });
     }

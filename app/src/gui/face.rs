@@ -109,6 +109,15 @@ impl RougeApp {
         Ok(())
     }
 
+    /// A panel's edit of the face: into the document, and onto the head unless the animation
+    /// is posing it.
+    pub(super) fn edit_face(&mut self, pose: FacePose) {
+        self.editor.document_mut().face = pose.clone();
+        if !self.face.animate {
+            self.show_pose(&pose);
+        }
+    }
+
     /// Advances the expression cycle (not during a stroke, which paints on the pose it began on).
     pub(super) fn animate_face(&mut self, ctx: &egui::Context) {
         if !self.face.animate || !self.ready() {
@@ -141,29 +150,29 @@ impl RougeApp {
                 shape.clear();
             }
             for s in &targets.shapes {
-                let (lo, hi) = s.range();
-                let mut w = shape.get(&s.name).copied().unwrap_or(0.0);
-                if ui.add(egui::Slider::new(&mut w, lo..=hi).text(&s.name)).changed() {
-                    set_weight(&mut shape, &s.name, w);
-                    changed = true;
-                }
+                changed |= weight_slider(ui, &mut shape, &s.name, s.range());
             }
             if changed {
-                let pose = FacePose { shape, ..self.face().clone() };
-                self.editor.document_mut().face = pose.clone();
-                if !self.face.animate {
-                    self.show_pose(&pose);
-                }
+                self.edit_face(FacePose { shape, ..self.face().clone() });
             }
         });
     }
 }
 
-/// Sets `name` to `w`, dropping zero weights so a saved face lists only what moves.
-pub(super) fn set_weight(map: &mut std::collections::BTreeMap<String, f32>, name: &str, w: f32) {
-    if w == 0.0 {
+/// A slider for weight `name` of `map` over `lo..=hi`; a zero weight is dropped from the map so
+/// a saved face lists only what moves. Returns whether it changed.
+pub(super) fn weight_slider(
+    ui: &mut egui::Ui,
+    map: &mut std::collections::BTreeMap<String, f32>,
+    name: &str,
+    (lo, hi): (f32, f32),
+) -> bool {
+    let mut w = map.get(name).copied().unwrap_or(0.0);
+    let changed = ui.add(egui::Slider::new(&mut w, lo..=hi).text(name)).changed();
+    if changed && w == 0.0 {
         map.remove(name);
-    } else {
+    } else if changed {
         map.insert(name.to_string(), w);
     }
+    changed
 }

@@ -1,0 +1,104 @@
+//! `rouge render` / `rouge export mitsuba` with --expression and --shape, and `rouge bench
+//! deform`: the face's options end to end.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn rouge(args: &[&str]) -> Output {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    Command::new(env!("CARGO_BIN_EXE_rouge")).args(args).current_dir(root).output().expect("run rouge")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn path(dir: &Path, name: &str) -> PathBuf {
+    dir.join(name)
+}
+
+#[test]
+fn bad_face_options_are_named() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = path(dir.path(), "x.png");
+    let out = out.to_str().expect("utf-8");
+    let cases: [(&[&str], &[&str]); 5] = [
+        (&["--expression", "smle=1"], &["--expression", "`smle`", "smile"]),
+        (&["--expression", "mouthSmileLef=1"], &["mouthSmileLeft"]),
+        (&["--shape", "age=2"], &["--shape", "age=2", "-1 to 1"]),
+        (&["--expression", "smile=much"], &["--expression", "`much`"]),
+        (&["--mesh", "builtin:sphere", "--expression", "smile"], &["default head", "builtin:sphere"]),
+    ];
+    for (args, needles) in cases {
+        let mut all = vec!["render", "--width", "32", "--height", "32", "--out", out];
+        all.extend_from_slice(args);
+        let o = rouge(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = stderr(&o);
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: {err}");
+        }
+    }
+    assert!(!Path::new(out).exists());
+}
+
+#[test]
+fn an_expression_changes_the_render_and_the_export() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let frame = |name: &str, extra: &[&str]| {
+        let out = path(dir.path(), name);
+        let mut args = vec!["render", "--width", "96", "--height", "96", "--subdiv", "1", "--out"];
+        args.push(out.to_str().expect("utf-8"));
+        args.extend_from_slice(extra);
+        let o = rouge(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        image::open(&out).expect("png").to_rgba8()
+    };
+    let neutral = frame("neutral.png", &[]);
+    let named_neutral = frame("named.png", &["--expression", "neutral", "--shape", "age=0"]);
+    assert_eq!(neutral, named_neutral, "neutral weights draw the neutral head");
+    let smile = frame("smile.png", &["--expression", "smile=0.8,jawOpen=0.3", "--shape", "age=0.3"]);
+    let differ = neutral.pixels().zip(smile.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differ > 200, "{differ} pixels differ");
+
+    let export = |name: &str, extra: &[&str]| {
+        let out = path(dir.path(), name);
+        let mut args =
+            vec!["export", "mitsuba", "--medium", "skin1", "--subdiv", "0", "--out", out.to_str().expect("utf-8")];
+        args.extend_from_slice(extra);
+        let o = rouge(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out.join("skin.ply")).expect("skin.ply")
+    };
+    assert_ne!(export("a", &[]), export("b", &["--expression", "blink"]), "the export carries the pose");
+}
+
+#[test]
+fn bench_deform_writes_rows_per_level() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let json = path(dir.path(), "deform.json");
+    let o = rouge(&[
+        "bench",
+        "deform",
+        "--frames",
+        "2",
+        "--levels",
+        "0,1",
+        "--width",
+        "64",
+        "--height",
+        "64",
+        "--json",
+        json.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
+    let rows = rows.as_array().expect("rows");
+    assert_eq!(rows.iter().map(|r| r["level"].as_u64()).collect::<Vec<_>>(), [Some(0), Some(1)]);
+    for r in rows {
+        for k in ["targets_ms", "subdivide_planned_ms", "subdivide_fresh_ms", "upload_ms", "render_ms", "frame_ms"] {
+            assert!(r[k].as_f64().is_some_and(|v| v.is_finite() && v >= 0.0), "{k}: {r}");
+        }
+    }
+    assert!(rows[1]["triangles"].as_u64() > rows[0]["triangles"].as_u64());
+}
