@@ -291,13 +291,8 @@ fn flipped(e: Edge) -> Edge {
 pub fn cube(side_mm: f32) -> rouge_model::mesh::Mesh {
     use rouge_model::mesh::{Corner, Face, Group, Mesh};
     let h = 0.5 * side_mm;
-    let mut mesh = Mesh::default();
-    mesh.uvs = vec![
-        glam::Vec2::new(0.0, 0.0),
-        glam::Vec2::new(1.0, 0.0),
-        glam::Vec2::new(1.0, 1.0),
-        glam::Vec2::new(0.0, 1.0),
-    ];
+    let uvs = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+    let mut mesh = Mesh { uvs: uvs.map(|(u, v)| glam::Vec2::new(u, v)).to_vec(), ..Mesh::default() };
     for i in 0..8u32 {
         let s = |bit: u32| if i & bit != 0 { h } else { -h };
         mesh.positions.push(Vec3::new(s(1), s(2), s(4)));
