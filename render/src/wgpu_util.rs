@@ -136,6 +136,14 @@ pub fn color_load(v: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachme
     })
 }
 
+/// A blend component that leaves the target's alpha as it is (the passes that blend colour into
+/// a target whose alpha carries a flag or coverage).
+pub const KEEP_DST_ALPHA: wgpu::BlendComponent = wgpu::BlendComponent {
+    src_factor: wgpu::BlendFactor::Zero,
+    dst_factor: wgpu::BlendFactor::One,
+    operation: wgpu::BlendOperation::Add,
+};
+
 /// A depth attachment cleared to the far plane and stored.
 pub fn depth_clear(v: &wgpu::TextureView) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
     Some(wgpu::RenderPassDepthStencilAttachment {

@@ -102,11 +102,7 @@ impl ThicknessPass {
                 dst_factor: wgpu::BlendFactor::One,
                 operation: wgpu::BlendOperation::Add,
             },
-            alpha: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::Zero,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
+            alpha: crate::wgpu_util::KEEP_DST_ALPHA,
         };
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
             pass: Pass::Thickness,
