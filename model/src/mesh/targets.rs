@@ -85,6 +85,9 @@ fn near_text(near: &[String]) -> String {
     if near.is_empty() { String::new() } else { format!(" (did you mean {}?)", near.join(", ")) }
 }
 
+/// Weights by target name.
+pub type Weights = BTreeMap<String, f32>;
+
 /// Sparse offsets: `offsets_mm[i]` moves vertex `vertices[i]`.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SparseOffsets {
@@ -377,7 +380,7 @@ impl TargetSet {
     /// # Errors
     /// [`TargetError::Unknown`] (with near names) or [`TargetError::Range`], naming `--expression`
     /// or `--shape`.
-    pub fn resolve(&self, pose: &FacePose) -> Result<(BTreeMap<String, f32>, BTreeMap<String, f32>), TargetError> {
+    pub fn resolve(&self, pose: &FacePose) -> Result<(Weights, Weights), TargetError> {
         let range = |option: &str, name: &str, value: f32, (lo, hi): (f32, f32)| {
             if value.is_finite() && (lo..=hi).contains(&value) {
                 Ok(())
