@@ -221,8 +221,10 @@ fn a_turning_cube_with_edge_overdraw_is_closer_to_supersampling_and_crawls_less(
         assert!(row.rmse.is_finite() && row.crawl.is_finite());
     }
     let (none, sorted, ssaa2) = (&rows[0], &rows[1], &rows[4]);
-    assert!(sorted.rmse < 0.6 * none.rmse, "edge overdraw {:.4} vs none {:.4}", sorted.rmse, none.rmse);
-    assert!(rows[3].rmse < 0.6 * none.rmse, "unsorted {:.4} vs none {:.4}", rows[3].rmse, none.rmse);
+    // Vulkan (lavapipe): 0.0058 against 0.0259. On GL the display target holds encoded sRGB
+    // without an sRGB view, so the blend happens on encoded values: 0.0152 against 0.0260.
+    assert!(sorted.rmse < 0.65 * none.rmse, "edge overdraw {:.4} vs none {:.4}", sorted.rmse, none.rmse);
+    assert!(rows[3].rmse < 0.65 * none.rmse, "unsorted {:.4} vs none {:.4}", rows[3].rmse, none.rmse);
     assert!(sorted.crawl < ssaa2.crawl, "crawl: edges {:.4} vs ssaa2 {:.4}", sorted.crawl, ssaa2.crawl);
     // The GPU's classification draws what the CPU's list draws.
     assert!(
@@ -231,4 +233,55 @@ fn a_turning_cube_with_edge_overdraw_is_closer_to_supersampling_and_crawls_less(
         rows[5].rmse,
         rows[3].rmse
     );
+}
+
+/// A small cube in front of a large one, straddling its front right edge: the small cube's
+/// silhouette crosses the large cube's sharp edges. The small cube comes first in the mesh, so
+/// unsorted overdraw draws the large cube's edges after the silhouette and paints over its
+/// antialiasing where they cross; sorted overdraw draws them first ([Sander2001] section 3.4).
+#[test]
+fn sorted_overdraw_fixes_a_silhouette_crossing_another_discontinuity() {
+    let mut mesh = cube(20.0);
+    let back = cube(60.0);
+    let offset = Vec3::new(30.0, 0.0, 40.0);
+    mesh.positions.iter_mut().for_each(|p| *p += offset);
+    let (np, nn, nu, nf) =
+        (mesh.positions.len() as u32, mesh.normals.len() as u32, mesh.uvs.len() as u32, mesh.faces.len());
+    mesh.positions.extend(&back.positions);
+    mesh.normals.extend(&back.normals);
+    mesh.uvs.extend(&back.uvs);
+    for f in &back.faces {
+        let corners =
+            f.corners.iter().map(|c| Corner { position: c.position + np, uv: c.uv + nu, normal: c.normal + nn });
+        mesh.faces.push(Face { corners: corners.collect() });
+    }
+    mesh.groups[0].faces = 0..mesh.faces.len();
+    assert_eq!(mesh.faces.len(), 2 * nf);
+    let mesh = mesh.triangulate();
+    let scene = flat_scene();
+    let (_gpu, mut r) = gpu_renderer(&mesh, &scene);
+    r.prepare_edges(&mesh);
+    let camera = rouge_render::Camera::framing(&r.mesh_bounds().expect("bounds"), 15.0, 20.0);
+    let size = (96, 72);
+    r.set_edge_aa(EdgeAa::Off);
+    let reference = aa_study::render_linear_srgb(&mut r, &scene, &camera, size, 8).expect("reference");
+    let mut frame = |aa| {
+        r.set_edge_aa(aa);
+        aa_study::render_linear_srgb(&mut r, &scene, &camera, size, 1).expect("frame")
+    };
+    let unsorted = frame(EdgeAa::Unsorted(EdgeCoverage::TwoSided));
+    let sorted = frame(EdgeAa::Sorted(EdgeCoverage::TwoSided));
+    // On the pixels where the order changes the image, sorted is closer to the reference.
+    let err = |a: &[f32; 3], b: &[f32; 3]| (0..3).map(|c| (a[c] - b[c]).abs()).sum::<f32>();
+    let (mut e_unsorted, mut e_sorted, mut pixels) = (0.0, 0.0, 0);
+    for i in 0..reference.len() {
+        if err(&unsorted[i], &sorted[i]) > 1e-3 {
+            pixels += 1;
+            e_unsorted += err(&unsorted[i], &reference[i]);
+            e_sorted += err(&sorted[i], &reference[i]);
+        }
+    }
+    eprintln!("{pixels} pixels differ: error unsorted {e_unsorted:.4}, sorted {e_sorted:.4}");
+    assert!(pixels > 0, "the order changed nothing: the silhouette crosses no other edge");
+    assert!(e_sorted < 0.9 * e_unsorted, "sorted {e_sorted:.4} vs unsorted {e_unsorted:.4}");
 }
