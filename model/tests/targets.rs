@@ -238,10 +238,14 @@ fn the_face_is_saved_with_the_project() {
     use rouge_model::document::{Document, FACE_FILE, LOOK_FILE};
     let dir = tempfile::tempdir().expect("tempdir");
     let mut doc = Document::default_project();
+    assert!(!doc.is_modified());
     doc.face = pose(&[("smile", 0.8), ("jawOpen", 0.3)], &[("age", -0.4), ("head-oval", 1.0)]);
+    assert!(doc.is_modified(), "a new face is unsaved work");
     doc.save_project(dir.path()).expect("save");
+    assert!(!doc.is_modified());
     let back = Document::open_project(dir.path()).expect("open");
     assert_eq!(back.face, doc.face);
+    assert!(!back.is_modified());
     // A project saved before faces (no face.json) opens with the neutral head.
     std::fs::remove_file(dir.path().join(FACE_FILE)).expect("remove");
     assert!(Document::open_project(dir.path()).expect("old project").face.is_neutral());

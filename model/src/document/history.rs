@@ -196,9 +196,11 @@ impl Document {
     }
 
     /// Whether the document differs from the last save or open (a stroke in progress that
-    /// reported a dirty rect counts).
+    /// reported a dirty rect counts, and so does a changed face).
     pub fn is_modified(&self) -> bool {
-        self.history.saved_id != Some(self.history.state_id()) || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+        self.history.saved_id != Some(self.history.state_id())
+            || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+            || self.face != self.saved_face
     }
 }
 

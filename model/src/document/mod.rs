@@ -176,8 +176,11 @@ pub struct Document {
     /// Layers, bottom (on the skin) to top.
     pub layers: Vec<PaintLayer>,
     /// The default head's expression and face shape the look is shown on (saved in the
-    /// project's `face.json`; not part of the undo history).
+    /// project's `face.json`; not part of the undo history, but a change makes the document
+    /// modified).
     pub face: FacePose,
+    /// The face as last saved (or opened), for [`Document::is_modified`].
+    saved_face: FacePose,
     history: History,
     stroke: Option<OpenStroke>,
 }
@@ -213,7 +216,14 @@ impl Document {
                 multiplier: 1.0,
             })
             .collect();
-        Document { name: look.name.clone(), layers, face: FacePose::default(), history: History::new(), stroke: None }
+        Document {
+            name: look.name.clone(),
+            layers,
+            face: FacePose::default(),
+            saved_face: FacePose::default(),
+            history: History::new(),
+            stroke: None,
+        }
     }
 
     /// A new project: the default look ([`Look::default_look`]), named "Untitled".

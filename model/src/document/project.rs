@@ -18,6 +18,7 @@ impl Document {
         self.finish_stroke();
         write_project(self, dir)?;
         self.history.saved_id = Some(self.history.state_id());
+        self.saved_face = self.face.clone();
         Ok(())
     }
 
@@ -29,6 +30,7 @@ impl Document {
         let look = Look::load(&look_path)?;
         let mut doc = Document::from_look(&look);
         doc.face = read_face(&dir.join(FACE_FILE))?;
+        doc.saved_face = doc.face.clone();
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
