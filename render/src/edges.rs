@@ -71,6 +71,9 @@ pub struct Edge {
     pub n_right: Vec3,
     /// Its category.
     pub kind: EdgeKind,
+    /// Where it came from in the triangle mesh: the vertices at `p0` and `p1`, the left and the
+    /// right triangle (the left one again for a boundary edge), for [`EdgeSet::reposition`].
+    pub source: [u32; 4],
 }
 
 impl Edge {
@@ -109,6 +112,8 @@ pub struct EdgeSet {
     pub closed: bool,
     /// The counts.
     pub counts: EdgeCounts,
+    /// The mesh's triangles, to tell a posed copy of it (same triangles) from another mesh.
+    indices: Vec<u32>,
 }
 
 /// Per-edge accumulation while welding: the faces on each side.
@@ -193,7 +198,14 @@ impl EdgeSet {
                     || material[l[0] as usize] != material[r[0] as usize]
                     || attr_jump(l[1], r[1])
                     || attr_jump(l[2], r[2]);
-                let edge = Edge { p0: vertex(l[1]), p1: vertex(l[2]), n_left: nl, n_right: nr, kind: EdgeKind::Smooth };
+                let edge = Edge {
+                    p0: vertex(l[1]),
+                    p1: vertex(l[2]),
+                    n_left: nl,
+                    n_right: nr,
+                    kind: EdgeKind::Smooth,
+                    source: [l[1], l[2], l[0], r[0]],
+                };
                 if is_sharp {
                     sharp.push(Edge { kind: EdgeKind::Sharp, ..edge });
                 } else if closed && nl.dot(vertex(r[3]) - edge.p0) >= -1e-4 * edge.p0.distance(edge.p1) {
@@ -218,6 +230,7 @@ impl EdgeSet {
                         n_left: n,
                         n_right: n,
                         kind: EdgeKind::Boundary,
+                        source: [q0, q1, f[0], f[0]],
                     });
                 }
             }
@@ -234,7 +247,31 @@ impl EdgeSet {
         let mut edges = sharp;
         edges.extend(boundary);
         edges.extend(candidates);
-        EdgeSet { edges, closed, counts }
+        EdgeSet { edges, closed, counts, indices: mesh.indices.clone() }
+    }
+
+    /// Moves the edges to the positions of `mesh` when it has the same triangles as the mesh
+    /// they were found on (a posed or deformed copy: the app's expressions), without the
+    /// preprocess; returns false, changing nothing, for another mesh. Which edges are sharp,
+    /// boundary or left out stays as found on the first mesh (attribute seams do not move; a
+    /// deformation that turns an edge concave or convex is not followed).
+    pub fn reposition(&mut self, mesh: &TriangleMesh) -> bool {
+        if mesh.indices != self.indices {
+            return false;
+        }
+        let p = |i: u32| mesh.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+        let normal = |t: u32| {
+            let i = 3 * t as usize;
+            match mesh.indices.get(i..i + 3) {
+                Some(&[a, b, c]) => (p(b) - p(a)).cross(p(c) - p(a)).normalize_or_zero(),
+                _ => Vec3::ZERO,
+            }
+        };
+        for e in &mut self.edges {
+            let [v0, v1, fl, fr] = e.source;
+            (e.p0, e.p1, e.n_left, e.n_right) = (p(v0), p(v1), normal(fl), normal(fr));
+        }
+        true
     }
 }
 
@@ -282,7 +319,8 @@ pub fn orient_chains(edges: &mut [Edge]) {
 }
 
 fn flipped(e: Edge) -> Edge {
-    Edge { p0: e.p1, p1: e.p0, n_left: e.n_right, n_right: e.n_left, ..e }
+    let [v0, v1, fl, fr] = e.source;
+    Edge { p0: e.p1, p1: e.p0, n_left: e.n_right, n_right: e.n_left, kind: e.kind, source: [v1, v0, fr, fl] }
 }
 
 /// A cube of side `side_mm` centred on the origin with flat normals and each face's UVs over

@@ -160,9 +160,13 @@ impl Renderer {
         let device = &self.shared.device;
         self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo))?);
         self.mesh_generation += 1;
-        self.edges = None;
-        if self.edge_aa != crate::aa::EdgeAa::Off {
-            self.prepare_edges(mesh);
+        // A posed copy of the mesh (the app's expressions) moves the edges found on it; another
+        // mesh drops them, and they are found again when edge antialiasing is on.
+        if !self.edges.as_mut().is_some_and(|e| e.reposition(mesh)) {
+            self.edges = None;
+            if self.edge_aa != crate::aa::EdgeAa::Off {
+                self.prepare_edges(mesh);
+            }
         }
         Ok(())
     }
@@ -173,7 +177,7 @@ impl Renderer {
     pub fn prepare_edges(&mut self, mesh: &TriangleMesh) {
         let set = crate::edges::EdgeSet::new(mesh, crate::edges::EdgeOptions::default());
         let frames = crate::silhouettes::EdgeFrames::new(set);
-        self.edges = Some(GpuEdges::upload(&self.shared.device, frames));
+        self.edges = Some(GpuEdges::new(frames));
     }
 
     /// Sets the edge antialiasing of the following frames. A frame with edges needs the mesh's
@@ -414,7 +418,7 @@ impl Renderer {
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
                 Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
                 Step::EdgeOverdraw { sorted } => {
-                    let edges = edges.as_ref().ok_or_else(|| {
+                    let edges = edges.as_mut().ok_or_else(|| {
                         RenderError::Invalid("edge antialiasing needs the mesh's edges: call prepare_edges".into())
                     })?;
                     let coverage = match *edge_aa {

@@ -151,12 +151,28 @@ impl EdgeFrames {
             let scale = 1023.0 / bounds.size().max_element().max(f32::MIN_POSITIVE);
             candidates.sort_by_cached_key(|e| morton(((e.midpoint() - bounds.min) * scale).to_array()));
         }
-        let clusters = set.edges[first..]
+        let mut frames = EdgeFrames { set, first_candidate: first, clusters: Vec::new() };
+        frames.cluster();
+        frames
+    }
+
+    fn cluster(&mut self) {
+        let first = self.first_candidate;
+        self.clusters = self.set.edges[first..]
             .chunks(CLUSTER)
             .enumerate()
             .map(|(i, chunk)| cluster(first + i * CLUSTER, chunk))
             .collect();
-        EdgeFrames { set, first_candidate: first, clusters }
+    }
+
+    /// Moves the edges to a posed copy of their mesh ([`EdgeSet::reposition`]) and bounds the
+    /// clusters again; false, changing nothing, for another mesh.
+    pub fn reposition(&mut self, mesh: &rouge_model::mesh::TriangleMesh) -> bool {
+        let moved = self.set.reposition(mesh);
+        if moved {
+            self.cluster();
+        }
+        moved
     }
 
     /// The silhouettes among the candidates seen from `eye`, by testing every candidate.

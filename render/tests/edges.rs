@@ -285,3 +285,25 @@ fn sorted_overdraw_fixes_a_silhouette_crossing_another_discontinuity() {
     assert!(pixels > 0, "the order changed nothing: the silhouette crosses no other edge");
     assert!(e_sorted < 0.9 * e_unsorted, "sorted {e_sorted:.4} vs unsorted {e_unsorted:.4}");
 }
+
+#[test]
+fn a_posed_copy_moves_the_edges_and_another_mesh_is_refused() {
+    let rest = sphere(25.0, 32, 16).triangulate();
+    let mut posed = rest.clone();
+    posed.positions.iter_mut().for_each(|p| *p = Vec3::new(1.5 * p.x, p.y, p.z) + Vec3::X * 10.0);
+    let mut moved = EdgeFrames::new(EdgeSet::new(&rest, EdgeOptions::default()));
+    assert!(moved.reposition(&posed));
+    let fresh = EdgeFrames::new(EdgeSet::new(&posed, EdgeOptions::default()));
+    let eye = Vec3::new(90.0, 40.0, 120.0);
+    let ends = |f: &EdgeFrames| {
+        let mut v: Vec<[u32; 3]> = f
+            .silhouettes_skipping(eye)
+            .iter()
+            .flat_map(|&i| [key(f.set.edges[i].p0), key(f.set.edges[i].p1)])
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    assert_eq!(ends(&moved), ends(&fresh));
+    assert!(!moved.reposition(&cube(10.0).triangulate()));
+}

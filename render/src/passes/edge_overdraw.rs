@@ -68,15 +68,21 @@ const VERTICES: u32 = 12;
 pub struct GpuEdges {
     /// The CPU side: preprocessed edges and the per-frame search.
     pub frames: EdgeFrames,
-    /// Every edge that may be drawn (the brute-force feed).
-    all: wgpu::Buffer,
+    /// Every edge that may be drawn (the brute-force feed), uploaded on first use.
+    all: Option<wgpu::Buffer>,
 }
 
 impl GpuEdges {
-    /// Uploads the edges of `frames`.
-    pub fn upload(device: &wgpu::Device, frames: EdgeFrames) -> GpuEdges {
-        let all = instance_buffer(device, &frames.all_instances());
-        GpuEdges { frames, all }
+    /// The edges of `frames`, for the GPU.
+    pub fn new(frames: EdgeFrames) -> GpuEdges {
+        GpuEdges { frames, all: None }
+    }
+
+    /// Moves the edges to a posed copy of their mesh; false for another mesh
+    /// ([`EdgeFrames::reposition`]).
+    pub fn reposition(&mut self, mesh: &rouge_model::mesh::TriangleMesh) -> bool {
+        self.all = None;
+        self.frames.reposition(mesh)
     }
 }
 
@@ -127,7 +133,7 @@ impl EdgeOverdrawPass {
         &mut self,
         ctx: FrameContext<'_>,
         enc: &mut FrameEncoder<'_>,
-        edges: &GpuEdges,
+        edges: &mut GpuEdges,
         coverage: EdgeCoverage,
         sorted: Option<&[EdgeInstance]>,
     ) -> Result<()> {
@@ -174,7 +180,10 @@ impl EdgeOverdrawPass {
             bytemuck::bytes_of(&EdgeUniform::new(coverage, edges.frames.set.closed)),
         );
         let (buffer, count) = match sorted {
-            None => (&edges.all, edges.frames.set.edges.len()),
+            None => {
+                let all = edges.all.get_or_insert_with(|| instance_buffer(device, &edges.frames.all_instances()));
+                (&*all, edges.frames.set.edges.len())
+            }
             Some(list) => {
                 if self.sorted.as_ref().is_none_or(|(_, cap)| *cap < list.len()) {
                     self.sorted = Some((instance_buffer(device, list), list.len().max(1)));
