@@ -9,7 +9,7 @@ impl RougeApp {
     pub(super) fn expression_panel(&mut self, ui: &mut egui::Ui) {
         let Ok(targets) = TargetSet::default_head() else { return };
         egui::CollapsingHeader::new("Expression").default_open(false).show(ui, |ui| {
-            if self.options.mesh.is_some() {
+            if !self.face.on_default_head {
                 ui.label("Expressions move the default head only.");
                 return;
             }

@@ -22,6 +22,8 @@ pub(super) struct FaceState {
     mesh: Option<TriangleMesh>,
     /// The surface map predates the last pose.
     surface_stale: bool,
+    /// The mesh being painted is the default head (the targets' mesh).
+    pub(super) on_default_head: bool,
     /// Playing the expression cycle; its clock in seconds and the last tick.
     pub(super) animate: bool,
     clock_s: f64,
@@ -85,7 +87,7 @@ impl RougeApp {
 
     /// Moves the default head to `pose` and uploads it (the local thickness stays).
     fn pose_head(&mut self, pose: &FacePose) -> std::result::Result<(), String> {
-        if self.options.mesh.is_some() {
+        if !self.face.on_default_head {
             return Err("expressions and face shapes move the default head's vertices; this mesh has no targets".into());
         }
         if self.face.mesh.is_none() && pose.is_neutral() {
@@ -140,7 +142,7 @@ impl RougeApp {
     pub(super) fn face_panel(&mut self, ui: &mut egui::Ui) {
         let Ok(targets) = TargetSet::default_head() else { return };
         egui::CollapsingHeader::new("Face").default_open(false).show(ui, |ui| {
-            if self.options.mesh.is_some() {
+            if !self.face.on_default_head {
                 ui.label("Face shapes move the default head only.");
                 return;
             }

@@ -39,6 +39,7 @@ impl RougeApp {
     pub(super) fn start_mesh(&mut self, path: Option<PathBuf>, scale: f32) {
         let (tx, rx) = mpsc::channel();
         let label = path.as_ref().map_or("default head".to_string(), |p| p.display().to_string());
+        self.face.on_default_head = path.is_none();
         std::thread::spawn(move || {
             let result = (|| -> Result<(TriangleMesh, Arc<SurfaceMap>), String> {
                 let mesh =
