@@ -139,7 +139,7 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     png = (tmp_path / "plot.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
-    assert {r["model"] for r in rows} == {"none", "screen-space", "thickness"}
+    assert {r["model"] for r in rows} == {"none", "screen-space", "thickness", "directional-dipole", "standard-dipole"}
     for r in rows:
         assert r["pixels"] > 1000 and np.isfinite([r["rmse"], r["delta_e_mean"], r["delta_e_p95"]]).all(), r
     none = next(r for r in rows if r["model"] == "none")

@@ -9,6 +9,7 @@ use rouge_model::medium::Medium;
 use rouge_model::thickness::BakeSettings;
 use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
 use rouge_render::translucency::{ReferenceImage, measure};
 use rouge_render::{Skin, SubsurfaceModel};
 use serde::Serialize;
@@ -46,6 +47,10 @@ pub struct TranslucencyBenchArgs {
     /// Cutoff (mm) of the local thickness.
     #[arg(long, default_value_t = 30.0)]
     pub thickness_cutoff_mm: f32,
+    /// Also sweep the directional dipole's samples N (1, 10, 50, 100) and directions K (4, 8, 16,
+    /// 32), and its artifact fixes one by one (slow: use --only).
+    #[arg(long)]
+    pub dipole_sweep: bool,
     /// Instead of the table: fit the thickness translucency's distortion, power, scale and
     /// ambient per medium and local-thickness source to the references (least squares on linear
     /// radiance) and print the fits (docs/BENCHMARKS.md; the media files carry them).
@@ -227,6 +232,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             configs.push(plain("screen-space", json!({"profile": "deon-skin", "samples": 11}), Skin::default(), 11));
         }
         configs.extend(thickness_configs(&medium, &sources, &better, rest_map.is_some(), bake.seconds));
+        configs.extend(dipole_configs(&better, args.dipole_sweep));
         for Config { model, params, skin, samples, map } in configs {
             prepared.renderer.set_mesh(&loaded.mesh, skin.albedo)?;
             upload(&mut prepared, map)?;
@@ -343,6 +349,47 @@ fn thickness_configs(
     out
 }
 
+/// The dipole models' configurations: both BSSRDFs at the default settings; with `sweep`, the
+/// directional dipole over N and K and without each artifact fix.
+fn dipole_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
+    let config = |kind: DipoleKind, settings: DipoleSettings| {
+        let params = json!({
+            "samples": settings.samples,
+            "directions": settings.directions,
+            "map_px": settings.map_px,
+            "fixes": [settings.shrink, settings.intrusion, settings.world_bias],
+        });
+        let skin = Skin { subsurface: SubsurfaceModel::Dipole { kind, settings }, ..skin.clone() };
+        Config { model: kind.name(), params, skin, samples: 0, map: ThicknessMap::None }
+    };
+    let base = DipoleSettings::default();
+    let mut out = vec![config(DipoleKind::Directional, base), config(DipoleKind::Standard, base)];
+    if sweep {
+        for samples in [1, 10, 50, 100] {
+            for directions in [4, 8, 16, 32] {
+                out.push(config(DipoleKind::Directional, DipoleSettings { samples, directions, ..base }));
+            }
+        }
+        out.push(config(DipoleKind::Directional, DipoleSettings { shrink: false, ..base }));
+        out.push(config(DipoleKind::Directional, DipoleSettings { intrusion: false, ..base }));
+        out.push(config(DipoleKind::Directional, DipoleSettings { world_bias: false, ..base }));
+    }
+    out
+}
+
+/// The plot label of a thickness or dipole row (drawn as squares), `None` for the others.
+fn square_label(r: &Row) -> Option<String> {
+    let text = |k: &str| r.params.get(k).and_then(|v| v.as_str()).unwrap_or("?").to_string();
+    let number = |k: &str| r.params.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
+    match r.model.as_str() {
+        "thickness" => Some(format!("thickness {} {}", text("source"), text("params"))),
+        "directional-dipole" | "standard-dipole" => {
+            Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
+        }
+        _ => None,
+    }
+}
+
 /// The speed-against-error plot of `rows`: one chart per scene.
 fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     use crate::plot_png::{Chart, Marker, Series};
@@ -351,11 +398,9 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     let timed = rows.iter().all(|r| r.gpu_ms.is_some());
     let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
     let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189]];
-    // One colour per thickness configuration in every chart.
+    // One colour per thickness or dipole configuration in every chart.
     let mut thickness_labels: Vec<String> = Vec::new();
-    for r in rows.iter().filter(|r| r.model == "thickness") {
-        let get = |key: &str| r.params.get(key).and_then(|v| v.as_str()).unwrap_or("?").to_string();
-        let label = format!("thickness {} {}", get("source"), get("params"));
+    for label in rows.iter().filter_map(square_label) {
         if !thickness_labels.contains(&label) {
             thickness_labels.push(label);
         }
@@ -369,12 +414,9 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
             let mut series: Vec<Series> = Vec::new();
             for r in &in_scene {
                 let profile = r.params.get("profile").and_then(|p| p.as_str());
-                let thickness = |key: &str| r.params.get(key).and_then(|v| v.as_str()).unwrap_or("?").to_string();
                 let (label, marker, line) = match (r.model.as_str(), profile) {
                     ("none", _) => ("none".to_string(), Marker::Cross, false),
-                    ("thickness", _) => {
-                        (format!("thickness {} {}", thickness("source"), thickness("params")), Marker::Square, false)
-                    }
+                    _ if square_label(r).is_some() => (square_label(r).unwrap_or_default(), Marker::Square, false),
                     (_, Some("deon-skin")) => ("today's skin".to_string(), Marker::Diamond, false),
                     (_, Some(p)) => (p.to_string(), Marker::Dot, true),
                     (m, None) => (m.to_string(), Marker::Dot, true),

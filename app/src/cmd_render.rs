@@ -67,7 +67,7 @@ pub enum Subsurface {
     /// Fast thickness translucency ([BarreBrisebois2011]).
     Thickness,
     /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
-    /// radiance maps ([DirDipoleThesis]).
+    /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
     /// Jensen's standard dipole ([Jensen2001]) in the same passes, for comparison.
     StandardDipole,

@@ -372,7 +372,6 @@ impl Renderer {
             let (falloff, cutoff_mm) = source.falloff();
             passes.thickness.write_uniform(shared, &ThicknessUniform::new(*params, falloff, cutoff_mm));
         }
-        let mut dipole_blend = 1.0;
         if let (crate::scene::SubsurfaceModel::Dipole { kind, settings }, Some(medium)) =
             (&scene.skin.subsurface, &scene.skin.medium)
             && plan.variant.dipole
@@ -380,8 +379,7 @@ impl Renderer {
             let slots = crate::passes::dipole::dipole_lights(scene).len().min(crate::uniforms::MAX_LIGHTS) as u32;
             dipole.ensure(device, settings, slots, shared.formats.min_array_layers);
             let key = state_key(*kind, medium, settings, scene, *mesh_generation);
-            let (frame_index, blend) = dipole.next_frame(key, settings.progressive);
-            dipole_blend = blend;
+            let frame_index = dipole.next_frame(key, settings.progressive);
             let u = DipoleUniform::new(*kind, medium, settings, scene, &mesh.bounds, frame_index);
             shared.queue.write_buffer(&dipole.uniform, 0, bytemuck::bytes_of(&u));
         }
@@ -412,7 +410,7 @@ impl Renderer {
                         crate::scene::SubsurfaceModel::Dipole { settings, .. } => settings.directions,
                         _ => 0,
                     };
-                    passes.dipole_radiance.record(ctx, &mut enc, mesh, dipole, directions, dipole_blend)?
+                    passes.dipole_radiance.record(ctx, &mut enc, mesh, dipole, directions)?
                 }
                 Step::DipoleCombine => passes.dipole_combine.record(ctx, &mut enc, dipole)?,
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,

@@ -34,14 +34,22 @@ fn fs_dipole_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f3
         if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
             continue;
         }
+        // A direction that sees the back of the surface cannot see the point.
+        let facing = dot(n, dipole.dir_axis[k].xyz);
+        if facing <= 0.05 {
+            continue;
+        }
         let texel = vec2<i32>(uv * f32(side));
         let stored = textureLoad(map_depths, texel, i32(k), 0).r;
+        // The map's depth is its texel centre's: on a slanted surface it differs from the point's
+        // by up to a texel times the slope, so the bias grows with tan θ.
+        let slope = sqrt(max(1.0 - facing * facing, 0.0)) / facing;
         // Fix 3 (section 4.4.3): compare in world units (mm along the direction) with a bias,
         // else in [0, 1] depth with a fixed one.
         var visible: bool;
         if (u32(dipole.fixes.w) & 4u) != 0u {
             let planes = dipole.dir_planes[k].xy;
-            visible = ortho_depth_mm(planes, c.z) - dipole.fixes.z < ortho_depth_mm(planes, stored);
+            visible = ortho_depth_mm(planes, c.z) - dipole.fixes.z * (1.0 + slope) < ortho_depth_mm(planes, stored);
         } else {
             visible = c.z <= stored + 1e-4;
         }

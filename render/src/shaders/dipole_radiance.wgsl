@@ -6,17 +6,21 @@
 // where the irradiance times the surface area is E_l times the projected area (the n·ω_l of the
 // thesis's formula cancels the projection's 1/(n·ω_l)). Radii are exponential in σ
 // (pdf σe^{−σr}, stratified, the angle by the golden ratio), so w_j = 2πr e^{σr}/(Nσ) is the inverse
-// area density. Frame f rotates and shifts the pattern: blended over frames the maps converge.
+// area density. Frame f rotates and shifts the pattern, and the texel keeps the running mean of
+// its frames: mix(previous, this frame, 1/(f + 1)), the previous frame's maps read from the
+// other half of a ping-pong pair (fixed-function constant blending was unreliable on lavapipe).
 //#insert dipole_common
 
 @group(1) @binding(1) var light_normals: texture_2d_array<f32>;
 @group(1) @binding(2) var light_depths: texture_2d_array<f32>;
+@group(1) @binding(3) var previous_maps: texture_2d_array<f32>;
 
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) skin: f32,
+    @location(3) @interpolate(flat) k: u32,
 }
 
 @vertex
@@ -31,6 +35,7 @@ fn vs_dipole_radiance(
     out.world = position;
     out.normal = normal;
     out.skin = albedo.a;
+    out.k = k;
     return out;
 }
 
@@ -129,6 +134,10 @@ fn fs_dipole_radiance(in: VsOut, @builtin(front_facing) front: bool) -> @locatio
             sum += bssrdf_in(e.x, e.n, toward, xo, no) * weight;
         }
         total += light.color.rgb * sum;
+    }
+    if frame_index > 0.5 {
+        let previous = textureLoad(previous_maps, vec2<i32>(texel), i32(in.k), 0).rgb;
+        total = mix(previous, total, 1.0 / (frame_index + 1.0));
     }
     return vec4<f32>(total, 1.0);
 }

@@ -70,7 +70,7 @@ impl DipoleCombinePass {
         })?;
         let [normal, albedo, depth] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth) = (normal?, albedo?, depth?);
-        let (maps, map_depths) = (array_view(&res.maps), array_view(&res.map_depths));
+        let (maps, map_depths) = (array_view(res.current_and_previous().0), array_view(&res.map_depths));
         let diffuse = targets.view(Target::Diffuse)?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("DipoleCombinePass::group"),

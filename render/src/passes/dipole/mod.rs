@@ -102,13 +102,17 @@ impl DipoleSettings {
     }
 }
 
-/// `k` of `count` directions spread evenly on the unit sphere (the Fibonacci lattice).
+/// `k` of `count` directions spread evenly on the unit sphere (the Fibonacci lattice through both
+/// poles; a single direction is +Z, the default camera's).
 pub fn direction(k: u32, count: u32) -> Vec3 {
+    if count <= 1 {
+        return Vec3::Z;
+    }
     let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
-    let z = 1.0 - 2.0 * (k as f32 + 0.5) / count as f32;
-    let r = (1.0 - z * z).max(0.0).sqrt();
+    let y = 1.0 - 2.0 * k as f32 / (count - 1) as f32;
+    let r = (1.0 - y * y).max(0.0).sqrt();
     let phi = golden * k as f32;
-    Vec3::new(r * phi.cos(), z, r * phi.sin())
+    Vec3::new(r * phi.cos(), y, r * phi.sin())
 }
 
 /// The dipole passes' uniform, as WGSL `DipolePass` (shaders/dipole_common.wgsl).
@@ -265,8 +269,9 @@ pub struct DipoleResources {
     pub light_normals: wgpu::Texture,
     /// Light G-buffer depths.
     pub light_depths: wgpu::Texture,
-    /// Radiance maps (Rgba16Float array, a layer per direction).
-    pub maps: wgpu::Texture,
+    /// Radiance maps (Rgba16Float array, a layer per direction), a ping-pong pair: one holds the
+    /// running mean up to the last frame, the other receives this frame's.
+    pub maps: [wgpu::Texture; 2],
     /// Their depths.
     pub map_depths: wgpu::Texture,
     /// What the maps hold: the key of the state they were made for, and how many frames of
@@ -286,7 +291,7 @@ impl DipoleResources {
         device: &wgpu::Device,
         (light_px, light_layers): (u32, u32),
         (map_px, map_layers): (u32, u32),
-    ) -> (wgpu::Texture, wgpu::Texture, wgpu::Texture, wgpu::Texture) {
+    ) -> (wgpu::Texture, wgpu::Texture, [wgpu::Texture; 2], wgpu::Texture) {
         use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
         use wgpu::TextureUsages as U;
         let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
@@ -295,7 +300,10 @@ impl DipoleResources {
         (
             t("Dipole::light normals", light_px, light_layers, HDR_FORMAT),
             t("Dipole::light depths", light_px, light_layers, DEPTH_FORMAT),
-            t("Dipole::radiance maps", map_px, map_layers, HDR_FORMAT),
+            [
+                t("Dipole::radiance maps 0", map_px, map_layers, HDR_FORMAT),
+                t("Dipole::radiance maps 1", map_px, map_layers, HDR_FORMAT),
+            ],
             t("Dipole::radiance map depths", map_px, map_layers, DEPTH_FORMAT),
         )
     }
@@ -306,8 +314,8 @@ impl DipoleResources {
         let maps = (settings.map_px, settings.directions.max(min_layers));
         let fits = self.light_normals.width() == light.0
             && self.light_normals.depth_or_array_layers() >= light.1
-            && self.maps.width() == maps.0
-            && self.maps.depth_or_array_layers() >= maps.1;
+            && self.maps[0].width() == maps.0
+            && self.maps[0].depth_or_array_layers() >= maps.1;
         if !fits {
             let (ln, ld, m, md) = Self::textures(device, light, maps);
             (self.light_normals, self.light_depths, self.maps, self.map_depths) = (ln, ld, m, md);
@@ -315,15 +323,22 @@ impl DipoleResources {
         }
     }
 
-    /// The frame index for the samples and the blend weight of this frame's samples: 1 (replace)
-    /// when the state `key` changed or accumulation is off, 1/(n + 1) after n frames.
-    pub fn next_frame(&mut self, key: u64, progressive: bool) -> (u32, f64) {
+    /// The index of this frame's samples: 0 (the maps start afresh) when the state `key` changed
+    /// or accumulation is off, n after n frames of the same state.
+    pub fn next_frame(&mut self, key: u64, progressive: bool) -> u32 {
         let n = match self.progress {
             Some((k, n)) if k == key && progressive => n,
             _ => 0,
         };
         self.progress = Some((key, n + 1));
-        (n, 1.0 / f64::from(n + 1))
+        n
+    }
+
+    /// The maps this frame writes (`written`) and the ones holding the mean so far.
+    pub fn current_and_previous(&self) -> (&wgpu::Texture, &wgpu::Texture) {
+        let n = self.frames_accumulated();
+        // Frame n (1-based) writes maps[n % 2] and reads maps[(n + 1) % 2].
+        (&self.maps[(n % 2) as usize], &self.maps[((n + 1) % 2) as usize])
     }
 
     /// Frames of samples blended into the maps so far.

@@ -1,6 +1,7 @@
 //! Dipole radiance-map pass (shaders/dipole_radiance.wgsl): the mesh from each of K directions,
 //! orthographically, each texel gathering the BSSRDF over a disk of the light G-buffer
-//! ([DirDipoleThesis] step 2), blended into the maps with weight 1/(n + 1) after n frames.
+//! ([DirDipoleThesis] step 2); after n frames of one state each texel holds the mean of its n
+//! frames (the shader mixes in the previous frame's map of the ping-pong pair).
 
 use super::super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
 use super::{DipoleResources, layer_view};
@@ -8,7 +9,7 @@ use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::shader::Variant;
 use crate::targets::HDR_FORMAT;
-use crate::wgpu_util::{array_view, buf, depth_clear, layout, tex, tex_entry, uniform_entry};
+use crate::wgpu_util::{array_view, buf, color, depth_clear, layout, tex, tex_entry, uniform_entry};
 
 /// The radiance-map pass.
 #[derive(Debug)]
@@ -25,12 +26,12 @@ impl DipoleRadiancePass {
         let layout = layout(
             device,
             "DipoleRadiancePass::layout",
-            &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT), array(1), array(2)],
+            &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT), array(1), array(2), array(3)],
         );
         DipoleRadiancePass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records the `directions` maps; this frame's samples weigh `blend` (1 replaces).
+    /// Records the `directions` maps of this frame.
     ///
     /// # Errors
     /// When the pipeline cannot be built.
@@ -41,15 +42,8 @@ impl DipoleRadiancePass {
         mesh: &GpuMesh,
         res: &DipoleResources,
         directions: u32,
-        blend: f64,
     ) -> Result<()> {
         let shared = ctx.shared;
-        // new = old·(1 − w) + sample·w, w the blend constant.
-        let mix = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::Constant,
-            dst_factor: wgpu::BlendFactor::OneMinusConstant,
-            operation: wgpu::BlendOperation::Add,
-        };
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
             pass: Pass::DipoleRadiance,
             variant: Variant::BARE,
@@ -58,28 +52,21 @@ impl DipoleRadiancePass {
             vs: "vs_dipole_radiance",
             fs: Some("fs_dipole_radiance"),
             targets: vec![Some(HDR_FORMAT)],
-            blend: Some(wgpu::BlendState { color: mix, alpha: mix }),
+            blend: None,
             depth: Some(wgpu::DepthBiasState::default()),
         })?;
         let (normals, depths) = (array_view(&res.light_normals), array_view(&res.light_depths));
+        let (current, previous) = res.current_and_previous();
+        let previous = array_view(previous);
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("DipoleRadiancePass::group"),
             layout: &self.layout,
-            entries: &[buf(0, &res.uniform), tex(1, &normals), tex(2, &depths)],
+            entries: &[buf(0, &res.uniform), tex(1, &normals), tex(2, &depths), tex(3, &previous)],
         });
         for k in 0..directions {
-            let (map, depth) = (layer_view(&res.maps, k), layer_view(&res.map_depths, k));
-            // The first frame clears (its weight is 1); later ones keep what the map holds.
-            let load = if blend >= 1.0 { wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT) } else { wgpu::LoadOp::Load };
-            let attachment = wgpu::RenderPassColorAttachment {
-                view: &map,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
-            };
-            let mut pass = enc.begin("dipole radiance", &[Some(attachment)], depth_clear(&depth));
+            let (map, depth) = (layer_view(current, k), layer_view(&res.map_depths, k));
+            let mut pass = enc.begin("dipole radiance", &[color(&map, wgpu::Color::TRANSPARENT)], depth_clear(&depth));
             pass.set_pipeline(pipeline);
-            pass.set_blend_constant(wgpu::Color { r: blend, g: blend, b: blend, a: blend });
             pass.set_bind_group(0, &shared.frame_group, &[]);
             pass.set_bind_group(1, &group, &[]);
             mesh.draw_instance(&mut pass, k);
