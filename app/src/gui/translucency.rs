@@ -23,15 +23,18 @@ pub enum SubsurfaceChoice {
     ThicknessBaked,
     /// Thickness translucency with the per-light shadow-map thickness (follows deformation).
     ThicknessPerLight,
+    /// The directional dipole of skin1 ([Frisvad2014]), accumulated over frames while still.
+    DirectionalDipole,
     /// No subsurface scattering.
     None,
 }
 
 impl SubsurfaceChoice {
-    const ALL: [SubsurfaceChoice; 4] = [
+    const ALL: [SubsurfaceChoice; 5] = [
         SubsurfaceChoice::ScreenSpace,
         SubsurfaceChoice::ThicknessBaked,
         SubsurfaceChoice::ThicknessPerLight,
+        SubsurfaceChoice::DirectionalDipole,
         SubsurfaceChoice::None,
     ];
 
@@ -40,6 +43,7 @@ impl SubsurfaceChoice {
             SubsurfaceChoice::ScreenSpace => "Screen-space scattering",
             SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
             SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
+            SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
             SubsurfaceChoice::None => "None",
         }
     }
@@ -98,7 +102,14 @@ impl RougeApp {
             });
             self.gpu.local_thickness = LocalThicknessState::Baking(rx);
         }
+        // The dipole needs a physical medium: the app's skin takes skin1's for it.
+        self.view.scene.skin.medium =
+            (choice == SubsurfaceChoice::DirectionalDipole).then(|| Medium::builtin("skin1").ok()).flatten();
         self.view.scene.skin.subsurface = match choice {
+            SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
+                kind: rouge_render::passes::dipole::DipoleKind::Directional,
+                settings: rouge_render::passes::dipole::DipoleSettings::default(),
+            },
             SubsurfaceChoice::ScreenSpace => SubsurfaceModel::skin_screen_space(),
             SubsurfaceChoice::None => SubsurfaceModel::None,
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false),
@@ -109,9 +120,11 @@ impl RougeApp {
         };
     }
 
-    /// Whether a bake is running (the viewport keeps repainting to pick it up).
+    /// Whether a bake is running, or the dipole's maps are still accumulating (the viewport keeps
+    /// repainting: 32 frames of samples, then it rests).
     pub(super) fn baking(&self) -> bool {
         matches!(self.gpu.local_thickness, LocalThicknessState::Baking(_))
+            || (self.view.subsurface == SubsurfaceChoice::DirectionalDipole && self.gpu.renderer.dipole_frames() < 32)
     }
 
     /// The Subsurface panel (left panel, under the light).
