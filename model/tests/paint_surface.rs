@@ -58,7 +58,10 @@ fn dab(brush: &Brush, centre: Vec3) -> HashSet<(u32, u32)> {
 
 /// The lips mask's front-facing texels split at the mouth line (the widest gap in height among
 /// the lip texels near the midline): (upper lip, lower lip, the mouth line's height).
-fn lips() -> (Vec<(u32, u32, Vec3)>, Vec<(u32, u32, Vec3)>, f32) {
+/// Texels (x, y, position) of one lip.
+type LipTexels = Vec<(u32, u32, Vec3)>;
+
+fn lips() -> (LipTexels, LipTexels, f32) {
     let (_, surface) = head();
     let mask = Region::Lips.mask().resized(SIZE, SIZE);
     let lip: Vec<(u32, u32, Vec3)> = texels(surface)

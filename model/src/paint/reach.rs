@@ -79,7 +79,8 @@ impl DepthImage {
         }
         let (x, y) = (fx as u32, fy as u32);
         let d = self.depth[(y * self.width + x) as usize];
-        if !(d < 1.0) {
+        // The far plane (background) or a NaN depth: nothing there to occlude with.
+        if d.is_nan() || d >= 1.0 {
             return false;
         }
         let pixel = Vec4::new(

@@ -173,10 +173,9 @@ impl DipoleUniform {
         let centre = bounds.center();
         let radius = (0.5 * bounds.size().length()).max(1e-3);
         let mut u = DipoleUniform::zeroed();
-        for c in 0..3 {
-            let ch = dipole.channels[c];
+        for (c, (ch, p)) in dipole.channels.iter().zip(&classic).enumerate() {
             u.channel[c] = [ch.d as f32, ch.sigma_tr as f32, ch.de as f32, ch.a as f32];
-            let [alpha, sigma_tr, z_r, z_v] = classic[c].classic_constants();
+            let [alpha, sigma_tr, z_r, z_v] = p.classic_constants();
             u.extra[c] = [ch.backlit_sq as f32, alpha as f32, z_r as f32, z_v as f32];
             u.classic[c] = sigma_tr as f32;
         }
