@@ -111,12 +111,11 @@ impl ViewState {
     }
 }
 
-/// The app's edge antialiasing until the View menu changes it. The measurements support sorted
-/// two-sided edges (on the turning head a third less error and crawl near discontinuities for
-/// under 1 ms of a 35 ms lavapipe frame; docs/BENCHMARKS.md), but turning them on changes the
-/// window snapshots of app/tests/gui.rs, which are being re-recorded with the panels of issue
-/// 14: off until then (flip this constant and re-record with UPDATE_SNAPSHOTS=1).
-pub(super) const DEFAULT_EDGE_AA: rouge_render::aa::EdgeAa = rouge_render::aa::EdgeAa::Off;
+/// The app's edge antialiasing until the View menu changes it: sorted two-sided edges, which
+/// the measurements support (on the turning head a third less error and crawl near
+/// discontinuities for under 1 ms of a 35 ms lavapipe frame; docs/BENCHMARKS.md).
+pub(super) const DEFAULT_EDGE_AA: rouge_render::aa::EdgeAa =
+    rouge_render::aa::EdgeAa::Sorted(rouge_render::aa::EdgeCoverage::TwoSided);
 
 /// The GPU side of the app: eframe's device, the renderer painting the document, the one
 /// showing bare skin for the split, and the egui textures their frames are shown through.
