@@ -1,7 +1,7 @@
 //! The material library (built-in presets, user presets, imports) and its panel: list, import
 //! from a measurement file in the background, plots of the selected material.
 
-use egui_plot::{Legend, Line, Plot};
+use egui_plot::{Line, Plot};
 use rouge_measure::import::{self, ImportOptions};
 use rouge_measure::preset::{ImportReport, Preset, layer_spectra, table_thicknesses_mm};
 use rouge_measure::{Extrapolation, Kind};
@@ -249,32 +249,128 @@ pub fn plots(ui: &mut egui::Ui, m: &Material) {
     {
         ui.label(format!("Reconstruction from S, K: ΔE2000 R {de:.3}"));
     }
-    ui.label("Reflectance");
-    Plot::new(("refl", &p.name)).height(130.0).legend(Legend::default()).x_axis_label("nm").show(ui, |pu| {
-        if let Some(meas) = &p.measurement {
-            pu.line(Line::new("R_inf measured", series(&meas.r_inf)));
-            pu.line(Line::new("R measured", series(&meas.r)));
-            pu.line(Line::new("Rg", series(&meas.rg)));
-        }
-        let (s, k) = (p.s(), p.k());
-        let r_inf: Vec<f64> =
-            s.values().iter().zip(k.values()).map(|(&s, &k)| rouge_measure::km::r_inf_from_s_k(s, k)).collect();
-        pu.line(Line::new("R_inf from S, K", series(&r_inf)));
-    });
-    ui.label("S and K (per mm)");
-    Plot::new(("sk", &p.name)).height(110.0).legend(Legend::default()).x_axis_label("nm").show(ui, |pu| {
-        pu.line(Line::new("S", series(&p.s_per_mm)));
-        pu.line(Line::new("K", series(&p.k_per_mm)));
-    });
-    ui.label("R0(X) and T(X), linear sRGB");
+    let (s_spec, k_spec) = (p.s(), p.k());
+    let r_inf: Vec<f64> =
+        s_spec.values().iter().zip(k_spec.values()).map(|(&s, &k)| rouge_measure::km::r_inf_from_s_k(s, k)).collect();
+    let mut reflectance = Vec::new();
+    if let Some(meas) = &p.measurement {
+        reflectance.push(Curve::new("R_inf measured", SERIES[0], series(&meas.r_inf)));
+        reflectance.push(Curve::new("R measured", SERIES[1], series(&meas.r)));
+        reflectance.push(Curve::new("Rg", SERIES[2], series(&meas.rg)));
+    }
+    reflectance.push(Curve::new("R_inf from S, K", SERIES[3], series(&r_inf)).dashed());
+    labelled_plot(ui, ("refl", &p.name), "Reflectance", "nm", reflectance, Some((0.0, 1.0)));
+    // S and K on axes of their own: K falls by orders of magnitude past 600 nm where S does not.
+    labelled_plot(
+        ui,
+        ("s", &p.name),
+        "S, scattering (1/mm)",
+        "nm",
+        vec![Curve::new("S", SERIES[4], series(&p.s_per_mm))],
+        None,
+    );
+    labelled_plot(
+        ui,
+        ("k", &p.name),
+        "K, absorption (1/mm)",
+        "nm",
+        vec![Curve::new("K", SERIES[5], series(&p.k_per_mm))],
+        Some((0.0, 0.0)),
+    );
     let xs = table_thicknesses_mm();
-    Plot::new(("rt", &p.name)).height(110.0).legend(Legend::default()).x_axis_label("mm").show(ui, |pu| {
-        let names = ["R", "G", "B"];
-        for c in 0..3 {
-            let r0: Vec<[f64; 2]> = xs.iter().zip(&p.derived.r0_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
-            let t: Vec<[f64; 2]> = xs.iter().zip(&p.derived.t_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
-            pu.line(Line::new(format!("R0 {}", names[c]), r0));
-            pu.line(Line::new(format!("T {}", names[c]), t));
+    let channels = [
+        ("R", egui::Color32::from_rgb(220, 60, 50)),
+        ("G", egui::Color32::from_rgb(60, 170, 70)),
+        ("B", egui::Color32::from_rgb(70, 110, 230)),
+    ];
+    let mut rt = Vec::new();
+    for (c, (name, color)) in channels.into_iter().enumerate() {
+        let r0: Vec<[f64; 2]> = xs.iter().zip(&p.derived.r0_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
+        let t: Vec<[f64; 2]> = xs.iter().zip(&p.derived.t_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
+        rt.push(Curve::new(&format!("R0 {name}"), color, r0));
+        rt.push(Curve::new(&format!("T {name}"), color, t).dashed());
+    }
+    labelled_plot(ui, ("rt", &p.name), "R0(X) solid, T(X) dashed, linear sRGB", "mm", rt, Some((0.0, 1.0)));
+}
+
+/// Grid steps for a short plot: the largest of 1, 2 or 5 × 10ⁿ that fits the visible range at
+/// least twice (labelled), with a fifth and a tenth of it for the finer lines, so that a 110-point
+/// plot shows two or more y labels whatever the magnitude (S, K and R differ by decades).
+fn nice_steps(input: egui_plot::GridInput) -> [f64; 3] {
+    let range = (input.bounds.1 - input.bounds.0).abs().max(1e-12);
+    let decade = 10f64.powf((range / 2.0).log10().floor());
+    let large = [5.0, 2.0, 1.0].iter().map(|m| m * decade).find(|&step| range / step >= 2.0).unwrap_or(decade);
+    [large / 10.0, large / 5.0, large]
+}
+
+/// Colours of the plots' series (the R, G, B channels have their own).
+const SERIES: [egui::Color32; 6] = [
+    egui::Color32::from_rgb(31, 119, 180),
+    egui::Color32::from_rgb(255, 127, 14),
+    egui::Color32::from_rgb(120, 120, 120),
+    egui::Color32::from_rgb(214, 39, 140),
+    egui::Color32::from_rgb(44, 160, 44),
+    egui::Color32::from_rgb(200, 60, 40),
+];
+
+/// One curve of a plot.
+struct Curve {
+    name: String,
+    color: egui::Color32,
+    dashed: bool,
+    points: Vec<[f64; 2]>,
+}
+
+impl Curve {
+    fn new(name: &str, color: egui::Color32, points: Vec<[f64; 2]>) -> Curve {
+        Curve { name: name.to_string(), color, dashed: false, points }
+    }
+
+    fn dashed(self) -> Curve {
+        Curve { dashed: true, ..self }
+    }
+}
+
+/// A titled plot with ticks on both axes, `y_range` included (both ends equal: only that
+/// value), and its legend as a row of labels under it, where it covers no curve.
+fn labelled_plot(
+    ui: &mut egui::Ui,
+    id: impl std::hash::Hash + std::fmt::Debug,
+    title: &str,
+    x_label: &str,
+    curves: Vec<Curve>,
+    y_range: Option<(f64, f64)>,
+) {
+    ui.label(title);
+    let mut plot = Plot::new(id)
+        .height(110.0)
+        .x_axis_label(x_label)
+        .y_axis_min_width(40.0)
+        .y_axis_formatter(|mark, _| {
+            let text = format!("{:.3}", mark.value);
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        })
+        .grid_spacing(egui::Rangef::new(6.0, 48.0))
+        .y_grid_spacer(egui_plot::uniform_grid_spacer(nice_steps))
+        .allow_scroll(false);
+    if let Some((lo, hi)) = y_range {
+        plot = plot.include_y(lo).include_y(hi);
+    }
+    plot.show(ui, |pu| {
+        for c in &curves {
+            let style = if c.dashed { egui_plot::LineStyle::dashed_loose() } else { egui_plot::LineStyle::Solid };
+            pu.line(Line::new(c.name.clone(), c.points.clone()).color(c.color).style(style).width(1.5));
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        for c in &curves {
+            let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 10.0), egui::Sense::hover());
+            let y = rect.center().y;
+            ui.painter().line_segment(
+                [egui::pos2(rect.left(), y), egui::pos2(rect.right(), y)],
+                egui::Stroke::new(if c.dashed { 1.0 } else { 2.0 }, c.color),
+            );
+            ui.small(&c.name);
         }
     });
 }
