@@ -79,7 +79,7 @@ struct LastFrame {
     sss_ran: bool,
     view: FrameView,
     /// The depth buffer, read once per frame on the first pick.
-    depth: std::sync::Mutex<Option<Vec<f32>>>,
+    depth: std::sync::Mutex<Option<std::sync::Arc<Vec<f32>>>>,
 }
 
 /// The renderer: owns the passes, the uploaded mesh and look, and the frame's targets.
@@ -537,13 +537,7 @@ impl Renderer {
         if x >= w || y >= h {
             return Ok(None);
         }
-        // Depth textures cannot be copied in part: read the whole depth buffer once per frame
-        // (3.7 MB at 1280×720) and answer every pick of that frame from the copy.
-        let mut cache = last.depth.lock().map_err(|_| RenderError::Gpu("depth cache poisoned".into()))?;
-        if cache.is_none() {
-            *cache = Some(self.read_depth()?);
-        }
-        let depth = cache.as_ref().and_then(|d| d.get((y * w + x) as usize).copied()).unwrap_or(1.0);
+        let depth = self.frame_depth()?.get((y * w + x) as usize).copied().unwrap_or(1.0);
         if depth >= 1.0 {
             return Ok(None);
         }
@@ -555,6 +549,28 @@ impl Renderer {
         );
         let world = last.view.view_proj.inverse() * ndc;
         Ok((world.w != 0.0).then(|| world.truncate() / world.w))
+    }
+
+    /// The last frame's depth buffer ([0, 1], row 0 at the top), read once per frame: depth
+    /// textures cannot be copied in part, so the whole buffer (3.7 MB at 1280×720) is read on the
+    /// first request and every pick of that frame is answered from the copy.
+    fn frame_depth(&self) -> Result<std::sync::Arc<Vec<f32>>> {
+        let last = self.last_frame()?;
+        let mut cache = last.depth.lock().map_err(|_| RenderError::Gpu("depth cache poisoned".into()))?;
+        if cache.is_none() {
+            *cache = Some(std::sync::Arc::new(self.read_depth()?));
+        }
+        cache.clone().ok_or_else(|| RenderError::Gpu("depth cache empty".into()))
+    }
+
+    /// The last frame's depth buffer with its view-projection and size, for tests of what the
+    /// viewer sees (the brush's occlusion test).
+    ///
+    /// # Errors
+    /// Without a frame, or if the GPU fails.
+    pub fn depth_image(&self) -> Result<(glam::Mat4, (u32, u32), std::sync::Arc<Vec<f32>>)> {
+        let view_proj = self.last_frame()?.view.view_proj;
+        Ok((view_proj, self.targets.size(), self.frame_depth()?))
     }
 
     /// Pixel coordinates of a world point in the last frame (for tests and overlays).

@@ -391,7 +391,16 @@ impl RougeApp {
                 self.view.needs_render = true;
             }
         } else if self.ready() && !alt {
-            self.editor.view = self.camera().map(|c| PaintView { eye: c.position(), depth: None });
+            // Occlusion: while painting, the last frame's depth hides what the viewer cannot see.
+            let painting = primary || response.drag_started_by(egui::PointerButton::Primary);
+            let depth = if painting {
+                self.gpu.renderer.depth_image().ok().and_then(|(view_proj, (w, h), depth)| {
+                    rouge_model::paint::DepthImage::new(view_proj, w, h, depth).map(std::sync::Arc::new)
+                })
+            } else {
+                None
+            };
+            self.editor.view = self.camera().map(|c| PaintView { eye: c.position(), depth });
             self.editor.pressure = ui.input(|i| {
                 i.events.iter().rev().find_map(|e| match e {
                     egui::Event::Touch { force, .. } => *force,
