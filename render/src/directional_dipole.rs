@@ -106,6 +106,19 @@ pub struct Geometry {
 }
 
 impl Geometry {
+    /// Light entering at the origin straight down a flat surface (z = 0, normal +Z) and leaving
+    /// straight up at `r` mm along x: the half-space configuration of the energy checks.
+    pub fn planar(r: f64) -> Geometry {
+        Geometry {
+            xi: DVec3::ZERO,
+            ni: DVec3::Z,
+            wi: DVec3::Z,
+            xo: DVec3::new(r, 0.0, 0.0),
+            no: DVec3::Z,
+            wo: DVec3::Z,
+        }
+    }
+
     /// The reverse path: light entering at x_o from ω_o, leaving at x_i toward ω_i.
     pub fn swapped(self) -> Geometry {
         Geometry { xi: self.xo, ni: self.no, wi: self.wo, xo: self.xi, no: self.ni, wo: self.wi }

@@ -57,6 +57,17 @@ pub struct FrameCapture {
     pub focal_px: f32,
 }
 
+/// A frame's depth buffer ([0, 1] NDC depth, row 0 at the top) and the matrix that made it.
+#[derive(Clone, Debug)]
+pub struct FrameDepth {
+    /// World → clip of the frame.
+    pub view_proj: glam::Mat4,
+    /// Width and height, pixels.
+    pub size: (u32, u32),
+    /// The depths.
+    pub depth: std::sync::Arc<Vec<f32>>,
+}
+
 /// Every pass of the frame.
 #[derive(Debug)]
 struct Passes {
@@ -568,9 +579,9 @@ impl Renderer {
     ///
     /// # Errors
     /// Without a frame, or if the GPU fails.
-    pub fn depth_image(&self) -> Result<(glam::Mat4, (u32, u32), std::sync::Arc<Vec<f32>>)> {
+    pub fn depth_image(&self) -> Result<FrameDepth> {
         let view_proj = self.last_frame()?.view.view_proj;
-        Ok((view_proj, self.targets.size(), self.frame_depth()?))
+        Ok(FrameDepth { view_proj, size: self.targets.size(), depth: self.frame_depth()? })
     }
 
     /// Pixel coordinates of a world point in the last frame (for tests and overlays).

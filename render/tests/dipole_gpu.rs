@@ -3,7 +3,6 @@
 //! from no direction gets nothing (and no NaN), and the passes exist only when a material uses a
 //! dipole (frame plan).
 
-use glam::DVec3;
 use rouge_model::look::Look;
 use rouge_model::medium::Medium;
 use rouge_model::mesh::{TriangleMesh, load_mesh};
@@ -59,10 +58,6 @@ fn planar(s: impl Fn(f64) -> f64) -> f64 {
         * PI
 }
 
-fn flat(r: f64) -> Geometry {
-    Geometry { xi: DVec3::ZERO, ni: DVec3::Z, wi: DVec3::Z, xo: DVec3::new(r, 0.0, 0.0), no: DVec3::Z, wo: DVec3::Z }
-}
-
 #[test]
 fn the_gather_converges_to_the_bssrdf_integral_on_a_front_lit_face() {
     let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
@@ -84,8 +79,8 @@ fn the_gather_converges_to_the_bssrdf_integral_on_a_front_lit_face() {
         }
         for (ch, got) in mean.iter().enumerate() {
             let expected = match kind {
-                DipoleKind::Standard => planar(|r| standard_dipole_bssrdf(&standard, 1.0, &flat(r))[ch]),
-                DipoleKind::Directional => planar(|r| directional.bssrdf(&flat(r))[ch]),
+                DipoleKind::Standard => planar(|r| standard_dipole_bssrdf(&standard, 1.0, &Geometry::planar(r))[ch]),
+                DipoleKind::Directional => planar(|r| directional.bssrdf(&Geometry::planar(r))[ch]),
             };
             // The face is 60 × 40 mm, so a little of the far tail is missing; Monte Carlo noise.
             assert!((got - expected).abs() < 0.06 * expected, "{kind:?} channel {ch}: GPU {got}, CPU {expected}");

@@ -72,14 +72,7 @@ fn a_flat_surface_under_normal_light_matches_the_hand_derived_form() {
     let dipole = DirectionalDipole::new(&m);
     for (c, ch) in dipole.channels.iter().enumerate() {
         for r in [0.05, 0.3, 1.0, 3.0, 10.0] {
-            let g = Geometry {
-                xi: DVec3::ZERO,
-                ni: DVec3::Z,
-                wi: DVec3::Z,
-                xo: DVec3::new(r, 0.0, 0.0),
-                no: DVec3::Z,
-                wo: DVec3::Z,
-            };
+            let g = Geometry::planar(r);
             let (d, s, de, a) = (ch.d, ch.sigma_tr, ch.de, ch.a);
             let dr = (r * r + d * (d + 2.0 * de * r / (r * r + de * de).sqrt())).sqrt();
             let real = (-s * dr).exp() / (4.0 * PI * PI * dr.powi(3))
@@ -193,14 +186,7 @@ fn half_space_energy_against_the_path_tracer() {
         let standard = standard_dipole_profiles(&m);
         for c in 0..3 {
             let mc = entry["reflectance"][c].as_f64().expect("reflectance");
-            let at = |r: f64| Geometry {
-                xi: DVec3::ZERO,
-                ni: DVec3::Z,
-                wi: DVec3::Z,
-                xo: DVec3::new(r, 0.0, 0.0),
-                no: DVec3::Z,
-                wo: DVec3::Z,
-            };
+            let at = Geometry::planar;
             let dir = planar_albedo(|r| dipole.bssrdf(&at(r))[c], dipole.channels[c].sigma_tr);
             let std = planar_albedo(|r| standard_dipole_bssrdf(&standard, 1.0, &at(r))[c], dipole.channels[c].sigma_tr);
             eprintln!("{name} {c}: path tracer {mc:.4}, directional {dir:.4}, standard {std:.4}");

@@ -394,8 +394,9 @@ impl RougeApp {
             // Occlusion: while painting, the last frame's depth hides what the viewer cannot see.
             let painting = primary || response.drag_started_by(egui::PointerButton::Primary);
             let depth = if painting {
-                self.gpu.renderer.depth_image().ok().and_then(|(view_proj, (w, h), depth)| {
-                    rouge_model::paint::DepthImage::new(view_proj, w, h, depth).map(std::sync::Arc::new)
+                self.gpu.renderer.depth_image().ok().and_then(|f| {
+                    rouge_model::paint::DepthImage::new(f.view_proj, f.size.0, f.size.1, f.depth)
+                        .map(std::sync::Arc::new)
                 })
             } else {
                 None

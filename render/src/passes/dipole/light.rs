@@ -1,12 +1,11 @@
 //! Dipole light G-buffer pass (shaders/dipole_light.wgsl): the mesh from each directional light,
 //! orthographically, into a layer of the light normals and depths ([DirDipoleThesis] step 1).
 
-use super::super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
-use super::{DipoleResources, layer_view};
+use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
+use super::{DipoleResources, layer_view, mesh_pipeline_spec};
 use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::shader::Variant;
-use crate::targets::HDR_FORMAT;
 use crate::wgpu_util::{buf, color, depth_clear, layout, uniform_entry};
 
 /// The light G-buffer pass.
@@ -37,16 +36,8 @@ impl DipoleLightPass {
         slots: u32,
     ) -> Result<()> {
         let shared = ctx.shared;
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass: Pass::DipoleLight,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::Mesh,
-            vs: "vs_dipole_light",
-            fs: Some("fs_dipole_light"),
-            targets: vec![Some(HDR_FORMAT)],
-            blend: None,
-            depth: Some(wgpu::DepthBiasState::default()),
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
+            mesh_pipeline_spec(Pass::DipoleLight, &self.layout, "vs_dipole_light", "fs_dipole_light")
         })?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("DipoleLightPass::group"),

@@ -248,6 +248,27 @@ mod tests {
     }
 }
 
+/// The pipeline of a dipole pass that draws the mesh into an Rgba16Float target with depth
+/// (the light G-buffer and the radiance maps).
+pub fn mesh_pipeline_spec<'a>(
+    pass: super::Pass,
+    layout: &'a wgpu::BindGroupLayout,
+    vs: &'a str,
+    fs: &'a str,
+) -> super::PipelineSpec<'a> {
+    super::PipelineSpec {
+        pass,
+        variant: crate::shader::Variant::BARE,
+        layout,
+        vertices: super::Vertices::Mesh,
+        vs,
+        fs: Some(fs),
+        targets: vec![Some(crate::targets::HDR_FORMAT)],
+        blend: None,
+        depth: Some(wgpu::DepthBiasState::default()),
+    }
+}
+
 /// A view of one layer of an array texture, as a render attachment.
 pub fn layer_view(t: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor {

@@ -3,12 +3,11 @@
 //! ([DirDipoleThesis] step 2); after n frames of one state each texel holds the mean of its n
 //! frames (the shader mixes in the previous frame's map of the ping-pong pair).
 
-use super::super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
-use super::{DipoleResources, layer_view};
+use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
+use super::{DipoleResources, layer_view, mesh_pipeline_spec};
 use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::shader::Variant;
-use crate::targets::HDR_FORMAT;
 use crate::wgpu_util::{array_view, buf, color, depth_clear, layout, tex, tex_entry, uniform_entry};
 
 /// The radiance-map pass.
@@ -44,16 +43,8 @@ impl DipoleRadiancePass {
         directions: u32,
     ) -> Result<()> {
         let shared = ctx.shared;
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass: Pass::DipoleRadiance,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::Mesh,
-            vs: "vs_dipole_radiance",
-            fs: Some("fs_dipole_radiance"),
-            targets: vec![Some(HDR_FORMAT)],
-            blend: None,
-            depth: Some(wgpu::DepthBiasState::default()),
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
+            mesh_pipeline_spec(Pass::DipoleRadiance, &self.layout, "vs_dipole_radiance", "fs_dipole_radiance")
         })?;
         let (normals, depths) = (array_view(&res.light_normals), array_view(&res.light_depths));
         let (current, previous) = res.current_and_previous();
