@@ -305,7 +305,7 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
     let skin = (h / 4..3 * h / 4)
         .flat_map(|y| (w / 3..2 * w / 3).map(move |x| (x, y)))
         .filter(|&(x, y)| {
-            let p = img.get_pixel(x, y).0;
+            let p = img.get_pixel(x, y).0.map(i32::from);
             p[0] > 120 && p[0] > p[2] + 30 && p[1] > 60
         })
         .count();
