@@ -413,3 +413,29 @@ fn autosave_recovery_cycle() {
     assert!(!Document::recovery_available(&recovery));
     assert!(!recovery.join("maps").exists(), "the autosave's maps are deleted");
 }
+
+#[test]
+fn duplicating_a_layer_copies_it_above_and_painting_the_copy_leaves_the_original() {
+    let mut doc = Document::default_project();
+    let n = doc.layers.len();
+    let rect = TexelRect::new(10, 10, 40, 30);
+    paint(&mut doc, 0, rect, pattern);
+    let original = bits(&doc.layers[0].map);
+    assert_eq!(doc.duplicate_layer(0), Change::Layers);
+    assert_eq!(doc.layers.len(), n + 1);
+    let copy = &doc.layers[1];
+    assert_eq!(copy.name, format!("{} copy", doc.layers[0].name));
+    assert_eq!(copy.preset, doc.layers[0].preset);
+    assert!(bits(&copy.map) == original, "the copy starts with the original's map");
+    // Painting the copy changes the copy only.
+    paint(&mut doc, 1, rect, |_, _| 0.5);
+    assert!(bits(&doc.layers[0].map) == original, "the original changed with its copy");
+    assert!(doc.layers[1].map.mm[10 * N + 10] == 0.5);
+    // One undo step each: the stroke, then the duplicate.
+    doc.undo();
+    doc.undo();
+    assert_eq!(doc.layers.len(), n);
+    assert!(bits(&doc.layers[0].map) == original);
+    // A layer that is not there: nothing, and no undo step.
+    assert_eq!(doc.duplicate_layer(99), Change::Nothing);
+}

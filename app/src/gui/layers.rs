@@ -1,5 +1,5 @@
-//! The layers panel (top of the left panel): visibility, order, rename, clear, multiplier and
-//! material of each layer, and adding a layer of the selected material.
+//! The layers panel (top of the left panel): visibility, order, duplicate, remove, rename, clear,
+//! thickness multiplier and material of each layer, and adding a layer of the selected material.
 
 use super::*;
 
@@ -27,6 +27,9 @@ impl RougeApp {
                 }
                 if ui.small_button("Down").on_hover_text("move down").clicked() && i > 0 {
                     action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i - 1)));
+                }
+                if ui.small_button("Dup").on_hover_text("duplicate above (one undo step)").clicked() {
+                    action = Some(Box::new(move |d: &mut Document| d.duplicate_layer(i)));
                 }
                 if ui.small_button("Del").on_hover_text("remove").clicked() {
                     action = Some(Box::new(move |d: &mut Document| d.remove_layer(i)));
@@ -63,7 +66,15 @@ impl RougeApp {
                 self.clear_layer(i);
             }
             let mut m = multiplier;
-            if ui.add(egui::Slider::new(&mut m, 0.0..=4.0).text("thickness ×")).drag_stopped() {
+            let slider = egui::Slider::new(&mut m, 0.0..=4.0).text("thickness multiplier (×)");
+            if ui
+                .add(slider)
+                .on_hover_text(
+                    "scales the layer's painted thickness (mm) for rendering: not an opacity, the Kubelka-Munk \
+                     layer simply gets thicker or thinner",
+                )
+                .drag_stopped()
+            {
                 let c = self.editor.edit(|d| d.set_multiplier(i, m));
                 self.apply_change(c);
             }

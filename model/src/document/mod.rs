@@ -263,6 +263,18 @@ impl Document {
         })
     }
 
+    /// Duplicates layer `i` just above it: the same material, map (shared until either is
+    /// painted), visibility and multiplier, named "NAME copy".
+    pub fn duplicate_layer(&mut self, i: usize) -> Change {
+        self.edit_layers(|layers| {
+            let Some(layer) = layers.get(i) else { return false };
+            let mut copy = layer.clone();
+            copy.name = format!("{} copy", layer.name);
+            layers.insert(i + 1, copy);
+            true
+        })
+    }
+
     /// Removes layer `i`.
     pub fn remove_layer(&mut self, i: usize) -> Change {
         self.edit_layers(|layers| {
