@@ -63,11 +63,17 @@ pub(super) enum LocalThicknessState {
     Failed(String),
 }
 
+/// skin1's medium, parsed once (the panel applies its choice every frame).
+fn skin1() -> Option<&'static Medium> {
+    static SKIN1: std::sync::OnceLock<Option<Medium>> = std::sync::OnceLock::new();
+    SKIN1.get_or_init(|| Medium::builtin("skin1").ok()).as_ref()
+}
+
 /// The translucency of the app's skin: skin1's medium, fitted parameters, `baked` or per light.
 fn thickness_model(baked: bool) -> SubsurfaceModel {
-    let skin1 = Medium::builtin("skin1").ok();
-    let source = ThicknessSource::for_medium(baked, skin1.as_ref(), 64, 30.0);
-    let (params, _) = TranslucencyParams::for_medium(skin1.as_ref(), source.name());
+    let skin1 = skin1();
+    let source = ThicknessSource::for_medium(baked, skin1, 64, 30.0);
+    let (params, _) = TranslucencyParams::for_medium(skin1, source.name());
     SubsurfaceModel::Thickness { params, source }
 }
 
@@ -104,7 +110,7 @@ impl RougeApp {
         }
         // The dipole needs a physical medium: the app's skin takes skin1's for it.
         self.view.scene.skin.medium =
-            (choice == SubsurfaceChoice::DirectionalDipole).then(|| Medium::builtin("skin1").ok()).flatten();
+            (choice == SubsurfaceChoice::DirectionalDipole).then(|| skin1().cloned()).flatten();
         self.view.scene.skin.subsurface = match choice {
             SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
                 kind: rouge_render::passes::dipole::DipoleKind::Directional,
