@@ -200,6 +200,44 @@ impl ChannelProfile {
         }
     }
 
+    /// The classic dipole between surface points, [Benmounah2009] Table 1 with its two slips
+    /// corrected (module doc of [`crate::cube_atlas`]): the real source at `x_i − z_r·n_i`, the
+    /// virtual one at `x_i + z_v·n_i` (the table prints `x_i − z_v·n_i`), and
+    /// R = α′/4π Σ z(1 + σ_tr S)e^{−σ_tr S}/S³ over both, per mm², for light entering at `x_i`
+    /// (outward normal `n_i`) and leaving at `x_o`. On a plane (x_o in x_i's tangent plane) it is
+    /// [`ChannelProfile::radial`] of |x_o − x_i|. Classic constants whatever `self.model`.
+    pub fn classic_between(&self, x_i: [f64; 3], n_i: [f64; 3], x_o: [f64; 3]) -> f64 {
+        let s = self.sigma_tr;
+        let flux = |z: f64, side: f64| {
+            let d2: f64 = (0..3).map(|k| (x_i[k] + side * z * n_i[k] - x_o[k]).powi(2)).sum();
+            let d = d2.sqrt().max(1e-12);
+            z * (1.0 + s * d) * (-s * d).exp() / (d * d * d)
+        };
+        self.alpha_prime / (4.0 * PI) * (flux(self.z_r, -1.0) + flux(self.z_v, 1.0))
+    }
+
+    /// ∫ R(r) 2πr dr over the disk r ≤ `a_mm` of the classic dipole, closed form: with
+    /// d_a = √(a² + z²), ∫₀^a z(1 + σd)e^{−σd}/d³ 2πr dr = 2π(e^{−σz} − z e^{−σd_a}/d_a) (substitute
+    /// d, r dr = d dd, and d/dd(−e^{−σd}/d) = (1 + σd)e^{−σd}/d²), so the disk holds
+    /// α′/2 Σ_{z ∈ {z_r, z_v}} (e^{−σz} − z e^{−σd_a}/d_a). 0 at a = 0, [`ChannelProfile::total`]
+    /// (classic) as a → ∞. The cube atlas integrates its centre texel with it.
+    pub fn classic_disk_total(&self, a_mm: f64) -> f64 {
+        let s = self.sigma_tr;
+        let part = |z: f64| {
+            let d = (a_mm * a_mm + z * z).sqrt();
+            (-s * z).exp() - z * (-s * d).exp() / d
+        };
+        0.5 * self.alpha_prime * (part(self.z_r) + part(self.z_v))
+    }
+
+    /// [Benmounah2009] eq. 9 (the real source alone) integrated over a plane of sources at
+    /// perpendicular distance `z_mm` from the exit point: α′/2 · e^{−σ_tr z} (the integral in the
+    /// module doc with z the distance). The radiosity of the global term per unit irradiance of
+    /// a locally uniform lit surface behind. Finite for every z ≥ 0 (α′/2 at z = 0).
+    pub fn real_source_plane(&self, z_mm: f64) -> f64 {
+        0.5 * self.alpha_prime * (-self.sigma_tr * z_mm.max(0.0)).exp()
+    }
+
     /// R(r), per mm², at distance `r_mm` ≥ 0 from the point of entry.
     pub fn radial(&self, r_mm: f64) -> f64 {
         let r2 = r_mm * r_mm;

@@ -377,10 +377,44 @@ impl ShIrradiance {
         ShIrradiance { coeffs: self.coeffs.map(|c| c.map(|v| v * s)) }
     }
 
+    /// The environment's irradiance as it enters a dielectric of relative index `eta`:
+    /// `E_t(n) = ∫ L(ω) T(n·ω) max(0, n·ω) dω` with T = 1 − F the Fresnel transmittance
+    /// ([Benmounah2009] eq. 4, done right: see the module doc). The kernel T(μ)μ is zonal, so by
+    /// Funk-Hecke each band l is scaled by `Â_l^T / Â_l` with `Â_l^T = 2π ∫₀¹ T(μ) μ P_l(μ) dμ`
+    /// ([`fresnel_band_kernels`]).
+    pub fn fresnel_transmitted(&self, eta: f64) -> Self {
+        let kt = fresnel_band_kernels(eta);
+        let ratio = [kt[0] / A0, kt[1] / A1, kt[2] / A2];
+        let band = |i: usize| if i == 0 { 0 } else if i < 4 { 1 } else { 2 };
+        let mut out = *self;
+        for (i, c) in out.coeffs.iter_mut().enumerate() {
+            *c = c.map(|v| (f64::from(v) * ratio[band(i)]) as f32);
+        }
+        out
+    }
+
     /// Coefficients padded to `vec4` (w = 0) for a WGSL uniform `array<vec4<f32>, 9>`.
     pub fn to_gpu(&self) -> [[f32; 4]; 9] {
         self.coeffs.map(|[r, g, b]| [r, g, b, 0.0])
     }
+}
+
+/// `Â_l^T = 2π ∫₀¹ T(μ) μ P_l(μ) dμ` for l = 0, 1, 2 with T(μ) = 1 − F(μ, η) the unpolarised
+/// Fresnel transmittance from outside ([`crate::diffusion::fresnel_dielectric`]): the Legendre
+/// coefficients of the transmitted clamped cosine. Composite Simpson on 4096 panels (T is smooth
+/// on [0, 1] for η ≥ 1). At η = 1 (T = 1) they are π, 2π/3, π/4, the plain cosine's.
+pub fn fresnel_band_kernels(eta: f64) -> [f64; 3] {
+    let legendre = [|_: f64| 1.0, |m: f64| m, |m: f64| 0.5 * (3.0 * m * m - 1.0)];
+    legendre.map(|p| {
+        let f = |m: f64| (1.0 - crate::diffusion::fresnel_dielectric(m, eta)) * m * p(m);
+        let n = 4096;
+        let h = 1.0 / n as f64;
+        let mut s = f(0.0) + f(1.0);
+        for k in 1..n {
+            s += f(k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        2.0 * PI * s * h / 3.0
+    })
 }
 
 /// The nine basis functions at `n`, in coefficient order, in f32 as the shader computes them.

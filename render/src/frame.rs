@@ -73,6 +73,10 @@ pub enum Step {
     DipoleRadiance,
     /// The dipole models' combination, added to the skin's diffuse radiance.
     DipoleCombine,
+    /// The cube atlas's six faces of irradiance, drawn from the current mesh.
+    AtlasIrradiance,
+    /// The cube atlas's gather, added to the skin's diffuse radiance.
+    AtlasGather,
     /// One direction of the screen-space scattering blur.
     Sss(Direction),
     /// Composition of `skin` (diffuse or scattered) with the surface radiance.
@@ -179,6 +183,7 @@ impl FramePlan {
         }
         let thickness = thickness_variant(scene, uploaded, shadow_maps, &mut skipped)?;
         let dipole_slots = dipole_slots(scene, &mut skipped)?;
+        let atlas = atlas_settings(scene, &mut skipped)?;
         let variant = Variant {
             layers: uploaded.layers,
             shadows: shadow_maps > 0,
@@ -187,7 +192,8 @@ impl FramePlan {
             albedo_map: uploaded.albedo_map,
             normal_map: uploaded.normal_map,
             thickness,
-            dipole: dipole_slots.is_some(),
+            dipole: dipole_slots.is_some() || atlas.is_some(),
+            atlas: atlas.is_some(),
         };
 
         // G-buffer.
@@ -271,8 +277,34 @@ impl FramePlan {
             });
         }
 
+        if let Some(a) = atlas {
+            let mut reads = vec!["mesh (current positions)".to_string()];
+            if variant.shadows {
+                reads.push("shadow maps".into());
+            }
+            if variant.env {
+                reads.push("SH environment".into());
+            }
+            passes.push(PlannedPass {
+                step: Step::AtlasIrradiance,
+                reads,
+                writes: vec![format!("cube atlas 6×{}² (irradiance, n·p, normal, depth)", a.atlas_px)],
+            });
+            let mut reads = names(&crate::passes::cube_atlas::gather::inputs());
+            reads.push("cube atlas".into());
+            passes.push(PlannedPass {
+                step: Step::AtlasGather,
+                reads,
+                writes: vec![format!("{} (added)", Target::Diffuse.name())],
+            });
+        }
+
         // The skin's subsurface model.
         let kernel = match &scene.skin.subsurface {
+            SubsurfaceModel::CubeAtlas { .. } => {
+                skipped.push(skip("SSS passes", "the skin's subsurface model is cube-atlas"));
+                None
+            }
             SubsurfaceModel::Dipole { kind, .. } => {
                 skipped.push(skip("SSS passes", format!("the skin's subsurface model is {}", kind.name())));
                 None
@@ -346,6 +378,14 @@ impl FramePlan {
                     source.name()
                 )
             }
+            SubsurfaceModel::CubeAtlas { settings: a } => format!(
+                " (atlas 6×{}², kernel up to {k}×{k}{}, self-occlusion test {}, global term {})",
+                a.atlas_px,
+                if a.adaptive { " adaptive" } else { "" },
+                a.occlusion.name(),
+                on_off(a.global),
+                k = a.kernel_max,
+            ),
             _ => String::new(),
         };
         let material = format!(
@@ -425,6 +465,24 @@ fn dipole_slots(scene: &Scene, skipped: &mut Vec<Skipped>) -> Result<Option<u32>
         return Ok(None);
     }
     Ok(Some(slots))
+}
+
+/// The cube atlas's settings when the skin's model is `cube-atlas` (checked), `None` otherwise.
+fn atlas_settings(scene: &Scene, skipped: &mut Vec<Skipped>) -> Result<Option<crate::cube_atlas::AtlasSettings>> {
+    let SubsurfaceModel::CubeAtlas { settings } = &scene.skin.subsurface else {
+        skipped.push(skip("cube-atlas passes and atlas", "no material uses the cube-atlas model"));
+        return Ok(None);
+    };
+    settings.check()?;
+    if scene.skin.medium.is_none() {
+        return Err(RenderError::Invalid(
+            "the cube-atlas model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
+        ));
+    }
+    if !settings.global {
+        skipped.push(skip("cube-atlas global term", "switched off"));
+    }
+    Ok(Some(*settings))
 }
 
 /// Which thickness translucency the frame runs: off unless the skin's model is `thickness`; the
@@ -507,6 +565,8 @@ pub fn step_name(step: Step) -> String {
         Step::DipoleLight { .. } => "dipole light".into(),
         Step::DipoleRadiance => "dipole radiance".into(),
         Step::DipoleCombine => "dipole combine".into(),
+        Step::AtlasIrradiance => "atlas irradiance".into(),
+        Step::AtlasGather => "atlas gather".into(),
         Step::Sss(d) => d.label().into(),
         Step::Composite { .. } => "composite".into(),
         Step::EdgeOverdraw { .. } => "edge overdraw".into(),

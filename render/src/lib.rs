@@ -12,6 +12,7 @@
 
 pub mod aa;
 pub mod aa_study;
+pub mod cube_atlas;
 pub mod diffusion;
 pub mod directional_dipole;
 pub mod edges;

@@ -13,6 +13,9 @@ use crate::passes::dipole::combine::DipoleCombinePass;
 use crate::passes::dipole::light::DipoleLightPass;
 use crate::passes::dipole::radiance::DipoleRadiancePass;
 use crate::passes::dipole::{DipoleResources, DipoleUniform, state_key};
+use crate::passes::cube_atlas::gather::AtlasGatherPass;
+use crate::passes::cube_atlas::irradiance::AtlasIrradiancePass;
+use crate::passes::cube_atlas::{AtlasResources, AtlasUniform};
 use crate::passes::edge_overdraw::{EdgeOverdrawPass, GpuEdges};
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
@@ -79,6 +82,8 @@ struct Passes {
     dipole_light: DipoleLightPass,
     dipole_radiance: DipoleRadiancePass,
     dipole_combine: DipoleCombinePass,
+    atlas_irradiance: AtlasIrradiancePass,
+    atlas_gather: AtlasGatherPass,
     composite: CompositePass,
     edge_overdraw: EdgeOverdrawPass,
 }
@@ -115,6 +120,8 @@ pub struct Renderer {
     edge_gpu_classify: bool,
     /// The dipole models' maps and their accumulation.
     dipole: DipoleResources,
+    /// The cube atlas (redrawn every frame that uses it).
+    atlas: AtlasResources,
     /// Counts mesh uploads (the dipole maps depend on the mesh).
     mesh_generation: u64,
 }
@@ -134,6 +141,8 @@ impl Renderer {
             dipole_light: DipoleLightPass::new(&shared.device),
             dipole_radiance: DipoleRadiancePass::new(&shared.device),
             dipole_combine: DipoleCombinePass::new(&shared.device),
+            atlas_irradiance: AtlasIrradiancePass::new(&shared.device),
+            atlas_gather: AtlasGatherPass::new(&shared.device),
             composite: CompositePass::new(&shared),
             edge_overdraw: EdgeOverdrawPass::new(&shared),
         };
@@ -153,6 +162,7 @@ impl Renderer {
             edge_stats: Default::default(),
             edge_gpu_classify: false,
             dipole: DipoleResources::new(device, formats.min_array_layers),
+            atlas: AtlasResources::new(device),
             mesh_generation: 0,
             shared,
         }
@@ -367,6 +377,7 @@ impl Renderer {
             edges,
             edge_aa,
             dipole,
+            atlas,
             mesh_generation,
             ..
         } = self;
@@ -393,6 +404,15 @@ impl Renderer {
             let frame_index = dipole.next_frame(key, settings.progressive);
             let u = DipoleUniform::new(*kind, medium, settings, scene, &mesh.bounds, frame_index);
             shared.queue.write_buffer(&dipole.uniform, 0, bytemuck::bytes_of(&u));
+        }
+        if let (crate::scene::SubsurfaceModel::CubeAtlas { settings }, Some(medium)) =
+            (&scene.skin.subsurface, &scene.skin.medium)
+            && plan.variant.atlas
+        {
+            atlas.ensure(device, settings);
+            let u = AtlasUniform::new(medium, settings, &mesh.bounds);
+            atlas.frame = Some(crate::cube_atlas::AtlasFrame::new(&mesh.bounds, settings.atlas_px));
+            shared.queue.write_buffer(&atlas.uniform, 0, bytemuck::bytes_of(&u));
         }
         if let Some(kernel) = &plan.kernel {
             passes.sss.write_uniforms(shared, kernel, scene.sss.width, scene.sss.follow_mm, scene.sss.samples);
@@ -424,6 +444,8 @@ impl Renderer {
                     passes.dipole_radiance.record(ctx, &mut enc, mesh, dipole, directions)?
                 }
                 Step::DipoleCombine => passes.dipole_combine.record(ctx, &mut enc, dipole)?,
+                Step::AtlasIrradiance => passes.atlas_irradiance.record(ctx, &mut enc, mesh, atlas, &shadow_maps)?,
+                Step::AtlasGather => passes.atlas_gather.record(ctx, &mut enc, atlas)?,
                 Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
                 Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
                 Step::EdgeOverdraw { sorted } => {
@@ -458,6 +480,14 @@ impl Renderer {
         *last = Some(LastFrame { variant, sss_ran: plan.kernel.is_some(), view, depth: std::sync::Mutex::new(None) });
         let out = if display { Target::Display } else { Target::Linear };
         targets.get(out).cloned().ok_or_else(|| RenderError::Gpu("the output target was not created".into()))
+    }
+
+    /// The cube atlas as the last frame that used it drew it (tests, inspection).
+    ///
+    /// # Errors
+    /// Before any frame used the cube-atlas model; GPU failures.
+    pub fn atlas_image(&self) -> Result<crate::passes::cube_atlas::AtlasImage> {
+        self.atlas.read(&self.shared.device, &self.shared.queue)
     }
 
     /// Frames of samples the dipole models' radiance maps hold (progressive accumulation).
@@ -532,7 +562,7 @@ impl Renderer {
     pub fn read_linear(&self) -> Result<Vec<[f32; 4]>> {
         self.last_frame()?;
         if self.shared.formats.linear == wgpu::TextureFormat::Rgba16Float {
-            return Ok(halves_to_f32(&self.read(Target::Linear, 8)?));
+            return Ok(crate::wgpu_util::halves_to_f32(&self.read(Target::Linear, 8)?));
         }
         Ok(bytemuck::pod_collect_to_vec(&self.read(Target::Linear, 16)?))
     }
@@ -602,7 +632,7 @@ impl Renderer {
     /// Without a frame, or if the GPU fails.
     pub fn capture(&self) -> Result<FrameCapture> {
         let last = self.last_frame()?;
-        let half4 = |target: Target| -> Result<Vec<[f32; 4]>> { Ok(halves_to_f32(&self.read(target, 8)?)) };
+        let half4 = |target: Target| -> Result<Vec<[f32; 4]>> { Ok(crate::wgpu_util::halves_to_f32(&self.read(target, 8)?)) };
         let diffuse = half4(Target::Diffuse)?;
         let scattered = if last.sss_ran { half4(Target::Scattered)? } else { diffuse.clone() };
         let layers = last.variant.layers;
@@ -626,8 +656,3 @@ impl Renderer {
     }
 }
 
-/// RGBA half floats, as read back, to f32.
-fn halves_to_f32(bytes: &[u8]) -> Vec<[f32; 4]> {
-    let halves: Vec<u16> = bytemuck::pod_collect_to_vec(bytes);
-    halves.chunks_exact(4).map(|c| std::array::from_fn(|i| half::f16::from_bits(c[i]).to_f32())).collect()
-}

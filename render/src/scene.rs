@@ -1,6 +1,7 @@
 //! What a frame shows besides the mesh and the look: camera, lights, environment, skin, SSS
 //! settings, exposure. Units are millimetres; +Y up, the face looks toward +Z.
 
+use crate::cube_atlas::AtlasSettings;
 use crate::diffusion::ProfileModel;
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
@@ -149,6 +150,14 @@ pub enum SubsurfaceModel {
         /// Samples, directions, map sizes, the artifact fixes, progressive accumulation.
         settings: DipoleSettings,
     },
+    /// Jensen's dipole gathered in an on-the-fly cube-map atlas ([Benmounah2009],
+    /// [`crate::cube_atlas`]): the mesh drawn onto the six faces of its bounding cube every
+    /// frame, so it may deform. Takes over the skin's direct and environment light; needs
+    /// `Skin::medium`.
+    CubeAtlas {
+        /// Atlas size, kernel, self-occlusion test, global term.
+        settings: AtlasSettings,
+    },
 }
 
 impl SubsurfaceModel {
@@ -164,6 +173,7 @@ impl SubsurfaceModel {
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
             SubsurfaceModel::Thickness { .. } => "thickness",
             SubsurfaceModel::Dipole { kind, .. } => kind.name(),
+            SubsurfaceModel::CubeAtlas { .. } => "cube-atlas",
         }
     }
 
@@ -171,7 +181,10 @@ impl SubsurfaceModel {
     pub fn profile(&self) -> Option<&DiffusionProfile> {
         match self {
             SubsurfaceModel::ScreenSpace { profile } => Some(profile),
-            SubsurfaceModel::None | SubsurfaceModel::Thickness { .. } | SubsurfaceModel::Dipole { .. } => None,
+            SubsurfaceModel::None
+            | SubsurfaceModel::Thickness { .. }
+            | SubsurfaceModel::Dipole { .. }
+            | SubsurfaceModel::CubeAtlas { .. } => None,
         }
     }
 }

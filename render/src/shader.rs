@@ -42,6 +42,8 @@ pub struct Variant {
     pub thickness: ThicknessVariant,
     /// A dipole model takes over the skin's direct light (the lighting pass leaves it out).
     pub dipole: bool,
+    /// The cube atlas takes over the skin's environment light too (only with `dipole`).
+    pub atlas: bool,
 }
 
 impl Variant {
@@ -55,13 +57,15 @@ impl Variant {
         normal_map: false,
         thickness: ThicknessVariant::Off,
         dipole: false,
+        atlas: false,
     };
 
-    /// Every variant, for validating all shader sources.
+    /// Every variant, for validating all shader sources: the diffusion models' flags are
+    /// (dipole, atlas) ∈ {(off, off), (on, off), (on, on)}.
     pub fn all() -> impl Iterator<Item = Variant> {
         let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
         (0..=MAX_LAYERS as u32).flat_map(move |layers| {
-            (0..64u32).flat_map(move |bits| {
+            (0..96u32).flat_map(move |bits| {
                 thickness.into_iter().map(move |thickness| Variant {
                     layers,
                     shadows: bits & 1 != 0,
@@ -70,7 +74,8 @@ impl Variant {
                     albedo_map: bits & 8 != 0,
                     normal_map: bits & 16 != 0,
                     thickness,
-                    dipole: bits & 32 != 0,
+                    dipole: bits >= 32,
+                    atlas: bits >= 64,
                 })
             })
         })
@@ -81,7 +86,8 @@ impl Variant {
         let none = Variant::BARE;
         match pass {
             Pass::Shadow | Pass::Sss | Pass::DepthCopy | Pass::EdgeOverdraw => none,
-            Pass::DipoleLight | Pass::DipoleRadiance | Pass::DipoleCombine => none,
+            Pass::DipoleLight | Pass::DipoleRadiance | Pass::DipoleCombine | Pass::AtlasGather => none,
+            Pass::AtlasIrradiance => Variant { shadows: self.shadows, env: self.env, ..none },
             Pass::Gbuffer => Variant {
                 layers: self.layers,
                 albedo_map: self.albedo_map,
@@ -91,16 +97,18 @@ impl Variant {
             },
             Pass::Thickness => Variant { thickness: self.thickness, ..none },
             Pass::Lighting => {
-                Variant { layers: self.layers, shadows: self.shadows, env: self.env, dipole: self.dipole, ..none }
+                let (shadows, env, dipole, atlas) = (self.shadows, self.env, self.dipole, self.atlas);
+                Variant { layers: self.layers, shadows, env, dipole, atlas, ..none }
             }
             Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
         }
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 12] {
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 13] {
         [
             ("DIPOLE", self.dipole),
+            ("ATLAS", self.atlas),
             ("THICKNESS", self.thickness != ThicknessVariant::Off),
             ("THICKNESS_MAP", self.thickness == ThicknessVariant::Baked),
             ("THICKNESS_LIGHT", self.thickness == ThicknessVariant::ShadowMap),
@@ -135,6 +143,9 @@ fn insertion(name: &str) -> Option<&'static str> {
     match name {
         "sh_eval" => Some(crate::env::WGSL_SH_EVAL),
         "dipole_common" => Some(include_str!("shaders/dipole_common.wgsl")),
+        "diffusion" => Some(include_str!("shaders/diffusion.wgsl")),
+        "shadow_factor" => Some(include_str!("shaders/shadow_factor.wgsl")),
+        "atlas_common" => Some(include_str!("shaders/atlas_common.wgsl")),
         _ => None,
     }
 }

@@ -197,6 +197,7 @@ pub type UniformLayout = (&'static str, usize, Vec<(&'static str, usize)>);
 
 /// Field offsets of the uniforms, for the layout test against naga's view of the WGSL.
 pub fn uniform_layouts() -> Vec<UniformLayout> {
+    use crate::passes::cube_atlas::AtlasUniform;
     use std::mem::{offset_of, size_of};
     vec![
         (
@@ -247,6 +248,21 @@ pub fn uniform_layouts() -> Vec<UniformLayout> {
                 ("dir_view_proj", offset_of!(DipoleUniform, dir_view_proj)),
                 ("dir_axis", offset_of!(DipoleUniform, dir_axis)),
                 ("dir_planes", offset_of!(DipoleUniform, dir_planes)),
+            ],
+        ),
+        (
+            "AtlasPass",
+            size_of::<AtlasUniform>(),
+            vec![
+                ("view_proj", offset_of!(AtlasUniform, view_proj)),
+                ("axis", offset_of!(AtlasUniform, axis)),
+                ("right", offset_of!(AtlasUniform, right)),
+                ("up", offset_of!(AtlasUniform, up)),
+                ("cube", offset_of!(AtlasUniform, cube)),
+                ("medium", offset_of!(AtlasUniform, medium)),
+                ("params", offset_of!(AtlasUniform, params)),
+                ("settings", offset_of!(AtlasUniform, settings)),
+                ("sh_fresnel", offset_of!(AtlasUniform, sh_fresnel)),
             ],
         ),
         (

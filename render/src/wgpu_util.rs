@@ -144,6 +144,17 @@ pub const KEEP_DST_ALPHA: wgpu::BlendComponent = wgpu::BlendComponent {
     operation: wgpu::BlendOperation::Add,
 };
 
+/// Adds the colour and keeps the target's alpha (the passes that add radiance to the skin's
+/// diffuse target, whose alpha is the skin flag).
+pub const ADD_RGB_KEEP_ALPHA: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: KEEP_DST_ALPHA,
+};
+
 /// A depth attachment cleared to the far plane and stored.
 pub fn depth_clear(v: &wgpu::TextureView) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
     Some(wgpu::RenderPassDepthStencilAttachment {
@@ -207,6 +218,20 @@ pub fn read_texture(
     tex: &wgpu::Texture,
     bytes_per_texel: u32,
 ) -> Result<Vec<u8>> {
+    read_texture_layer(device, queue, tex, 0, bytes_per_texel)
+}
+
+/// The texels of layer `layer` of `tex` (mip 0), rows packed, as [`read_texture`].
+///
+/// # Errors
+/// When the GPU copy or the mapping fails.
+pub fn read_texture_layer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    tex: &wgpu::Texture,
+    layer: u32,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>> {
     let (w, h) = (tex.width(), tex.height());
     let row = w * bytes_per_texel;
     let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
@@ -220,7 +245,12 @@ pub fn read_texture(
     let aspect =
         if tex.format().is_depth_stencil_format() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { texture: tex, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect },
+        wgpu::TexelCopyTextureInfo {
+            texture: tex,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+            aspect,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(h) },
@@ -254,4 +284,10 @@ pub fn validated<T>(device: &wgpu::Device, what: &str, work: impl FnOnce() -> Re
         (Ok(_), Some(e)) => Err(RenderError::Gpu(format!("{what}: {e}"))),
         (Ok(v), None) => Ok(v),
     }
+}
+
+/// Rgba16Float texels (as read back) to f32.
+pub fn halves_to_f32(bytes: &[u8]) -> Vec<[f32; 4]> {
+    let halves: Vec<u16> = bytemuck::pod_collect_to_vec(bytes);
+    halves.chunks_exact(4).map(|c| std::array::from_fn(|i| half::f16::from_bits(c[i]).to_f32())).collect()
 }

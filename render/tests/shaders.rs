@@ -43,11 +43,12 @@ fn every_shader_variant_validates() {
             }
         }
     }
-    assert_eq!(Variant::all().count(), 9 * 64 * 3);
+    assert_eq!(Variant::all().count(), 9 * 96 * 3);
     // G-buffer: 9 layer counts × albedo × normal map × 3 thickness variants; thickness: 3;
-    // lighting: 9 × shadows × env × dipole; composite: 2 × display; shadow, SSS, depth copy,
-    // edge overdraw and the three dipole passes: 1 each.
-    let per_encoding = 9 * 4 * 3 + 3 + 9 * 8 + 2 * 2 + 4 + 3;
+    // lighting: 9 × shadows × env × 3 (dipole, atlas); composite: 2 × display; shadow, SSS,
+    // depth copy, edge overdraw, the three dipole passes and the atlas gather: 1 each; the atlas
+    // irradiance: shadows × env.
+    let per_encoding = 9 * 4 * 3 + 3 + 9 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -67,6 +68,7 @@ fn variants_compile_only_what_the_scene_uses() {
         normal_map: true,
         thickness: ThicknessVariant::Baked,
         dipole: false,
+        atlas: false,
     };
     let src = source(Pass::Lighting, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
@@ -102,6 +104,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
         normal_map: true,
         thickness: ThicknessVariant::ShadowMap,
         dipole: true,
+        atlas: true,
     };
     // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
     let lighting = parse(Pass::Lighting, variant);
@@ -109,12 +112,14 @@ fn rust_and_wgsl_uniform_layouts_match() {
     let thickness = parse(Pass::Thickness, variant);
     let edges = parse(Pass::EdgeOverdraw, variant);
     let dipole = parse(Pass::DipoleRadiance, variant);
+    let atlas = parse(Pass::AtlasGather, variant);
     for (name, size, fields) in uniform_layouts() {
         let module = match name {
             "SssPass" => &sss,
             "ThicknessPass" => &thickness,
             "EdgePass" => &edges,
             "DipolePass" => &dipole,
+            "AtlasPass" => &atlas,
             _ => &lighting,
         };
         let mut layouter = naga::proc::Layouter::default();

@@ -6,6 +6,7 @@
 //! Labels name the owner (`"LightingPass::pipeline"`), so validation errors point at the file.
 
 pub mod composite;
+pub mod cube_atlas;
 pub mod depth_copy;
 pub mod dipole;
 pub mod edge_overdraw;
@@ -47,11 +48,15 @@ pub enum Pass {
     DipoleRadiance,
     /// The dipole models' combination.
     DipoleCombine,
+    /// The cube atlas's six faces of irradiance ([Benmounah2009]).
+    AtlasIrradiance,
+    /// The cube atlas's gather, added to the skin's diffuse radiance.
+    AtlasGather,
 }
 
 impl Pass {
     /// Every pass.
-    pub const ALL: [Pass; 11] = [
+    pub const ALL: [Pass; 13] = [
         Pass::Shadow,
         Pass::Gbuffer,
         Pass::Lighting,
@@ -63,6 +68,8 @@ impl Pass {
         Pass::DipoleLight,
         Pass::DipoleRadiance,
         Pass::DipoleCombine,
+        Pass::AtlasIrradiance,
+        Pass::AtlasGather,
     ];
 
     /// The pass's WGSL file name (for errors).
@@ -79,6 +86,8 @@ impl Pass {
             Pass::DipoleRadiance => "shaders/dipole_radiance.wgsl",
             Pass::DipoleCombine => "shaders/dipole_combine.wgsl",
             Pass::EdgeOverdraw => "shaders/edge_overdraw.wgsl",
+            Pass::AtlasIrradiance => "shaders/atlas_irradiance.wgsl",
+            Pass::AtlasGather => "shaders/atlas_gather.wgsl",
         }
     }
 
@@ -96,6 +105,8 @@ impl Pass {
             Pass::DipoleRadiance => include_str!("../shaders/dipole_radiance.wgsl"),
             Pass::DipoleCombine => include_str!("../shaders/dipole_combine.wgsl"),
             Pass::EdgeOverdraw => include_str!("../shaders/edge_overdraw.wgsl"),
+            Pass::AtlasIrradiance => include_str!("../shaders/atlas_irradiance.wgsl"),
+            Pass::AtlasGather => include_str!("../shaders/atlas_gather.wgsl"),
         }
     }
 }

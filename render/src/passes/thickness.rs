@@ -95,15 +95,6 @@ impl ThicknessPass {
     ) -> Result<()> {
         let (shared, targets) = (ctx.shared, ctx.targets);
         let key = ctx.variant.for_pass(Pass::Thickness);
-        // Adds the colour; keeps the skin flag in alpha.
-        let blend = wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::One,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-            alpha: crate::wgpu_util::KEEP_DST_ALPHA,
-        };
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
             pass: Pass::Thickness,
             variant: key,
@@ -112,7 +103,7 @@ impl ThicknessPass {
             vs: "vs_fullscreen",
             fs: Some("fs_thickness"),
             targets: vec![Some(HDR_FORMAT)],
-            blend: Some(blend),
+            blend: Some(crate::wgpu_util::ADD_RGB_KEEP_ALPHA),
             depth: None,
         })?;
         let [normal, albedo, depth, local] = inputs().map(|t| targets.view(t));

@@ -2,6 +2,7 @@
 // the radiance maps over the directions from which the point was visible (its depth in that
 // direction's depth map, within a bias), times the exit Fresnel transmittance T₂₁(ω_o), added to
 // the skin's diffuse radiance. A point seen from no direction gets nothing.
+//#insert diffusion
 //#insert dipole_common
 
 @group(1) @binding(1) var gb_normal: texture_2d<f32>;

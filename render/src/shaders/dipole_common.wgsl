@@ -1,5 +1,5 @@
 // Shared by the dipole passes (dipole_light, dipole_radiance, dipole_combine): their uniform and
-// the BSSRDFs. CPU twins: render/src/directional_dipole.rs (derivation and tests there).
+// the BSSRDFs; needs `//#insert diffusion` before it. CPU twins: render/src/directional_dipole.rs (derivation and tests there).
 // Keep `DipolePass` in sync with passes/dipole/mod.rs (tests/shaders.rs checks it with naga).
 
 struct DipolePass {
@@ -31,19 +31,6 @@ struct DipolePass {
     dir_planes: array<vec4<f32>, 32>,
 }
 @group(1) @binding(0) var<uniform> dipole: DipolePass;
-
-// Unpolarised Fresnel reflectance from outside into relative index η (CPU: diffusion::fresnel_dielectric).
-fn fresnel_in(cos_i: f32, eta: f32) -> f32 {
-    let c = clamp(cos_i, 0.0, 1.0);
-    let sin2_t = (1.0 - c * c) / (eta * eta);
-    if sin2_t >= 1.0 {
-        return 1.0;
-    }
-    let cos_t = sqrt(1.0 - sin2_t);
-    let rs = (c - eta * cos_t) / (c + eta * cos_t);
-    let rp = (eta * c - cos_t) / (eta * c + cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
 
 // S∞ of a ray source (CPU: DipoleChannel::s_infinite) for channel c.
 fn s_infinite(c: u32, x: vec3<f32>, w: vec3<f32>, r_in: f32, no: vec3<f32>) -> f32 {
@@ -96,10 +83,8 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
 fn classic_radial(c: u32, r: f32) -> f32 {
     let e = dipole.extra[c];
     let s = dipole.classic[c];
-    let dr = sqrt(r * r + e.z * e.z);
-    let dv = sqrt(r * r + e.w * e.w);
-    return e.y / (4.0 * PI) * (e.z * (1.0 + s * dr) * exp(-s * dr) / (dr * dr * dr)
-        + e.w * (1.0 + s * dv) * exp(-s * dv) / (dv * dv * dv));
+    return e.y / (4.0 * PI) * (point_source_flux(e.z, sqrt(r * r + e.z * e.z), s)
+        + point_source_flux(e.w, sqrt(r * r + e.w * e.w), s));
 }
 
 // The BSSRDF without the exit Fresnel term, per channel: light entering at xi (normal ni) from

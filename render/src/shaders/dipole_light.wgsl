@@ -1,6 +1,7 @@
 // Dipole light G-buffer ([DirDipoleThesis] section 4.2, step 1): the mesh seen from one
 // directional light, orthographically: the world normal where the skin is (a = 1), nothing where
 // it is not (eyes are not the medium); positions come back from the depth attachment.
+//#insert diffusion
 //#insert dipole_common
 
 struct VsOut {

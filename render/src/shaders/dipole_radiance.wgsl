@@ -9,6 +9,7 @@
 // area density. Frame f rotates and shifts the pattern, and the texel keeps the running mean of
 // its frames: mix(previous, this frame, 1/(f + 1)), the previous frame's maps read from the
 // other half of a ping-pong pair (fixed-function constant blending was unreliable on lavapipe).
+//#insert diffusion
 //#insert dipole_common
 
 @group(1) @binding(1) var light_normals: texture_2d_array<f32>;

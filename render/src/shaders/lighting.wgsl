@@ -83,27 +83,7 @@ fn layer_rt(layer: u32, x_mm: f32) -> Rt {
 //#endif
 
 //#if SHADOWS
-fn shadow_factor(light: Light, world: vec3<f32>, n: vec3<f32>) -> f32 {
-    if light.shadow.x < 0.0 {
-        return 1.0;
-    }
-    let p = light.shadow_view_proj * vec4<f32>(world + n * light.shadow.z, 1.0);
-    let ndc = p.xyz / p.w;
-    let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
-    let depth = ndc.z - light.shadow.y;
-    if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || depth > 1.0 {
-        return 1.0;
-    }
-    let layer = i32(light.shadow.x);
-    var sum = 0.0;
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let o = vec2<f32>(f32(dx), f32(dy)) * light.shadow.w;
-            sum += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + o, layer, depth);
-        }
-    }
-    return sum / 9.0;
-}
+//#insert shadow_factor
 //#endif
 
 //#if ENV
@@ -196,10 +176,15 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
 //#if DIPOLE
     skin_irradiance = vec3<f32>(0.0);
 //#endif
+    // The cube atlas takes the environment's light into the skin too (through its Fresnel).
+    var skin_env = 1.0;
+//#if ATLAS
+    skin_env = 0.0;
+//#endif
 //#if ENV
     let env_e = max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
     irradiance += env_e;
-    skin_irradiance += env_e;
+    skin_irradiance += env_e * skin_env;
 //#endif
 
     if is_skin {

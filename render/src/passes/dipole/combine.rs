@@ -47,16 +47,6 @@ impl DipoleCombinePass {
     /// When the pipeline cannot be built or a target is missing.
     pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, res: &DipoleResources) -> Result<()> {
         let (shared, targets) = (ctx.shared, ctx.targets);
-        let add = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        };
-        let keep = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::Zero,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        };
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
             pass: Pass::DipoleCombine,
             variant: Variant::BARE,
@@ -65,7 +55,7 @@ impl DipoleCombinePass {
             vs: "vs_fullscreen",
             fs: Some("fs_dipole_combine"),
             targets: vec![Some(HDR_FORMAT)],
-            blend: Some(wgpu::BlendState { color: add, alpha: keep }),
+            blend: Some(crate::wgpu_util::ADD_RGB_KEEP_ALPHA),
             depth: None,
         })?;
         let [normal, albedo, depth] = inputs().map(|t| targets.view(t));

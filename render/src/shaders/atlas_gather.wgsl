@@ -1,0 +1,199 @@
+// Cube-atlas gather ([Benmounah2009] sections 4.2-4.4), per skin pixel x with normal n:
+// 1. the faces with a corner above x's tangent plane and sp = n·a > 0, greatest sp first;
+// 2. the first that holds x (the self-occlusion test) is selected; none: no local term;
+// 3. local: B = Σ_j E_j R_d(x_j → x) A_j over a kernel around x's texel there (half side
+//    round(sp·max) when adaptive), the centre texel integrated over a disk of its area;
+// 4. global: the opposite face's surface behind x, a plane of real sources under it:
+//    B_g = E_s · α′/2 · e^{−σ_tr |x_s − z_r n_s − x|};
+// 5. L = T(η, n·v)/π · (B + B_g), added to the skin's diffuse radiance.
+// Derivations and the CPU twins: render/src/cube_atlas.rs, render/src/diffusion.rs.
+//#insert diffusion
+//#insert atlas_common
+
+@group(1) @binding(1) var gb_normal: texture_2d<f32>;
+@group(1) @binding(2) var gb_albedo: texture_2d<f32>;
+@group(1) @binding(3) var gb_depth: texture_2d<f32>;
+@group(1) @binding(4) var atlas_irradiance: texture_2d_array<f32>;
+@group(1) @binding(5) var atlas_normals: texture_2d_array<f32>;
+@group(1) @binding(6) var atlas_depths: texture_2d_array<f32>;
+
+// What the atlas holds at a texel: the point, its normal, the irradiance, n·p; ok when the
+// texel is on the medium.
+struct Stored {
+    x: vec3<f32>,
+    n: vec3<f32>,
+    e: vec3<f32>,
+    plane: f32,
+    ok: bool,
+}
+
+fn stored_at(f: u32, texel: vec2<i32>) -> Stored {
+    var s: Stored;
+    s.ok = false;
+    let side = i32(atlas.params.z);
+    if any(texel < vec2<i32>(0)) || any(texel >= vec2<i32>(side)) {
+        return s;
+    }
+    let depth = textureLoad(atlas_depths, texel, i32(f), 0).r;
+    let nm = textureLoad(atlas_normals, texel, i32(f), 0);
+    if depth >= 1.0 || nm.w < 0.5 {
+        return s;
+    }
+    let ir = textureLoad(atlas_irradiance, texel, i32(f), 0);
+    s.x = atlas_point(f, vec2<f32>(texel) + 0.5, depth);
+    s.n = normalize(nm.xyz);
+    s.e = ir.rgb;
+    s.plane = ir.a;
+    s.ok = true;
+    return s;
+}
+
+// The self-occlusion test (cube_atlas::AtlasFrame::holds): does the texel x projects to on face
+// f hold x itself?
+fn holds(f: u32, x: vec3<f32>, n: vec3<f32>) -> bool {
+    let test = atlas.settings.z;
+    if test == 0u {
+        return true;
+    }
+    let depth_texel = vec2<i32>(floor(atlas_texel(f, x)));
+    let side = i32(atlas.params.z);
+    if any(depth_texel < vec2<i32>(0)) || any(depth_texel >= vec2<i32>(side)) {
+        return false;
+    }
+    let depth = textureLoad(atlas_depths, depth_texel, i32(f), 0).r;
+    if depth >= 1.0 {
+        return false;
+    }
+    let texel = atlas.params.y;
+    if test == 1u {
+        let plane = textureLoad(atlas_irradiance, depth_texel, i32(f), 0).a;
+        return abs(plane - dot(n, x - atlas.cube.xyz)) < 2.0 * texel;
+    }
+    let p = atlas_point(f, vec2<f32>(depth_texel) + 0.5, depth);
+    return abs(dot(n, p - x)) < 0.5 * texel + 0.01;
+}
+
+// [Benmounah2009] Table 1 corrected (diffusion::ChannelProfile::classic_between), channel c.
+fn rd_between(c: u32, xi: vec3<f32>, ni: vec3<f32>, xo: vec3<f32>) -> f32 {
+    let m = atlas.medium[c];
+    return m.x / (4.0 * PI) * (point_source_flux(m.z, length(xi - m.z * ni - xo), m.y)
+        + point_source_flux(m.w, length(xi + m.w * ni - xo), m.y));
+}
+
+// ∫ R_d over a disk of radius a (diffusion::ChannelProfile::classic_disk_total), channel c.
+fn rd_disk(c: u32, a: f32) -> f32 {
+    let m = atlas.medium[c];
+    let dr = sqrt(a * a + m.z * m.z);
+    let dv = sqrt(a * a + m.w * m.w);
+    return 0.5 * m.x * (exp(-m.y * m.z) - m.z * exp(-m.y * dr) / dr + exp(-m.y * m.w) - m.w * exp(-m.y * dv) / dv);
+}
+
+fn local_term(f: u32, sp: f32, x: vec3<f32>) -> vec3<f32> {
+    let max_r = i32(atlas.settings.x);
+    var r = max_r;
+    if atlas.settings.y != 0u {
+        r = i32(round(clamp(sp, 0.0, 1.0) * f32(max_r)));
+    }
+    let centre = vec2<i32>(floor(atlas_texel(f, x)));
+    let a = atlas.axis[f].xyz;
+    let texel_area = atlas.params.y * atlas.params.y;
+    var b = vec3<f32>(0.0);
+    for (var dy = -r; dy <= r; dy++) {
+        for (var dx = -r; dx <= r; dx++) {
+            let s = stored_at(f, centre + vec2<i32>(dx, dy));
+            if !s.ok {
+                continue;
+            }
+            let area = texel_area / max(dot(s.n, a), atlas.params.w);
+            if dx == 0 && dy == 0 {
+                let radius = sqrt(area / PI);
+                b += s.e * vec3<f32>(rd_disk(0u, radius), rd_disk(1u, radius), rd_disk(2u, radius));
+            } else {
+                let rd = vec3<f32>(rd_between(0u, s.x, s.n, x), rd_between(1u, s.x, s.n, x), rd_between(2u, s.x, s.n, x));
+                b += s.e * rd * area;
+            }
+        }
+    }
+    return b;
+}
+
+fn global_term(f: u32, x: vec3<f32>) -> vec3<f32> {
+    let back = f ^ 1u;
+    let s = stored_at(back, vec2<i32>(floor(atlas_texel(back, x))));
+    let a = atlas.axis[f].xyz;
+    // The surface behind x: facing away from the selected face, and behind x along it.
+    if !s.ok || dot(s.n, a) >= 0.0 || dot(x - s.x, a) <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var b = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c++) {
+        let m = atlas.medium[c];
+        let dist = length(s.x - m.z * s.n - x);
+        b[c] = s.e[c] * 0.5 * m.x * exp(-m.y * dist);
+    }
+    return b;
+}
+
+@fragment
+fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(frag.xy);
+    let nd = textureLoad(gb_normal, p, 0);
+    if nd.w == 0.0 || textureLoad(gb_albedo, p, 0).a < 0.5 {
+        return vec4<f32>(0.0);
+    }
+    let n = normalize(nd.xyz);
+    let x = world_at(frag.xy, textureLoad(gb_depth, p, 0).r);
+    let v = normalize(frame.camera_pos.xyz - x);
+
+    // 1. Chosen faces, sorted by sp (insertion sort of at most six).
+    var order: array<u32, 6>;
+    var sps: array<f32, 6>;
+    var count = 0u;
+    let h = atlas.cube.w;
+    for (var f = 0u; f < 6u; f++) {
+        let a = atlas.axis[f].xyz;
+        let sp = dot(n, a);
+        if sp <= 0.0 {
+            continue;
+        }
+        var above = false;
+        for (var k = 0u; k < 4u; k++) {
+            let i = select(-1.0, 1.0, (k & 1u) != 0u);
+            let j = select(-1.0, 1.0, (k & 2u) != 0u);
+            let corner = atlas.cube.xyz + (a + atlas.right[f].xyz * i + atlas.up[f].xyz * j) * h;
+            above = above || dot(n, corner - x) > 0.0;
+        }
+        if !above {
+            continue;
+        }
+        var at = count;
+        while at > 0u && sps[at - 1u] < sp {
+            order[at] = order[at - 1u];
+            sps[at] = sps[at - 1u];
+            at -= 1u;
+        }
+        order[at] = f;
+        sps[at] = sp;
+        count += 1u;
+    }
+    if count == 0u {
+        return vec4<f32>(0.0);
+    }
+
+    // 2-3. The first face that holds x, and the local term there.
+    var b = vec3<f32>(0.0);
+    var selected = order[0];
+    for (var i = 0u; i < count; i++) {
+        if holds(order[i], x, n) {
+            selected = order[i];
+            b = local_term(order[i], sps[i], x);
+            break;
+        }
+    }
+    // 4. The global term through the thin part behind (also for points on no face).
+    if atlas.settings.w != 0u {
+        b += global_term(selected, x);
+    }
+    let t21 = 1.0 - fresnel_in(dot(v, n), atlas.params.x);
+    return vec4<f32>(b * t21 / PI, 0.0);
+}
