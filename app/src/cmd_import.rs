@@ -71,12 +71,21 @@ pub struct CommonArgs {
     /// The instrument excluded the specular component (SCE, 45/0): K1 is not subtracted.
     #[arg(long = "specular-excluded", requires = "saunderson_ior")]
     pub specular_excluded: bool,
-    /// Also draw the measured reflectances, R re-computed from S and K, and S and K as an SVG.
-    #[arg(long)]
+    /// Also draw the app's material plots as a PNG: the measured reflectances with R∞ and R
+    /// re-computed from S and K, S, K, and the renderer's R0(X), T(X) per channel.
+    #[arg(long, value_parser = png_path)]
     pub plot: Option<PathBuf>,
     /// Print the report as JSON instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+fn png_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
+        _ => Err(format!("`{s}`: the plot is written as PNG, so its name must end in .png")),
+    }
 }
 
 fn parse_kind(s: &str) -> Result<Kind, String> {
@@ -159,7 +168,11 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
     }
     if let Some(path) = &common.plot {
         let r_re = recomputed_r(&preset, &working, saunderson);
-        rouge_measure::preset::write_atomic(path, crate::plot::preset_svg(&preset, &r_re).as_bytes())
+        let panels = rouge_app::material_plots::material_panels(&preset, Some(&r_re));
+        let title = format!("{} ({}, measured at D = {} mm)", preset.name, preset.kind.name(), preset.thickness_mm);
+        let swatch = rouge_app::material_plots::hex_rgb(&preset.derived.r_inf_srgb_hex);
+        let png = crate::plot_png::render_panels(&title, swatch, &panels)?;
+        rouge_measure::preset::write_atomic(path, &png)
             .with_context(|| format!("cannot write the plot {}", path.display()))?;
     }
     if common.json {

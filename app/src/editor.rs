@@ -7,7 +7,7 @@ use glam::Vec3;
 use rouge_measure::preset::Preset;
 use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
-use rouge_model::look::ThicknessMap;
+use rouge_model::look::{Look, ThicknessMap};
 use rouge_model::paint::{Brush, FillRegion, LazyMouse, PaintView, StrokeSpacer, SurfaceMap, apply_dab_in_view, fill};
 use std::sync::Arc;
 
@@ -17,6 +17,9 @@ pub enum StrokeError {
     /// The active layer is hidden, so painting it would be invisible.
     #[error("the active layer is hidden: show it to paint")]
     HiddenLayer,
+    /// The active layer is locked against paint, fill and clear.
+    #[error("the active layer is locked: unlock it to paint, fill or clear")]
+    LockedLayer,
 }
 
 /// Document, active layer, brush and the stroke in progress.
@@ -38,6 +41,8 @@ pub struct Editor {
     pub pressure: Option<f32>,
     /// The last dab of the last finished stroke, where a straight stroke starts.
     last_end: Option<Vec3>,
+    /// Render only the active layer (the solo view).
+    solo: bool,
 }
 
 impl Editor {
@@ -56,6 +61,7 @@ impl Editor {
             lazy: None,
             pressure: None,
             last_end: None,
+            solo: false,
         }
     }
 
@@ -84,9 +90,46 @@ impl Editor {
         self.active
     }
 
-    /// Selects the layer strokes go to (clamped to the layers there are).
-    pub fn set_active_layer(&mut self, i: usize) {
+    /// Selects the layer strokes go to (clamped to the layers there are). Returns
+    /// [`Change::Layers`] when the solo view must show another layer, else [`Change::Nothing`].
+    pub fn set_active_layer(&mut self, i: usize) -> Change {
+        let before = self.active;
         self.active = i.min(self.doc.layers.len().saturating_sub(1));
+        if self.solo && self.active != before { Change::Layers } else { Change::Nothing }
+    }
+
+    /// Whether only the active layer is rendered.
+    pub fn solo(&self) -> bool {
+        self.solo
+    }
+
+    /// Renders only the active layer (`true`) or every visible layer. A view setting, not an
+    /// edit: no undo step. Returns the layers to re-upload.
+    pub fn set_solo(&mut self, on: bool) -> Change {
+        if self.solo == on {
+            return Change::Nothing;
+        }
+        self.solo = on;
+        Change::Layers
+    }
+
+    /// The layers the renderer draws, bottom to top: every visible layer, or with the solo view
+    /// only the active layer (when visible).
+    pub fn render_layers(&self) -> Vec<usize> {
+        let layers = &self.doc.layers;
+        (0..layers.len()).filter(|&i| layers[i].visible && (!self.solo || i == self.active)).collect()
+    }
+
+    /// Whether the active layer takes paint: it exists, is visible and is not locked.
+    ///
+    /// # Errors
+    /// [`StrokeError::HiddenLayer`] or [`StrokeError::LockedLayer`].
+    pub fn paintable(&self) -> Result<(), StrokeError> {
+        match self.doc.layers.get(self.active) {
+            Some(l) if l.locked => Err(StrokeError::LockedLayer),
+            Some(l) if l.visible => Ok(()),
+            _ => Err(StrokeError::HiddenLayer),
+        }
     }
 
     /// The surface map of the mesh being painted, once prepared.
@@ -102,11 +145,10 @@ impl Editor {
         self.surface = surface;
     }
 
-    /// Where layer `layer` is among the layers the renderer draws (the visible ones), or `None`
-    /// for a hidden or missing layer.
+    /// Where layer `layer` is among the layers the renderer draws ([`Editor::render_layers`]),
+    /// or `None` for a layer not drawn (hidden, missing, or not the active one in the solo view).
     pub fn render_index(&self, layer: usize) -> Option<usize> {
-        let l = self.doc.layers.get(layer)?;
-        l.visible.then(|| self.doc.layers[..layer].iter().filter(|l| l.visible).count())
+        self.render_layers().iter().position(|&i| i == layer)
     }
 
     /// Applies a layer edit (one undo step, recorded by the document) and keeps the active
@@ -124,27 +166,39 @@ impl Editor {
         change
     }
 
+    /// Replaces the layers with `look`'s as one undo step (a look from the library) and makes
+    /// its top layer active.
+    pub fn apply_look(&mut self, look: &Look) -> Change {
+        let change = self.doc.apply_look(look);
+        self.active = self.doc.layers.len().saturating_sub(1);
+        change
+    }
+
     /// Sets layer `i`'s whole map to zero thickness, as one undo step.
-    pub fn clear_layer(&mut self, i: usize) -> Change {
+    ///
+    /// # Errors
+    /// [`StrokeError::LockedLayer`] when the layer is locked (nothing changes).
+    pub fn clear_layer(&mut self, i: usize) -> Result<Change, StrokeError> {
+        if self.doc.layers.get(i).is_some_and(|l| l.locked) {
+            return Err(StrokeError::LockedLayer);
+        }
         if let Some(map) = self.doc.begin_stroke(i) {
             map.mm.fill(0.0);
             let rect = TexelRect::whole(map.width, map.height);
             self.doc.note_dirty(rect);
         }
-        self.doc.end_stroke()
+        Ok(self.doc.end_stroke())
     }
 
     /// Fills the active layer inside `region` with the brush's thickness, as one undo step
     /// (`rouge_model::paint::fill`). Returns the document's change.
     ///
     /// # Errors
-    /// No surface map yet, a hidden active layer, or what the fill refuses (a texel off the
+    /// No surface map yet, a hidden or locked active layer, or what the fill refuses (a texel off the
     /// mesh, a thickness out of range), as a message.
     pub fn fill(&mut self, region: FillRegion<'_>) -> Result<Change, String> {
         let surface = self.surface.clone().ok_or("fill: the mesh is still being prepared")?;
-        if self.render_index(self.active).is_none() {
-            return Err(StrokeError::HiddenLayer.to_string());
-        }
+        self.paintable().map_err(|e| e.to_string())?;
         let thickness = self.brush.thickness_mm;
         let rect = match self.doc.begin_stroke(self.active) {
             Some(map) => fill(map, &surface, region, thickness),
@@ -176,7 +230,7 @@ impl Editor {
     /// earlier stroke it is a single dab at `to`.
     ///
     /// # Errors
-    /// [`StrokeError::HiddenLayer`] when the active layer is hidden.
+    /// As [`Editor::paintable`].
     pub fn straight_stroke(&mut self, to: Vec3) -> Result<Vec<Change>, StrokeError> {
         let from = self.last_end;
         let stabiliser = std::mem::replace(&mut self.stabiliser_mm, 0.0);
@@ -227,15 +281,13 @@ impl Editor {
     /// without a surface map or with an invalid brush.
     ///
     /// # Errors
-    /// [`StrokeError::HiddenLayer`] when the active layer is hidden.
+    /// As [`Editor::paintable`]: a hidden or locked active layer.
     pub fn stroke_to(&mut self, world: Vec3) -> Result<Vec<Change>, StrokeError> {
         let Some(surface) = self.surface.clone() else { return Ok(Vec::new()) };
         if self.brush.validate().is_err() {
             return Ok(Vec::new());
         }
-        if self.render_index(self.active).is_none() {
-            return Err(StrokeError::HiddenLayer);
-        }
+        self.paintable()?;
         // The stabiliser's brush point, moved onto the surface by the spacer.
         let world = match &mut self.lazy {
             Some(lazy) => match lazy.follow(world) {
@@ -262,7 +314,7 @@ impl Editor {
         let mut changes = Vec::new();
         if let (Some(mut spacer), Some(surface)) = (self.spacer.take(), self.surface.clone()) {
             let last = spacer.finish(&surface);
-            if self.render_index(self.active).is_some() {
+            if self.paintable().is_ok() {
                 changes = self.dab(&last, &surface);
             }
         }

@@ -2,3 +2,8 @@
 
 pub mod editor;
 pub mod gui;
+pub mod heatmap;
+pub mod looks;
+pub mod material_plots;
+pub mod radius_drag;
+pub mod ticks;

@@ -17,7 +17,6 @@ mod cmd_km;
 mod cmd_render;
 mod dipole_args;
 mod fit_thickness;
-mod plot;
 mod plot_png;
 mod scene_args;
 mod thickness_args;

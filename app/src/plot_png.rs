@@ -1,8 +1,11 @@
 //! Benchmark plots as PNG, drawn in Rust: panels of x-y charts with lines, markers, axes, ticks
 //! and labels, rasterised by vello_cpu (antialiased paths and glyphs) with egui's embedded Ubuntu
-//! font (the same crates egui already brings). `rouge bench translucency --plot F.png` uses it.
+//! font (the same crates egui already brings). `rouge bench translucency --plot F.png` uses it, and
+//! `rouge import --plot F.png` draws the app's material panels with it.
 
 use anyhow::{Context, Result};
+use rouge_app::material_plots::Panel;
+use rouge_app::ticks;
 use skrifa::instance::{LocationRef, Size};
 use skrifa::{FontRef, MetadataProvider};
 use vello_cpu::color::{AlphaColor, Srgb};
@@ -89,7 +92,13 @@ impl Canvas {
     }
 
     fn stroke(&mut self, path: &BezPath, width: f64, rgb: [u8; 3]) {
-        self.ctx.set_stroke(Stroke::new(width));
+        self.stroke_styled(path, width, false, rgb);
+    }
+
+    /// A solid or dashed (6 on, 4 off) line.
+    fn stroke_styled(&mut self, path: &BezPath, width: f64, dashed: bool, rgb: [u8; 3]) {
+        let stroke = if dashed { Stroke::new(width).with_dashes(0.0, [6.0, 4.0]) } else { Stroke::new(width) };
+        self.ctx.set_stroke(stroke);
         self.ctx.set_paint(colour(rgb));
         self.ctx.stroke_path(path);
     }
@@ -100,81 +109,101 @@ impl Canvas {
     }
 }
 
-/// Tick positions: 1, 2 or 5 times a power of ten, about `n` of them over [lo, hi].
-fn ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    let span = (hi - lo).max(1e-12);
-    let raw = span / n as f64;
-    let p = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * p).find(|s| *s >= raw).unwrap_or(10.0 * p);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).collect()
+/// A panel's plot area and the data range it shows.
+struct Axes {
+    plot: Rect,
+    x: (f64, f64),
+    y: (f64, f64),
 }
 
-fn tick_label(v: f64, step: f64) -> String {
-    let decimals = if step >= 1.0 { 0 } else { (-step.log10().floor()) as usize };
-    format!("{v:.decimals$}")
+impl Axes {
+    fn sx(&self, x: f64) -> f64 {
+        self.plot.x0 + (x - self.x.0) / (self.x.1 - self.x.0) * self.plot.width()
+    }
+
+    fn sy(&self, y: f64) -> f64 {
+        self.plot.y1 - (y - self.y.0) / (self.y.1 - self.y.0) * self.plot.height()
+    }
 }
 
-fn draw_chart(c: &mut Canvas, chart: &Chart, (ox, oy): (f64, f64)) {
-    let (l, r, t, b) = MARGIN;
-    let plot = Rect::new(ox + l, oy + t, ox + PANEL_W - r, oy + PANEL_H - b);
-    let pts = chart.series.iter().flat_map(|s| s.points.iter().map(|p| (p.0, p.1)));
+/// The range of the finite `points` and of `y_include`, padded by 8 % each way.
+fn data_range(points: impl Iterator<Item = (f64, f64)>, y_include: &[f64]) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for (x, y) in pts.filter(|(x, y)| x.is_finite() && y.is_finite()) {
+    for (x, y) in points.filter(|(x, y)| x.is_finite() && y.is_finite()) {
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
     }
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
+    for &y in y_include {
+        (y0, y1) = (y0.min(y), y1.max(y));
+    }
     let pad = |a: f64, b: f64| {
         let d = ((b - a) * 0.08).max(b.abs() * 0.02).max(1e-6);
         (a - d, b + d)
     };
-    let ((x0, x1), (y0, y1)) = (pad(x0, x1), pad(y0, y1));
-    let sx = |x: f64| plot.x0 + (x - x0) / (x1 - x0) * plot.width();
-    let sy = |y: f64| plot.y1 - (y - y0) / (y1 - y0) * plot.height();
+    (pad(x0, x1), pad(y0, y1))
+}
+
+/// A panel's frame at (`ox`, `oy`) of `height`: grid, ticks and labels on both axes
+/// ([`rouge_app::ticks`]), the box, the title and both axis labels.
+fn draw_axes(
+    c: &mut Canvas,
+    (ox, oy): (f64, f64),
+    height: f64,
+    labels: [&str; 3],
+    range: ((f64, f64), (f64, f64)),
+) -> Axes {
+    let (l, r, t, b) = MARGIN;
+    let axes = Axes { plot: Rect::new(ox + l, oy + t, ox + PANEL_W - r, oy + height - b), x: range.0, y: range.1 };
     let grey = [200, 200, 200];
-    for (axis, lo, hi) in [(0, x0, x1), (1, y0, y1)] {
-        let ts = ticks(lo, hi, 5);
-        let step = if ts.len() > 1 { ts[1] - ts[0] } else { hi - lo };
-        for v in ts {
+    for (axis, (lo, hi)) in [(0, axes.x), (1, axes.y)] {
+        let step = ticks::nice_step(hi - lo, 5);
+        for v in ticks::ticks_with_step(lo, hi, step) {
             let mut grid = BezPath::new();
             if axis == 0 {
-                grid.move_to((sx(v), plot.y0));
-                grid.line_to((sx(v), plot.y1));
-                c.text(&tick_label(v, step), (sx(v), plot.y1 + 14.0), 10.0, 0.5, false, [60, 60, 60]);
+                grid.move_to((axes.sx(v), axes.plot.y0));
+                grid.line_to((axes.sx(v), axes.plot.y1));
+                c.text(&ticks::label(v, step), (axes.sx(v), axes.plot.y1 + 14.0), 10.0, 0.5, false, [60, 60, 60]);
             } else {
-                grid.move_to((plot.x0, sy(v)));
-                grid.line_to((plot.x1, sy(v)));
-                c.text(&tick_label(v, step), (plot.x0 - 5.0, sy(v) + 3.5), 10.0, 1.0, false, [60, 60, 60]);
+                grid.move_to((axes.plot.x0, axes.sy(v)));
+                grid.line_to((axes.plot.x1, axes.sy(v)));
+                c.text(&ticks::label(v, step), (axes.plot.x0 - 5.0, axes.sy(v) + 3.5), 10.0, 1.0, false, [60, 60, 60]);
             }
             c.stroke(&grid, 0.6, grey);
         }
     }
-    c.stroke(&plot.to_path(0.1), 1.0, [90, 90, 90]);
+    c.stroke(&axes.plot.to_path(0.1), 1.0, [90, 90, 90]);
+    let [title, x_label, y_label] = labels;
+    let plot = axes.plot;
+    c.text(title, (ox + PANEL_W / 2.0, oy + 18.0), 12.0, 0.5, false, [20, 20, 20]);
+    c.text(x_label, (plot.x0 + plot.width() / 2.0, oy + height - 10.0), 11.0, 0.5, false, [20, 20, 20]);
+    c.text(y_label, (ox + 14.0, plot.y0 + plot.height() / 2.0), 11.0, 0.5, true, [20, 20, 20]);
+    axes
+}
+
+fn draw_chart(c: &mut Canvas, chart: &Chart, origin: (f64, f64)) {
+    let range = data_range(chart.series.iter().flat_map(|s| s.points.iter().map(|p| (p.0, p.1))), &[]);
+    let axes = draw_axes(c, origin, PANEL_H, [&chart.title, &chart.x_label, &chart.y_label], range);
     for s in &chart.series {
         let points: Vec<(f64, f64, Option<String>)> =
             s.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()).cloned().collect();
         if s.line && points.len() > 1 {
             let mut path = BezPath::new();
-            path.move_to((sx(points[0].0), sy(points[0].1)));
+            path.move_to((axes.sx(points[0].0), axes.sy(points[0].1)));
             for p in &points[1..] {
-                path.line_to((sx(p.0), sy(p.1)));
+                path.line_to((axes.sx(p.0), axes.sy(p.1)));
             }
             c.stroke(&path, 1.6, s.rgb);
         }
         for (x, y, label) in &points {
-            let (px, py) = (sx(*x), sy(*y));
+            let (px, py) = (axes.sx(*x), axes.sy(*y));
             draw_marker(c, s.marker, (px, py), s.rgb);
             if let Some(label) = label {
                 c.text(label, (px + 4.0, py - 4.0), 9.0, 0.0, false, [40, 40, 40]);
             }
         }
     }
-    c.text(&chart.title, (ox + PANEL_W / 2.0, oy + 18.0), 12.0, 0.5, false, [20, 20, 20]);
-    c.text(&chart.x_label, (plot.x0 + plot.width() / 2.0, oy + PANEL_H - 10.0), 11.0, 0.5, false, [20, 20, 20]);
-    c.text(&chart.y_label, (ox + 14.0, plot.y0 + plot.height() / 2.0), 11.0, 0.5, true, [20, 20, 20]);
 }
 
 /// Draws `marker` centred on `at`.
@@ -202,6 +231,32 @@ fn draw_marker(c: &mut Canvas, marker: Marker, (px, py): (f64, f64), rgb: [u8; 3
     }
 }
 
+impl Canvas {
+    /// A white `width` × `height` canvas with `title` centred on top (shrunk to fit).
+    fn new(width: u16, height: u16, title: &str) -> Result<Canvas> {
+        let bytes: &'static [u8] = epaint_default_fonts::UBUNTU_LIGHT;
+        FontRef::new(bytes).context("the embedded Ubuntu font")?;
+        let mut c = Canvas {
+            ctx: RenderContext::new(width, height),
+            resources: Resources::new(),
+            font: FontData::new(Blob::from(bytes.to_vec()), 0),
+            bytes,
+        };
+        c.fill(&Rect::new(0.0, 0.0, f64::from(width), f64::from(height)).to_path(0.1), [255, 255, 255]);
+        let title_px = (14.0 * (f64::from(width) - 24.0) / c.text_width(title, 14.0).max(1.0)).min(14.0) as f32;
+        c.text(title, (f64::from(width) / 2.0, 24.0), title_px, 0.5, false, [0, 0, 0]);
+        Ok(c)
+    }
+
+    /// Rasterises what was drawn and encodes it as PNG.
+    fn into_png(mut self, width: u16, height: u16) -> Result<Vec<u8>> {
+        let mut pixmap = Pixmap::new(width, height);
+        self.ctx.flush();
+        self.ctx.render(&mut pixmap, &mut self.resources);
+        pixmap.into_png().context("cannot encode the plot as PNG")
+    }
+}
+
 /// Draws `charts` in a grid of `columns`, with a title and one legend of every series label,
 /// and encodes the image as PNG.
 ///
@@ -213,18 +268,7 @@ pub fn render(title: &str, charts: &[Chart], columns: usize) -> Result<Vec<u8>> 
     let (head, legend) = (36.0, 34.0);
     let width = (PANEL_W * columns as f64).ceil() as u16;
     let height = (head + PANEL_H * rows as f64 + legend).ceil() as u16;
-    let bytes: &'static [u8] = epaint_default_fonts::UBUNTU_LIGHT;
-    FontRef::new(bytes).context("the embedded Ubuntu font")?;
-    let mut c = Canvas {
-        ctx: RenderContext::new(width, height),
-        resources: Resources::new(),
-        font: FontData::new(Blob::from(bytes.to_vec()), 0),
-        bytes,
-    };
-    c.fill(&Rect::new(0.0, 0.0, f64::from(width), f64::from(height)).to_path(0.1), [255, 255, 255]);
-    // The title shrinks to fit the width.
-    let title_px = (14.0 * (f64::from(width) - 24.0) / c.text_width(title, 14.0).max(1.0)).min(14.0) as f32;
-    c.text(title, (f64::from(width) / 2.0, 24.0), title_px, 0.5, false, [0, 0, 0]);
+    let mut c = Canvas::new(width, height, title)?;
     for (i, chart) in charts.iter().enumerate() {
         let (col, row) = (i % columns, i / columns);
         draw_chart(&mut c, chart, (PANEL_W * col as f64, head + PANEL_H * row as f64));
@@ -243,8 +287,58 @@ pub fn render(title: &str, charts: &[Chart], columns: usize) -> Result<Vec<u8>> 
         c.text(&label, (x + 12.0, y), 11.0, 0.0, false, [20, 20, 20]);
         x += 24.0 + c.text_width(&label, 11.0);
     }
-    let mut pixmap = Pixmap::new(width, height);
-    c.ctx.flush();
-    c.ctx.render(&mut pixmap, &mut c.resources);
-    pixmap.into_png().context("cannot encode the plot as PNG")
+    c.into_png(width, height)
+}
+
+/// Height of the legend rows under each material panel.
+const PANEL_LEGEND_H: f64 = 40.0;
+
+/// The material plots of [`rouge_app::material_plots`] (the app's material panel draws the same
+/// panels) as one PNG: `title` with an `swatch` of the material's colour, the panels two to a
+/// row, each with ticks and labels on both axes and its own legend in rows under its box, where
+/// it covers no curve; dashed curves dashed.
+///
+/// # Errors
+/// When the font cannot be read or the PNG cannot be encoded.
+pub fn render_panels(title: &str, swatch: Option<[u8; 3]>, panels: &[Panel]) -> Result<Vec<u8>> {
+    let columns = 2.min(panels.len().max(1));
+    let rows = panels.len().div_ceil(columns).max(1);
+    let (head, cell_h) = (44.0, PANEL_H + PANEL_LEGEND_H);
+    let width = (PANEL_W * columns as f64).ceil() as u16;
+    let height = (head + cell_h * rows as f64).ceil() as u16;
+    let mut c = Canvas::new(width, height, title)?;
+    if let Some(rgb) = swatch {
+        c.fill(&Rect::new(12.0, 8.0, 52.0, 32.0).to_path(0.1), rgb);
+        c.stroke(&Rect::new(12.0, 8.0, 52.0, 32.0).to_path(0.1), 1.0, [60, 60, 60]);
+    }
+    for (i, panel) in panels.iter().enumerate() {
+        let (ox, oy) = (PANEL_W * (i % columns) as f64, head + cell_h * (i / columns) as f64);
+        let points = panel.curves.iter().flat_map(|c| c.points.iter().map(|p| (p[0], p[1])));
+        let range = data_range(points, &panel.y_include);
+        let axes = draw_axes(&mut c, (ox, oy), PANEL_H, [panel.title, panel.x_label, panel.y_label], range);
+        for curve in &panel.curves {
+            let mut path = BezPath::new();
+            for (k, p) in curve.points.iter().filter(|p| p[0].is_finite() && p[1].is_finite()).enumerate() {
+                let at = (axes.sx(p[0]), axes.sy(p[1]));
+                if k == 0 { path.move_to(at) } else { path.line_to(at) }
+            }
+            c.stroke_styled(&path, 1.6, curve.dashed, curve.rgb);
+        }
+        // The legend: a line sample and the label per curve, wrapped within the panel.
+        let (x0, x_end) = (ox + MARGIN.0, ox + PANEL_W - MARGIN.1);
+        let (mut x, mut y) = (x0, oy + PANEL_H + 6.0);
+        for curve in &panel.curves {
+            let w = 30.0 + c.text_width(&curve.name, 11.0);
+            if x + w > x_end && x > x0 {
+                (x, y) = (x0, y + 16.0);
+            }
+            let mut sample = BezPath::new();
+            sample.move_to((x, y - 4.0));
+            sample.line_to((x + 20.0, y - 4.0));
+            c.stroke_styled(&sample, 2.0, curve.dashed, curve.rgb);
+            c.text(&curve.name, (x + 24.0, y), 11.0, 0.0, false, [20, 20, 20]);
+            x += w + 8.0;
+        }
+    }
+    c.into_png(width, height)
 }

@@ -202,23 +202,35 @@ fn samples_are_chosen_by_name() {
 }
 
 #[test]
-fn plot_writes_an_svg_with_every_curve() {
+fn plot_writes_the_material_panels_as_png_and_refuses_other_names() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let (out, svg) = (dir.path().join("p.json"), dir.path().join("p.svg"));
-    let o = rouge(&[
-        "import",
-        "data/measurements/blush_01_petal.csv",
-        "--out",
-        out.to_str().expect("utf-8"),
-        "--plot",
-        svg.to_str().expect("utf-8"),
-    ]);
+    let (out, png) = (dir.path().join("p.json"), dir.path().join("p.png"));
+    let args = ["import", "data/measurements/blush_01_petal.csv", "--out", out.to_str().expect("utf-8"), "--plot"];
+    let o = rouge(&[&args[..], &[png.to_str().expect("utf-8")]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = std::fs::read_to_string(&svg).expect("svg written");
-    assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
-    // R∞, R, R from S and K, Rg, S, K.
-    assert_eq!(text.matches("<polyline").count(), 6, "{text}");
-    assert!(!text.contains("NaN"));
+    let img = image::open(&png).expect("a PNG").to_rgb8();
+    // Four panels, two to a row, each with its legend under it.
+    assert_eq!((img.width(), img.height()), (840, 764));
+    // Each series colour is drawn: the six of the reflectance, S and K panels (app/src/material_plots.rs)
+    // and the three channels of R0 and T.
+    let has = |rgb: [u8; 3]| img.pixels().any(|p| p.0.iter().zip(rgb).all(|(&a, b)| a.abs_diff(b) <= 2));
+    for rgb in [
+        [31, 119, 180],
+        [255, 127, 14],
+        [214, 39, 140],
+        [44, 160, 44],
+        [200, 60, 40],
+        [220, 60, 50],
+        [60, 170, 70],
+        [70, 110, 230],
+    ] {
+        assert!(has(rgb), "no curve in {rgb:?}");
+    }
+    let svg = dir.path().join("p.svg");
+    let o = rouge(&[&args[..], &[svg.to_str().expect("utf-8")]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("p.svg`: the plot is written as PNG"), "{}", stderr(&o));
+    assert!(!svg.exists());
 }
 
 #[test]

@@ -97,7 +97,7 @@ fn layer_edits_and_clearing_are_one_step_each() {
     let top = e.active();
     let before = map_bits(&e, top);
     assert!(before.iter().any(|&b| f32::from_bits(b) > 0.0), "the default look's top layer has lipstick");
-    assert!(matches!(e.clear_layer(top), Change::Map { .. }));
+    assert!(matches!(e.clear_layer(top), Ok(Change::Map { .. })));
     assert!(map_bits(&e, top).iter().all(|&b| b == 0));
     e.undo();
     assert_eq!(map_bits(&e, top), before);

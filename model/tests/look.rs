@@ -128,14 +128,14 @@ fn example_looks_in_data_load() {
             n += 1;
         }
     }
-    assert!(n >= 2);
+    assert!(n >= 5, "default and the four looks of the library");
     assert_eq!(Look::load(&repo().join("data/looks/default.json")).unwrap(), Look::default_look());
     let evening = Look::load(&repo().join("data/looks/evening.json")).unwrap();
     let refs: Vec<&str> = evening.layers.iter().map(|l| l.preset_ref.as_str()).collect();
     assert_eq!(
         refs,
         [
-            "../presets/foundation_02_ivory.json",
+            "builtin:foundation_02_ivory",
             "builtin:eyeshadow_01_smoky",
             "builtin:blush_01_petal",
             "builtin:lipstick_03_berry"

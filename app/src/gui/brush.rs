@@ -3,6 +3,7 @@
 //! shown in the viewport), and fills; `[` / `]` resize the brush.
 
 use super::*;
+use crate::radius_drag::RADIUS_RANGE_MM;
 use rouge_model::look::Region;
 use rouge_model::paint::{Axis, BRUSH_PRESETS, Falloff, FillRegion, MirrorPlane, Reach};
 
@@ -47,7 +48,7 @@ impl RougeApp {
             ui.selectable_value(&mut brush.mode, BrushMode::Erase, "Erase");
             ui.selectable_value(&mut brush.mode, BrushMode::Smooth, "Smooth");
         });
-        ui.add(egui::Slider::new(&mut brush.radius_mm, 0.5..=40.0).logarithmic(true).text("radius (mm) [ ]"));
+        ui.add(egui::Slider::new(&mut brush.radius_mm, RADIUS_RANGE_MM).logarithmic(true).text("radius (mm) [ ] F"));
         let mut microns = brush.thickness_mm * 1000.0;
         if ui.add(egui::Slider::new(&mut microns, 0.0..=100.0).text("thickness (µm)")).changed() {
             brush.thickness_mm = microns / 1000.0;
@@ -157,10 +158,10 @@ impl RougeApp {
         let (smaller, larger) = ctx.input(|i| (i.key_pressed(Key::OpenBracket), i.key_pressed(Key::CloseBracket)));
         let b = &mut self.editor.brush;
         if smaller {
-            b.radius_mm = (b.radius_mm / SIZE_STEP).max(0.5);
+            b.radius_mm = (b.radius_mm / SIZE_STEP).max(*RADIUS_RANGE_MM.start());
         }
         if larger {
-            b.radius_mm = (b.radius_mm * SIZE_STEP).min(40.0);
+            b.radius_mm = (b.radius_mm * SIZE_STEP).min(*RADIUS_RANGE_MM.end());
         }
     }
 

@@ -4,14 +4,15 @@
 use super::*;
 
 impl RougeApp {
-    /// Uploads every visible layer (after a layer edit, a new document or a new mesh).
+    /// Uploads the layers the editor renders (every visible layer, or the active one in the
+    /// solo view) after a layer edit, a new document or a new mesh.
     pub(super) fn sync_layers(&mut self) {
+        let layers = &self.editor.document().layers;
         let inputs: Vec<LayerInput<'_>> = self
             .editor
-            .document()
-            .layers
-            .iter()
-            .filter(|l| l.visible)
+            .render_layers()
+            .into_iter()
+            .map(|i| &layers[i])
             .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: l.multiplier })
             .collect();
         if let Err(e) = self.gpu.renderer.set_layers(&inputs) {

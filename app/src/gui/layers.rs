@@ -1,4 +1,4 @@
-//! The layers panel (top of the left panel): visibility, order, duplicate, remove, rename, clear,
+//! The layers panel (top of the left panel): visibility, lock, order, duplicate, remove, rename, clear,
 //! thickness multiplier and material of each layer, and adding a layer of the selected material.
 
 use super::*;
@@ -17,6 +17,14 @@ impl RougeApp {
                 let mut visible = l.visible;
                 if ui.checkbox(&mut visible, "").on_hover_text("visible").changed() {
                     action = Some(Box::new(move |d: &mut Document| d.set_visible(i, visible)));
+                }
+                let mut locked = l.locked;
+                if ui
+                    .toggle_value(&mut locked, "Lock")
+                    .on_hover_text("locked: paint, fill and clear are refused (one undo step)")
+                    .changed()
+                {
+                    action = Some(Box::new(move |d: &mut Document| d.set_locked(i, locked)));
                 }
                 materials::swatch(ui, &l.preset, 14.0);
                 if ui.selectable_label(active == i, &l.name).clicked() {
@@ -37,7 +45,7 @@ impl RougeApp {
             });
         }
         if let Some(i) = select {
-            self.editor.set_active_layer(i);
+            self.set_active_layer(i);
             self.ui.rename_buffer = self.editor.document().layers[i].name.clone();
         }
         if let Some(a) = action.take() {

@@ -1,9 +1,10 @@
 //! The material library (built-in presets, user presets, imports) and its panel: list, import
 //! from a measurement file in the background, plots of the selected material.
 
+use crate::material_plots::Panel;
 use egui_plot::{Line, Plot};
 use rouge_measure::import::{self, ImportOptions};
-use rouge_measure::preset::{ImportReport, Preset, layer_spectra, table_thicknesses_mm};
+use rouge_measure::preset::{ImportReport, Preset, layer_spectra};
 use rouge_measure::{Extrapolation, Kind};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
@@ -215,8 +216,7 @@ pub fn import_file(path: &Path, thickness_mm: f64, extrapolate: bool, user_dir: 
 }
 
 fn srgb_hex_to_color(hex: &str) -> egui::Color32 {
-    let v = u32::from_str_radix(hex.trim_start_matches('#'), 16).unwrap_or(0x808080);
-    egui::Color32::from_rgb((v >> 16) as u8, (v >> 8) as u8, v as u8)
+    color(crate::material_plots::hex_rgb(hex).unwrap_or([128; 3]))
 }
 
 /// Colour swatch of a preset's R∞.
@@ -230,8 +230,6 @@ pub fn swatch(ui: &mut egui::Ui, preset: &Preset, size: f32) -> egui::Response {
 /// S and K per wavelength, and R0(X), T(X) against thickness.
 pub fn plots(ui: &mut egui::Ui, m: &Material) {
     let p = &m.preset;
-    let wl = &p.wavelengths_nm;
-    let series = |v: &[f64]| -> Vec<[f64; 2]> { wl.iter().zip(v).map(|(&x, &y)| [x, y]).collect() };
     ui.horizontal(|ui| {
         swatch(ui, p, 28.0);
         ui.vertical(|ui| {
@@ -249,126 +247,51 @@ pub fn plots(ui: &mut egui::Ui, m: &Material) {
     {
         ui.label(format!("Reconstruction from S, K: ΔE2000 R {de:.3}"));
     }
-    let (s_spec, k_spec) = (p.s(), p.k());
-    let r_inf: Vec<f64> =
-        s_spec.values().iter().zip(k_spec.values()).map(|(&s, &k)| rouge_measure::km::r_inf_from_s_k(s, k)).collect();
-    let mut reflectance = Vec::new();
-    if let Some(meas) = &p.measurement {
-        reflectance.push(Curve::new("R_inf measured", SERIES[0], series(&meas.r_inf)));
-        reflectance.push(Curve::new("R measured", SERIES[1], series(&meas.r)));
-        reflectance.push(Curve::new("Rg", SERIES[2], series(&meas.rg)));
+    for (i, panel) in crate::material_plots::material_panels(p, None).iter().enumerate() {
+        labelled_plot(ui, (i, &p.name), panel);
     }
-    reflectance.push(Curve::new("R_inf from S, K", SERIES[3], series(&r_inf)).dashed());
-    labelled_plot(ui, ("refl", &p.name), "Reflectance", "nm", reflectance, Some((0.0, 1.0)));
-    // S and K on axes of their own: K falls by orders of magnitude past 600 nm where S does not.
-    labelled_plot(
-        ui,
-        ("s", &p.name),
-        "S, scattering (1/mm)",
-        "nm",
-        vec![Curve::new("S", SERIES[4], series(&p.s_per_mm))],
-        None,
-    );
-    labelled_plot(
-        ui,
-        ("k", &p.name),
-        "K, absorption (1/mm)",
-        "nm",
-        vec![Curve::new("K", SERIES[5], series(&p.k_per_mm))],
-        Some((0.0, 0.0)),
-    );
-    let xs = table_thicknesses_mm();
-    let channels = [
-        ("R", egui::Color32::from_rgb(220, 60, 50)),
-        ("G", egui::Color32::from_rgb(60, 170, 70)),
-        ("B", egui::Color32::from_rgb(70, 110, 230)),
-    ];
-    let mut rt = Vec::new();
-    for (c, (name, color)) in channels.into_iter().enumerate() {
-        let r0: Vec<[f64; 2]> = xs.iter().zip(&p.derived.r0_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
-        let t: Vec<[f64; 2]> = xs.iter().zip(&p.derived.t_linear_srgb).map(|(&x, v)| [x, v[c]]).collect();
-        rt.push(Curve::new(&format!("R0 {name}"), color, r0));
-        rt.push(Curve::new(&format!("T {name}"), color, t).dashed());
-    }
-    labelled_plot(ui, ("rt", &p.name), "R0(X) solid, T(X) dashed, linear sRGB", "mm", rt, Some((0.0, 1.0)));
 }
 
-/// Grid steps for a short plot: the largest of 1, 2 or 5 × 10ⁿ that fits the visible range at
-/// least twice (labelled), with a fifth and a tenth of it for the finer lines, so that a 110-point
+/// Grid steps for a short plot: the [`crate::ticks::nice_step`] that splits the visible range in
+/// at most four (labelled), with a fifth and a tenth of it for the finer lines, so that a 110-point
 /// plot shows two or more y labels whatever the magnitude (S, K and R differ by decades).
 fn nice_steps(input: egui_plot::GridInput) -> [f64; 3] {
-    let range = (input.bounds.1 - input.bounds.0).abs().max(1e-12);
-    let decade = 10f64.powf((range / 2.0).log10().floor());
-    let large = [5.0, 2.0, 1.0].iter().map(|m| m * decade).find(|&step| range / step >= 2.0).unwrap_or(decade);
+    let large = crate::ticks::nice_step(input.bounds.1 - input.bounds.0, 4);
     [large / 10.0, large / 5.0, large]
 }
 
-/// Colours of the plots' series (the R, G, B channels have their own).
-const SERIES: [egui::Color32; 6] = [
-    egui::Color32::from_rgb(31, 119, 180),
-    egui::Color32::from_rgb(255, 127, 14),
-    egui::Color32::from_rgb(120, 120, 120),
-    egui::Color32::from_rgb(214, 39, 140),
-    egui::Color32::from_rgb(44, 160, 44),
-    egui::Color32::from_rgb(200, 60, 40),
-];
-
-/// One curve of a plot.
-struct Curve {
-    name: String,
-    color: egui::Color32,
-    dashed: bool,
-    points: Vec<[f64; 2]>,
+fn color(rgb: [u8; 3]) -> egui::Color32 {
+    egui::Color32::from_rgb(rgb[0], rgb[1], rgb[2])
 }
 
-impl Curve {
-    fn new(name: &str, color: egui::Color32, points: Vec<[f64; 2]>) -> Curve {
-        Curve { name: name.to_string(), color, dashed: false, points }
-    }
-
-    fn dashed(self) -> Curve {
-        Curve { dashed: true, ..self }
-    }
-}
-
-/// A titled plot with ticks on both axes, `y_range` included (both ends equal: only that
-/// value), and its legend as a row of labels under it, where it covers no curve.
-fn labelled_plot(
-    ui: &mut egui::Ui,
-    id: impl std::hash::Hash + std::fmt::Debug,
-    title: &str,
-    x_label: &str,
-    curves: Vec<Curve>,
-    y_range: Option<(f64, f64)>,
-) {
-    ui.label(title);
-    let mut plot = Plot::new(id)
-        .height(110.0)
-        .x_axis_label(x_label)
-        .y_axis_min_width(40.0)
-        .y_axis_formatter(|mark, _| {
-            let text = format!("{:.3}", mark.value);
-            text.trim_end_matches('0').trim_end_matches('.').to_string()
-        })
+/// A panel of [`crate::material_plots`]: its title, ticks and labels on both axes, and its
+/// legend as a row of labels under it, where it covers no curve.
+fn labelled_plot(ui: &mut egui::Ui, id: impl std::hash::Hash + std::fmt::Debug, panel: &Panel) {
+    ui.label(panel.title);
+    let plot = Plot::new(id)
+        .height(120.0)
+        .x_axis_label(panel.x_label)
+        .y_axis_label(panel.y_label)
+        .y_axis_min_width(56.0)
+        .y_axis_formatter(|mark, _| crate::ticks::label(mark.value, mark.step_size))
         .grid_spacing(egui::Rangef::new(6.0, 48.0))
         .y_grid_spacer(egui_plot::uniform_grid_spacer(nice_steps))
-        .allow_scroll(false);
-    if let Some((lo, hi)) = y_range {
-        plot = plot.include_y(lo).include_y(hi);
-    }
+        .allow_scroll(false)
+        .include_y(panel.y_include[0])
+        .include_y(panel.y_include[1]);
     plot.show(ui, |pu| {
-        for c in &curves {
+        for c in &panel.curves {
             let style = if c.dashed { egui_plot::LineStyle::dashed_loose() } else { egui_plot::LineStyle::Solid };
-            pu.line(Line::new(c.name.clone(), c.points.clone()).color(c.color).style(style).width(1.5));
+            pu.line(Line::new(c.name.clone(), c.points.clone()).color(color(c.rgb)).style(style).width(1.5));
         }
     });
     ui.horizontal_wrapped(|ui| {
-        for c in &curves {
+        for c in &panel.curves {
             let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 10.0), egui::Sense::hover());
             let y = rect.center().y;
             ui.painter().line_segment(
                 [egui::pos2(rect.left(), y), egui::pos2(rect.right(), y)],
-                egui::Stroke::new(if c.dashed { 1.0 } else { 2.0 }, c.color),
+                egui::Stroke::new(if c.dashed { 1.0 } else { 2.0 }, color(c.rgb)),
             );
             ui.small(&c.name);
         }

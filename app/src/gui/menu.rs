@@ -4,11 +4,13 @@ use super::*;
 
 impl RougeApp {
     pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
-        let (redo, undo, reset) = ctx.input_mut(|i| {
+        let typing = ctx.egui_wants_keyboard_input();
+        let (redo, undo, reset, radius) = ctx.input_mut(|i| {
             (
                 i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z),
                 i.consume_key(Modifiers::COMMAND, Key::Z),
-                i.consume_key(Modifiers::NONE, Key::F),
+                i.consume_key(Modifiers::NONE, Key::Home),
+                !typing && i.consume_key(Modifiers::NONE, Key::F),
             )
         });
         if redo {
@@ -18,6 +20,9 @@ impl RougeApp {
         }
         if reset {
             self.view.reset_orbit();
+        }
+        if radius {
+            self.start_radius_drag(ctx);
         }
     }
 
@@ -95,9 +100,10 @@ impl RougeApp {
                 }
             });
             ui.menu_button("View", |ui| {
-                if ui.button("Reset view (F)").clicked() {
+                if ui.button("Reset view (Home)").clicked() {
                     self.view.reset_orbit();
                 }
+                self.views_menu(ui);
                 if ui.checkbox(&mut self.view.split, "Before / after split").changed() {
                     self.view.needs_render = true;
                 }

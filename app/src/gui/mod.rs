@@ -4,7 +4,7 @@
 //! Layout: menu bar; left panel = layers, brush, project folder and key light; right panel =
 //! material library (import, plots); centre = the viewport. Viewport controls: left drag paints (Alt+left or right drag
 //! orbits), middle drag or Shift+right drag pans, wheel zooms; Ctrl+Z / Ctrl+Shift+Z undo and
-//! redo; F resets the view.
+//! redo; F sets the brush radius by moving the mouse; Home resets the view.
 //!
 //! The renderer draws into its own texture, which egui shows as a native texture, so the app,
 //! the CLI and the tests run the same frame code. Frames are drawn only when something changed
@@ -20,6 +20,7 @@ mod edit;
 mod expression;
 mod face;
 mod layers;
+mod looks_panel;
 pub mod materials;
 mod materials_panel;
 mod menu;
@@ -27,6 +28,8 @@ mod session;
 mod translucency;
 pub use translucency::SubsurfaceChoice;
 mod viewport;
+mod views;
+pub use views::HeatMapFrame;
 
 use crate::editor::Editor;
 use anyhow::{Context as _, Result};
@@ -99,6 +102,10 @@ pub struct RougeApp {
     face: face::FaceState,
     /// Status message, edit buffers and the recovery offer.
     ui: UiState,
+    /// The solo and heat-map views and the F radius drag ([`views`]).
+    views: views::LayerViews,
+    /// The looks library's thumbnails, once loaded ([`looks_panel`]).
+    look_thumbnails: Vec<egui::TextureHandle>,
 }
 
 /// What the panels keep between frames that is neither document nor view.
@@ -155,6 +162,8 @@ impl RougeApp {
             jobs: Jobs::default(),
             face: face::FaceState::default(),
             ui,
+            views: views::LayerViews::default(),
+            look_thumbnails: Vec::new(),
             options,
         };
         match app.options.mesh.clone() {
@@ -179,9 +188,11 @@ impl RougeApp {
         &mut self.editor.brush
     }
 
-    /// Selects the layer strokes go to.
+    /// Selects the layer strokes go to (the solo and heat-map views follow it).
     pub fn set_active_layer(&mut self, i: usize) {
-        self.editor.set_active_layer(i);
+        let c = self.editor.set_active_layer(i);
+        self.apply_change(c);
+        self.view.needs_render = true;
     }
 
     /// Surface points of the dabs of the last stroke.
@@ -273,8 +284,10 @@ impl RougeApp {
     /// Sets layer `i`'s whole map to zero thickness, as one undo step (e.g. to repaint the
     /// default look's region-based layers on another mesh).
     pub fn clear_layer(&mut self, i: usize) {
-        let c = self.editor.clear_layer(i);
-        self.apply_change(c);
+        match self.editor.clear_layer(i) {
+            Ok(c) => self.apply_change(c),
+            Err(e) => self.ui.message = Some((false, e.to_string())),
+        }
     }
 
     /// Undoes the last stroke or layer edit.
@@ -322,7 +335,7 @@ impl eframe::App for RougeApp {
                     ui.colored_label(Color32::LIGHT_RED, m);
                 }
                 None => {
-                    ui.label("Left drag: paint · Shift+click: straight line · [ ]: size · Alt+drag / right drag: orbit · Shift+right / middle drag: pan · wheel: zoom · F: reset");
+                    ui.label("Left drag: paint · Shift+click: straight line · [ ] or F: size · Alt+drag / right drag: orbit · Shift+right / middle drag: pan · wheel: zoom · Home: reset view");
                 }
             });
             if let Some(mm) = self.view.hover_mm {
@@ -334,6 +347,7 @@ impl eframe::App for RougeApp {
         egui::Panel::left("layers").default_size(270.0).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 self.layers_panel(ui);
+                self.looks_panel(ui);
                 ui.separator();
                 self.brush_panel(ui);
                 ui.separator();

@@ -319,6 +319,7 @@ impl RougeApp {
             self.gpu.render_bare(&self.view.scene, &camera, size);
         }
         self.gpu.frame_size = size;
+        self.update_heat_map();
         self.view.needs_render = false;
         self.gpu.last_frame_ms = start.elapsed().as_secs_f64() * 1e3;
     }
@@ -375,7 +376,9 @@ impl RougeApp {
         let orbit = (primary && alt) || (response.dragged_by(egui::PointerButton::Secondary) && !shift);
         let pan = response.dragged_by(egui::PointerButton::Middle)
             || (response.dragged_by(egui::PointerButton::Secondary) && shift);
-        if orbit {
+        if self.radius_drag_input(ui) {
+            // F: the pointer sets the brush radius; nothing else until it is kept or cancelled.
+        } else if orbit {
             let d = response.drag_delta();
             self.view.orbit.yaw_deg -= d.x * 0.4;
             self.view.orbit.pitch_deg = (self.view.orbit.pitch_deg + d.y * 0.4).clamp(-80.0, 80.0);
@@ -474,13 +477,16 @@ impl RougeApp {
                 Color32::WHITE,
             );
         }
+        self.draw_heat_map(ui, rect);
         self.brush_keys(ui.ctx());
         self.draw_symmetry(ui);
+        self.draw_radius_drag(ui);
         self.view.hover_world = response.hover_pos().and_then(|h| self.pick(h));
         self.view.hover_mm = self.view.hover_world.and_then(|w| self.editor.thickness_at(w));
         // Brush outline under the cursor (its screen radius at the surface's depth).
         if let Some(hover) = response.hover_pos()
             && !alt
+            && self.radius_drag().is_none()
             && self.ready()
             && let (Some(c), Some(w)) = (self.camera(), self.pick(hover))
         {

@@ -72,6 +72,8 @@ pub struct PaintLayer {
     pub visible: bool,
     /// Global thickness multiplier, 0..=[`MAX_MULTIPLIER`]: the layer is `map × multiplier` thick.
     pub multiplier: f32,
+    /// Whether painting, filling and clearing are refused (the app checks; saved in the look).
+    pub locked: bool,
 }
 
 impl PaintLayer {
@@ -79,6 +81,22 @@ impl PaintLayer {
     pub fn effective_map(&self) -> ThicknessMap {
         if self.multiplier == 1.0 { (*self.map).clone() } else { self.map.scaled(self.multiplier) }
     }
+}
+
+/// `look`'s layers as paint layers, each map at [`MAP_SIZE`]², multiplier 1.
+fn paint_layers(look: &Look) -> Vec<PaintLayer> {
+    look.layers
+        .iter()
+        .map(|l| PaintLayer {
+            name: l.name.clone(),
+            preset_ref: l.preset_ref.clone(),
+            preset: l.preset.clone(),
+            map: Arc::new(at_map_size(&l.map)),
+            visible: l.visible,
+            multiplier: 1.0,
+            locked: l.locked,
+        })
+        .collect()
 }
 
 /// A [`MAP_SIZE`]² map of zeros (calloc'd: pages are touched only when painted).
@@ -204,21 +222,9 @@ impl Document {
     /// regions, masks and maps resampled bilinearly with their thickness folded in), multiplier 1.
     /// Unmodified, with an empty history.
     pub fn from_look(look: &Look) -> Document {
-        let layers = look
-            .layers
-            .iter()
-            .map(|l| PaintLayer {
-                name: l.name.clone(),
-                preset_ref: l.preset_ref.clone(),
-                preset: l.preset.clone(),
-                map: Arc::new(at_map_size(&l.map)),
-                visible: l.visible,
-                multiplier: 1.0,
-            })
-            .collect();
         Document {
             name: look.name.clone(),
-            layers,
+            layers: paint_layers(look),
             face: FacePose::default(),
             saved_face: FacePose::default(),
             history: History::new(),
@@ -256,6 +262,7 @@ impl Document {
             map: Arc::new(empty_map()),
             visible: true,
             multiplier: 1.0,
+            locked: false,
         };
         self.edit_layers(|layers| {
             layers.push(layer);
@@ -311,12 +318,32 @@ impl Document {
 
     /// Shows or hides layer `i`.
     pub fn set_visible(&mut self, i: usize, v: bool) -> Change {
-        self.edit_layers(|layers| match layers.get_mut(i) {
-            Some(l) if l.visible != v => {
-                l.visible = v;
+        self.set_flag(i, v, |l| &mut l.visible)
+    }
+
+    /// Locks or unlocks layer `i` (a locked layer refuses paint, fill and clear).
+    pub fn set_locked(&mut self, i: usize, locked: bool) -> Change {
+        self.set_flag(i, locked, |l| &mut l.locked)
+    }
+
+    /// Sets one switch of layer `i` (one undo step; none when it already has that value).
+    fn set_flag(&mut self, i: usize, value: bool, flag: fn(&mut PaintLayer) -> &mut bool) -> Change {
+        self.edit_layers(|layers| match layers.get_mut(i).map(flag) {
+            Some(f) if *f != value => {
+                *f = value;
                 true
             }
             _ => false,
+        })
+    }
+
+    /// Replaces every layer with `look`'s (maps at [`MAP_SIZE`]², multiplier 1), as one undo
+    /// step: a look from the library applied in one click. The document keeps its name and face.
+    pub fn apply_look(&mut self, look: &Look) -> Change {
+        let layers = paint_layers(look);
+        self.edit_layers(|current| {
+            *current = layers;
+            true
         })
     }
 

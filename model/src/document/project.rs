@@ -229,6 +229,7 @@ pub(super) fn look_layer(layer: &PaintLayer, files: &LayerFiles, map: ThicknessM
         },
         map,
         visible: layer.visible,
+        locked: layer.locked,
     }
 }
 

@@ -125,6 +125,8 @@ pub struct LookLayer {
     pub map: ThicknessMap,
     /// Whether the layer is drawn (hidden layers stay in the document).
     pub visible: bool,
+    /// Whether the painting app refuses to paint, fill or clear the layer.
+    pub locked: bool,
 }
 
 /// A look: cosmetic layers, bottom (on the skin) to top.
@@ -162,6 +164,8 @@ struct LayerIn {
     thickness: ThicknessSource,
     #[serde(default = "yes")]
     visible: bool,
+    #[serde(default)]
+    locked: bool,
 }
 
 #[derive(Serialize)]
@@ -184,6 +188,12 @@ struct LayerOut<'a> {
     thickness: &'a ThicknessSource,
     #[serde(skip_serializing_if = "is_true")]
     visible: bool,
+    #[serde(skip_serializing_if = "is_false")]
+    locked: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// How a layer is named in messages: its `name`, else its preset reference.
@@ -219,6 +229,7 @@ impl Look {
                 thickness,
                 map,
                 visible: true,
+                locked: false,
             })
         };
         let layers = [
@@ -283,6 +294,7 @@ impl Look {
                 thickness: l.thickness,
                 map,
                 visible: l.visible,
+                locked: l.locked,
             });
         }
         let name = doc.name.unwrap_or_else(|| {
@@ -293,7 +305,7 @@ impl Look {
 
     /// Pretty JSON that [`Look::from_json`] reads back to an equal look (from the same folder:
     /// presets, masks and maps stay references, as written). A layer's name is written only
-    /// where it differs from its preset's name, `visible` only where false.
+    /// where it differs from its preset's name, `visible` only where false, `locked` only where true.
     pub fn to_json(&self) -> String {
         let doc = LookOut {
             schema: SCHEMA,
@@ -307,6 +319,7 @@ impl Look {
                     preset: &l.preset_ref,
                     thickness: &l.thickness,
                     visible: l.visible,
+                    locked: l.locked,
                 })
                 .collect(),
         };

@@ -1,0 +1,163 @@
+//! The painting app's layer views and radius drag under egui_kittest with the wgpu renderer
+//! (lavapipe on CI): the heat map of the active layer's rendered thickness with its legend
+//! (snapshot), the F radius drag kept by a click and cancelled by Esc and by a right click, a
+//! locked layer refusing a stroke in the window, and a look applied from the library in one click.
+//! `UPDATE_SNAPSHOTS=1` rewrites app/tests/snapshots/.
+
+use egui::{Event, Key, Modifiers, PointerButton, Pos2};
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, SnapshotOptions};
+use rouge_app::gui::{Options, RougeApp};
+use std::path::Path;
+
+fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
+    let dir = data_dir.to_owned();
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
+        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
+        RougeApp::new(cc, options).expect("the app opens")
+    });
+    h.state_mut().wait_ready();
+    h.run_steps(4);
+    h
+}
+
+fn button(h: &Harness<'static, RougeApp>, pos: Pos2, button: PointerButton, pressed: bool) {
+    h.event(Event::PointerButton { pos, button, pressed, modifiers: Modifiers::NONE });
+}
+
+#[test]
+fn the_heat_map_shows_the_active_layers_thickness_with_a_legend() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
+    h.state_mut().set_active_layer(2); // the lipstick: 20 µm inside the lips mask
+    h.state_mut().set_heat_map(true);
+    h.run_steps(3);
+    let heat = h.state().heat_map().expect("a heat map").clone();
+    assert_eq!((heat.layer, heat.scale.top_um, heat.scale.step_um), (2, 20.0, 5.0));
+    let (w, hgt) = heat.size;
+    assert_eq!(heat.rgba.len(), (w * hgt * 4) as usize);
+    let painted: Vec<&[u8]> = heat.rgba.chunks_exact(4).filter(|p| p[3] == 255).collect();
+    // The lips only: a small part of the frame, and most of it at the full 20 µm (the top colour).
+    let share = painted.len() as f64 / f64::from(w * hgt);
+    assert!(share > 0.001 && share < 0.1, "painted share {share}");
+    let top = heat.scale.colour(0.02).expect("painted");
+    let at_top = painted.iter().filter(|p| p[..3] == top).count();
+    assert!(at_top * 2 > painted.len(), "{at_top} of {} at the top colour", painted.len());
+    // The lip point is painted (frame pixels = points here: pixels_per_point 1).
+    let lip_px = ((lips.x - h.state().viewport_rect().min.x) as u32, (lips.y - h.state().viewport_rect().min.y) as u32);
+    assert_eq!(heat.rgba[((lip_px.1 * w + lip_px.0) * 4 + 3) as usize], 255, "the lips at {lip_px:?}");
+    h.snapshot_options("app_heat_map", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(4000));
+
+    // The foundation covers the whole face evenly at 15 µm: one colour nearly everywhere.
+    h.state_mut().set_active_layer(0);
+    h.run_steps(3);
+    let heat = h.state().heat_map().expect("a heat map");
+    assert_eq!((heat.layer, heat.scale.top_um), (0, 15.0));
+    let painted = heat.rgba.chunks_exact(4).filter(|p| p[3] == 255).count();
+    assert!(painted as f64 / f64::from(w * hgt) > 0.15, "the foundation covers the face: {painted}");
+    h.state_mut().set_heat_map(false);
+    h.run_steps(2);
+    assert!(h.state().heat_map().is_none());
+}
+
+#[test]
+fn f_drags_the_brush_radius_a_click_keeps_it_and_esc_or_a_right_click_cancel() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let maps: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    let at = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
+    h.state_mut().brush_mut().radius_mm = 8.0;
+    h.hover_at(at);
+    h.run_steps(2);
+    h.key_press(Key::F);
+    h.run_steps(2);
+    let drag = *h.state().radius_drag().expect("F starts a radius drag");
+    assert_eq!(drag.start_mm(), 8.0);
+    // Twice as far from the circle's centre: twice the radius.
+    let centre = Pos2::new(drag.centre()[0], drag.centre()[1]);
+    let out = centre + (at - centre) * 2.0;
+    h.hover_at(out);
+    h.run_steps(2);
+    assert!((h.state_mut().brush_mut().radius_mm - 16.0).abs() < 0.01, "{}", h.state_mut().brush_mut().radius_mm);
+    button(&h, out, PointerButton::Primary, true);
+    h.run_steps(1);
+    button(&h, out, PointerButton::Primary, false);
+    h.run_steps(2);
+    assert!(h.state().radius_drag().is_none(), "the click keeps the radius");
+    assert!((h.state_mut().brush_mut().radius_mm - 16.0).abs() < 0.01);
+    let after: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    assert!(after == maps, "the confirming click painted nothing");
+    assert!(!h.state().document().can_undo());
+
+    // Esc puts the radius back.
+    h.key_press(Key::F);
+    h.run_steps(1);
+    h.hover_at(centre + (out - centre) * 0.25);
+    h.run_steps(2);
+    assert!(h.state_mut().brush_mut().radius_mm < 8.0);
+    h.key_press(Key::Escape);
+    h.run_steps(2);
+    assert!(h.state().radius_drag().is_none());
+    assert!((h.state_mut().brush_mut().radius_mm - 16.0).abs() < 0.01);
+    // So does a right click.
+    h.key_press(Key::F);
+    h.run_steps(1);
+    h.hover_at(out + egui::vec2(60.0, 0.0));
+    h.run_steps(2);
+    assert!(h.state_mut().brush_mut().radius_mm > 16.0);
+    button(&h, out, PointerButton::Secondary, true);
+    h.run_steps(1);
+    button(&h, out, PointerButton::Secondary, false);
+    h.run_steps(2);
+    assert!(h.state().radius_drag().is_none());
+    assert!((h.state_mut().brush_mut().radius_mm - 16.0).abs() < 0.01);
+}
+
+#[test]
+fn a_locked_layer_refuses_a_stroke_with_a_message_and_a_look_applies_in_one_click() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
+    // Lock the top layer (the lipstick) with its lock button, as a user would.
+    // The list shows the top layer first.
+    h.get_all_by_label("Lock").next().expect("lock buttons").click();
+    h.run_steps(2);
+    assert!(h.state().document().layers[2].locked);
+    let before = h.state().document().layers[2].map.mm.clone();
+    h.state_mut().paint_stroke_screen(&[lips, lips + egui::vec2(6.0, 0.0)]);
+    assert!(h.state().document().layers[2].map.mm == before, "the locked layer took no paint");
+    let (ok, message) = h.state().message().expect("a message").clone();
+    assert!(!ok && message.contains("locked"), "{message}");
+
+    // The looks library: open it and click the evening look.
+    h.get_by_label("Looks library").click();
+    h.run_steps(2);
+    h.get_by_label("evening").click();
+    h.run_steps(3);
+    let names: Vec<String> = h.state().document().layers.iter().map(|l| l.name.clone()).collect();
+    assert_eq!(names, ["Foundation 02 Ivory", "Smoky lids", "Blush 01 Petal Pink", "Lipstick 03 Deep Berry"]);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().document().layers.len(), 3, "one undo step brings the default look back");
+    assert!(h.state().document().layers[2].locked);
+}
+
+#[test]
+fn the_material_plots_have_ticks_axis_labels_and_legends_under_them() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let library = rouge_app::gui::materials::Library::load(data.path().join("presets"));
+    let blush = library.materials.iter().find(|m| m.preset.name == "Blush 01 Petal Pink").expect("built in").clone();
+    let mut h = Harness::builder().with_size(egui::vec2(340.0, 760.0)).wgpu().build_ui(move |ui| {
+        egui::ScrollArea::vertical().show(ui, |ui| rouge_app::gui::materials::plots(ui, &blush));
+    });
+    h.run_steps(2);
+    // Every panel's title, every axis label and every legend entry is in the window.
+    for label in ["Reflectance", "S, scattering", "K, absorption", "R0(X) solid, T(X) dashed, linear sRGB"] {
+        h.get_by_label(label);
+    }
+    for label in ["R∞ measured", "R measured", "Rg background", "R∞ from S, K", "S", "K", "R0 R", "T B"] {
+        h.get_by_label(label);
+    }
+    h.snapshot_options("material_plots", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(2000));
+}
