@@ -9,6 +9,7 @@ use rouge_model::medium::Medium;
 use rouge_model::thickness::BakeSettings;
 use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach};
 use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
 use rouge_render::translucency::{ReferenceImage, measure};
 use rouge_render::{Skin, SubsurfaceModel};
@@ -51,6 +52,10 @@ pub struct TranslucencyBenchArgs {
     /// 32), and its artifact fixes one by one (slow: use --only).
     #[arg(long)]
     pub dipole_sweep: bool,
+    /// Also run the cube atlas's ablations ([Benmounah2009] figures 6 and 9): kernels 3×3 to
+    /// 9×9, atlas sizes 256-1024, the reach, each self-occlusion test, without the global term.
+    #[arg(long)]
+    pub atlas_sweep: bool,
     /// Instead of the table: fit the thickness translucency's distortion, power, scale and
     /// ambient per medium and local-thickness source to the references (least squares on linear
     /// radiance) and print the fits (docs/BENCHMARKS.md; the media files carry them).
@@ -233,6 +238,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         }
         configs.extend(thickness_configs(&medium, &sources, &better, rest_map.is_some(), bake.seconds));
         configs.extend(dipole_configs(&better, args.dipole_sweep));
+        configs.extend(atlas_configs(&better, args.atlas_sweep));
         for Config { model, params, skin, samples, map } in configs {
             prepared.renderer.set_mesh(&loaded.mesh, skin.albedo)?;
             upload(&mut prepared, map)?;
@@ -377,6 +383,35 @@ fn dipole_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
     out
 }
 
+/// The cube atlas's configurations: the defaults; with `sweep`, one setting changed at a time.
+fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
+    let config = |settings: AtlasSettings| {
+        let params = json!({
+            "atlas_px": settings.atlas_px,
+            "kernel": settings.kernel_max,
+            "reach": settings.reach.name(),
+            "adaptive": settings.adaptive,
+            "occlusion": settings.occlusion.name(),
+            "global": settings.global,
+        });
+        let skin = Skin { subsurface: SubsurfaceModel::CubeAtlas { settings }, ..skin.clone() };
+        Config { model: "cube-atlas", params, skin, samples: 0, map: ThicknessMap::None }
+    };
+    let base = AtlasSettings::default();
+    let mut out = vec![config(base)];
+    if sweep {
+        out.extend([3, 7, 9, 15].map(|kernel_max| config(AtlasSettings { kernel_max, ..base })));
+        out.extend([256, 1024].map(|atlas_px| config(AtlasSettings { atlas_px, ..base })));
+        out.extend([1.0, 4.0, 16.0].map(|m| config(AtlasSettings { reach: Reach::MeanFreePaths(m), ..base })));
+        out.push(config(AtlasSettings { adaptive: false, ..base }));
+        out.extend(
+            [OcclusionTest::Off, OcclusionTest::PlaneOffset].map(|occlusion| config(AtlasSettings { occlusion, ..base })),
+        );
+        out.push(config(AtlasSettings { global: false, ..base }));
+    }
+    out
+}
+
 /// The plot label of a thickness or dipole row (drawn as squares), `None` for the others.
 fn square_label(r: &Row) -> Option<String> {
     let text = |k: &str| r.params.get(k).and_then(|v| v.as_str()).unwrap_or("?").to_string();
@@ -385,6 +420,18 @@ fn square_label(r: &Row) -> Option<String> {
         "thickness" => Some(format!("thickness {} {}", text("source"), text("params"))),
         "directional-dipole" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
+        }
+        "cube-atlas" => {
+            let flag = |k: &str| r.params.get(k).and_then(|v| v.as_bool()).unwrap_or(true);
+            Some(format!(
+                "atlas {}² k{} reach {}{} {}{}",
+                number("atlas_px"),
+                number("kernel"),
+                text("reach"),
+                if flag("adaptive") { "" } else { " fixed" },
+                text("occlusion"),
+                if flag("global") { "" } else { " no-global" }
+            ))
         }
         _ => None,
     }

@@ -1,5 +1,6 @@
 //! `rouge render`: one frame of the renderer to a PNG (tone-mapped) or an EXR (linear radiance).
 
+use crate::atlas_args::AtlasArgs;
 use crate::dipole_args::DipoleArgs;
 use crate::scene_args::SceneArgs;
 use crate::thickness_args::{BakePose, ThicknessArgs};
@@ -31,14 +32,17 @@ pub struct RenderArgs {
     pub no_specular: bool,
     /// Subsurface model of the skin: the screen-space separable kernel of d'Eon's skin profile
     /// (or of the --medium's profile), fast thickness translucency (light through thin parts
-    /// from behind: ears, nostrils; [BarreBrisebois2011]), or none (the diffuse light stays
-    /// where it entered).
+    /// from behind: ears, nostrils; [BarreBrisebois2011]), the dipoles of the --medium through
+    /// radiance maps or through a cube-map atlas drawn every frame (the mesh may deform:
+    /// --morph, --expression; [Benmounah2009]), or none (the diffuse light stays where it entered).
     #[arg(long, value_enum, default_value_t = Subsurface::ScreenSpace)]
     pub subsurface: Subsurface,
     #[command(flatten)]
     pub thickness: ThicknessArgs,
     #[command(flatten)]
     pub dipole: DipoleArgs,
+    #[command(flatten)]
+    pub atlas: AtlasArgs,
     /// Antialiasing: none, edges (discontinuity edge overdraw [Sander2001], unsorted),
     /// edges-sorted (silhouettes sorted back to front), ssaa2 or ssaa4 (supersampling k×k, PNG
     /// only); msaa4 is refused (no multisampled G-buffer). docs/BENCHMARKS.md compares them.
@@ -71,6 +75,9 @@ pub enum Subsurface {
     DirectionalDipole,
     /// Jensen's standard dipole ([Jensen2001]) in the same passes, for comparison.
     StandardDipole,
+    /// Jensen's dipole gathered in a cube-map atlas of the --medium redrawn every frame
+    /// ([Benmounah2009]); --atlas-* options.
+    CubeAtlas,
 }
 
 /// `--aa-coverage` values.
@@ -116,6 +123,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
         Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,
         Subsurface::StandardDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Standard)?,
+        Subsurface::CubeAtlas => job.scene.skin.subsurface = args.atlas.model()?,
     }
     let aa = rouge_render::aa::AaMode::parse(&args.aa)?;
     let coverage = match args.aa_coverage {

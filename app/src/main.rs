@@ -5,6 +5,7 @@
 //! (`--json` for a machine). Errors: a message on stderr and exit status 2.
 
 mod analyze_plot;
+mod atlas_args;
 mod bench_aa;
 mod bench_deform;
 mod bench_translucency;

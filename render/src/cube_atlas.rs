@@ -6,7 +6,7 @@
 //! array texture of six layers), storing the irradiance E(x) that enters the medium (eq. 4: lights
 //! with their shadows and the environment's SH, each through the Fresnel transmittance), n·p in
 //! alpha (section 4.3.1), the normal and the depth. A full-screen pass then picks, per skin pixel,
-//! the face that sees the point best and gathers E·R_d over a kernel of texels there (local
+//! the face that sees the point best and gathers E·R_d over a kernel of taps there (local
 //! scattering, section 4.3), and adds light through thin parts from the opposite face (global
 //! scattering, section 4.4). Nothing is precomputed, so the mesh may deform freely.
 //!
@@ -28,15 +28,22 @@
 //!   (∫ z(1 + σS)e^{−σS}/S³ dA = 2π e^{−σz}, see `crate::diffusion`)
 //!   `B_g(x) = E(x_s) · α′/2 · e^{−σ_tr S}` with S = |x_s − z_r n_s − x|:
 //!   [`crate::diffusion::ChannelProfile::real_source_plane`]. It is bounded (α′/2 as S → 0).
-//! - **Local gather.** B(x) = Σ_j E_j R_d(x_j → x) A_j over the kernel's texels j, A_j the area of
-//!   the surface a texel covers, texel²/(n_j·a) (n_j·a clamped at [`MIN_AREA_COSINE`]). The centre
-//!   texel's R_d is singular-ish (≈ α′/4πz_r² at r = 0): it is integrated over a disk of its area in
-//!   closed form ([`crate::diffusion::ChannelProfile::classic_disk_total`]), so a coarse atlas
-//!   never over-counts it.
-//! - **Kernel** (section 4.3.2). The paper relates its largest kernel to the mean free path
-//!   l_d = 1/σ′_t and shrinks it by the scalar product sp of the normal with the face:
-//!   k = sp·l_d. In texels: the largest kernel is `kernel_max` (5×5 in the paper), the adaptive
-//!   one `round(sp·(kernel_max − 1)/2)` texels either side of the centre.
+//! - **Kernel** (section 4.3.2). The paper takes the mean free path l_d = 1/σ′_t as "the maximum
+//!   distance a photon travels" and the kernel's radius, shrunk by the scalar product sp of the
+//!   normal with the face: k = sp·l_d; it settles on a 5×5 kernel. We keep the radius physical,
+//!   R = sp·R₁, and the kernel a grid of `kernel_max`² taps spread over the square [−R, R]², so
+//!   that the reach does not change with the atlas's resolution. R₁ is [`Reach`]: the paper's
+//!   l_d (`MeanFreePaths(1.0)`, the longest of the three channels), or by default the profile's
+//!   support, three decay lengths 1/σ_tr (capped at 40 mean free paths,
+//!   [`crate::diffusion::ChannelProfile::support_mm`]). Diffusion reaches much further than a
+//!   mean free path: on marble the paper's reach holds a fifth of R_d (docs/BENCHMARKS.md).
+//! - **Local gather.** B(x) = Σ_j E_j R_d(x_j → x) A_j over the taps j: cells of side Δ = 2R/k
+//!   centred on x's place in the face, x_j the tap's point on the stored surface (its lateral
+//!   position and the texel's depth), A_j = Δ²/(n_j·a) the surface a cell covers (n_j·a clamped at
+//!   [`MIN_AREA_COSINE`]). The centre cell's R_d is singular-ish (≈ α′/4πz_r² at r = 0): it is
+//!   integrated over the disk of the cell's area in closed form
+//!   ([`crate::diffusion::ChannelProfile::classic_disk_total`]), so a flat, evenly lit surface
+//!   gets the same radiosity from any kernel, and a coarse one never over-counts the centre.
 //! - **Output**: L_o = F_t(η, ω_o)/π · (B_local + B_global) (eq. 2), added to the skin's diffuse
 //!   radiance; the lighting pass leaves the skin's direct and environment light to the atlas.
 //!
@@ -56,6 +63,7 @@
 //! Domain: a closed or open triangle mesh of any size (mm); media as [`crate::diffusion`].
 //! Points on no face get no local term, as in the paper; they still get the global one.
 
+use crate::diffusion::ChannelProfile;
 use crate::error::{RenderError, Result};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use rouge_model::mesh::Bounds;
@@ -112,8 +120,10 @@ impl OcclusionTest {
 pub struct AtlasSettings {
     /// Side of each of the six faces, texels.
     pub atlas_px: u32,
-    /// Largest kernel side, texels (odd, 1 to 63; the paper settles on 5).
+    /// Taps per side of the kernel (odd, 1 to 63; the paper settles on 5).
     pub kernel_max: u32,
+    /// The kernel's radius at sp = 1.
+    pub reach: Reach,
     /// Shrink the kernel by the scalar product of the normal with the face (section 4.3.2).
     pub adaptive: bool,
     /// How a point is found on a face.
@@ -127,6 +137,7 @@ impl Default for AtlasSettings {
         AtlasSettings {
             atlas_px: 512,
             kernel_max: 5,
+            reach: Reach::Support,
             adaptive: true,
             occlusion: OcclusionTest::TangentPlane,
             global: true,
@@ -145,17 +156,60 @@ impl AtlasSettings {
         }
         if self.kernel_max % 2 == 0 || !(1..=63).contains(&self.kernel_max) {
             return Err(RenderError::Invalid(format!(
-                "cube atlas kernel {}: an odd side from 1 to 63 texels",
+                "cube atlas kernel {}: an odd number of taps a side from 1 to 63",
                 self.kernel_max
             )));
+        }
+        if let Reach::MeanFreePaths(m) = self.reach
+            && !(m.is_finite() && m > 0.0 && m <= 1000.0)
+        {
+            return Err(RenderError::Invalid(format!("cube atlas reach {m} mean free paths: must be in (0, 1000]")));
         }
         Ok(())
     }
 
-    /// The kernel's half side in texels for a face at scalar product `sp` with the normal.
-    pub fn kernel_radius(&self, sp: f32) -> u32 {
-        let max = (self.kernel_max - 1) / 2;
-        if self.adaptive { (sp.clamp(0.0, 1.0) * max as f32).round() as u32 } else { max }
+    /// The kernel's radius R in mm for a face at scalar product `sp` with the normal, for the
+    /// channels' `profiles` (classic dipole).
+    pub fn kernel_radius_mm(&self, sp: f32, profiles: &[ChannelProfile]) -> f32 {
+        let longest = |f: fn(&ChannelProfile) -> f64| profiles.iter().map(f).fold(0.0, f64::max) as f32;
+        let full = match self.reach {
+            Reach::Support => longest(ChannelProfile::support_mm),
+            Reach::MeanFreePaths(m) => m * longest(ChannelProfile::mean_free_path_mm),
+        };
+        if self.adaptive { sp.clamp(0.0, 1.0) * full } else { full }
+    }
+}
+
+/// How far the gather kernel reaches (at sp = 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reach {
+    /// The diffusion profile's support: three decay lengths 1/σ_tr, at most 40 mean free paths.
+    Support,
+    /// This many mean free paths 1/σ′_t ([Benmounah2009] section 4.3.2 uses 1).
+    MeanFreePaths(f32),
+}
+
+impl Reach {
+    /// `support` or the number of mean free paths (the command line's and the tables' name).
+    pub fn name(self) -> String {
+        match self {
+            Reach::Support => "support".into(),
+            Reach::MeanFreePaths(m) => format!("{m} mfp"),
+        }
+    }
+
+    /// `support` or a number of mean free paths.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] saying what is accepted.
+    pub fn parse(text: &str) -> Result<Reach> {
+        if text == "support" {
+            return Ok(Reach::Support);
+        }
+        let m: f32 = text.trim_end_matches("mfp").trim().parse().map_err(|_| {
+            RenderError::Invalid(format!("cube atlas reach {text:?}: 'support' or a number of mean free paths"))
+        })?;
+        Ok(Reach::MeanFreePaths(m))
     }
 }
 
@@ -305,13 +359,21 @@ mod tests {
 
     #[test]
     fn kernels_shrink_with_the_scalar_product() {
-        let s = AtlasSettings { kernel_max: 9, ..Default::default() };
-        assert_eq!(s.kernel_radius(1.0), 4);
-        assert_eq!(s.kernel_radius(0.5), 2);
-        assert_eq!(s.kernel_radius(0.1), 0);
-        assert_eq!(AtlasSettings { adaptive: false, ..s }.kernel_radius(0.1), 4);
+        let p = [ChannelProfile::new(crate::diffusion::ProfileModel::ClassicDipole, 0.5, 1.5, 1.3); 3];
+        let s = AtlasSettings { kernel_max: 9, reach: Reach::MeanFreePaths(2.0), ..Default::default() };
+        assert!((s.kernel_radius_mm(1.0, &p) - 1.0).abs() < 1e-6);
+        assert!((s.kernel_radius_mm(0.5, &p) - 0.5).abs() < 1e-6);
+        assert!((AtlasSettings { adaptive: false, ..s }.kernel_radius_mm(0.1, &p) - 1.0).abs() < 1e-6);
+        let support = AtlasSettings { reach: Reach::Support, ..s }.kernel_radius_mm(1.0, &p);
+        assert!((f64::from(support) - p[0].support_mm()).abs() < 1e-5);
         assert!(AtlasSettings { kernel_max: 4, ..s }.check().is_err());
         assert!(AtlasSettings { atlas_px: 8, ..s }.check().is_err());
+        for m in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            assert!(AtlasSettings { reach: Reach::MeanFreePaths(m), ..s }.check().is_err(), "reach {m}");
+        }
+        assert_eq!(Reach::parse("support").expect("support"), Reach::Support);
+        assert_eq!(Reach::parse("4").expect("4"), Reach::MeanFreePaths(4.0));
+        assert!(Reach::parse("far").expect_err("words").to_string().contains("mean free paths"));
         assert!(OcclusionTest::parse("tangent").is_err());
         assert_eq!(OcclusionTest::parse("plane-offset").expect("known"), OcclusionTest::PlaneOffset);
     }

@@ -379,9 +379,10 @@ impl FramePlan {
                 )
             }
             SubsurfaceModel::CubeAtlas { settings: a } => format!(
-                " (atlas 6×{}², kernel up to {k}×{k}{}, self-occlusion test {}, global term {})",
+                " (atlas 6×{}², kernel {k}×{k} taps, reach {}{}, self-occlusion test {}, global term {})",
                 a.atlas_px,
-                if a.adaptive { " adaptive" } else { "" },
+                a.reach.name(),
+                if a.adaptive { " × n·a" } else { "" },
                 a.occlusion.name(),
                 on_off(a.global),
                 k = a.kernel_max,

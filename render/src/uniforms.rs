@@ -262,6 +262,7 @@ pub fn uniform_layouts() -> Vec<UniformLayout> {
                 ("medium", offset_of!(AtlasUniform, medium)),
                 ("params", offset_of!(AtlasUniform, params)),
                 ("settings", offset_of!(AtlasUniform, settings)),
+                ("kernel", offset_of!(AtlasUniform, kernel)),
                 ("sh_fresnel", offset_of!(AtlasUniform, sh_fresnel)),
             ],
         ),

@@ -15,9 +15,11 @@ struct AtlasPass {
     medium: array<vec4<f32>, 3>,
     // x η, y texel side (mm), z face side (texels), w smallest n·a of a texel's area
     params: vec4<f32>,
-    // x largest kernel half side (texels), y adaptive kernel (0/1), z self-occlusion test
+    // x kernel half side (taps), y adaptive kernel (0/1), z self-occlusion test
     // (0 off, 1 plane offset, 2 tangent plane), w global term (0/1)
     settings: vec4<u32>,
+    // x the kernel's radius at sp = 1 (reach × the longest mean free path, mm)
+    kernel: vec4<f32>,
     // the environment's SH bands scaled for the Fresnel transmittance (l = 0, 1, 2 in x, y, z)
     sh_fresnel: vec4<f32>,
 }

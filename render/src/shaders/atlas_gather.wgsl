@@ -1,8 +1,8 @@
 // Cube-atlas gather ([Benmounah2009] sections 4.2-4.4), per skin pixel x with normal n:
 // 1. the faces with a corner above x's tangent plane and sp = n·a > 0, greatest sp first;
 // 2. the first that holds x (the self-occlusion test) is selected; none: no local term;
-// 3. local: B = Σ_j E_j R_d(x_j → x) A_j over a kernel around x's texel there (half side
-//    round(sp·max) when adaptive), the centre texel integrated over a disk of its area;
+// 3. local: B = Σ_j E_j R_d(x_j → x) A_j over k×k taps on [−R, R]² around x's place there
+//    (R = sp·reach·l_d when adaptive), the centre cell integrated over a disk of its area;
 // 4. global: the opposite face's surface behind x, a plane of real sources under it:
 //    B_g = E_s · α′/2 · e^{−σ_tr |x_s − z_r n_s − x|};
 // 5. L = T(η, n·v)/π · (B + B_g), added to the skin's diffuse radiance.
@@ -17,10 +17,11 @@
 @group(1) @binding(5) var atlas_normals: texture_2d_array<f32>;
 @group(1) @binding(6) var atlas_depths: texture_2d_array<f32>;
 
-// What the atlas holds at a texel: the point, its normal, the irradiance, n·p; ok when the
-// texel is on the medium.
+// What the atlas holds at a texel: the point at its centre and the depth, its normal, the
+// irradiance, n·p; ok when the texel is on the medium.
 struct Stored {
     x: vec3<f32>,
+    depth: f32,
     n: vec3<f32>,
     e: vec3<f32>,
     plane: f32,
@@ -41,6 +42,7 @@ fn stored_at(f: u32, texel: vec2<i32>) -> Stored {
     }
     let ir = textureLoad(atlas_irradiance, texel, i32(f), 0);
     s.x = atlas_point(f, vec2<f32>(texel) + 0.5, depth);
+    s.depth = depth;
     s.n = normalize(nm.xyz);
     s.e = ir.rgb;
     s.plane = ir.a;
@@ -89,27 +91,32 @@ fn rd_disk(c: u32, a: f32) -> f32 {
 }
 
 fn local_term(f: u32, sp: f32, x: vec3<f32>) -> vec3<f32> {
-    let max_r = i32(atlas.settings.x);
-    var r = max_r;
+    let half = i32(atlas.settings.x);
+    var radius_mm = atlas.kernel.x;
     if atlas.settings.y != 0u {
-        r = i32(round(clamp(sp, 0.0, 1.0) * f32(max_r)));
+        radius_mm = clamp(sp, 0.0, 1.0) * radius_mm;
     }
-    let centre = vec2<i32>(floor(atlas_texel(f, x)));
+    // Cells of side Δ (mm) tile [−R, R]²; in texels Δ / texel.
+    let cell_mm = 2.0 * radius_mm / f32(2 * half + 1);
+    let cell_texels = cell_mm / atlas.params.y;
+    let centre = atlas_texel(f, x);
     let a = atlas.axis[f].xyz;
-    let texel_area = atlas.params.y * atlas.params.y;
     var b = vec3<f32>(0.0);
-    for (var dy = -r; dy <= r; dy++) {
-        for (var dx = -r; dx <= r; dx++) {
-            let s = stored_at(f, centre + vec2<i32>(dx, dy));
+    for (var dy = -half; dy <= half; dy++) {
+        for (var dx = -half; dx <= half; dx++) {
+            let t = centre + vec2<f32>(f32(dx), f32(dy)) * cell_texels;
+            let s = stored_at(f, vec2<i32>(floor(t)));
             if !s.ok {
                 continue;
             }
-            let area = texel_area / max(dot(s.n, a), atlas.params.w);
+            let area = cell_mm * cell_mm / max(dot(s.n, a), atlas.params.w);
             if dx == 0 && dy == 0 {
-                let radius = sqrt(area / PI);
-                b += s.e * vec3<f32>(rd_disk(0u, radius), rd_disk(1u, radius), rd_disk(2u, radius));
+                let r = sqrt(area / PI);
+                b += s.e * vec3<f32>(rd_disk(0u, r), rd_disk(1u, r), rd_disk(2u, r));
             } else {
-                let rd = vec3<f32>(rd_between(0u, s.x, s.n, x), rd_between(1u, s.x, s.n, x), rd_between(2u, s.x, s.n, x));
+                // The tap's own point: its place in the face at the texel's depth.
+                let xj = atlas_point(f, t, s.depth);
+                let rd = vec3<f32>(rd_between(0u, xj, s.n, x), rd_between(1u, xj, s.n, x), rd_between(2u, xj, s.n, x));
                 b += s.e * rd * area;
             }
         }

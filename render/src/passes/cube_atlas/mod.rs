@@ -33,8 +33,10 @@ pub struct AtlasUniform {
     pub medium: [[f32; 4]; 3],
     /// η, texel (mm), face side (texels), smallest area cosine.
     pub params: [f32; 4],
-    /// Largest kernel half side, adaptive, self-occlusion test, global.
+    /// Kernel half side (taps), adaptive, self-occlusion test, global.
     pub settings: [u32; 4],
+    /// Kernel radius at sp = 1 (mm), unused ×3.
+    pub kernel: [f32; 4],
     /// Fresnel scale of the SH bands 0, 1, 2.
     pub sh_fresnel: [f32; 4],
 }
@@ -52,9 +54,11 @@ impl AtlasUniform {
             u.up[f] = v.extend(0.0).to_array();
         }
         u.cube = frame.centre.extend(frame.half_mm).to_array();
-        for (c, p) in medium_profiles(medium, ProfileModel::ClassicDipole).iter().enumerate() {
+        let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
+        for (c, p) in profiles.iter().enumerate() {
             u.medium[c] = p.classic_constants().map(|v| v as f32);
         }
+        u.kernel = [settings.kernel_radius_mm(1.0, &profiles), 0.0, 0.0, 0.0];
         u.params = [medium.eta as f32, frame.texel_mm(), settings.atlas_px as f32, MIN_AREA_COSINE];
         u.settings = [
             (settings.kernel_max - 1) / 2,
