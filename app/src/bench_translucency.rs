@@ -7,9 +7,9 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Parser};
 use rouge_model::medium::Medium;
 use rouge_model::thickness::BakeSettings;
+use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach};
 use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
-use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach};
 use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
 use rouge_render::translucency::{ReferenceImage, measure};
 use rouge_render::{Skin, SubsurfaceModel};
@@ -405,7 +405,8 @@ fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
         out.extend([1.0, 4.0, 16.0].map(|m| config(AtlasSettings { reach: Reach::MeanFreePaths(m), ..base })));
         out.push(config(AtlasSettings { adaptive: false, ..base }));
         out.extend(
-            [OcclusionTest::Off, OcclusionTest::PlaneOffset].map(|occlusion| config(AtlasSettings { occlusion, ..base })),
+            [OcclusionTest::Off, OcclusionTest::PlaneOffset]
+                .map(|occlusion| config(AtlasSettings { occlusion, ..base })),
         );
         out.push(config(AtlasSettings { global: false, ..base }));
     }

@@ -36,6 +36,10 @@ pub enum BenchCommand {
     /// ΔE2000 near discontinuities and the crawl between frames against a k×k supersampled
     /// reference, ms per frame, the paper's table 1 edge counts; `--plot F.png`.
     Aa(crate::bench_aa::AaBenchArgs),
+    /// Cube-atlas translucency ([Benmounah2009] Table 2): frames per second with and without
+    /// deformation (the mesh morphed toward its bounding sphere each frame) against triangle
+    /// count: the hm08 hand and head at subdivision levels 0-3 and the built-in sphere.
+    CubeAtlas(crate::bench_atlas::AtlasBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -100,6 +104,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Translucency(args) => crate::bench_translucency::run(args),
         BenchCommand::Deform(args) => crate::bench_deform::run(args),
         BenchCommand::Aa(args) => crate::bench_aa::run(args),
+        BenchCommand::CubeAtlas(args) => crate::bench_atlas::run(args),
     }
 }
 

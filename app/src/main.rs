@@ -7,6 +7,7 @@
 mod analyze_plot;
 mod atlas_args;
 mod bench_aa;
+mod bench_atlas;
 mod bench_deform;
 mod bench_translucency;
 mod cmd_analyze;

@@ -56,8 +56,10 @@
 //!   from the fragment, and on a curved surface (curvature κ) n′ − n ≈ κδ, so n′·p′ − n·p ≈ κδ|p|,
 //!   a millimetre at the scale of a head, the size of what it should tell apart.
 //! - [`OcclusionTest::TangentPlane`] (the default): the stored point p′ (from the atlas depth)
-//!   against the fragment's tangent plane, |n·(p′ − p)| < tolerance. On the same surface p′ − p
-//!   is tangent, so the difference is second order (κδ²/2); an occluder is off the plane.
+//!   against the fragment's tangent plane, |n·(p′ − p)| < tolerance, and the stored normal within
+//!   45° of the fragment's. On the same surface p′ − p is tangent, so the difference is second
+//!   order (κδ²/2); an occluder is off the plane, or, where it meets the surface edge-on (a
+//!   closed mouth's slit, an eyelid's rim), turned away from it.
 //! - [`OcclusionTest::Off`]: the best face, always (the paper's ablation).
 //!
 //! Domain: a closed or open triangle mesh of any size (mm); media as [`crate::diffusion`].
@@ -71,6 +73,9 @@ use rouge_model::mesh::Bounds;
 /// Below this n·a a texel's surface area is taken as texel²/[`MIN_AREA_COSINE`] (a face that
 /// sees the surface edge-on would otherwise give it an unbounded area).
 pub const MIN_AREA_COSINE: f32 = 0.2;
+
+/// The tangent-plane test wants the stored normal within 45° of the point's.
+pub const MAX_NORMAL_ANGLE_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 
 /// How a point is found on a face (module doc).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -154,7 +159,7 @@ impl AtlasSettings {
         if !(16..=4096).contains(&self.atlas_px) {
             return Err(RenderError::Invalid(format!("cube atlas size {}: 16 to 4096 texels", self.atlas_px)));
         }
-        if self.kernel_max % 2 == 0 || !(1..=63).contains(&self.kernel_max) {
+        if self.kernel_max.is_multiple_of(2) || !(1..=63).contains(&self.kernel_max) {
             return Err(RenderError::Invalid(format!(
                 "cube atlas kernel {}: an odd number of taps a side from 1 to 63",
                 self.kernel_max
@@ -309,14 +314,19 @@ impl AtlasFrame {
     }
 
     /// Whether the texel of face `f` that `x` (normal `n`) projects to holds `x` itself, given
-    /// what the atlas stored there: the point `stored` and its n′·(p′ − c) `stored_plane_mm`.
-    /// Tolerances: half a texel for the tangent plane, two texels for the paper's n·p.
-    pub fn holds(&self, test: OcclusionTest, x: Vec3, n: Vec3, stored: Vec3, stored_plane_mm: f32) -> bool {
+    /// what the atlas stored there: the point `stored`, its normal `stored_normal` and its
+    /// n′·(p′ − c) `stored_plane_mm`. Tolerances: half a texel for the tangent plane, two texels
+    /// for the paper's n·p. The tangent-plane test also wants the normals within
+    /// [`MAX_NORMAL_ANGLE_COS`]: where a fold meets the surface edge-on (the inner lip at a closed
+    /// mouth's slit, an eyelid's rim) the occluder's point can lie in the tangent plane too.
+    pub fn holds(&self, test: OcclusionTest, x: Vec3, n: Vec3, stored: Vec3, stored_normal: Vec3, stored_plane_mm: f32) -> bool {
         let texel = self.texel_mm();
         match test {
             OcclusionTest::Off => true,
             OcclusionTest::PlaneOffset => (stored_plane_mm - n.dot(x - self.centre)).abs() < 2.0 * texel,
-            OcclusionTest::TangentPlane => n.dot(stored - x).abs() < 0.5 * texel + 0.01,
+            OcclusionTest::TangentPlane => {
+                n.dot(stored - x).abs() < 0.5 * texel + 0.01 && n.dot(stored_normal) > MAX_NORMAL_ANGLE_COS
+            }
         }
     }
 }

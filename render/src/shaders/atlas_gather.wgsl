@@ -72,7 +72,8 @@ fn holds(f: u32, x: vec3<f32>, n: vec3<f32>) -> bool {
         return abs(plane - dot(n, x - atlas.cube.xyz)) < 2.0 * texel;
     }
     let p = atlas_point(f, vec2<f32>(depth_texel) + 0.5, depth);
-    return abs(dot(n, p - x)) < 0.5 * texel + 0.01;
+    let stored_n = normalize(textureLoad(atlas_normals, depth_texel, i32(f), 0).xyz);
+    return abs(dot(n, p - x)) < 0.5 * texel + 0.01 && dot(n, stored_n) > 0.70710678;
 }
 
 // [Benmounah2009] Table 1 corrected (diffusion::ChannelProfile::classic_between), channel c.
@@ -90,7 +91,7 @@ fn rd_disk(c: u32, a: f32) -> f32 {
     return 0.5 * m.x * (exp(-m.y * m.z) - m.z * exp(-m.y * dr) / dr + exp(-m.y * m.w) - m.w * exp(-m.y * dv) / dv);
 }
 
-fn local_term(f: u32, sp: f32, x: vec3<f32>) -> vec3<f32> {
+fn local_term(f: u32, sp: f32, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let half = i32(atlas.settings.x);
     var radius_mm = atlas.kernel.x;
     if atlas.settings.y != 0u {
@@ -109,7 +110,9 @@ fn local_term(f: u32, sp: f32, x: vec3<f32>) -> vec3<f32> {
             if !s.ok {
                 continue;
             }
-            let area = cell_mm * cell_mm / max(dot(s.n, a), atlas.params.w);
+            // The surface a cell covers, times the agreement of the normals (1 on flat skin; the
+            // dipole's plane breaks where the entry surface turns away from the exit, in folds).
+            let area = cell_mm * cell_mm / max(dot(s.n, a), atlas.params.w) * max(dot(s.n, n), 0.0);
             if dx == 0 && dy == 0 {
                 let r = sqrt(area / PI);
                 b += s.e * vec3<f32>(rd_disk(0u, r), rd_disk(1u, r), rd_disk(2u, r));
@@ -193,7 +196,7 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
     for (var i = 0u; i < count; i++) {
         if holds(order[i], x, n) {
             selected = order[i];
-            b = local_term(order[i], sps[i], x);
+            b = local_term(order[i], sps[i], x, n);
             break;
         }
     }

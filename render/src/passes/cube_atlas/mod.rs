@@ -120,8 +120,10 @@ impl AtlasImage {
         if t.x < 0.0 || t.y < 0.0 || t.x >= px || t.y >= px {
             return false;
         }
+        let i = (t.y as u32 * self.frame.px + t.x as u32) as usize;
+        let normal = glam::Vec4::from_array(self.normals[f][i]).truncate();
         match self.stored(f, t.x as u32, t.y as u32) {
-            Some((p, plane)) => self.frame.holds(test, x, n, p, plane),
+            Some((p, plane)) => self.frame.holds(test, x, n, p, normal, plane),
             None => false,
         }
     }
