@@ -319,7 +319,15 @@ impl AtlasFrame {
     /// for the paper's n·p. The tangent-plane test also wants the normals within
     /// [`MAX_NORMAL_ANGLE_COS`]: where a fold meets the surface edge-on (the inner lip at a closed
     /// mouth's slit, an eyelid's rim) the occluder's point can lie in the tangent plane too.
-    pub fn holds(&self, test: OcclusionTest, x: Vec3, n: Vec3, stored: Vec3, stored_normal: Vec3, stored_plane_mm: f32) -> bool {
+    pub fn holds(
+        &self,
+        test: OcclusionTest,
+        x: Vec3,
+        n: Vec3,
+        stored: Vec3,
+        stored_normal: Vec3,
+        stored_plane_mm: f32,
+    ) -> bool {
         let texel = self.texel_mm();
         match test {
             OcclusionTest::Off => true,

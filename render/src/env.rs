@@ -385,7 +385,15 @@ impl ShIrradiance {
     pub fn fresnel_transmitted(&self, eta: f64) -> Self {
         let kt = fresnel_band_kernels(eta);
         let ratio = [kt[0] / A0, kt[1] / A1, kt[2] / A2];
-        let band = |i: usize| if i == 0 { 0 } else if i < 4 { 1 } else { 2 };
+        let band = |i: usize| {
+            if i == 0 {
+                0
+            } else if i < 4 {
+                1
+            } else {
+                2
+            }
+        };
         let mut out = *self;
         for (i, c) in out.coeffs.iter_mut().enumerate() {
             *c = c.map(|v| (f64::from(v) * ratio[band(i)]) as f32);

@@ -8,14 +8,14 @@ use crate::frame::{FramePlan, FrameSettings, Step, Uploaded};
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
 use crate::passes::composite::CompositePass;
+use crate::passes::cube_atlas::gather::AtlasGatherPass;
+use crate::passes::cube_atlas::irradiance::AtlasIrradiancePass;
+use crate::passes::cube_atlas::{AtlasResources, AtlasUniform};
 use crate::passes::depth_copy::{self, DepthCopyPass};
 use crate::passes::dipole::combine::DipoleCombinePass;
 use crate::passes::dipole::light::DipoleLightPass;
 use crate::passes::dipole::radiance::DipoleRadiancePass;
 use crate::passes::dipole::{DipoleResources, DipoleUniform, state_key};
-use crate::passes::cube_atlas::gather::AtlasGatherPass;
-use crate::passes::cube_atlas::irradiance::AtlasIrradiancePass;
-use crate::passes::cube_atlas::{AtlasResources, AtlasUniform};
 use crate::passes::edge_overdraw::{EdgeOverdrawPass, GpuEdges};
 use crate::passes::gbuffer::GbufferPass;
 use crate::passes::lighting::LightingPass;
@@ -632,7 +632,8 @@ impl Renderer {
     /// Without a frame, or if the GPU fails.
     pub fn capture(&self) -> Result<FrameCapture> {
         let last = self.last_frame()?;
-        let half4 = |target: Target| -> Result<Vec<[f32; 4]>> { Ok(crate::wgpu_util::halves_to_f32(&self.read(target, 8)?)) };
+        let half4 =
+            |target: Target| -> Result<Vec<[f32; 4]>> { Ok(crate::wgpu_util::halves_to_f32(&self.read(target, 8)?)) };
         let diffuse = half4(Target::Diffuse)?;
         let scattered = if last.sss_ran { half4(Target::Scattered)? } else { diffuse.clone() };
         let layers = last.variant.layers;
@@ -655,4 +656,3 @@ impl Renderer {
         })
     }
 }
-

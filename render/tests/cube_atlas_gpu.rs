@@ -88,7 +88,8 @@ fn the_gather_converges_to_the_total_diffuse_reflectance_on_a_flat_face() {
     // The kernel's reach grows: the radiosity grows to R_d.
     let mut last = [0.0f64; 3];
     for reach_mfp in [0.5f32, 1.0, 2.0, 4.0, 8.0] {
-        let mean = centre(AtlasSettings { kernel_max: 31, reach: Reach::MeanFreePaths(reach_mfp), ..Default::default() });
+        let mean =
+            centre(AtlasSettings { kernel_max: 31, reach: Reach::MeanFreePaths(reach_mfp), ..Default::default() });
         println!("reach {reach_mfp} mfp: {mean:?}");
         for ch in 0..3 {
             assert!(mean[ch] > last[ch], "reach {reach_mfp} channel {ch}: {} after {}", mean[ch], last[ch]);
@@ -97,7 +98,12 @@ fn the_gather_converges_to_the_total_diffuse_reflectance_on_a_flat_face() {
     }
     for ch in 0..3 {
         println!("channel {ch}: R_d·E/π {}", expected[ch]);
-        assert!((last[ch] - expected[ch]).abs() < 0.02 * expected[ch], "channel {ch}: {} against {}", last[ch], expected[ch]);
+        assert!(
+            (last[ch] - expected[ch]).abs() < 0.02 * expected[ch],
+            "channel {ch}: {} against {}",
+            last[ch],
+            expected[ch]
+        );
     }
     // At a fixed reach the taps change the quadrature: a single centre disk is exact on a flat,
     // evenly lit face, and fine cells agree with it; coarse cells (5 over 3.3 mm, 1.3 mm each,
@@ -152,7 +158,10 @@ fn fold() -> TriangleMesh {
     let (t, b) = (Vec3::Y.cross(n).normalize(), Vec3::Y);
     let mut m = TriangleMesh::flat_square(1.0);
     let quad = |c: Vec3, u: Vec3, v: Vec3| [c - u - v, c + u - v, c + u + v, c - u + v];
-    m.positions = quad(Vec3::ZERO, t * 5.0, b * 5.0).into_iter().chain(quad(Vec3::new(-2.0, 0.0, 4.0), Vec3::X * 6.0, Vec3::Y * 8.0)).collect();
+    m.positions = quad(Vec3::ZERO, t * 5.0, b * 5.0)
+        .into_iter()
+        .chain(quad(Vec3::new(-2.0, 0.0, 4.0), Vec3::X * 6.0, Vec3::Y * 8.0))
+        .collect();
     m.normals = vec![n, n, n, n, Vec3::Z, Vec3::Z, Vec3::Z, Vec3::Z];
     m.uvs = vec![Vec2::ZERO; 8];
     m.indices = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];

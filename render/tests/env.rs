@@ -259,3 +259,54 @@ fn env_exr_errors_name_the_file_and_the_reason() {
     let msg = load_error(&luminance);
     assert!(msg.contains("luminance.exr") && msg.contains("no layer has R, G and B channels (channels: Y)"), "{msg}");
 }
+
+#[test]
+fn env_fresnel_transmitted_irradiance_matches_brute_force() {
+    use rouge_render::diffusion::{fresnel_dielectric, fresnel_moment};
+    use rouge_render::env::fresnel_band_kernels;
+    // At η = 1 nothing is reflected: the plain cosine's kernels.
+    let k = fresnel_band_kernels(1.0);
+    let plain = [std::f64::consts::PI, 2.0 * std::f64::consts::PI / 3.0, std::f64::consts::PI / 4.0];
+    for (a, b) in k.iter().zip(plain) {
+        assert!((a - b).abs() < 1e-9 * b, "{k:?}");
+    }
+    // A uniform environment: E_t = πL(1 − 2∫F μ dμ).
+    let eta = 1.4;
+    let e = ShIrradiance::constant([1.0; 3]).fresnel_transmitted(eta).eval(Vec3::Y)[0] as f64;
+    let expected = std::f64::consts::PI * (1.0 - 2.0 * fresnel_moment(eta, 1));
+    assert!((e - expected).abs() < 1e-5 * expected, "uniform: {e} vs {expected}");
+    // The studio dome is band-limited (l ≤ 2), so the zonal form is exact for it: against a
+    // brute-force sum over 200 000 directions (Fibonacci sphere) of L T(n·ω) max(0, n·ω).
+    let sh = EnvMap::from_fn(256, 128, studio_radiance).sh_irradiance().fresnel_transmitted(eta);
+    let count = 200_000;
+    let dirs: Vec<Vec3> = (0..count)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f32 + 0.5) / count as f32;
+            let r = (1.0 - y * y).sqrt();
+            let phi = i as f32 * PI * (3.0 - 5f32.sqrt());
+            Vec3::new(r * phi.cos(), y, r * phi.sin())
+        })
+        .collect();
+    for n in normals(40) {
+        let mut brute = [0.0f64; 3];
+        for d in &dirs {
+            let c = n.dot(*d);
+            if c > 0.0 {
+                let t = 1.0 - fresnel_dielectric(c as f64, eta);
+                let l = studio_radiance(*d);
+                for ch in 0..3 {
+                    brute[ch] += l[ch] as f64 * t * c as f64 * 4.0 * std::f64::consts::PI / count as f64;
+                }
+            }
+        }
+        let got = sh.eval(n);
+        for ch in 0..3 {
+            assert!(
+                (got[ch] as f64 - brute[ch]).abs() < 2e-3 * brute[ch],
+                "n {n} ch {ch}: {} vs {}",
+                got[ch],
+                brute[ch]
+            );
+        }
+    }
+}

@@ -61,7 +61,8 @@ impl AtlasGatherPass {
         })?;
         let [normal, albedo, depth] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth) = (normal?, albedo?, depth?);
-        let (irradiance, normals, depths) = (array_view(&res.irradiance), array_view(&res.normals), array_view(&res.depths));
+        let (irradiance, normals, depths) =
+            (array_view(&res.irradiance), array_view(&res.normals), array_view(&res.depths));
         let diffuse = targets.view(Target::Diffuse)?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("AtlasGatherPass::group"),

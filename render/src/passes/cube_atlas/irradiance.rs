@@ -64,8 +64,11 @@ impl AtlasIrradiancePass {
             let layer = |t| super::super::dipole::layer_view(t, face);
             let (irradiance, normals, depth) = (layer(&res.irradiance), layer(&res.normals), layer(&res.depths));
             let clear = wgpu::Color::TRANSPARENT;
-            let mut pass =
-                enc.begin("atlas irradiance", &[color(&irradiance, clear), color(&normals, clear)], depth_clear(&depth));
+            let mut pass = enc.begin(
+                "atlas irradiance",
+                &[color(&irradiance, clear), color(&normals, clear)],
+                depth_clear(&depth),
+            );
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &shared.frame_group, &[]);
             pass.set_bind_group(1, &group, &[]);

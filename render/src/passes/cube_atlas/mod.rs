@@ -142,11 +142,7 @@ impl AtlasResources {
         use wgpu::TextureUsages as U;
         let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
         let t = |label, format| crate::wgpu_util::texture(device, label, (px, px), 6, format, usage, &[]);
-        (
-            t("Atlas::irradiance", HDR_FORMAT),
-            t("Atlas::normals", HDR_FORMAT),
-            t("Atlas::depths", DEPTH_FORMAT),
-        )
+        (t("Atlas::irradiance", HDR_FORMAT), t("Atlas::normals", HDR_FORMAT), t("Atlas::depths", DEPTH_FORMAT))
     }
 
     /// Sizes the atlas for `settings`.
