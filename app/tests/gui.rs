@@ -216,6 +216,25 @@ fn the_subsurface_panel_switches_to_translucency_once_the_bake_lands() {
 }
 
 #[test]
+fn the_cube_atlas_follows_the_morph_and_restores_the_mesh() {
+    use rouge_app::gui::SubsurfaceChoice;
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    h.state_mut().set_subsurface(SubsurfaceChoice::CubeAtlas);
+    h.run_steps(2);
+    assert_eq!(h.state().subsurface_in_use().0, "cube-atlas");
+    h.state_mut().set_morph(0.6);
+    h.run_steps(2);
+    assert_eq!(h.state().morph(), 0.6);
+    assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
+    // Leaving the model puts the mesh back.
+    h.state_mut().set_subsurface(SubsurfaceChoice::ScreenSpace);
+    h.run_steps(2);
+    assert_eq!(h.state().morph(), 0.0);
+    assert_eq!(h.state().subsurface_in_use().0, "screen-space");
+}
+
+#[test]
 fn paint_on_the_scanned_head_when_available() {
     let Some(path) = std::env::var_os("ROUGE_SCAN_HEAD") else {
         eprintln!(

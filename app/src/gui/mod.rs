@@ -324,6 +324,7 @@ impl eframe::App for RougeApp {
         }
         self.shortcuts(ui.ctx());
         self.animate_face(ui.ctx());
+        self.animate_morph(ui.ctx());
         self.autosave();
         egui::Panel::top("menu").show(ui, |ui| self.menu(ui));
         egui::Panel::bottom("status").show(ui, |ui| {

@@ -1,6 +1,8 @@
 //! The Subsurface panel: which subsurface model the skin uses in the viewport: the screen-space
 //! kernel (the default), the fast thickness translucency ([BarreBrisebois2011]) with a baked
-//! local thickness or one read per light from its shadow map, or none. The bake runs on a
+//! local thickness or one read per light from its shadow map, the directional dipole, the
+//! cube-map atlas dipole ([Benmounah2009], with the paper's deformation test: the head morphed
+//! toward its bounding sphere, by hand or animated), or none. The bake runs on a
 //! background thread (cached on disk by mesh: instant the second time); until it lands the
 //! viewport keeps the screen-space kernel and says so.
 //!
@@ -25,16 +27,32 @@ pub enum SubsurfaceChoice {
     ThicknessPerLight,
     /// The directional dipole of skin1 ([Frisvad2014]), accumulated over frames while still.
     DirectionalDipole,
+    /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame ([Benmounah2009]).
+    CubeAtlas,
     /// No subsurface scattering.
     None,
 }
 
+/// The paper's deformation test in the viewport: the mesh morphed toward its bounding sphere.
+#[derive(Debug, Default)]
+pub(super) struct MorphPreview {
+    /// 0 (the mesh) to 1 (the sphere).
+    pub(super) t: f32,
+    /// Sweeping t back and forth.
+    pub(super) animate: bool,
+    clock_s: f64,
+    last_tick: Option<Instant>,
+    /// The mesh before the morph, while t > 0.
+    base: Option<TriangleMesh>,
+}
+
 impl SubsurfaceChoice {
-    const ALL: [SubsurfaceChoice; 5] = [
+    const ALL: [SubsurfaceChoice; 6] = [
         SubsurfaceChoice::ScreenSpace,
         SubsurfaceChoice::ThicknessBaked,
         SubsurfaceChoice::ThicknessPerLight,
         SubsurfaceChoice::DirectionalDipole,
+        SubsurfaceChoice::CubeAtlas,
         SubsurfaceChoice::None,
     ];
 
@@ -44,6 +62,7 @@ impl SubsurfaceChoice {
             SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
             SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
             SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
+            SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
             SubsurfaceChoice::None => "None",
         }
     }
@@ -108,14 +127,17 @@ impl RougeApp {
             });
             self.gpu.local_thickness = LocalThicknessState::Baking(rx);
         }
-        // The dipole needs a physical medium: the app's skin takes skin1's for it.
-        self.view.scene.skin.medium =
-            (choice == SubsurfaceChoice::DirectionalDipole).then(|| skin1().cloned()).flatten();
+        // The dipoles need a physical medium: the app's skin takes skin1's for them.
+        let physical = matches!(choice, SubsurfaceChoice::DirectionalDipole | SubsurfaceChoice::CubeAtlas);
+        self.view.scene.skin.medium = physical.then(|| skin1().cloned()).flatten();
         self.view.scene.skin.subsurface = match choice {
             SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
                 kind: rouge_render::passes::dipole::DipoleKind::Directional,
                 settings: rouge_render::passes::dipole::DipoleSettings::default(),
             },
+            SubsurfaceChoice::CubeAtlas => {
+                SubsurfaceModel::CubeAtlas { settings: rouge_render::cube_atlas::AtlasSettings::default() }
+            }
             SubsurfaceChoice::ScreenSpace => SubsurfaceModel::skin_screen_space(),
             SubsurfaceChoice::None => SubsurfaceModel::None,
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false),
@@ -153,6 +175,11 @@ impl RougeApp {
         if self.view.subsurface != before {
             self.view.needs_render = true;
         }
+        if self.view.subsurface == SubsurfaceChoice::CubeAtlas {
+            self.morph_controls(ui);
+        } else if self.view.morph.t != 0.0 {
+            self.set_morph(0.0);
+        }
         match (&self.gpu.local_thickness, self.view.subsurface) {
             (LocalThicknessState::Baking(_), SubsurfaceChoice::ThicknessBaked) => {
                 ui.horizontal(|ui| {
@@ -165,5 +192,67 @@ impl RougeApp {
             }
             _ => {}
         }
+    }
+
+    /// The morph slider and its animation (the cube atlas's deformation test).
+    fn morph_controls(&mut self, ui: &mut egui::Ui) {
+        let mut t = self.view.morph.t;
+        let slider = ui
+            .add_enabled(!self.view.morph.animate, egui::Slider::new(&mut t, 0.0..=1.0).text("morph to sphere"))
+            .on_hover_text(
+                "The paper's deformation test: the mesh moved toward its bounding sphere. The atlas is \
+                 drawn from the current positions every frame, so the translucency follows. A preview: \
+                 the brush paints on the unmorphed head; set it back to 0 to paint.",
+            );
+        if slider.changed() {
+            self.set_morph(t);
+        }
+        ui.checkbox(&mut self.view.morph.animate, "Animate the morph");
+    }
+
+    /// Morphs the viewport's mesh `t` of the way toward its bounding sphere (0 restores it).
+    pub fn set_morph(&mut self, t: f32) {
+        let t = t.clamp(0.0, 1.0);
+        let base = match self.view.morph.base.take() {
+            Some(base) => base,
+            None => match self.gpu.mesh_for_bake() {
+                Some(mesh) => mesh,
+                None => return,
+            },
+        };
+        let albedo = self.view.skin_albedo();
+        let shown = if t == 0.0 {
+            Ok(base.clone())
+        } else {
+            rouge_model::thickness::morph_to_bounding_sphere(&base, t).map_err(|e| e.to_string())
+        };
+        match shown.and_then(|mesh| self.gpu.set_posed_mesh(mesh, albedo).map_err(|e| e.to_string())) {
+            Ok(()) => self.view.morph.t = t,
+            Err(e) => self.ui.message = Some((false, format!("morph: {e}"))),
+        }
+        if self.view.morph.t != 0.0 {
+            self.view.morph.base = Some(base);
+        }
+        self.view.needs_render = true;
+    }
+
+    /// How far the viewport's mesh is morphed toward its bounding sphere.
+    pub fn morph(&self) -> f32 {
+        self.view.morph.t
+    }
+
+    /// Advances the morph's animation: t = (1 − cos)/2 over four seconds.
+    pub(super) fn animate_morph(&mut self, ctx: &egui::Context) {
+        let m = &mut self.view.morph;
+        if !m.animate || self.view.subsurface != SubsurfaceChoice::CubeAtlas {
+            m.last_tick = None;
+            return;
+        }
+        let now = Instant::now();
+        m.clock_s += m.last_tick.map_or(0.0, |t| (now - t).as_secs_f64());
+        m.last_tick = Some(now);
+        let t = (0.5 * (1.0 - (m.clock_s * std::f64::consts::PI / 2.0).cos())) as f32;
+        self.set_morph(t);
+        ctx.request_repaint();
     }
 }

@@ -30,6 +30,8 @@ pub(super) struct ViewState {
     pub(super) scene: Scene,
     /// The skin's subsurface model in the viewport.
     pub(super) subsurface: SubsurfaceChoice,
+    /// The cube atlas's deformation test (the mesh morphed toward its bounding sphere).
+    pub(super) morph: super::translucency::MorphPreview,
     pub(super) light_yaw_deg: f32,
     pub(super) light_pitch_deg: f32,
     pub(super) light_intensity: f32,
@@ -59,6 +61,7 @@ impl Default for ViewState {
             orbit: Orbit::default(),
             scene: Scene::studio(),
             subsurface: SubsurfaceChoice::ScreenSpace,
+            morph: Default::default(),
             light_yaw_deg: -34.0,
             light_pitch_deg: 27.0,
             light_intensity: 1.0,
