@@ -1,0 +1,109 @@
+"""The cube-atlas dipole ([Benmounah2009]) against the path tracer, and deforming.
+
+    python python/cube_atlas_figure.py --rouge target/release/rouge
+
+Writes two sheets (docs/BENCHMARKS.md, docs/TRANSLUCENCY.md):
+- docs/images/cube_atlas.png: per reference scene, Mitsuba 3, no subsurface term, the standard
+  dipole's radiance maps, the cube atlas with the paper's kernel reach (one mean free path) and
+  with Rouge's default (the profile's support), then the absolute error of both atlas frames
+  (linear radiance, 0 to --error-max, black to white);
+- docs/images/cube_atlas_deform.png: the cube atlas on deforming meshes: the backlit hand morphed
+  toward its bounding sphere (the paper's test, t = 0, 0.2, 0.4, 0.6; at t = 1 the two sides of each finger land on one sphere) and the front-lit default head
+  with expressions (neutral, smile, surprise, talk). The atlas is drawn from the current positions
+  every frame.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import mitsuba_ref  # noqa: E402
+from thickness_figure import REFS, render, tone  # noqa: E402
+
+SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble"]
+ATLAS = ["--subsurface", "cube-atlas"]
+MODELS = [
+    ("none", ["--subsurface", "none"]),
+    ("standard dipole", ["--subsurface", "standard-dipole", "--dipole-frames", "8"]),
+    ("atlas, 1 mfp", [*ATLAS, "--atlas-reach", "1"]),
+    ("atlas, support", ATLAS),
+]
+DEFORM = [
+    ("hand-skin1-back", [["--morph", t] for t in ["0", "0.2", "0.4", "0.6"]]),
+    ("head-skin1-front-left", [[], ["--expression", "smile"], ["--expression", "surprise"], ["--expression", "talk"]]),
+]
+DEFORM_COLUMNS = ["morph 0 / neutral", "morph 0.2 / smile", "morph 0.4 / surprise", "morph 0.6 / talk"]
+
+
+def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
+    from PIL import Image, ImageDraw
+
+    pad, head = 4, 18
+    w = len(columns) * (size + pad) + pad
+    h = head + len(rows) * (size + head + pad)
+    out = Image.new("RGB", (w, h), (255, 255, 255))
+    draw = ImageDraw.Draw(out)
+    for i, label in enumerate(columns):
+        draw.text((pad + i * (size + pad) + 4, 3), label, fill=(0, 0, 0))
+    for r, (name, tiles) in enumerate(rows):
+        y = head + r * (size + head + pad)
+        draw.text((pad + 4, y + 2), name, fill=(0, 0, 0))
+        for i, tile in enumerate(tiles):
+            out.paste(Image.fromarray(tile).resize((size, size), Image.NEAREST), (pad + i * (size + pad), y + head))
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
+    ap.add_argument("--out-dir", type=Path, default=HERE.parent / "docs" / "images")
+    ap.add_argument("--exposure", type=float, default=8.0)
+    ap.add_argument("--error-max", type=float, default=0.1)
+    ap.add_argument("--size", type=int, default=176, help="each tile's side, pixels")
+    a = ap.parse_args()
+
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene in SCENES:
+            sidecar = json.loads((REFS / f"{scene}.json").read_text())
+            ref = mitsuba_ref.read_exr(REFS / sidecar["image"])
+            covered = ref[..., 3] > 0.999
+            tiles, errors = [tone(ref[..., :3], a.exposure)], []
+            for name, extra in MODELS:
+                img = render(a.rouge, sidecar["rouge_options"], extra, Path(tmp) / f"{scene}-{len(tiles)}.exr")
+                img[~covered] = 0.0
+                tiles.append(tone(img, a.exposure))
+                if name.startswith("atlas"):
+                    err = np.clip(np.abs(img - ref[..., :3]).mean(axis=-1) / a.error_max, 0.0, 1.0)
+                    errors.append((err[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
+            rows.append((scene, tiles + errors))
+        columns = ["Mitsuba 3", *(m[0] for m in MODELS), "|error| 1 mfp", "|error| support"]
+        a.out_dir.mkdir(parents=True, exist_ok=True)
+        sheet(columns, rows, a.size).save(a.out_dir / "cube_atlas.png")
+
+        rows = []
+        for scene, variants in DEFORM:
+            base = json.loads((REFS / f"{scene}.json").read_text())["rouge_options"]
+            tiles = [
+                tone(render(a.rouge, base, [*ATLAS, *extra], Path(tmp) / f"{scene}-deform-{i}.exr"), a.exposure)
+                for i, extra in enumerate(variants)
+            ]
+            rows.append((f"{scene}, cube atlas", tiles))
+        sheet(DEFORM_COLUMNS, rows, a.size).save(a.out_dir / "cube_atlas_deform.png")
+    print(f"wrote {a.out_dir / 'cube_atlas.png'} and {a.out_dir / 'cube_atlas_deform.png'}")
+
+
+if __name__ == "__main__":
+    main()
