@@ -69,7 +69,7 @@ impl GpuLook {
             device,
             "GpuLook::maps (none)",
             (1, 1),
-            min_layers,
+            crate::targets::array_layers(1, min_layers),
             wgpu::TextureFormat::R16Float,
             wgpu::TextureUsages::TEXTURE_BINDING,
             &[],
@@ -106,7 +106,7 @@ impl GpuLook {
             return Err(RenderError::Invalid("layer thickness multipliers must be finite and ≥ 0".into()));
         }
         let (w, h) = layers.iter().fold((1, 1), |(w, h), l| (w.max(l.map.width), h.max(l.map.height)));
-        let count = (layers.len() as u32).max(min_layers).max(1);
+        let count = crate::targets::array_layers(layers.len() as u32, min_layers);
         let maps = texture(
             device,
             "GpuLook::maps",

@@ -162,7 +162,7 @@ impl Renderer {
             edge_stats: Default::default(),
             edge_gpu_classify: false,
             dipole: DipoleResources::new(device, formats.min_array_layers),
-            atlas: AtlasResources::new(device),
+            atlas: AtlasResources::new(device, formats.min_array_layers),
             mesh_generation: 0,
             shared,
         }
@@ -487,7 +487,13 @@ impl Renderer {
     /// # Errors
     /// Before any frame used the cube-atlas model; GPU failures.
     pub fn atlas_image(&self) -> Result<crate::passes::cube_atlas::AtlasImage> {
-        self.atlas.read(&self.shared.device, &self.shared.queue)
+        if !self.shared.formats.copy_depth {
+            return Err(RenderError::Invalid(
+                "reading the cube atlas back copies its depth, which this backend (GL) cannot".into(),
+            ));
+        }
+        let device = &self.shared.device;
+        validated(device, "atlas readback", || self.atlas.read(device, &self.shared.queue))
     }
 
     /// Frames of samples the dipole models' radiance maps hold (progressive accumulation).

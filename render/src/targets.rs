@@ -39,7 +39,8 @@ pub struct Formats {
     pub linear: wgpu::TextureFormat,
     /// Fewest layers of a texture sampled as an array (shadow maps, thickness maps): 1, or 2 on
     /// GL, which creates a one-layer texture as `TEXTURE_2D`, so that an array view of it samples
-    /// nothing (every shadow lookup returned 0 before this; wgpu issue 2161).
+    /// nothing (every shadow lookup returned 0 before this; wgpu issue 2161). Allocate through
+    /// [`array_layers`], which also steers GL clear of cube maps.
     pub min_array_layers: u32,
     /// Whether depth textures can be copied to buffers (`DEPTH_TEXTURE_AND_BUFFER_COPIES`, not
     /// on GL); where not, depth is read back through [`crate::passes::depth_copy`].
@@ -73,6 +74,16 @@ impl Formats {
             },
         }
     }
+}
+
+/// Layers to allocate for a texture of `n` layers sampled as an array, on a device whose
+/// [`Formats::min_array_layers`] is `min_layers`: at least `min_layers`, and where that is above 1
+/// (wgpu's GL backend) never a multiple of 6: GL makes a square texture of 6k layers a cube map
+/// (wgpu-hal 30, `gles::Texture::get_info_from_desc`), and an array view of it then samples
+/// nothing (the cube atlas's six faces read black on GL before this; a six-layer look would too).
+pub fn array_layers(n: u32, min_layers: u32) -> u32 {
+    let n = n.max(min_layers).max(1);
+    if min_layers > 1 && n % 6 == 0 { n + 1 } else { n }
 }
 
 /// A view of a display frame for egui, which wants sRGB-encoded values read as they are
@@ -207,5 +218,21 @@ impl TargetPool {
         self.get(target)
             .map(crate::wgpu_util::view)
             .ok_or_else(|| RenderError::Gpu(format!("target {} was not created by the frame plan", target.name())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::array_layers;
+
+    #[test]
+    fn gl_arrays_never_take_a_cube_maps_layer_count() {
+        assert_eq!(array_layers(1, 1), 1);
+        assert_eq!(array_layers(6, 1), 6);
+        assert_eq!(array_layers(0, 2), 2);
+        assert_eq!(array_layers(1, 2), 2);
+        assert_eq!(array_layers(6, 2), 7);
+        assert_eq!(array_layers(12, 2), 13);
+        assert_eq!(array_layers(8, 2), 8);
     }
 }

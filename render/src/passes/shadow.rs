@@ -54,7 +54,7 @@ impl ShadowPass {
         if count == 0 || self.maps.depth_or_array_layers() >= count && self.maps.width() == SHADOW_MAP_SIZE {
             return;
         }
-        let layers = count.max(shared.formats.min_array_layers);
+        let layers = crate::targets::array_layers(count, shared.formats.min_array_layers);
         self.maps = Self::create_maps(&shared.device, (SHADOW_MAP_SIZE, SHADOW_MAP_SIZE), layers, "ShadowPass::maps");
     }
 

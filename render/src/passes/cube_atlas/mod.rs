@@ -86,6 +86,7 @@ pub struct AtlasResources {
     pub depths: wgpu::Texture,
     /// The cube the atlas was last drawn for.
     pub frame: Option<AtlasFrame>,
+    min_layers: u32,
 }
 
 /// The atlas read back to the CPU (tests, inspection): per face, row-major texels.
@@ -130,25 +131,28 @@ impl AtlasImage {
 }
 
 impl AtlasResources {
-    /// Stand-ins of 1×1 until a frame needs the atlas.
-    pub fn new(device: &wgpu::Device) -> AtlasResources {
+    /// Stand-ins of 1×1 until a frame needs the atlas, on a device whose
+    /// [`crate::targets::Formats::min_array_layers`] is `min_layers`.
+    pub fn new(device: &wgpu::Device, min_layers: u32) -> AtlasResources {
         let uniform = crate::wgpu_util::uniform_buffer(device, "Atlas::uniform", std::mem::size_of::<AtlasUniform>());
-        let (irradiance, normals, depths) = Self::textures(device, 1);
-        AtlasResources { uniform, irradiance, normals, depths, frame: None }
+        let (irradiance, normals, depths) = Self::textures(device, 1, min_layers);
+        AtlasResources { uniform, irradiance, normals, depths, frame: None, min_layers }
     }
 
-    fn textures(device: &wgpu::Device, px: u32) -> (wgpu::Texture, wgpu::Texture, wgpu::Texture) {
+    /// Six faces (seven layers on GL: [`crate::targets::array_layers`]).
+    fn textures(device: &wgpu::Device, px: u32, min_layers: u32) -> (wgpu::Texture, wgpu::Texture, wgpu::Texture) {
+        let layers = crate::targets::array_layers(6, min_layers);
         use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
         use wgpu::TextureUsages as U;
         let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
-        let t = |label, format| crate::wgpu_util::texture(device, label, (px, px), 6, format, usage, &[]);
+        let t = |label, format| crate::wgpu_util::texture(device, label, (px, px), layers, format, usage, &[]);
         (t("Atlas::irradiance", HDR_FORMAT), t("Atlas::normals", HDR_FORMAT), t("Atlas::depths", DEPTH_FORMAT))
     }
 
     /// Sizes the atlas for `settings`.
     pub fn ensure(&mut self, device: &wgpu::Device, settings: &AtlasSettings) {
         if self.irradiance.width() != settings.atlas_px {
-            (self.irradiance, self.normals, self.depths) = Self::textures(device, settings.atlas_px);
+            (self.irradiance, self.normals, self.depths) = Self::textures(device, settings.atlas_px, self.min_layers);
         }
     }
 
@@ -167,11 +171,5 @@ impl AtlasResources {
             image.depths.push(bytemuck::pod_collect_to_vec(&read_texture_layer(device, queue, &self.depths, f, 4)?));
         }
         Ok(image)
-    }
-
-    /// Bytes the atlas occupies on the GPU.
-    pub fn bytes(&self) -> u64 {
-        let px = u64::from(self.irradiance.width());
-        px * px * 6 * (8 + 8 + 4)
     }
 }

@@ -330,8 +330,9 @@ impl DipoleResources {
 
     /// Sizes the textures for `settings` and `light_slots` (at least `min_layers` layers each).
     pub fn ensure(&mut self, device: &wgpu::Device, settings: &DipoleSettings, light_slots: u32, min_layers: u32) {
-        let light = (settings.light_map_px, light_slots.max(min_layers));
-        let maps = (settings.map_px, settings.directions.max(min_layers));
+        let layers = |n| crate::targets::array_layers(n, min_layers);
+        let light = (settings.light_map_px, layers(light_slots));
+        let maps = (settings.map_px, layers(settings.directions));
         let fits = self.light_normals.width() == light.0
             && self.light_normals.depth_or_array_layers() >= light.1
             && self.maps[0].width() == maps.0
