@@ -83,7 +83,7 @@ impl Formats {
 /// nothing (the cube atlas's six faces read black on GL before this; a six-layer look would too).
 pub fn array_layers(n: u32, min_layers: u32) -> u32 {
     let n = n.max(min_layers).max(1);
-    if min_layers > 1 && n % 6 == 0 { n + 1 } else { n }
+    if min_layers > 1 && n.is_multiple_of(6) { n + 1 } else { n }
 }
 
 /// A view of a display frame for egui, which wants sRGB-encoded values read as they are
