@@ -27,7 +27,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import mitsuba_ref  # noqa: E402
-from thickness_figure import REFS, render, tone  # noqa: E402
+from thickness_figure import REFS, render, sheet, tone  # noqa: E402
 
 SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble"]
 ATLAS = ["--subsurface", "cube-atlas"]
@@ -42,24 +42,6 @@ DEFORM = [
     ("head-skin1-front-left", [[], ["--expression", "smile"], ["--expression", "surprise"], ["--expression", "talk"]]),
 ]
 DEFORM_COLUMNS = ["morph 0 / neutral", "morph 0.2 / smile", "morph 0.4 / surprise", "morph 0.6 / talk"]
-
-
-def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
-    from PIL import Image, ImageDraw
-
-    pad, head = 4, 18
-    w = len(columns) * (size + pad) + pad
-    h = head + len(rows) * (size + head + pad)
-    out = Image.new("RGB", (w, h), (255, 255, 255))
-    draw = ImageDraw.Draw(out)
-    for i, label in enumerate(columns):
-        draw.text((pad + i * (size + pad) + 4, 3), label, fill=(0, 0, 0))
-    for r, (name, tiles) in enumerate(rows):
-        y = head + r * (size + head + pad)
-        draw.text((pad + 4, y + 2), name, fill=(0, 0, 0))
-        for i, tile in enumerate(tiles):
-            out.paste(Image.fromarray(tile).resize((size, size), Image.NEAREST), (pad + i * (size + pad), y + head))
-    return out
 
 
 def main() -> None:

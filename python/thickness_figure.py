@@ -49,6 +49,26 @@ def render(rouge: str, options: list[str], extra: list[str], out: Path) -> np.nd
     return mitsuba_ref.read_exr(out)[..., :3]
 
 
+def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
+    """A contact sheet: a label per column, then per row its name and its tiles (8-bit RGB
+    arrays, each scaled to `size`² pixels)."""
+    from PIL import Image, ImageDraw
+
+    pad, head = 4, 18
+    w = len(columns) * (size + pad) + pad
+    h = head + len(rows) * (size + head + pad)
+    out = Image.new("RGB", (w, h), (255, 255, 255))
+    draw = ImageDraw.Draw(out)
+    for i, label in enumerate(columns):
+        draw.text((pad + i * (size + pad) + 4, 3), label, fill=(0, 0, 0))
+    for r, (name, tiles) in enumerate(rows):
+        y = head + r * (size + head + pad)
+        draw.text((pad + 4, y + 2), name, fill=(0, 0, 0))
+        for i, tile in enumerate(tiles):
+            out.paste(Image.fromarray(tile).resize((size, size), Image.NEAREST), (pad + i * (size + pad), y + head))
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
@@ -59,7 +79,6 @@ def main() -> None:
     a = ap.parse_args()
 
     import mitsuba as mi
-    from PIL import Image, ImageDraw
 
     mi.set_variant("scalar_rgb")
     rows = []
@@ -77,23 +96,10 @@ def main() -> None:
                 if name != "none":
                     err = np.abs(img - ref[..., :3]).mean(axis=-1) / a.error_max
                     errors.append((np.clip(err, 0.0, 1.0)[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
-            row = [Image.fromarray(t).resize((a.size, a.size), Image.NEAREST) for t in tiles + errors]
-            rows.append((scene, row))
+            rows.append((scene, tiles + errors))
     labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
-    pad, head = 4, 18
-    w = len(labels) * (a.size + pad) + pad
-    h = head + len(rows) * (a.size + head + pad)
-    sheet = Image.new("RGB", (w, h), (255, 255, 255))
-    draw = ImageDraw.Draw(sheet)
-    for i, label in enumerate(labels):
-        draw.text((pad + i * (a.size + pad) + 4, 3), label, fill=(0, 0, 0))
-    for r, (scene, row) in enumerate(rows):
-        y = head + r * (a.size + head + pad)
-        draw.text((pad + 4, y + 2), scene, fill=(0, 0, 0))
-        for i, tile in enumerate(row):
-            sheet.paste(tile, (pad + i * (a.size + pad), y + head))
     a.out.parent.mkdir(parents=True, exist_ok=True)
-    sheet.save(a.out)
+    sheet(labels, rows, a.size).save(a.out)
     print(f"wrote {a.out}")
 
 

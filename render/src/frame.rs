@@ -268,7 +268,7 @@ impl FramePlan {
                     if settings.progressive { ", accumulated over frames" } else { "" }
                 )],
             });
-            let mut reads = names(&crate::passes::dipole::combine::inputs());
+            let mut reads = names(&crate::passes::skin_gather::inputs());
             reads.push("radiance maps".into());
             passes.push(PlannedPass {
                 step: Step::DipoleCombine,
@@ -290,7 +290,7 @@ impl FramePlan {
                 reads,
                 writes: vec![format!("cube atlas 6×{}² (irradiance, n·p, normal, depth)", a.atlas_px)],
             });
-            let mut reads = names(&crate::passes::cube_atlas::gather::inputs());
+            let mut reads = names(&crate::passes::skin_gather::inputs());
             reads.push("cube atlas".into());
             passes.push(PlannedPass {
                 step: Step::AtlasGather,

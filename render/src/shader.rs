@@ -146,6 +146,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "diffusion" => Some(include_str!("shaders/diffusion.wgsl")),
         "shadow_factor" => Some(include_str!("shaders/shadow_factor.wgsl")),
         "atlas_common" => Some(include_str!("shaders/atlas_common.wgsl")),
+        "skin_pixel" => Some(include_str!("shaders/skin_pixel.wgsl")),
         _ => None,
     }
 }

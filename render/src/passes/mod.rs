@@ -13,6 +13,7 @@ pub mod edge_overdraw;
 pub mod gbuffer;
 pub mod lighting;
 pub mod shadow;
+pub mod skin_gather;
 pub mod sss;
 pub mod thickness;
 

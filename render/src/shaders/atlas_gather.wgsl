@@ -10,9 +10,7 @@
 //#insert diffusion
 //#insert atlas_common
 
-@group(1) @binding(1) var gb_normal: texture_2d<f32>;
-@group(1) @binding(2) var gb_albedo: texture_2d<f32>;
-@group(1) @binding(3) var gb_depth: texture_2d<f32>;
+//#insert skin_pixel
 @group(1) @binding(4) var atlas_irradiance: texture_2d_array<f32>;
 @group(1) @binding(5) var atlas_normals: texture_2d_array<f32>;
 @group(1) @binding(6) var atlas_depths: texture_2d_array<f32>;
@@ -146,14 +144,13 @@ fn global_term(f: u32, x: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(frag.xy);
-    let nd = textureLoad(gb_normal, p, 0);
-    if nd.w == 0.0 || textureLoad(gb_albedo, p, 0).a < 0.5 {
+    let px = skin_pixel(frag);
+    if !px.ok {
         return vec4<f32>(0.0);
     }
-    let n = normalize(nd.xyz);
-    let x = world_at(frag.xy, textureLoad(gb_depth, p, 0).r);
-    let v = normalize(frame.camera_pos.xyz - x);
+    let n = px.n;
+    let x = px.x;
+    let v = px.v;
 
     // 1. Chosen faces, sorted by sp (insertion sort of at most six).
     var order: array<u32, 6>;

@@ -5,22 +5,19 @@
 //#insert diffusion
 //#insert dipole_common
 
-@group(1) @binding(1) var gb_normal: texture_2d<f32>;
-@group(1) @binding(2) var gb_albedo: texture_2d<f32>;
-@group(1) @binding(3) var gb_depth: texture_2d<f32>;
+//#insert skin_pixel
 @group(1) @binding(4) var maps: texture_2d_array<f32>;
 @group(1) @binding(5) var map_depths: texture_2d_array<f32>;
 
 @fragment
 fn fs_dipole_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(frag.xy);
-    let nd = textureLoad(gb_normal, p, 0);
-    if nd.w == 0.0 || textureLoad(gb_albedo, p, 0).a < 0.5 {
+    let px = skin_pixel(frag);
+    if !px.ok {
         return vec4<f32>(0.0);
     }
-    let n = normalize(nd.xyz);
-    let x = world_at(frag.xy, textureLoad(gb_depth, p, 0).r);
-    let v = normalize(frame.camera_pos.xyz - x);
+    let n = px.n;
+    let x = px.x;
+    let v = px.v;
     // Fix 2 (section 4.4.2): look the point up slightly inside along its normal.
     var xq = x;
     if (u32(dipole.fixes.w) & 2u) != 0u {
