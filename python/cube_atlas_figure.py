@@ -26,8 +26,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-import mitsuba_ref  # noqa: E402
-from thickness_figure import REFS, render, sheet, tone  # noqa: E402
+from thickness_figure import REFS, reference, render, sheet, tone  # noqa: E402
 
 SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble"]
 ATLAS = ["--subsurface", "cube-atlas"]
@@ -59,16 +58,14 @@ def main() -> None:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in SCENES:
-            sidecar = json.loads((REFS / f"{scene}.json").read_text())
-            ref = mitsuba_ref.read_exr(REFS / sidecar["image"])
-            covered = ref[..., 3] > 0.999
-            tiles, errors = [tone(ref[..., :3], a.exposure)], []
+            options, ref, covered, tile = reference(scene, a.exposure)
+            tiles, errors = [tile], []
             for name, extra in MODELS:
-                img = render(a.rouge, sidecar["rouge_options"], extra, Path(tmp) / f"{scene}-{len(tiles)}.exr")
+                img = render(a.rouge, options, extra, Path(tmp) / f"{scene}-{len(tiles)}.exr")
                 img[~covered] = 0.0
                 tiles.append(tone(img, a.exposure))
                 if name.startswith("atlas"):
-                    err = np.clip(np.abs(img - ref[..., :3]).mean(axis=-1) / a.error_max, 0.0, 1.0)
+                    err = np.clip(np.abs(img - ref).mean(axis=-1) / a.error_max, 0.0, 1.0)
                     errors.append((err[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
             rows.append((scene, tiles + errors))
         columns = ["Mitsuba 3", *(m[0] for m in MODELS), "|error| 1 mfp", "|error| support"]

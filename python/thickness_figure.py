@@ -49,6 +49,14 @@ def render(rouge: str, options: list[str], extra: list[str], out: Path) -> np.nd
     return mitsuba_ref.read_exr(out)[..., :3]
 
 
+def reference(scene: str, exposure: float):
+    """A reference scene: its `rouge render` options, its linear RGB, the mask of fully covered
+    pixels, and its tone-mapped tile."""
+    sidecar = json.loads((REFS / f"{scene}.json").read_text())
+    ref = mitsuba_ref.read_exr(REFS / sidecar["image"])
+    return sidecar["rouge_options"], ref[..., :3], ref[..., 3] > 0.999, tone(ref[..., :3], exposure)
+
+
 def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
     """A contact sheet: a label per column, then per row its name and its tiles (8-bit RGB
     arrays, each scaled to `size`² pixels)."""
@@ -84,17 +92,14 @@ def main() -> None:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in SCENES:
-            sidecar = json.loads((REFS / f"{scene}.json").read_text())
-            ref = mitsuba_ref.read_exr(REFS / sidecar["image"])
-            covered = ref[..., 3] > 0.999
-            tiles = [tone(ref[..., :3], a.exposure)]
-            errors = []
+            options, ref, covered, tile = reference(scene, a.exposure)
+            tiles, errors = [tile], []
             for name, extra in MODELS:
-                img = render(a.rouge, sidecar["rouge_options"], extra, Path(tmp) / f"{scene}-{name}.exr")
+                img = render(a.rouge, options, extra, Path(tmp) / f"{scene}-{name}.exr")
                 img[~covered] = 0.0
                 tiles.append(tone(img, a.exposure))
                 if name != "none":
-                    err = np.abs(img - ref[..., :3]).mean(axis=-1) / a.error_max
+                    err = np.abs(img - ref).mean(axis=-1) / a.error_max
                     errors.append((np.clip(err, 0.0, 1.0)[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
             rows.append((scene, tiles + errors))
     labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]

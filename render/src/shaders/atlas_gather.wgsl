@@ -148,9 +148,6 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
     if !px.ok {
         return vec4<f32>(0.0);
     }
-    let n = px.n;
-    let x = px.x;
-    let v = px.v;
 
     // 1. Chosen faces, sorted by sp (insertion sort of at most six).
     var order: array<u32, 6>;
@@ -159,7 +156,7 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
     let h = atlas.cube.w;
     for (var f = 0u; f < 6u; f++) {
         let a = atlas.axis[f].xyz;
-        let sp = dot(n, a);
+        let sp = dot(px.n, a);
         if sp <= 0.0 {
             continue;
         }
@@ -168,7 +165,7 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
             let i = select(-1.0, 1.0, (k & 1u) != 0u);
             let j = select(-1.0, 1.0, (k & 2u) != 0u);
             let corner = atlas.cube.xyz + (a + atlas.right[f].xyz * i + atlas.up[f].xyz * j) * h;
-            above = above || dot(n, corner - x) > 0.0;
+            above = above || dot(px.n, corner - px.x) > 0.0;
         }
         if !above {
             continue;
@@ -187,20 +184,20 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
         return vec4<f32>(0.0);
     }
 
-    // 2-3. The first face that holds x, and the local term there.
+    // 2-3. The first face that holds the point, and the local term there.
     var b = vec3<f32>(0.0);
     var selected = order[0];
     for (var i = 0u; i < count; i++) {
-        if holds(order[i], x, n) {
+        if holds(order[i], px.x, px.n) {
             selected = order[i];
-            b = local_term(order[i], sps[i], x, n);
+            b = local_term(order[i], sps[i], px.x, px.n);
             break;
         }
     }
     // 4. The global term through the thin part behind (also for points on no face).
     if atlas.settings.w != 0u {
-        b += global_term(selected, x);
+        b += global_term(selected, px.x);
     }
-    let t21 = 1.0 - fresnel_in(dot(v, n), atlas.params.x);
+    let t21 = 1.0 - fresnel_in(dot(px.v, px.n), atlas.params.x);
     return vec4<f32>(b * t21 / PI, 0.0);
 }
