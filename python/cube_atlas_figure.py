@@ -21,12 +21,10 @@ import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
-
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from thickness_figure import REFS, reference, render, sheet, tone  # noqa: E402
+from thickness_figure import REFS, comparison_rows, render, sheet, tone  # noqa: E402
 
 SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble"]
 ATLAS = ["--subsurface", "cube-atlas"]
@@ -55,19 +53,9 @@ def main() -> None:
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
-    rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for scene in SCENES:
-            options, ref, covered, tile = reference(scene, a.exposure)
-            tiles, errors = [tile], []
-            for name, extra in MODELS:
-                img = render(a.rouge, options, extra, Path(tmp) / f"{scene}-{len(tiles)}.exr")
-                img[~covered] = 0.0
-                tiles.append(tone(img, a.exposure))
-                if name.startswith("atlas"):
-                    err = np.clip(np.abs(img - ref).mean(axis=-1) / a.error_max, 0.0, 1.0)
-                    errors.append((err[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
-            rows.append((scene, tiles + errors))
+        is_atlas = lambda m: m.startswith("atlas")  # noqa: E731
+        rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), is_atlas)
         columns = ["Mitsuba 3", *(m[0] for m in MODELS), "|error| 1 mfp", "|error| support"]
         a.out_dir.mkdir(parents=True, exist_ok=True)
         sheet(columns, rows, a.size).save(a.out_dir / "cube_atlas.png")

@@ -57,6 +57,25 @@ def reference(scene: str, exposure: float):
     return sidecar["rouge_options"], ref[..., :3], ref[..., 3] > 0.999, tone(ref[..., :3], exposure)
 
 
+def comparison_rows(rouge: str, scenes, models, exposure: float, error_max: float, tmp: Path, with_error) -> list:
+    """Per scene: the reference's tile, each model's (`models`: name and `rouge render` options),
+    then the absolute error of the models `with_error(name)` picks (linear radiance, 0 to
+    `error_max`, black to white). Pixels the reference does not fully cover are black."""
+    rows = []
+    for scene in scenes:
+        options, ref, covered, tile = reference(scene, exposure)
+        tiles, errors = [tile], []
+        for i, (name, extra) in enumerate(models):
+            img = render(rouge, options, extra, tmp / f"{scene}-{i}.exr")
+            img[~covered] = 0.0
+            tiles.append(tone(img, exposure))
+            if with_error(name):
+                err = np.clip(np.abs(img - ref).mean(axis=-1) / error_max, 0.0, 1.0)
+                errors.append((err[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
+        rows.append((scene, tiles + errors))
+    return rows
+
+
 def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
     """A contact sheet: a label per column, then per row its name and its tiles (8-bit RGB
     arrays, each scaled to `size`² pixels)."""
@@ -89,19 +108,8 @@ def main() -> None:
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
-    rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for scene in SCENES:
-            options, ref, covered, tile = reference(scene, a.exposure)
-            tiles, errors = [tile], []
-            for name, extra in MODELS:
-                img = render(a.rouge, options, extra, Path(tmp) / f"{scene}-{name}.exr")
-                img[~covered] = 0.0
-                tiles.append(tone(img, a.exposure))
-                if name != "none":
-                    err = np.abs(img - ref).mean(axis=-1) / a.error_max
-                    errors.append((np.clip(err, 0.0, 1.0)[..., None].repeat(3, axis=-1) * 255).astype(np.uint8))
-            rows.append((scene, tiles + errors))
+        rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), lambda m: m != "none")
     labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
     a.out.parent.mkdir(parents=True, exist_ok=True)
     sheet(labels, rows, a.size).save(a.out)
