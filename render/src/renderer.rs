@@ -632,6 +632,21 @@ impl Renderer {
         Some(((ndc.x + 1.0) * 0.5 * w as f32, (1.0 - ndc.y) * 0.5 * h as f32))
     }
 
+    /// The rendered thickness (mm) of layers 0-3 at every pixel of the last frame (the
+    /// G-buffer's first thickness target, map × multiplier; zeros for a bare look), row-major,
+    /// with the frame's size: one target read back, where [`Renderer::capture`] reads them all.
+    ///
+    /// # Errors
+    /// Without a frame, or if the GPU fails.
+    pub fn thickness_image(&self) -> Result<((u32, u32), Vec<[f32; 4]>)> {
+        let last = self.last_frame()?;
+        let (w, h) = self.targets.size();
+        if last.variant.layers == 0 {
+            return Ok(((w, h), vec![[0.0; 4]; (w * h) as usize]));
+        }
+        Ok(((w, h), crate::wgpu_util::halves_to_f32(&self.read(Target::ThicknessA, 8)?)))
+    }
+
     /// Reads back the intermediate images of the last frame.
     ///
     /// # Errors

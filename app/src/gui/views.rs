@@ -4,7 +4,7 @@
 //!
 //! The heat map is the renderer's own: with the heat map on, only the active layer is uploaded
 //! (the solo view), so the G-buffer's first thickness channel holds that layer's thickness ×
-//! its multiplier at every pixel, exactly what the lighting pass used. The frame's capture reads
+//! its multiplier at every pixel, exactly what the lighting pass used. `Renderer::thickness_image` reads
 //! it back and [`HeatScale::image`] colours it; painted pixels cover the rendered frame,
 //! unpainted ones leave it visible.
 
@@ -102,11 +102,9 @@ impl RougeApp {
         let Some(l) = self.editor.document().layers.get(layer) else { return };
         let scale = HeatScale::for_max_mm(l.map.max_mm() * l.multiplier);
         let shown = self.editor.render_index(layer).is_some();
-        match self.gpu.renderer.capture() {
-            Ok(cap) => {
-                let thickness = cap.thickness.iter().map(|t| if shown { t[0] } else { 0.0 });
-                let rgba = scale.image(thickness);
-                let size = (cap.width as u32, cap.height as u32);
+        match self.gpu.renderer.thickness_image() {
+            Ok((size, thickness)) => {
+                let rgba = scale.image(thickness.iter().map(|t| if shown { t[0] } else { 0.0 }));
                 self.views.frame = Some(HeatMapFrame { size, rgba, scale, layer });
                 self.views.stale = true;
             }
