@@ -103,9 +103,9 @@ impl RougeApp {
         let scale = HeatScale::for_max_mm(l.map.max_mm() * l.multiplier);
         let shown = self.editor.render_index(layer).is_some();
         match self.gpu.renderer.thickness_image() {
-            Ok((size, thickness)) => {
-                let rgba = scale.image(thickness.iter().map(|t| if shown { t[0] } else { 0.0 }));
-                self.views.frame = Some(HeatMapFrame { size, rgba, scale, layer });
+            Ok(image) => {
+                let rgba = scale.image(image.texels.iter().map(|t| if shown { t[0] } else { 0.0 }));
+                self.views.frame = Some(HeatMapFrame { size: image.size, rgba, scale, layer });
                 self.views.stale = true;
             }
             Err(e) => self.ui.message = Some((false, format!("heat map: {e}"))),
