@@ -1,0 +1,114 @@
+//! The frame plan's unit tests: which passes, targets and variants a scene gets.
+
+use super::*;
+use glam::Vec3;
+
+fn settings() -> FrameSettings {
+    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, aa: EdgeAa::Off }
+}
+
+fn steps(plan: &FramePlan) -> Vec<String> {
+    plan.passes.iter().map(|p| step_name(p.step)).collect()
+}
+
+#[test]
+fn the_studio_frame_runs_every_pass() {
+    let plan = FramePlan::new(
+        &Scene::studio(),
+        Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false },
+        settings(),
+    )
+    .expect("plan");
+    assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "sss horizontal", "sss vertical", "composite"]);
+    assert!(plan.targets.contains(&Target::ThicknessA) && !plan.targets.contains(&Target::ThicknessB));
+    let text = plan.explain();
+    assert!(text.contains("shadow pass for light 1 (point): the light casts no shadow"), "{text}");
+    assert!(text.contains("thickness 4-7 target"), "{text}");
+}
+
+#[test]
+fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
+    let mut scene = Scene::white_light(Vec3::Z);
+    scene.skin.subsurface = SubsurfaceModel::None;
+    let plan = FramePlan::new(
+        &scene,
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+        settings(),
+    )
+    .expect("plan");
+    assert_eq!(steps(&plan), ["gbuffer", "lighting", "composite"]);
+    assert_eq!(plan.passes[2].step, Step::Composite { skin: Target::Diffuse });
+    for t in [Target::ThicknessA, Target::ThicknessB, Target::SssScratch, Target::Scattered, Target::ExitT] {
+        assert!(!plan.targets.contains(&t), "{t:?} allocated for a bare frame without SSS");
+    }
+    let text = plan.explain();
+    for reason in ["the look is bare", "subsurface model is none", "no environment", "casts no shadow"] {
+        assert!(text.contains(reason), "{reason:?} missing from:\n{text}");
+    }
+    scene.skin.subsurface = SubsurfaceModel::skin_screen_space();
+    scene.sss.width = 0.0;
+    let plan = FramePlan::new(
+        &scene,
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+        settings(),
+    )
+    .expect("plan");
+    assert!(plan.explain().contains("the SSS width is 0"));
+}
+
+#[test]
+fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
+    use crate::local_thickness::{ThicknessSource, TranslucencyParams};
+    let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true };
+    let mut scene = Scene::rig(crate::scene::LightRig::Back);
+    // Not used: neither the pass nor the target.
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert!(!steps(&plan).contains(&"thickness".to_string()));
+    assert!(!plan.targets.contains(&Target::LocalThickness));
+    assert!(plan.explain().contains("no material uses the thickness model"));
+    // Baked: the G-buffer samples the map, the pass adds to the diffuse radiance, no SSS.
+    let params = TranslucencyParams::THREE_JS;
+    let baked = ThicknessSource::for_medium(true, None, 8, 20.0);
+    scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone() };
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
+    assert!(plan.targets.contains(&Target::LocalThickness) && plan.kernel.is_none());
+    assert_eq!(plan.variant.thickness, ThicknessVariant::Baked);
+    assert!(plan.passes[1].reads.contains(&"local-thickness map".to_string()));
+    // The baked source without its map is an error that says what to do.
+    let none = Uploaded { local_thickness_map: false, ..up };
+    let err = FramePlan::new(&scene, none, settings()).expect_err("no map");
+    assert!(err.to_string().contains("set_local_thickness"), "{err}");
+    // Shadow-map source: lights without a shadow map get no term, and with none the pass goes.
+    scene.skin.subsurface =
+        SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(false, None, 8, 20.0) };
+    let plan = FramePlan::new(&scene, none, settings()).expect("plan");
+    assert_eq!(plan.variant.thickness, ThicknessVariant::ShadowMap);
+    assert!(plan.passes.iter().any(|p| p.step == Step::Thickness && p.reads.contains(&"shadow maps".into())));
+    scene.lights[0].shadows = false;
+    let plan = FramePlan::new(&scene, none, settings()).expect("plan");
+    assert!(!plan.targets.contains(&Target::LocalThickness));
+    let text = plan.explain();
+    assert!(text.contains("no light has a shadow map") && text.contains("thickness translucency of light 0"), "{text}");
+    // Parameters out of their domain.
+    scene.skin.subsurface =
+        SubsurfaceModel::Thickness { params: TranslucencyParams { power: -1.0, ..params }, source: baked };
+    assert!(FramePlan::new(&scene, up, settings()).is_err());
+}
+
+#[test]
+fn bad_requests_are_errors() {
+    let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false };
+    let scene = Scene::studio();
+    assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
+    assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());
+    let mut many = scene.clone();
+    many.lights = vec![scene.lights[0]; MAX_LIGHTS + 1];
+    assert!(FramePlan::new(&many, up, settings()).is_err());
+    let mut nan = scene.clone();
+    nan.sss.width = f32::NAN;
+    assert!(FramePlan::new(&nan, up, settings()).is_err());
+    let mut even = scene;
+    even.sss.samples = 4;
+    assert!(FramePlan::new(&even, up, settings()).is_err());
+}
