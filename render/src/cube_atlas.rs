@@ -3,7 +3,7 @@
 //! `crate::passes::cube_atlas` (shaders/atlas_irradiance.wgsl, shaders/atlas_gather.wgsl).
 //!
 //! Every frame the mesh is drawn orthographically onto the six faces of its bounding cube (an
-//! array texture of six layers), storing the irradiance E(x) that enters the medium (eq. 4: lights
+//! array texture of six layers; seven on GL, [`crate::targets::array_layers`]), storing the irradiance E(x) that enters the medium (eq. 4: lights
 //! with their shadows and the environment's SH, each through the Fresnel transmittance), n·p in
 //! alpha (section 4.3.1), the normal and the depth. A full-screen pass then picks, per skin pixel,
 //! the face that sees the point best and gathers E·R_d over a kernel of taps there (local
@@ -44,6 +44,9 @@
 //!   integrated over the disk of the cell's area in closed form
 //!   ([`crate::diffusion::ChannelProfile::classic_disk_total`]), so a flat, evenly lit surface
 //!   gets the same radiosity from any kernel, and a coarse one never over-counts the centre.
+//!   Each tap is weighted by max(0, n_j·n), 1 on flat skin: the dipole's plane breaks where the
+//!   entry surface turns away from the exit (a closed mouth's slit, an eyelid's rim lit up
+//!   without it, docs/BENCHMARKS.md).
 //! - **Output**: L_o = F_t(η, ω_o)/π · (B_local + B_global) (eq. 2), added to the skin's diffuse
 //!   radiance; the lighting pass leaves the skin's direct and environment light to the atlas.
 //!
