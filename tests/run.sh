@@ -50,7 +50,7 @@ cargo test --workspace --locked
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
 WGPU_BACKEND=gl cargo test -p rouge-render --locked --test edges -- a_turning_cube sorted_overdraw
-WGPU_BACKEND=gl cargo test -p rouge-render --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh
+WGPU_BACKEND=gl cargo test -p rouge-render --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh light_reaches
 
 step "Python package \`rouge\` (py/): wheel built by maturin (release, rouge-measure + pyo3 only), installed into .venv"
 rm -rf target/wheels

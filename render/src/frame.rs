@@ -269,6 +269,9 @@ impl FramePlan {
                 )],
             });
             let mut reads = names(&crate::passes::skin_gather::inputs());
+            if variant.layers > 0 {
+                reads.push(Target::ExitT.name().into());
+            }
             reads.push("radiance maps".into());
             passes.push(PlannedPass {
                 step: Step::DipoleCombine,
@@ -291,6 +294,9 @@ impl FramePlan {
                 writes: vec![format!("cube atlas 6×{}² (irradiance, n·p, normal, depth)", a.atlas_px)],
             });
             let mut reads = names(&crate::passes::skin_gather::inputs());
+            if variant.layers > 0 {
+                reads.push(Target::ExitT.name().into());
+            }
             reads.push("cube atlas".into());
             passes.push(PlannedPass {
                 step: Step::AtlasGather,

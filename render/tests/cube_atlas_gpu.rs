@@ -124,6 +124,36 @@ fn the_gather_converges_to_the_total_diffuse_reflectance_on_a_flat_face() {
 }
 
 #[test]
+fn light_reaches_the_skin_through_the_makeup_both_ways() {
+    // A uniform foundation over the front-lit wedge: the atlas's skin light (before the
+    // composite's exit T) is the bare skin's times the stack's T, the way in.
+    let gpu = gpu();
+    let wedge = builtin("wedge");
+    let s = scene(&dense(), AtlasSettings::default(), LightRig::Front);
+    let foundation = Look::from_json(
+        r#"{"schema": "rouge-look", "version": 1, "name": "f", "layers": [{"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0.01}}]}"#,
+        Path::new("f.json"),
+    )
+    .expect("look");
+    let centre = |look: &Look| {
+        let mut r = renderer(&gpu, &wedge, &s);
+        r.set_look(look).expect("look");
+        let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
+        r.render(&s, &camera, SIZE, SIZE, false).expect("render");
+        let cap = r.capture().expect("capture");
+        let i = (SIZE / 2 * SIZE + SIZE / 2) as usize;
+        (cap.diffuse[i], cap.exit_t[i])
+    };
+    let (bare, _) = centre(&Look::bare());
+    let (made_up, t) = centre(&foundation);
+    for c in 0..3 {
+        assert!(t[c] > 0.05 && t[c] < 0.95, "the foundation's T {t:?}");
+        let ratio = made_up[c] / bare[c];
+        assert!((ratio - t[c]).abs() < 0.02 * t[c], "channel {c}: skin light ×{ratio} under T {}", t[c]);
+    }
+}
+
+#[test]
 fn face_selection_on_a_sphere_picks_the_most_aligned_face_and_finds_the_point_there() {
     let gpu = gpu();
     let sphere = builtin("sphere");

@@ -1,7 +1,14 @@
 //! What the full-screen passes that add a diffusion model's light to the skin share (the dipoles'
 //! combination, the cube atlas's gather): the G-buffer they read per pixel (bindings 1-3, with
 //! shaders/skin_pixel.wgsl), the model's unfilterable 2D arrays after them, one uniform at
-//! binding 0, and the additive draw into [`Target::Diffuse`] that keeps the skin flag in alpha.
+//! binding 0, the cosmetic stack's transmittance at binding 15 (when the look has layers), and
+//! the additive draw into [`Target::Diffuse`] that keeps the skin flag in alpha.
+//!
+//! **Light into the skin through the makeup.** The screen-space path attenuates the skin's light
+//! by the stack's T where it enters (the lighting pass) and again where it leaves (the composite).
+//! A diffusion model gathers light that entered elsewhere; its entry point's T is taken as the
+//! exit pixel's (the stack varies slowly against the diffusion length), so the composite's exit
+//! T is not the only one: without it, skin under foundation read 1/T too bright.
 
 use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
 use crate::error::Result;
@@ -9,10 +16,13 @@ use crate::shader::Variant;
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, tex_entry, uniform_entry};
 
-/// The frame targets such a pass reads.
+/// The frame targets such a pass reads (and [`Target::ExitT`] when the look has layers).
 pub fn inputs() -> [Target; 3] {
     [Target::Normal, Target::Albedo, Target::Depth]
 }
+
+/// The binding of the stack's transmittance.
+const EXIT_T_BINDING: u32 = 15;
 
 /// A pass's bind-group layout and pipelines.
 #[derive(Debug)]
@@ -32,6 +42,7 @@ impl SkinGather {
         entries.extend((0..arrays).map(|i| {
             tex_entry(4 + i, wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2Array)
         }));
+        entries.push(float_tex(EXIT_T_BINDING, false));
         let layout = layout(device, &format!("{pass:?}Pass::layout"), &entries);
         SkinGather { layout, pipelines: Pipelines::default(), pass, fs }
     }
@@ -66,8 +77,11 @@ impl SkinGather {
         let [normal, albedo, depth] = gbuffer;
         let (normal, albedo, depth) = (normal?, albedo?, depth?);
         let diffuse = targets.view(Target::Diffuse)?;
+        // The shader reads the stack's T only when the frame has layers (`frame.counts.y`).
+        let exit_t = if ctx.variant.layers > 0 { Some(targets.view(Target::ExitT)?) } else { None };
         let mut entries = vec![buf(0, uniform), tex(1, &normal), tex(2, &albedo), tex(3, &depth)];
         entries.extend(arrays.iter().enumerate().map(|(i, v)| tex(4 + i as u32, v)));
+        entries.push(tex(EXIT_T_BINDING, exit_t.as_ref().unwrap_or(&shared.dummy)));
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("{pass:?}Pass::group")),
             layout: &self.layout,

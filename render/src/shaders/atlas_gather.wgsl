@@ -5,7 +5,8 @@
 //    (R = sp·reach·l_d when adaptive), the centre cell integrated over a disk of its area;
 // 4. global: the opposite face's surface behind x, a plane of real sources under it:
 //    B_g = E_s · α′/2 · e^{−σ_tr |x_s − z_r n_s − x|};
-// 5. L = T(η, n·v)/π · (B + B_g), added to the skin's diffuse radiance.
+// 5. L = T(η, n·v)/π · (B + B_g), times the cosmetic stack's T on the way in (the exit pixel's,
+//    passes/skin_gather.rs), added to the skin's diffuse radiance.
 // Derivations and the CPU twins: render/src/cube_atlas.rs, render/src/diffusion.rs.
 //#insert diffusion
 //#insert atlas_common
@@ -199,5 +200,5 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
         b += global_term(selected, px.x);
     }
     let t21 = 1.0 - fresnel_in(dot(px.v, px.n), atlas.params.x);
-    return vec4<f32>(b * t21 / PI, 0.0);
+    return vec4<f32>(b * t21 * px.t / PI, 0.0);
 }

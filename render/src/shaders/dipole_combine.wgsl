@@ -60,5 +60,6 @@ fn fs_dipole_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f3
         return vec4<f32>(0.0);
     }
     let t21 = 1.0 - fresnel_in(dot(v, n), dipole.boundary.w);
-    return vec4<f32>(sum / seen * t21, 0.0);
+    // The cosmetic stack's T on the way in (the exit pixel's, passes/skin_gather.rs).
+    return vec4<f32>(sum / seen * t21 * px.t, 0.0);
 }
