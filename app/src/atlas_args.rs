@@ -4,7 +4,7 @@
 use anyhow::Result;
 use clap::Args;
 use rouge_render::SubsurfaceModel;
-use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach};
+use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach};
 
 #[derive(Debug, Clone, Args)]
 pub struct AtlasArgs {
@@ -26,9 +26,10 @@ pub struct AtlasArgs {
     /// tangent plane), plane-offset (the paper's stored n·p) or off (the best face, always).
     #[arg(long, default_value = "tangent-plane")]
     pub atlas_occlusion: String,
-    /// Leave out the global term (light through thin parts, section 4.4).
-    #[arg(long)]
-    pub atlas_no_global: bool,
+    /// The global term (light through thin parts, section 4.4): slab (a slab's diffusion
+    /// transmittance over the local thickness), real-source (the paper's eq. 9), or off.
+    #[arg(long, default_value = "slab")]
+    pub atlas_global: String,
 }
 
 impl AtlasArgs {
@@ -41,7 +42,7 @@ impl AtlasArgs {
             adaptive: !self.atlas_fixed_kernel,
             occlusion: OcclusionTest::parse(&self.atlas_occlusion)
                 .map_err(|e| anyhow::anyhow!("--atlas-occlusion: {e}"))?,
-            global: !self.atlas_no_global,
+            global: GlobalTerm::parse(&self.atlas_global).map_err(|e| anyhow::anyhow!("--atlas-global: {e}"))?,
         };
         settings.check().map_err(|e| anyhow::anyhow!("--atlas-*: {e}"))?;
         Ok(SubsurfaceModel::CubeAtlas { settings })

@@ -7,7 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, Parser};
 use rouge_model::medium::Medium;
 use rouge_model::thickness::BakeSettings;
-use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach};
+use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach};
 use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
@@ -397,7 +397,7 @@ fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
             "reach": settings.reach.name(),
             "adaptive": settings.adaptive,
             "occlusion": settings.occlusion.name(),
-            "global": settings.global,
+            "global": settings.global.name(),
         });
         let skin = Skin { subsurface: SubsurfaceModel::CubeAtlas { settings }, ..skin.clone() };
         Config { model: "cube-atlas", params, skin, samples: 0, map: ThicknessMap::None }
@@ -413,7 +413,7 @@ fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
             [OcclusionTest::Off, OcclusionTest::PlaneOffset]
                 .map(|occlusion| config(AtlasSettings { occlusion, ..base })),
         );
-        out.push(config(AtlasSettings { global: false, ..base }));
+        out.extend([GlobalTerm::Off, GlobalTerm::RealSource].map(|global| config(AtlasSettings { global, ..base })));
     }
     out
 }
@@ -428,15 +428,15 @@ fn square_label(r: &Row) -> Option<String> {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }
         "cube-atlas" => {
-            let flag = |k: &str| r.params.get(k).and_then(|v| v.as_bool()).unwrap_or(true);
+            let adaptive = r.params.get("adaptive").and_then(|v| v.as_bool()).unwrap_or(true);
             Some(format!(
-                "atlas {}² k{} reach {}{} {}{}",
+                "atlas {}² k{} reach {}{} {} global {}",
                 number("atlas_px"),
                 number("kernel"),
                 text("reach"),
-                if flag("adaptive") { "" } else { " fixed" },
+                if adaptive { "" } else { " fixed" },
                 text("occlusion"),
-                if flag("global") { "" } else { " no-global" }
+                text("global")
             ))
         }
         _ => None,

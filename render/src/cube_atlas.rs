@@ -27,7 +27,12 @@
 //!   z_r under it, with irradiance E(x_s) locally uniform. Integrated over that plane eq. 9 gives
 //!   (∫ z(1 + σS)e^{−σS}/S³ dA = 2π e^{−σz}, see `crate::diffusion`)
 //!   `B_g(x) = E(x_s) · α′/2 · e^{−σ_tr S}` with S = |x_s − z_r n_s − x|:
-//!   [`crate::diffusion::ChannelProfile::real_source_plane`]. It is bounded (α′/2 as S → 0).
+//!   [`crate::diffusion::ChannelProfile::real_source_plane`], [`GlobalTerm::RealSource`]. It
+//!   ignores both faces' boundary conditions and reads the backlit wedges twice as bright as the
+//!   path tracer; the default, [`GlobalTerm::Slab`], takes instead the diffusion transmittance of
+//!   a slab of the local thickness d = n·(x − x_s) with the same constants (extrapolated
+//!   boundaries on both faces, [`crate::diffusion::ChannelProfile::slab_transmittance`]):
+//!   `B_g = E(x_s)·T(d)`, still one sample, no convolution (docs/BENCHMARKS.md measures both).
 //! - **Kernel** (section 4.3.2). The paper takes the mean free path l_d = 1/σ′_t as "the maximum
 //!   distance a photon travels" and the kernel's radius, shrunk by the scalar product sp of the
 //!   normal with the face: k = sp·l_d; it settles on a 5×5 kernel. We keep the radius physical,
@@ -136,8 +141,8 @@ pub struct AtlasSettings {
     pub adaptive: bool,
     /// How a point is found on a face.
     pub occlusion: OcclusionTest,
-    /// Add the global term (section 4.4).
-    pub global: bool,
+    /// The global term (section 4.4): light through thin parts from the surface behind.
+    pub global: GlobalTerm,
 }
 
 impl Default for AtlasSettings {
@@ -148,7 +153,7 @@ impl Default for AtlasSettings {
             reach: Reach::Support,
             adaptive: true,
             occlusion: OcclusionTest::TangentPlane,
-            global: true,
+            global: GlobalTerm::Slab,
         }
     }
 }
@@ -185,6 +190,45 @@ impl AtlasSettings {
             Reach::MeanFreePaths(m) => m * longest(ChannelProfile::mean_free_path_mm),
         };
         if self.adaptive { sp.clamp(0.0, 1.0) * full } else { full }
+    }
+}
+
+/// The global term's transmission through a thin part (module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GlobalTerm {
+    /// No global term.
+    Off,
+    /// [Benmounah2009] eq. 9: the real source alone, integrated over the lit surface behind.
+    RealSource,
+    /// The diffusion transmittance of a slab of the local thickness, both faces' boundary
+    /// conditions ([`crate::diffusion::ChannelProfile::slab_transmittance`]).
+    Slab,
+}
+
+impl GlobalTerm {
+    /// Every choice, in the order of the benchmark's ablation.
+    pub const ALL: [GlobalTerm; 3] = [GlobalTerm::Off, GlobalTerm::RealSource, GlobalTerm::Slab];
+
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            GlobalTerm::Off => "off",
+            GlobalTerm::RealSource => "real-source",
+            GlobalTerm::Slab => "slab",
+        }
+    }
+
+    /// The choice named `name`.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] listing the names.
+    pub fn parse(name: &str) -> Result<GlobalTerm> {
+        Self::ALL.into_iter().find(|t| t.name() == name).ok_or_else(|| {
+            RenderError::Invalid(format!(
+                "unknown global term {name:?} (known: {})",
+                Self::ALL.map(Self::name).join(", ")
+            ))
+        })
     }
 }
 

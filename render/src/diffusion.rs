@@ -238,6 +238,32 @@ impl ChannelProfile {
         0.5 * self.alpha_prime * (-self.sigma_tr * z_mm.max(0.0)).exp()
     }
 
+    /// Diffuse transmittance of a slab `d_mm` thick lit evenly on its far side, from the classic
+    /// dipole's constants: a plane source of strength α′ at depth z₀ = min(z_r, d) under the lit
+    /// face, zero fluence at both extrapolated boundaries (z_b = 2AD = (z_v − z_r)/2 outside each
+    /// face). With u measured from the lit side's extrapolated boundary, L = d + 2z_b and
+    /// u₀ = z₀ + z_b, the Green's function of −Dφ″ + σaφ = α′δ(u − u₀) is φ = α′ sinh(σu₀)
+    /// sinh(σ(L − u))/(Dσ sinh σL) beyond the source (σ = σ_tr), and the flux −Dφ′ at the far
+    /// face (u = L − z_b) is
+    /// T(d) = α′ sinh(σ(z₀ + z_b)) cosh(σz_b) / sinh(σ(d + 2z_b)).
+    /// Limits: α′(z₀ + z_b)/(d + 2z_b) as σ → 0 (pure scattering: 1/d), and the semi-infinite
+    /// medium's e^{−σd} decay for thick slabs. The cube atlas's global term uses it in place of
+    /// [Benmounah2009] eq. 9's lone real source ([`ChannelProfile::real_source_plane`]), which
+    /// ignores both faces. Diffusion needs d beyond a mean free path; thinner slabs clamp z₀ = d.
+    pub fn slab_transmittance(&self, d_mm: f64) -> f64 {
+        let d = d_mm.max(0.0);
+        let z_b = 0.5 * (self.z_v - self.z_r);
+        let z0 = self.z_r.min(d);
+        let s = self.sigma_tr;
+        if s * (d + 2.0 * z_b) < 1e-6 {
+            return self.alpha_prime * (z0 + z_b) / (d + 2.0 * z_b);
+        }
+        // sinh a cosh b / sinh c in exponentials of non-positive arguments, finite for any c.
+        let (a, b, c) = (s * (z0 + z_b), s * z_b, s * (d + 2.0 * z_b));
+        let ratio = (a + b - c).exp() * -(-2.0 * a).exp_m1() * (1.0 + (-2.0 * b).exp()) / (2.0 * -(-2.0 * c).exp_m1());
+        self.alpha_prime * ratio
+    }
+
     /// R(r), per mm², at distance `r_mm` ≥ 0 from the point of entry.
     pub fn radial(&self, r_mm: f64) -> f64 {
         let r2 = r_mm * r_mm;

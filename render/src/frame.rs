@@ -390,7 +390,7 @@ impl FramePlan {
                 a.reach.name(),
                 if a.adaptive { " × n·a" } else { "" },
                 a.occlusion.name(),
-                on_off(a.global),
+                a.global.name(),
                 k = a.kernel_max,
             ),
             _ => String::new(),
@@ -486,7 +486,7 @@ fn atlas_settings(scene: &Scene, skipped: &mut Vec<Skipped>) -> Result<Option<cr
             "the cube-atlas model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
         ));
     }
-    if !settings.global {
+    if settings.global == crate::cube_atlas::GlobalTerm::Off {
         skipped.push(skip("cube-atlas global term", "switched off"));
     }
     Ok(Some(*settings))

@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 use rouge_model::look::Look;
 use rouge_model::medium::Medium;
 use rouge_model::mesh::{TriangleMesh, load_mesh};
-use rouge_render::cube_atlas::{AtlasSettings, OcclusionTest, Reach, face_axes};
+use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach, face_axes};
 use rouge_render::diffusion::{ChannelProfile, ProfileModel};
 use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
 use std::path::Path;
@@ -72,7 +72,7 @@ fn the_gather_converges_to_the_total_diffuse_reflectance_on_a_flat_face() {
     let m = dense();
     let wedge = builtin("wedge");
     let centre = |settings: AtlasSettings| {
-        let s = scene(&m, AtlasSettings { adaptive: false, global: false, ..settings }, LightRig::Front);
+        let s = scene(&m, AtlasSettings { adaptive: false, global: GlobalTerm::Off, ..settings }, LightRig::Front);
         let mut r = renderer(&gpu, &wedge, &s);
         centre_mean(&render(&mut r, &s, 0.0))
     };

@@ -16,7 +16,7 @@ struct AtlasPass {
     // x η, y texel side (mm), z face side (texels), w smallest n·a of a texel's area
     params: vec4<f32>,
     // x kernel half side (taps), y adaptive kernel (0/1), z self-occlusion test
-    // (0 off, 1 plane offset, 2 tangent plane), w global term (0/1)
+    // (0 off, 1 plane offset, 2 tangent plane), w global term (0 off, 1 real source, 2 slab)
     settings: vec4<u32>,
     // x the kernel's radius at sp = 1 (reach × the longest mean free path, mm)
     kernel: vec4<f32>,

@@ -3,8 +3,8 @@
 // 2. the first that holds x (the self-occlusion test) is selected; none: no local term;
 // 3. local: B = Σ_j E_j R_d(x_j → x) A_j over k×k taps on [−R, R]² around x's place there
 //    (R = sp·reach·l_d when adaptive), the centre cell integrated over a disk of its area;
-// 4. global: the opposite face's surface behind x, a plane of real sources under it:
-//    B_g = E_s · α′/2 · e^{−σ_tr |x_s − z_r n_s − x|};
+// 4. global: the opposite face's surface behind x lights a slab of the local thickness d:
+//    B_g = E_s · T(d) (or, the paper's, a plane of real sources: E_s · α′/2 · e^{−σ_tr S});
 // 5. L = T(η, n·v)/π · (B + B_g), times the cosmetic stack's T on the way in (the exit pixel's,
 //    passes/skin_gather.rs), added to the skin's diffuse radiance.
 // Derivations and the CPU twins: render/src/cube_atlas.rs, render/src/diffusion.rs.
@@ -126,7 +126,23 @@ fn local_term(f: u32, sp: f32, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return b;
 }
 
-fn global_term(f: u32, x: vec3<f32>) -> vec3<f32> {
+// A slab's diffuse transmittance (diffusion::ChannelProfile::slab_transmittance), channel c:
+// α′ sinh(σ(z₀ + z_b)) cosh(σz_b) / sinh(σ(d + 2z_b)), in exponentials of non-positive arguments.
+fn slab_transmittance(c: u32, d: f32) -> f32 {
+    let m = atlas.medium[c];
+    let zb = 0.5 * (m.w - m.z);
+    let z0 = min(m.z, d);
+    let s = m.y;
+    if s * (d + 2.0 * zb) < 1e-4 {
+        return m.x * (z0 + zb) / (d + 2.0 * zb);
+    }
+    let a = s * (z0 + zb);
+    let bb = s * zb;
+    let cc = s * (d + 2.0 * zb);
+    return m.x * exp(a + bb - cc) * (1.0 - exp(-2.0 * a)) * (1.0 + exp(-2.0 * bb)) / (2.0 * (1.0 - exp(-2.0 * cc)));
+}
+
+fn global_term(f: u32, x: vec3<f32>, n_x: vec3<f32>) -> vec3<f32> {
     let back = f ^ 1u;
     let s = stored_at(back, vec2<i32>(floor(atlas_texel(back, x))));
     let a = atlas.axis[f].xyz;
@@ -135,10 +151,16 @@ fn global_term(f: u32, x: vec3<f32>) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     var b = vec3<f32>(0.0);
+    // The local thickness across the normal (a slab's, exactly).
+    let d = max(dot(x - s.x, n_x), 0.0);
     for (var c = 0u; c < 3u; c++) {
         let m = atlas.medium[c];
-        let dist = length(s.x - m.z * s.n - x);
-        b[c] = s.e[c] * 0.5 * m.x * exp(-m.y * dist);
+        if atlas.settings.w == 1u {
+            // [Benmounah2009] eq. 9 over the lit plane (diffusion::ChannelProfile::real_source_plane).
+            b[c] = s.e[c] * 0.5 * m.x * exp(-m.y * length(s.x - m.z * s.n - x));
+        } else {
+            b[c] = s.e[c] * slab_transmittance(c, d);
+        }
     }
     return b;
 }
@@ -197,7 +219,7 @@ fn fs_atlas_gather(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32>
     }
     // 4. The global term through the thin part behind (also for points on no face).
     if atlas.settings.w != 0u {
-        b += global_term(selected, px.x);
+        b += global_term(selected, px.x, px.n);
     }
     let t21 = 1.0 - fresnel_in(dot(px.v, px.n), atlas.params.x);
     return vec4<f32>(b * t21 * px.t / PI, 0.0);

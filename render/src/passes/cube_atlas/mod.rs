@@ -33,7 +33,8 @@ pub struct AtlasUniform {
     pub medium: [[f32; 4]; 3],
     /// η, texel (mm), face side (texels), smallest area cosine.
     pub params: [f32; 4],
-    /// Kernel half side (taps), adaptive, self-occlusion test, global.
+    /// Kernel half side (taps), adaptive, self-occlusion test, global term (0 off, 1 real
+    /// source, 2 slab).
     pub settings: [u32; 4],
     /// Kernel radius at sp = 1 (mm), unused ×3.
     pub kernel: [f32; 4],
@@ -64,7 +65,7 @@ impl AtlasUniform {
             (settings.kernel_max - 1) / 2,
             u32::from(settings.adaptive),
             settings.occlusion.code(),
-            u32::from(settings.global),
+            settings.global as u32,
         ];
         let k = fresnel_band_kernels(medium.eta);
         u.sh_fresnel = [(k[0] / PI) as f32, (k[1] / (2.0 * PI / 3.0)) as f32, (k[2] / (PI / 4.0)) as f32, 0.0];
