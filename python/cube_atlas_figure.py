@@ -26,7 +26,7 @@ sys.path.insert(0, str(HERE))
 
 from thickness_figure import REFS, comparison_rows, render, sheet, tone  # noqa: E402
 
-SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble"]
+SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble", "wedge-marble"]
 ATLAS = ["--subsurface", "cube-atlas"]
 MODELS = [
     ("none", ["--subsurface", "none"]),
