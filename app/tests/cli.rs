@@ -368,6 +368,32 @@ fn explain_prints_the_frame_plan_and_what_is_skipped() {
 }
 
 #[test]
+fn the_cube_atlas_plans_its_passes_and_refuses_bad_options() {
+    let base =
+        ["render", "--subsurface", "cube-atlas", "--medium", "marble", "--mesh", "builtin:wedge", "--look", "bare"];
+    let explain = [&base[..], &["--width", "64", "--height", "48", "--explain"]].concat();
+    let o = rouge(&explain);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = stdout(&o);
+    for line in ["atlas irradiance", "atlas gather", "atlas 6×512²", "reach support", "global term slab"] {
+        assert!(s.contains(line), "{line:?} missing:\n{s}");
+    }
+    for (option, value, says) in [
+        ("--atlas-global", "sometimes", "--atlas-global"),
+        ("--atlas-kernel", "4", "odd"),
+        ("--atlas-reach", "far", "mean free paths"),
+        ("--atlas-occlusion", "maybe", "tangent-plane"),
+    ] {
+        let o = rouge(&[&base[..], &[option, value, "--out", "never.png"]].concat());
+        assert_eq!(o.status.code(), Some(2), "{option} {value}");
+        assert!(stderr(&o).contains(says), "{option} {value}: {}", stderr(&o));
+    }
+    let o = rouge(&["render", "--subsurface", "cube-atlas", "--explain"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--medium"), "{}", stderr(&o));
+}
+
+#[test]
 fn media_and_mitsuba_export_say_what_is_wrong_and_write_a_scene() {
     let o = rouge(&["render", "--medium", "jelly", "--out", "never.png"]);
     assert_eq!(o.status.code(), Some(2));
