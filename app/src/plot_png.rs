@@ -265,27 +265,45 @@ impl Canvas {
 pub fn render(title: &str, charts: &[Chart], columns: usize) -> Result<Vec<u8>> {
     let columns = columns.clamp(1, charts.len().max(1));
     let rows = charts.len().div_ceil(columns).max(1);
-    let (head, legend) = (36.0, 34.0);
     let width = (PANEL_W * columns as f64).ceil() as u16;
-    let height = (head + PANEL_H * rows as f64 + legend).ceil() as u16;
-    let mut c = Canvas::new(width, height, title)?;
-    for (i, chart) in charts.iter().enumerate() {
-        let (col, row) = (i % columns, i / columns);
-        draw_chart(&mut c, chart, (PANEL_W * col as f64, head + PANEL_H * row as f64));
-    }
-    // Legend: every distinct label once, in order of appearance.
+    // Legend: every distinct label once, in order of appearance, in centred lines that fit the
+    // width (broken on a generous estimate of 7 px a character, drawn with the font's widths).
     let mut seen: Vec<(String, [u8; 3], Marker)> = Vec::new();
     for s in charts.iter().flat_map(|c| &c.series) {
         if !seen.iter().any(|(l, _, _)| *l == s.label) {
             seen.push((s.label.clone(), s.rgb, s.marker));
         }
     }
-    let total: f64 = seen.iter().map(|(l, _, _)| 24.0 + c.text_width(l, 11.0)).sum();
-    let (mut x, y) = ((f64::from(width) - total) / 2.0, f64::from(height) - legend / 2.0);
-    for (label, rgb, marker) in seen {
-        draw_marker(&mut c, marker, (x + 4.0, y - 4.0), rgb);
-        c.text(&label, (x + 12.0, y), 11.0, 0.0, false, [20, 20, 20]);
-        x += 24.0 + c.text_width(&label, 11.0);
+    let mut lines: Vec<Vec<(String, [u8; 3], Marker)>> = vec![Vec::new()];
+    let mut used = 0.0;
+    for entry in seen {
+        let w = 24.0 + 7.0 * entry.0.chars().count() as f64;
+        if used + w > f64::from(width) - 40.0 && !lines.last().is_some_and(Vec::is_empty) {
+            lines.push(Vec::new());
+            used = 0.0;
+        }
+        used += w;
+        if let Some(line) = lines.last_mut() {
+            line.push(entry);
+        }
+    }
+    let (head, line_h) = (36.0, 18.0);
+    let legend = 16.0 + line_h * lines.len() as f64;
+    let height = (head + PANEL_H * rows as f64 + legend).ceil() as u16;
+    let mut c = Canvas::new(width, height, title)?;
+    for (i, chart) in charts.iter().enumerate() {
+        let (col, row) = (i % columns, i / columns);
+        draw_chart(&mut c, chart, (PANEL_W * col as f64, head + PANEL_H * row as f64));
+    }
+    for (k, line) in lines.into_iter().enumerate() {
+        let total: f64 = line.iter().map(|(l, _, _)| 24.0 + c.text_width(l, 11.0)).sum();
+        let y = head + PANEL_H * rows as f64 + 14.0 + line_h * k as f64;
+        let mut x = (f64::from(width) - total) / 2.0;
+        for (label, rgb, marker) in line {
+            draw_marker(&mut c, marker, (x + 4.0, y - 4.0), rgb);
+            c.text(&label, (x + 12.0, y), 11.0, 0.0, false, [20, 20, 20]);
+            x += 24.0 + c.text_width(&label, 11.0);
+        }
     }
     c.into_png(width, height)
 }
