@@ -148,36 +148,39 @@ pub fn run(args: &AtlasBenchArgs) -> Result<()> {
         rows.push(row);
     }
     let gpu = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
-    let mut out = format!(
-        "Cube-atlas translucency, {}×{}, atlas 6×{}², back light; {} frames each; {}\n\
-         | mesh | level | triangles | fps still | fps deforming | ms still | ms deforming (morph on the CPU) | atlas GPU ms | frame GPU ms |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    let caption = format!(
+        "Cube-atlas translucency, {}×{}, atlas 6×{}², back light; {} frames each; {}",
         args.width,
         args.height,
         args.atlas_px,
         args.frames,
         rows.first().map_or(String::new(), |r| r.device.clone())
     );
-    for r in &rows {
-        out += &format!(
-            "| {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} ({:.1}) | {} | {} |\n",
-            r.mesh,
-            r.level,
-            r.triangles,
-            1e3 / r.still_ms,
-            1e3 / r.deforming_ms,
-            r.still_ms,
-            r.deforming_ms,
-            r.morph_ms,
+    let header = [
+        "mesh",
+        "level",
+        "triangles",
+        "fps still",
+        "fps deforming",
+        "ms still",
+        "ms deforming (morph on the CPU)",
+        "atlas GPU ms",
+        "frame GPU ms",
+    ];
+    let cells = rows.iter().map(|r| {
+        vec![
+            r.mesh.clone(),
+            r.level.to_string(),
+            r.triangles.to_string(),
+            format!("{:.1}", 1e3 / r.still_ms),
+            format!("{:.1}", 1e3 / r.deforming_ms),
+            format!("{:.1}", r.still_ms),
+            format!("{:.1} ({:.1})", r.deforming_ms, r.morph_ms),
             gpu(r.atlas_gpu_ms),
-            gpu(r.frame_gpu_ms)
-        );
-    }
-    crate::emit(out.trim_end())?;
-    if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&rows)?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
+            gpu(r.frame_gpu_ms),
+        ]
+    });
+    let table = crate::cmd_bench::markdown_table(&caption, &header, 1, cells);
+    crate::cmd_bench::emit_with_json(&table, &rows, args.json.as_deref())?;
     Ok(())
 }

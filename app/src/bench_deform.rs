@@ -3,7 +3,7 @@
 //! subdivision level, the planned path ([`SubdivisionPlan`]: topology once, positions per frame)
 //! against subdividing and triangulating afresh each frame.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use rouge_model::mesh::default_head;
 use rouge_model::mesh::deform::SubdivisionPlan;
@@ -116,34 +116,38 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
             device: p.gpu.describe(),
         });
     }
-    let mut out = format!(
-        "Deforming frame on the default head, {}×{}, default look, {} poses of the expression cycle per level; {}\n\
-         | level | triangles | plan (once) | targets | subdivide: planned | subdivide: afresh | upload | render + wait | frame (planned) |\n\
-         |---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    let caption = format!(
+        "Deforming frame on the default head, {}×{}, default look, {} poses of the expression cycle per level; {}",
         args.width,
         args.height,
         args.frames,
         rows.first().map_or(String::new(), |r| r.device.clone())
     );
-    for r in &rows {
-        out += &format!(
-            "| {} | {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} ms | {:.2} ms | {:.1} ms | {:.1} ms |\n",
-            r.level,
-            r.triangles,
-            r.plan_build_ms,
-            r.targets_ms,
-            r.subdivide_planned_ms,
-            r.subdivide_fresh_ms,
-            r.upload_ms,
-            r.render_ms,
-            r.frame_ms
-        );
-    }
-    crate::emit(out.trim_end())?;
-    if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&rows)?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
+    let header = [
+        "level",
+        "triangles",
+        "plan (once)",
+        "targets",
+        "subdivide: planned",
+        "subdivide: afresh",
+        "upload",
+        "render + wait",
+        "frame (planned)",
+    ];
+    let cells = rows.iter().map(|r| {
+        vec![
+            r.level.to_string(),
+            r.triangles.to_string(),
+            format!("{:.1} ms", r.plan_build_ms),
+            format!("{:.2} ms", r.targets_ms),
+            format!("{:.2} ms", r.subdivide_planned_ms),
+            format!("{:.1} ms", r.subdivide_fresh_ms),
+            format!("{:.2} ms", r.upload_ms),
+            format!("{:.1} ms", r.render_ms),
+            format!("{:.1} ms", r.frame_ms),
+        ]
+    });
+    let table = crate::cmd_bench::markdown_table(&caption, &header, 0, cells);
+    crate::cmd_bench::emit_with_json(&table, &rows, args.json.as_deref())?;
     Ok(())
 }
