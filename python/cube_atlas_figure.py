@@ -15,7 +15,6 @@ Writes two sheets (docs/BENCHMARKS.md, docs/TRANSLUCENCY.md):
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 import tempfile
@@ -24,7 +23,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from thickness_figure import REFS, comparison_rows, render, sheet, tone  # noqa: E402
+from thickness_figure import REFS, comparison_rows, figure_args, render, sheet, tone  # noqa: E402
 
 SCENES = ["head-skin1-back", "head-skin1-back-morph", "head-skin1-front-left", "hand-skin1-back", "sphere-marble", "wedge-marble"]
 ATLAS = ["--subsurface", "cube-atlas"]
@@ -42,17 +41,7 @@ DEFORM_COLUMNS = ["morph 0 / neutral", "morph 0.2 / smile", "morph 0.4 / surpris
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
-    ap.add_argument("--out-dir", type=Path, default=HERE.parent / "docs" / "images")
-    ap.add_argument("--exposure", type=float, default=8.0)
-    ap.add_argument("--error-max", type=float, default=0.1)
-    ap.add_argument("--size", type=int, default=176, help="each tile's side, pixels")
-    a = ap.parse_args()
-
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
+    a = figure_args(__doc__, 176, ("--out-dir", HERE.parent / "docs" / "images"))
     with tempfile.TemporaryDirectory() as tmp:
         is_atlas = lambda m: m.startswith("atlas")  # noqa: E731
         rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), is_atlas)

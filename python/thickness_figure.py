@@ -57,6 +57,21 @@ def reference(scene: str, exposure: float):
     return sidecar["rouge_options"], ref[..., :3], ref[..., 3] > 0.999, tone(ref[..., :3], exposure)
 
 
+def figure_args(doc: str, size: int, out: tuple[str, Path]):
+    """The figure scripts' command line: the `rouge` binary, where to write (`out`: the option
+    and its default), exposure, error scale and tile size; parsed. Mitsuba's reader is set up."""
+    import mitsuba as mi
+
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
+    ap.add_argument(out[0], type=Path, default=out[1])
+    ap.add_argument("--exposure", type=float, default=8.0)
+    ap.add_argument("--error-max", type=float, default=0.1)
+    ap.add_argument("--size", type=int, default=size, help="each tile's side, pixels")
+    mi.set_variant("scalar_rgb")
+    return ap.parse_args()
+
+
 def comparison_rows(rouge: str, scenes, models, exposure: float, error_max: float, tmp: Path, with_error) -> list:
     """Per scene: the reference's tile, each model's (`models`: name and `rouge render` options),
     then the absolute error of the models `with_error(name)` picks (linear radiance, 0 to
@@ -97,17 +112,7 @@ def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
-    ap.add_argument("--out", type=Path, default=HERE.parent / "docs" / "images" / "thickness_translucency.png")
-    ap.add_argument("--exposure", type=float, default=8.0)
-    ap.add_argument("--error-max", type=float, default=0.1)
-    ap.add_argument("--size", type=int, default=192, help="each tile's side, pixels")
-    a = ap.parse_args()
-
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
+    a = figure_args(__doc__, 192, ("--out", HERE.parent / "docs" / "images" / "thickness_translucency.png"))
     with tempfile.TemporaryDirectory() as tmp:
         rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), lambda m: m != "none")
     labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
