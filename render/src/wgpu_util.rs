@@ -39,6 +39,16 @@ pub fn array_view(t: &wgpu::Texture) -> wgpu::TextureView {
     })
 }
 
+/// A view of one layer of an array texture, as a render attachment.
+pub fn layer_view(t: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2),
+        base_array_layer: layer,
+        array_layer_count: Some(1),
+        ..Default::default()
+    })
+}
+
 /// A fragment-stage texture binding.
 pub fn tex_entry(
     binding: u32,

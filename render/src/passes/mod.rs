@@ -329,6 +329,34 @@ impl FrameEncoder<'_> {
     }
 }
 
+impl FrameEncoder<'_> {
+    /// Draws `mesh` once per layer `0..layers` of the array textures `colours` and `depth`, each
+    /// layer cleared (transparent, far) and drawn as instance `layer`, so that the vertex shader
+    /// picks the layer's view: the dipoles' light G-buffer and radiance maps, the cube atlas's
+    /// faces. Bind group 0 is the frame's, 1 is `group`; `(pipeline, group)` draw it.
+    pub fn draw_mesh_per_layer(
+        &mut self,
+        label: &str,
+        shared: &Shared,
+        (pipeline, group): (&wgpu::RenderPipeline, &wgpu::BindGroup),
+        mesh: &crate::gpu_mesh::GpuMesh,
+        (colours, depth): (&[&wgpu::Texture], &wgpu::Texture),
+        layers: u32,
+    ) {
+        use crate::wgpu_util::{color, depth_clear, layer_view};
+        for layer in 0..layers {
+            let views: Vec<wgpu::TextureView> = colours.iter().map(|t| layer_view(t, layer)).collect();
+            let attachments: Vec<_> = views.iter().map(|v| color(v, wgpu::Color::TRANSPARENT)).collect();
+            let depth = layer_view(depth, layer);
+            let mut pass = self.begin(label, &attachments, depth_clear(&depth));
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &shared.frame_group, &[]);
+            pass.set_bind_group(1, group, &[]);
+            mesh.draw_instance(&mut pass, layer);
+        }
+    }
+}
+
 /// A pipeline cache keyed by the pass's reduced variant.
 #[derive(Debug, Default)]
 pub struct Pipelines(std::collections::HashMap<Variant, wgpu::RenderPipeline>);

@@ -6,7 +6,7 @@ use super::AtlasResources;
 use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::targets::HDR_FORMAT;
-use crate::wgpu_util::{buf, color, depth_clear, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
+use crate::wgpu_util::{buf, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
 
 /// The irradiance pass.
 #[derive(Debug)]
@@ -60,20 +60,8 @@ impl AtlasIrradiancePass {
             layout: &self.layout,
             entries: &[buf(0, &res.uniform), tex(1, shadow_maps), sampler(2, &shared.shadow_sampler)],
         });
-        for face in 0..6 {
-            let layer = |t| super::super::dipole::layer_view(t, face);
-            let (irradiance, normals, depth) = (layer(&res.irradiance), layer(&res.normals), layer(&res.depths));
-            let clear = wgpu::Color::TRANSPARENT;
-            let mut pass = enc.begin(
-                "atlas irradiance",
-                &[color(&irradiance, clear), color(&normals, clear)],
-                depth_clear(&depth),
-            );
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &shared.frame_group, &[]);
-            pass.set_bind_group(1, &group, &[]);
-            mesh.draw_instance(&mut pass, face);
-        }
+        let targets = (&[&res.irradiance, &res.normals][..], &res.depths);
+        enc.draw_mesh_per_layer("atlas irradiance", shared, (pipeline, &group), mesh, targets, 6);
         Ok(())
     }
 }

@@ -2,11 +2,11 @@
 //! orthographically, into a layer of the light normals and depths ([DirDipoleThesis] step 1).
 
 use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
-use super::{DipoleResources, layer_view, mesh_pipeline_spec};
+use super::{DipoleResources, mesh_pipeline_spec};
 use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::shader::Variant;
-use crate::wgpu_util::{buf, color, depth_clear, layout, uniform_entry};
+use crate::wgpu_util::{buf, layout, uniform_entry};
 
 /// The light G-buffer pass.
 #[derive(Debug)]
@@ -44,14 +44,8 @@ impl DipoleLightPass {
             layout: &self.layout,
             entries: &[buf(0, &res.uniform)],
         });
-        for slot in 0..slots {
-            let (normals, depth) = (layer_view(&res.light_normals, slot), layer_view(&res.light_depths, slot));
-            let mut pass = enc.begin("dipole light", &[color(&normals, wgpu::Color::TRANSPARENT)], depth_clear(&depth));
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &shared.frame_group, &[]);
-            pass.set_bind_group(1, &group, &[]);
-            mesh.draw_instance(&mut pass, slot);
-        }
+        let targets = (&[&res.light_normals][..], &res.light_depths);
+        enc.draw_mesh_per_layer("dipole light", shared, (pipeline, &group), mesh, targets, slots);
         Ok(())
     }
 }

@@ -269,16 +269,6 @@ pub fn mesh_pipeline_spec<'a>(
     }
 }
 
-/// A view of one layer of an array texture, as a render attachment.
-pub fn layer_view(t: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
-    t.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2),
-        base_array_layer: layer,
-        array_layer_count: Some(1),
-        ..Default::default()
-    })
-}
-
 /// What the three dipole passes share: the uniform, the light G-buffer and the radiance maps
 /// (sized by the settings, kept while they fit), and the progressive accumulation's state.
 #[derive(Debug)]

@@ -4,11 +4,11 @@
 //! frames (the shader mixes in the previous frame's map of the ping-pong pair).
 
 use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
-use super::{DipoleResources, layer_view, mesh_pipeline_spec};
+use super::{DipoleResources, mesh_pipeline_spec};
 use crate::error::Result;
 use crate::gpu_mesh::GpuMesh;
 use crate::shader::Variant;
-use crate::wgpu_util::{array_view, buf, color, depth_clear, layout, tex, tex_entry, uniform_entry};
+use crate::wgpu_util::{array_view, buf, layout, tex, tex_entry, uniform_entry};
 
 /// The radiance-map pass.
 #[derive(Debug)]
@@ -54,14 +54,8 @@ impl DipoleRadiancePass {
             layout: &self.layout,
             entries: &[buf(0, &res.uniform), tex(1, &normals), tex(2, &depths), tex(3, &previous)],
         });
-        for k in 0..directions {
-            let (map, depth) = (layer_view(current, k), layer_view(&res.map_depths, k));
-            let mut pass = enc.begin("dipole radiance", &[color(&map, wgpu::Color::TRANSPARENT)], depth_clear(&depth));
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &shared.frame_group, &[]);
-            pass.set_bind_group(1, &group, &[]);
-            mesh.draw_instance(&mut pass, k);
-        }
+        let targets = (&[current][..], &res.map_depths);
+        enc.draw_mesh_per_layer("dipole radiance", shared, (pipeline, &group), mesh, targets, directions);
         Ok(())
     }
 }
