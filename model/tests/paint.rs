@@ -2,7 +2,6 @@
 //! seams, mirrored or not), convergence, erasing, smoothing, gap-free strokes, brush validation,
 //! and the speed of building a surface map and of one dab (printed, never asserted).
 
-use std::sync::OnceLock;
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
@@ -11,20 +10,11 @@ use rouge_model::look::ThicknessMap;
 use rouge_model::mesh::load_mesh;
 use rouge_model::paint::{Brush, BrushMode, StrokeSpacer, SurfaceMap, TexelRect, apply_dab, apply_dab_split, stroke};
 
-const SIZE: u32 = 1024;
+mod common;
+use common::{SIZE, head};
 
 /// Texel coordinates (x, y), row 0 at the top.
 type Texel = (u32, u32);
-
-/// The lighter default head (one Catmull-Clark level) and its surface map at 1024², built once.
-fn head() -> &'static (TriangleMesh, SurfaceMap) {
-    static HEAD: OnceLock<(TriangleMesh, SurfaceMap)> = OnceLock::new();
-    HEAD.get_or_init(|| {
-        let mesh = load_mesh(None, 1.0, 1).expect("default head");
-        let surface = SurfaceMap::build(&mesh, SIZE, SIZE);
-        (mesh, surface)
-    })
-}
 
 fn blank(surface: &SurfaceMap) -> ThicknessMap {
     ThicknessMap {

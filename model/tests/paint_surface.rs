@@ -3,28 +3,18 @@
 //! the symmetry plane on an off-centre mesh, the stabiliser and the presets.
 
 use std::collections::HashSet;
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use glam::Vec3;
 use rouge_model::TriangleMesh;
 use rouge_model::look::{Region, ThicknessMap};
-use rouge_model::mesh::load_mesh;
 use rouge_model::paint::{
     Axis, BRUSH_PRESETS, Brush, DepthImage, FillRegion, LazyMouse, MirrorPlane, PaintView, Reach, SurfaceMap,
     apply_dab, apply_dab_in_view, fill,
 };
 
-const SIZE: u32 = 1024;
-
-/// The lighter default head (one Catmull-Clark level) and its surface map at 1024², built once.
-fn head() -> &'static (TriangleMesh, SurfaceMap) {
-    static HEAD: OnceLock<(TriangleMesh, SurfaceMap)> = OnceLock::new();
-    HEAD.get_or_init(|| {
-        let mesh = load_mesh(None, 1.0, 1).expect("default head");
-        let surface = SurfaceMap::build(&mesh, SIZE, SIZE);
-        (mesh, surface)
-    })
-}
+mod common;
+use common::{SIZE, head};
 
 fn blank() -> ThicknessMap {
     ThicknessMap { width: SIZE, height: SIZE, mm: vec![0.0; (SIZE * SIZE) as usize] }
