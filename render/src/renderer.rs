@@ -8,9 +8,9 @@ use crate::frame::{FramePlan, FrameSettings, Step, Uploaded};
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
 use crate::passes::composite::CompositePass;
+use crate::passes::cube_atlas::AtlasResources;
 use crate::passes::cube_atlas::gather::AtlasGatherPass;
 use crate::passes::cube_atlas::irradiance::AtlasIrradiancePass;
-use crate::passes::cube_atlas::{AtlasResources, AtlasUniform};
 use crate::passes::depth_copy::DepthCopyPass;
 use crate::passes::dipole::combine::DipoleCombinePass;
 use crate::passes::dipole::light::DipoleLightPass;
@@ -378,9 +378,7 @@ impl Renderer {
             && plan.variant.atlas
         {
             atlas.ensure(device, settings);
-            let u = AtlasUniform::new(medium, settings, &mesh.bounds);
-            atlas.frame = Some(crate::cube_atlas::AtlasFrame::new(&mesh.bounds, settings.atlas_px));
-            shared.queue.write_buffer(&atlas.uniform, 0, bytemuck::bytes_of(&u));
+            atlas.update(&shared.queue, medium, settings, &mesh.bounds);
         }
         if let Some(kernel) = &plan.kernel {
             passes.sss.write_uniforms(shared, kernel, scene.sss.width, scene.sss.follow_mm, scene.sss.samples);

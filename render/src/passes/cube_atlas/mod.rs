@@ -88,7 +88,12 @@ pub struct AtlasResources {
     /// The cube the atlas was last drawn for.
     pub frame: Option<AtlasFrame>,
     min_layers: u32,
+    /// What the uniform holds: σa, σs′, η, the settings and the mesh's bounds.
+    written: Option<UniformInputs>,
 }
+
+/// What [`AtlasUniform::new`] is made from.
+type UniformInputs = ([f64; 3], [f64; 3], f64, AtlasSettings, Bounds);
 
 /// The atlas read back to the CPU (tests, inspection): per face, row-major texels.
 #[derive(Clone, Debug)]
@@ -137,7 +142,7 @@ impl AtlasResources {
     pub fn new(device: &wgpu::Device, min_layers: u32) -> AtlasResources {
         let uniform = crate::wgpu_util::uniform_buffer(device, "Atlas::uniform", std::mem::size_of::<AtlasUniform>());
         let (irradiance, normals, depths) = Self::textures(device, 1, min_layers);
-        AtlasResources { uniform, irradiance, normals, depths, frame: None, min_layers }
+        AtlasResources { uniform, irradiance, normals, depths, frame: None, min_layers, written: None }
     }
 
     /// Six faces (seven layers on GL: [`crate::targets::array_layers`]).
@@ -155,6 +160,20 @@ impl AtlasResources {
         if self.irradiance.width() != settings.atlas_px {
             (self.irradiance, self.normals, self.depths) = Self::textures(device, settings.atlas_px, self.min_layers);
         }
+    }
+
+    /// Writes the uniform for `medium` and `settings` around a mesh with `bounds`, unless it
+    /// holds them already: a still mesh redoes neither the profiles nor the Fresnel bands'
+    /// integrals every frame; a deforming one (new bounds) does.
+    pub fn update(&mut self, queue: &wgpu::Queue, medium: &Medium, settings: &AtlasSettings, bounds: &Bounds) {
+        let inputs = (medium.sigma_a_per_mm, medium.sigma_s_prime_per_mm, medium.eta, *settings, *bounds);
+        if self.written.as_ref() == Some(&inputs) {
+            return;
+        }
+        let u = AtlasUniform::new(medium, settings, bounds);
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
+        self.frame = Some(AtlasFrame::new(bounds, settings.atlas_px));
+        self.written = Some(inputs);
     }
 
     /// The atlas as last drawn.
