@@ -227,6 +227,23 @@ fn the_cube_atlas_follows_the_morph_and_restores_the_mesh() {
     h.run_steps(2);
     assert_eq!(h.state().morph(), 0.6);
     assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
+    // A pose under the preview stays morphed: the posed mesh is morphed by the same t (before,
+    // the pose showed unmorphed while the slider still read 0.6).
+    let (rest, morphed) = {
+        h.state_mut().set_morph(0.0);
+        h.run_steps(1);
+        let rest = h.state().shown_mesh_bounds().expect("bounds");
+        h.state_mut().set_morph(0.6);
+        h.run_steps(1);
+        (rest, h.state().shown_mesh_bounds().expect("bounds"))
+    };
+    h.state_mut().set_face(rouge_model::mesh::targets::FacePose::preset("smile")).expect("smile");
+    h.run_steps(2);
+    let posed = h.state().shown_mesh_bounds().expect("bounds");
+    let gap = |a: rouge_model::mesh::Bounds, b: rouge_model::mesh::Bounds| (a.size() - b.size()).length();
+    assert!(gap(rest, morphed) > 5.0, "the morph did not change the bounds: {rest:?} {morphed:?}");
+    assert!(gap(posed, morphed) < 0.25 * gap(rest, morphed), "posed {posed:?}, morphed {morphed:?}, rest {rest:?}");
+    assert_eq!(h.state().morph(), 0.6);
     // Leaving the model puts the mesh back.
     h.state_mut().set_subsurface(SubsurfaceChoice::ScreenSpace);
     h.run_steps(2);

@@ -108,6 +108,7 @@ impl RougeApp {
         self.gpu.set_posed_mesh(mesh.clone(), self.view.skin_albedo()).map_err(|e| e.to_string())?;
         self.face.surface_stale = true;
         self.view.needs_render = true;
+        self.remorph();
         Ok(())
     }
 

@@ -69,6 +69,8 @@ impl RougeApp {
                     return true;
                 }
                 self.editor.set_surface(Some(surface));
+                // A morph preview was of the mesh before.
+                self.view.morph = Default::default();
                 self.view.reset_orbit();
                 self.view.framing = None;
                 self.sync_layers();

@@ -236,6 +236,21 @@ impl RougeApp {
         self.view.needs_render = true;
     }
 
+    /// After the viewport's mesh changed under a morph preview (a new pose): morph the new
+    /// mesh by the same t, so the preview and the pose both show.
+    pub(super) fn remorph(&mut self) {
+        let t = self.view.morph.t;
+        if t != 0.0 {
+            self.view.morph.base = None;
+            self.set_morph(t);
+        }
+    }
+
+    /// The bounds of the mesh the viewport draws (posed and morphed as shown).
+    pub fn shown_mesh_bounds(&self) -> Option<rouge_model::mesh::Bounds> {
+        self.gpu.renderer.mesh_bounds()
+    }
+
     /// How far the viewport's mesh is morphed toward its bounding sphere.
     pub fn morph(&self) -> f32 {
         self.view.morph.t
