@@ -1,0 +1,19 @@
+//! What the paint tests share: the head they paint on.
+
+use rouge_model::mesh::{TriangleMesh, load_mesh};
+use rouge_model::paint::SurfaceMap;
+use std::sync::OnceLock;
+
+/// Side of the test maps, texels.
+pub const SIZE: u32 = 1024;
+
+/// The lighter default head (one Catmull-Clark level) and its surface map at 1024², built once
+/// per test binary.
+pub fn head() -> &'static (TriangleMesh, SurfaceMap) {
+    static HEAD: OnceLock<(TriangleMesh, SurfaceMap)> = OnceLock::new();
+    HEAD.get_or_init(|| {
+        let mesh = load_mesh(None, 1.0, 1).expect("default head");
+        let surface = SurfaceMap::build(&mesh, SIZE, SIZE);
+        (mesh, surface)
+    })
+}
