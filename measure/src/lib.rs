@@ -19,6 +19,7 @@ pub mod km;
 pub mod km_batch;
 pub mod layer_table;
 pub mod preset;
+pub mod skin;
 pub mod spectrum;
 
 pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};

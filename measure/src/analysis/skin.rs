@@ -8,19 +8,25 @@ use crate::import::{ImportError, cgats, rouge_csv};
 use crate::spectrum::{Extrapolation, SampledSpectrum, Spectrum, working_wavelength_nm};
 use std::path::Path;
 
-/// Reads every skin of `path` onto the working grid. Errors name the file and the line and
-/// column (a bad cell), or the sample and wavelength (a grid that does not cover 380-780 nm
-/// without `Extrapolation::Constant`, a reflectance outside [0, 1] after resampling).
-pub fn read_skins(path: &Path, extrapolation: Extrapolation) -> Result<Vec<(String, Spectrum)>, ImportError> {
+/// Reads every skin of `path` as measured, on its own wavelengths (the skin model's fit works
+/// there). Errors name the file and the line and column of a bad cell.
+pub fn read_sampled_skins(path: &Path) -> Result<Vec<(String, SampledSpectrum)>, ImportError> {
     let text = std::fs::read_to_string(path).map_err(|e| ImportError::file(path, format!("cannot read: {e}")))?;
     if text.trim().is_empty() {
         return Err(ImportError::file(path, "the file is empty"));
     }
-    let sampled: Vec<(String, SampledSpectrum)> = if cgats::looks_like_cgats(&text) {
-        cgats::parse(path, &text)?.samples.into_iter().map(|s| (s.name, s.spectrum)).collect()
+    if cgats::looks_like_cgats(&text) {
+        Ok(cgats::parse(path, &text)?.samples.into_iter().map(|s| (s.name, s.spectrum)).collect())
     } else {
-        rouge_csv::parse_spectra_table(path, &text)?.0
-    };
+        Ok(rouge_csv::parse_spectra_table(path, &text)?.0)
+    }
+}
+
+/// Reads every skin of `path` onto the working grid. Errors name the file and the line and
+/// column (a bad cell), or the sample and wavelength (a grid that does not cover 380-780 nm
+/// without `Extrapolation::Constant`, a reflectance outside [0, 1] after resampling).
+pub fn read_skins(path: &Path, extrapolation: Extrapolation) -> Result<Vec<(String, Spectrum)>, ImportError> {
+    let sampled = read_sampled_skins(path)?;
     sampled
         .into_iter()
         .map(|(name, s)| {

@@ -1,0 +1,126 @@
+//! The skin's optical properties: per layer and wavelength, and as the one homogeneous RGB medium
+//! the renderer's subsurface models take.
+
+use super::chromophores::{
+    baseline_mu_a_per_mm, blood_mu_a_per_mm, eumelanin_mu_a_per_mm, pheomelanin_mu_a_per_mm, reduced_scattering_per_mm,
+};
+use super::transport::{TISSUE_INDEX, two_layer_reflectance};
+use super::{SkinError, SkinParams};
+use crate::colorimetry::{Colorimeter, Viewing};
+use crate::spectrum::{WORKING_LEN, working_wavelength_nm};
+
+/// Absorption and reduced scattering of one layer at one wavelength, per mm.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct LayerOptics {
+    /// Absorption coefficient μa, mm⁻¹.
+    pub mu_a_per_mm: f64,
+    /// Reduced scattering coefficient μs′ = μs(1 − g), mm⁻¹.
+    pub mu_s_reduced_per_mm: f64,
+}
+
+impl LayerOptics {
+    /// μs′/(μs′ + μa); 0 for a layer that neither scatters nor absorbs.
+    pub fn reduced_albedo(&self) -> f64 {
+        let t = self.mu_s_reduced_per_mm + self.mu_a_per_mm;
+        if t > 0.0 { self.mu_s_reduced_per_mm / t } else { 0.0 }
+    }
+}
+
+/// Both layers at one wavelength.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct SkinOptics {
+    /// The wavelength, nm.
+    pub wavelength_nm: f64,
+    /// The epidermis.
+    pub epidermis: LayerOptics,
+    /// The dermis.
+    pub dermis: LayerOptics,
+}
+
+impl SkinOptics {
+    /// The layers' μa and μs′ at `wavelength_nm` (380-780 nm) by the mixing rules of the module
+    /// documentation of [`crate::skin`].
+    pub fn at(p: &SkinParams, wavelength_nm: f64) -> SkinOptics {
+        let base = baseline_mu_a_per_mm(wavelength_nm);
+        let melanin = (1.0 - p.pheomelanin_share) * eumelanin_mu_a_per_mm(wavelength_nm)
+            + p.pheomelanin_share * pheomelanin_mu_a_per_mm(wavelength_nm);
+        let (oxy, deoxy) = blood_mu_a_per_mm(wavelength_nm);
+        let blood = p.oxygen_saturation * oxy + (1.0 - p.oxygen_saturation) * deoxy;
+        let mu_s = reduced_scattering_per_mm(wavelength_nm, p.scattering_500nm_per_mm, p.scattering_power);
+        SkinOptics {
+            wavelength_nm,
+            epidermis: LayerOptics {
+                mu_a_per_mm: p.melanin_fraction * melanin + (1.0 - p.melanin_fraction) * base,
+                mu_s_reduced_per_mm: mu_s,
+            },
+            dermis: LayerOptics {
+                mu_a_per_mm: p.blood_fraction * blood + (1.0 - p.blood_fraction) * base,
+                mu_s_reduced_per_mm: mu_s,
+            },
+        }
+    }
+}
+
+/// The skin as one homogeneous medium per linear sRGB channel, for the renderer's subsurface
+/// models (a `rouge-medium`: σa and σs′ in mm⁻¹, isotropic equivalent g = 0, η = 1.4).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct RgbMedium {
+    /// The skin's colour: linear sRGB (D65) of its reflectance spectrum, specular included.
+    pub albedo_linear_srgb: [f64; 3],
+    /// Absorption per channel, mm⁻¹.
+    pub sigma_a_per_mm: [f64; 3],
+    /// Reduced scattering per channel, mm⁻¹.
+    pub sigma_s_prime_per_mm: [f64; 3],
+    /// Relative index of the surface.
+    pub eta: f64,
+}
+
+/// Lowest reduced albedo [`rgb_medium`] gives a channel.
+pub const MIN_REDUCED_ALBEDO: f64 = 1e-3;
+
+/// The homogeneous medium that looks like the layered skin: per linear sRGB channel, σs′ is the
+/// dermis' μs′ averaged with the channel's spectral weight (x̄ȳz̄ under D65 through the sRGB
+/// matrix, clipped at 0), and σa is chosen so that a semi-infinite slab of that medium under the
+/// same surface has the channel's reflectance (the same adding-doubling table with no epidermis,
+/// inverted by bisection on the reduced albedo). A tone on screen and its diffusion profile
+/// then come from the same skin: the profile's total reflectance is the tone's colour.
+pub fn rgb_medium(p: &SkinParams) -> Result<RgbMedium, SkinError> {
+    let reflectance = p.reflectance()?;
+    let colorimeter = Colorimeter::get(Viewing::D65_1931);
+    let albedo = colorimeter.srgb_linear(&colorimeter.xyz(&reflectance));
+    // The channels' spectral weights: the sRGB matrix applied to the colorimeter's x̄ȳz̄ weights.
+    let w = colorimeter.weights();
+    let mut sigma_s = [0.0; 3];
+    for (c, s) in sigma_s.iter_mut().enumerate() {
+        let (mut num, mut den) = (0.0, 0.0);
+        for i in 0..WORKING_LEN {
+            let xyz = crate::colorimetry::Xyz { xyz: [w[0][i], w[1][i], w[2][i]], viewing: Viewing::D65_1931 };
+            let weight = colorimeter.srgb_linear(&xyz)[c].max(0.0);
+            let o = SkinOptics::at(p, working_wavelength_nm(i));
+            num += weight * o.dermis.mu_s_reduced_per_mm;
+            den += weight;
+        }
+        *s = num / den;
+    }
+    let mut sigma_a = [0.0; 3];
+    for c in 0..3 {
+        let target = albedo[c].clamp(0.0, 1.0);
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            let r = two_layer_reflectance(0.0, 0.0, mid)
+                .map_err(|e| SkinError::Transport { wavelength_nm: 0.0, message: e.to_string() })?;
+            if r < target { lo = mid } else { hi = mid }
+        }
+        // A channel at or below the bare surface's reflection (only the deepest skins' blue comes
+        // near) is given the floor a′ = 1e-3: an absorption 1000× the scattering.
+        let a = (0.5 * (lo + hi)).max(MIN_REDUCED_ALBEDO);
+        sigma_a[c] = sigma_s[c] * (1.0 - a) / a;
+    }
+    Ok(RgbMedium {
+        albedo_linear_srgb: albedo,
+        sigma_a_per_mm: sigma_a,
+        sigma_s_prime_per_mm: sigma_s,
+        eta: TISSUE_INDEX,
+    })
+}
