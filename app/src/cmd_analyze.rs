@@ -37,6 +37,10 @@ pub struct CommonArgs {
     /// sample per skin). Default: the ColorChecker's "dark skin" and "light skin" patches.
     #[arg(long)]
     pub skin: Option<PathBuf>,
+    /// Skins from the spectral skin model's named tones instead (`rouge skin tones` lists them;
+    /// comma-separated, or `all`), beside or instead of --skin.
+    #[arg(long = "skin-tone", value_delimiter = ',')]
+    pub skin_tone: Vec<String>,
     /// Hold the end values of --skin spectra that do not cover 380-780 nm (e.g. 360-740 nm data).
     #[arg(long)]
     pub extrapolate: bool,
@@ -165,17 +169,28 @@ fn load_layer(spec: &str) -> Result<(Preset, Layer)> {
 }
 
 fn skins(common: &CommonArgs) -> Result<Vec<(String, Spectrum)>> {
-    match &common.skin {
-        None => embedded_skins(),
+    let mut skins = match &common.skin {
+        None if !common.skin_tone.is_empty() => vec![],
+        None => embedded_skins()?,
         Some(path) => {
             let extrapolation = if common.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
             let skins = read_skins(path, extrapolation)?;
             if skins.is_empty() {
                 bail!("{}: no skin spectra", path.display());
             }
-            Ok(skins)
+            skins
         }
+    };
+    let all = common.skin_tone.iter().any(|n| n == "all");
+    let tones: Vec<&rouge_measure::skin::SkinTone> = if all {
+        rouge_measure::skin::skin_tones().iter().collect()
+    } else {
+        common.skin_tone.iter().map(|n| rouge_measure::skin::skin_tone(n)).collect::<Result<_, _>>()?
+    };
+    for t in tones {
+        skins.push((format!("tone {}", t.name), t.params.reflectance()?));
     }
+    Ok(skins)
 }
 
 fn viewing(common: &CommonArgs) -> Viewing {

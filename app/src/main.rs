@@ -17,6 +17,7 @@ mod cmd_export;
 mod cmd_import;
 mod cmd_km;
 mod cmd_render;
+mod cmd_skin;
 mod dipole_args;
 mod fit_thickness;
 mod plot_png;
@@ -87,6 +88,10 @@ enum Command {
     /// (tables for people, --json and --plot; docs/FORMULATION.md).
     #[command(subcommand)]
     Analyze(cmd_analyze::AnalyzeCommand),
+    /// The spectral skin model: fit measured skin spectra (melanin, blood, scattering), the
+    /// forward model, and the named skin tones (docs/SKIN.md).
+    #[command(subcommand)]
+    Skin(cmd_skin::SkinCommand),
 }
 
 /// Writes `text` and a newline to stdout. A closed pipe (`rouge ... | head`) ends the program
@@ -132,6 +137,7 @@ fn main() -> ExitCode {
         Command::Export(cmd) => cmd_export::run(&cmd),
         Command::Bench(cmd) => cmd_bench::run(&cmd),
         Command::Analyze(cmd) => cmd_analyze::run(&cmd),
+        Command::Skin(cmd) => cmd_skin::run(&cmd),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -19,11 +19,11 @@ fn light() -> SkinParams {
 #[test]
 fn limits_of_the_model() {
     let wl = grid(380.0, 780.0, 5.0);
-    // No melanin, no blood: only the baseline absorbs; the skin is pale and rises to the red.
+    // No melanin, no blood: only the baseline absorbs; the skin is paler at every wavelength.
     let pale = SkinParams { melanin_fraction: 0.0, blood_fraction: 0.0, ..light() }.reflectance_at(&wl).unwrap();
     let skin = light().reflectance_at(&wl).unwrap();
     assert!(pale.iter().all(|r| (0.0..=1.0).contains(r)));
-    assert!(pale.iter().zip(&skin).all(|(p, s)| p > s) && pale[0] < pale[wl.len() - 1], "{pale:?}");
+    assert!(pale.iter().zip(&skin).all(|(p, s)| p > s), "{pale:?}");
     // No epidermis: melanin does nothing.
     let bare = |mel: f64| {
         SkinParams { melanin_fraction: mel, epidermis_thickness_mm: 0.0, ..light() }.reflectance_at(&wl).unwrap()

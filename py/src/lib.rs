@@ -10,6 +10,7 @@ mod color;
 mod errors;
 mod io;
 mod km;
+mod skin;
 
 #[pymodule]
 fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -20,5 +21,6 @@ fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     color::register(m)?;
     io::register(m)?;
     analysis::register(m)?;
+    skin::register(m)?;
     Ok(())
 }

@@ -89,7 +89,12 @@ pub fn baseline_mu_a_per_mm(wavelength_nm: f64) -> f64 {
 /// Reduced scattering coefficient μs′ = a (λ/500 nm)^−b, per mm ([Jacques2013] eq. 2), for
 /// `at_500nm_per_mm` = a and `power` = b.
 pub fn reduced_scattering_per_mm(wavelength_nm: f64, at_500nm_per_mm: f64, power: f64) -> f64 {
-    at_500nm_per_mm * (wavelength_nm / 500.0).powf(-power)
+    reduced_scattering_from_ln_ratio((wavelength_nm / 500.0).ln(), at_500nm_per_mm, power)
+}
+
+/// [`reduced_scattering_per_mm`] given ln(λ/500 nm) (cached on the working grid): a·exp(−b·ln(λ/500)).
+pub fn reduced_scattering_from_ln_ratio(ln_over_500: f64, at_500nm_per_mm: f64, power: f64) -> f64 {
+    at_500nm_per_mm * (-power * ln_over_500).exp()
 }
 
 #[cfg(test)]

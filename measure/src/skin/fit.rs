@@ -12,7 +12,8 @@
 //!
 //! **Starts.** A seed table of the model over a coarse grid of melanin, blood, saturation and
 //! scattering (built once per [`SkinFitter`]) gives the [`SEEDS`] nearest spectra in CIELAB; the
-//! solve runs from each and keeps the best, so a dark skin does not start from a light one.
+//! solve runs from each in turn, nearest first, until one ends within [`GOOD_ENOUGH_DELTA_E`],
+//! and keeps the best, so a dark skin does not start from a light one.
 //!
 //! **Never NaN.** A spectrum the model cannot explain (a tattoo, a paint chip) gets its best fit,
 //! its ΔE2000 and RMS, and the parameters pinned at a bound are listed in [`SkinFit::at_bounds`].
@@ -28,6 +29,10 @@ pub const SPECTRAL_WEIGHT: f64 = 10.0;
 pub const LAB_WEIGHT: f64 = 0.5;
 /// Starts taken from the seed table.
 pub const SEEDS: usize = 3;
+/// A start ends when an accepted step lowers the cost by less than this fraction.
+pub const RELATIVE_TOLERANCE: f64 = 1e-4;
+/// Further starts are skipped once a fit is this close (ΔE2000) to the measurement.
+pub const GOOD_ENOUGH_DELTA_E: f64 = 0.3;
 /// Number of free parameters.
 pub const FREE: usize = 6;
 
@@ -66,6 +71,8 @@ pub struct SkinFit {
     pub delta_e_2000: f64,
     /// Spectral RMS difference over the measured wavelengths inside 380-780 nm.
     pub rms: f64,
+    /// The measured range, nm (the working grid outside it holds extrapolated values).
+    pub measured_range_nm: (f64, f64),
     /// CIELAB of the measured spectrum.
     pub lab_measured: [f64; 3],
     /// CIELAB of the fit.
@@ -102,12 +109,7 @@ fn from_unit(u: &Vector6<f64>, thickness_mm: f64) -> SkinParams {
 
 /// The model on the working grid, with μs′d kept inside the table (see [`SkinParams::validate`]).
 fn model(u: &Vector6<f64>, thickness_mm: f64) -> Result<[f64; WORKING_LEN], SkinError> {
-    let p = from_unit(u, thickness_mm);
-    let mut out = [0.0; WORKING_LEN];
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = p.reflectance_unchecked(working_wavelength_nm(i))?;
-    }
-    Ok(out)
+    from_unit(u, thickness_mm).reflectance_on_grid_unchecked()
 }
 
 fn lab_of(values: &[f64; WORKING_LEN]) -> [f64; 3] {
@@ -196,6 +198,10 @@ impl SkinFitter {
             evaluations += evals;
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 best = Some((cost, u));
+                let de = delta_e_2000_raw(lab_of(&model(&u, self.options.epidermis_thickness_mm)?), target_lab);
+                if de < GOOD_ENOUGH_DELTA_E {
+                    break;
+                }
             }
         }
         let Some((_, u)) = best else {
@@ -218,6 +224,7 @@ impl SkinFitter {
             fitted: Spectrum(fitted),
             delta_e_2000: delta_e_2000_raw(target_lab, lab_fitted),
             rms,
+            measured_range_nm: (first, last),
             lab_measured: target_lab,
             lab_fitted,
             at_bounds,
@@ -276,7 +283,7 @@ impl SkinFitter {
                     r = rt;
                     cost = ct;
                     lambda = f64::max(lambda / 3.0, 1e-9);
-                    improved = gain > 1e-12 * cost.max(1e-12);
+                    improved = gain > RELATIVE_TOLERANCE * cost.max(1e-12);
                     break;
                 }
                 lambda *= 4.0;

@@ -29,7 +29,7 @@ pub use fit::{FitOptions, SkinFit, SkinFitter, fit_reflectance};
 pub use optics::{LayerOptics, SkinOptics};
 pub use tones::{SkinTone, ita_deg, skin_tone, skin_tones};
 
-use crate::spectrum::{Spectrum, working_wavelength_nm};
+use crate::spectrum::{Spectrum, WORKING_LEN};
 use chromophores::{MAX_WAVELENGTH_NM, MIN_WAVELENGTH_NM};
 
 /// The parameters of the skin model, with their units in their names.
@@ -83,14 +83,15 @@ impl SkinParams {
         ParamRange { name: "epidermis_thickness_mm", min: 0.0, max: 0.3 },
     ];
 
-    /// A light, fair skin: the middle of the database's light skins (see `rouge skin tones`).
+    /// The `light` tone of data/skin/tones.json (ITA 50°, Fitzpatrick II): the default skin
+    /// (a test keeps the two equal).
     pub const LIGHT: SkinParams = SkinParams {
-        melanin_fraction: 0.02,
-        pheomelanin_share: 0.3,
-        blood_fraction: 0.02,
-        oxygen_saturation: 0.7,
-        scattering_500nm_per_mm: 3.0,
-        scattering_power: 1.4,
+        melanin_fraction: 0.01679,
+        pheomelanin_share: 0.539189,
+        blood_fraction: 0.006698,
+        oxygen_saturation: 0.68759,
+        scattering_500nm_per_mm: 5.252525,
+        scattering_power: 3.463573,
         epidermis_thickness_mm: SkinParams::DEFAULT_EPIDERMIS_MM,
     };
 
@@ -143,7 +144,12 @@ impl SkinParams {
     /// parameters (for the fit's inner loop; they must have passed [`SkinParams::validate`] or be
     /// inside [`SkinParams::RANGES`]).
     pub(crate) fn reflectance_unchecked(&self, wavelength_nm: f64) -> Result<f64, SkinError> {
-        let o = SkinOptics::at(self, wavelength_nm);
+        self.reflectance_of(&SkinOptics::at(self, wavelength_nm))
+    }
+
+    /// The slab's reflectance for the layers' optics at one wavelength.
+    fn reflectance_of(&self, o: &SkinOptics) -> Result<f64, SkinError> {
+        let wavelength_nm = o.wavelength_nm;
         let tau_a = o.epidermis.mu_a_per_mm * self.epidermis_thickness_mm;
         let tau_s = (o.epidermis.mu_s_reduced_per_mm * self.epidermis_thickness_mm).min(transport::MAX_TAU_SCATTER_EPI);
         transport::two_layer_reflectance(tau_a, tau_s, o.dermis.reduced_albedo())
@@ -167,9 +173,19 @@ impl SkinParams {
 
     /// Reflectance on the working grid (380-780 nm every 5 nm).
     pub fn reflectance(&self) -> Result<Spectrum, SkinError> {
-        let wl: Vec<f64> = (0..crate::spectrum::WORKING_LEN).map(working_wavelength_nm).collect();
-        let r = self.reflectance_at(&wl)?;
-        Ok(Spectrum(std::array::from_fn(|i| r[i])))
+        self.validate()?;
+        self.reflectance_on_grid_unchecked().map(Spectrum)
+    }
+
+    /// [`SkinParams::reflectance`] without validation (the fit's inner loop; see
+    /// [`SkinParams::reflectance_unchecked`]).
+    pub(crate) fn reflectance_on_grid_unchecked(&self) -> Result<[f64; WORKING_LEN], SkinError> {
+        let optics = SkinOptics::on_working_grid(self);
+        let mut out = [0.0; WORKING_LEN];
+        for (o, r) in optics.iter().zip(out.iter_mut()) {
+            *r = self.reflectance_of(o)?;
+        }
+        Ok(out)
     }
 }
 

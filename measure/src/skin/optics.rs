@@ -2,12 +2,14 @@
 //! the renderer's subsurface models take.
 
 use super::chromophores::{
-    baseline_mu_a_per_mm, blood_mu_a_per_mm, eumelanin_mu_a_per_mm, pheomelanin_mu_a_per_mm, reduced_scattering_per_mm,
+    baseline_mu_a_per_mm, blood_mu_a_per_mm, eumelanin_mu_a_per_mm, pheomelanin_mu_a_per_mm,
+    reduced_scattering_from_ln_ratio,
 };
 use super::transport::{TISSUE_INDEX, two_layer_reflectance};
 use super::{SkinError, SkinParams};
 use crate::colorimetry::{Colorimeter, Viewing};
 use crate::spectrum::{WORKING_LEN, working_wavelength_nm};
+use std::sync::OnceLock;
 
 /// Absorption and reduced scattering of one layer at one wavelength, per mm.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -37,27 +39,70 @@ pub struct SkinOptics {
     pub dermis: LayerOptics,
 }
 
+/// The chromophores' spectra at one wavelength: what the mixing rules combine.
+#[derive(Clone, Copy, Debug)]
+struct Chromophores {
+    wavelength_nm: f64,
+    eumelanin: f64,
+    pheomelanin: f64,
+    oxy: f64,
+    deoxy: f64,
+    baseline: f64,
+    /// ln(λ/500 nm), for the scattering power law.
+    ln_over_500: f64,
+}
+
+impl Chromophores {
+    fn at(wavelength_nm: f64) -> Self {
+        let (oxy, deoxy) = blood_mu_a_per_mm(wavelength_nm);
+        Chromophores {
+            wavelength_nm,
+            eumelanin: eumelanin_mu_a_per_mm(wavelength_nm),
+            pheomelanin: pheomelanin_mu_a_per_mm(wavelength_nm),
+            oxy,
+            deoxy,
+            baseline: baseline_mu_a_per_mm(wavelength_nm),
+            ln_over_500: (wavelength_nm / 500.0).ln(),
+        }
+    }
+
+    /// The working grid's, computed once.
+    fn working_grid() -> &'static [Chromophores; WORKING_LEN] {
+        static GRID: OnceLock<[Chromophores; WORKING_LEN]> = OnceLock::new();
+        GRID.get_or_init(|| std::array::from_fn(|i| Chromophores::at(working_wavelength_nm(i))))
+    }
+
+    /// The mixing rules of the module documentation of [`crate::skin`]: the one place they live.
+    fn mix(&self, p: &SkinParams) -> SkinOptics {
+        let melanin = (1.0 - p.pheomelanin_share) * self.eumelanin + p.pheomelanin_share * self.pheomelanin;
+        let blood = p.oxygen_saturation * self.oxy + (1.0 - p.oxygen_saturation) * self.deoxy;
+        let mu_s = reduced_scattering_from_ln_ratio(self.ln_over_500, p.scattering_500nm_per_mm, p.scattering_power);
+        SkinOptics {
+            wavelength_nm: self.wavelength_nm,
+            epidermis: LayerOptics {
+                mu_a_per_mm: p.melanin_fraction * melanin + (1.0 - p.melanin_fraction) * self.baseline,
+                mu_s_reduced_per_mm: mu_s,
+            },
+            dermis: LayerOptics {
+                mu_a_per_mm: p.blood_fraction * blood + (1.0 - p.blood_fraction) * self.baseline,
+                mu_s_reduced_per_mm: mu_s,
+            },
+        }
+    }
+}
+
 impl SkinOptics {
     /// The layers' μa and μs′ at `wavelength_nm` (380-780 nm) by the mixing rules of the module
     /// documentation of [`crate::skin`].
     pub fn at(p: &SkinParams, wavelength_nm: f64) -> SkinOptics {
-        let base = baseline_mu_a_per_mm(wavelength_nm);
-        let melanin = (1.0 - p.pheomelanin_share) * eumelanin_mu_a_per_mm(wavelength_nm)
-            + p.pheomelanin_share * pheomelanin_mu_a_per_mm(wavelength_nm);
-        let (oxy, deoxy) = blood_mu_a_per_mm(wavelength_nm);
-        let blood = p.oxygen_saturation * oxy + (1.0 - p.oxygen_saturation) * deoxy;
-        let mu_s = reduced_scattering_per_mm(wavelength_nm, p.scattering_500nm_per_mm, p.scattering_power);
-        SkinOptics {
-            wavelength_nm,
-            epidermis: LayerOptics {
-                mu_a_per_mm: p.melanin_fraction * melanin + (1.0 - p.melanin_fraction) * base,
-                mu_s_reduced_per_mm: mu_s,
-            },
-            dermis: LayerOptics {
-                mu_a_per_mm: p.blood_fraction * blood + (1.0 - p.blood_fraction) * base,
-                mu_s_reduced_per_mm: mu_s,
-            },
-        }
+        Chromophores::at(wavelength_nm).mix(p)
+    }
+
+    /// The same at every wavelength of the working grid, with the chromophores' spectra computed
+    /// once per process (the fit's inner loop).
+    pub fn on_working_grid(p: &SkinParams) -> [SkinOptics; WORKING_LEN] {
+        let grid = Chromophores::working_grid();
+        std::array::from_fn(|i| grid[i].mix(p))
     }
 }
 
@@ -93,10 +138,10 @@ pub fn rgb_medium(p: &SkinParams) -> Result<RgbMedium, SkinError> {
     let mut sigma_s = [0.0; 3];
     for (c, s) in sigma_s.iter_mut().enumerate() {
         let (mut num, mut den) = (0.0, 0.0);
-        for i in 0..WORKING_LEN {
+        let optics = SkinOptics::on_working_grid(p);
+        for (i, o) in optics.iter().enumerate() {
             let xyz = crate::colorimetry::Xyz { xyz: [w[0][i], w[1][i], w[2][i]], viewing: Viewing::D65_1931 };
             let weight = colorimeter.srgb_linear(&xyz)[c].max(0.0);
-            let o = SkinOptics::at(p, working_wavelength_nm(i));
             num += weight * o.dermis.mu_s_reduced_per_mm;
             den += weight;
         }

@@ -73,6 +73,7 @@ mod tests {
         assert!(itas[0] > 55.0 && *itas.last().unwrap() < -55.0, "{itas:?}");
         assert!(itas.windows(2).all(|w| w[1] < w[0]), "light to deep: {itas:?}");
         assert!(skin_tone(&tones[0].name).is_ok());
+        assert_eq!(skin_tone("light").unwrap().params, SkinParams::LIGHT, "SkinParams::LIGHT is the light tone");
         let e = skin_tone("mauve").unwrap_err().to_string();
         assert!(e.contains("mauve") && e.contains(&tones[0].name), "{e}");
     }

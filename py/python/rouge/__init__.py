@@ -102,6 +102,50 @@ def read_spectra(path: Any, *, as_msds: bool = False) -> Any:
     return wavelengths, values, names
 
 
+def skin_reflectance(*, tone: str | None = None, wavelengths: Any = None, as_sd: bool = False, **params: float) -> Any:
+    """Reflectance of Rouge's spectral skin model (docs/SKIN.md): an epidermis with melanin over
+    a dermis with blood, by tabulated adding-doubling, specular included. Start from the named
+    ``tone`` (``skin_tones()``) or the light default and override parameters by keyword
+    (``melanin_fraction``, ``pheomelanin_share``, ``blood_fraction``, ``oxygen_saturation``,
+    ``scattering_500nm_per_mm``, ``scattering_power``, ``epidermis_thickness_mm``). Returns a
+    numpy array at ``wavelengths`` (nm, default 380-780 / 5), or a colour-science
+    ``SpectralDistribution`` with ``as_sd``. Raises ``RougeError`` naming a parameter out of range."""
+    wl = None if wavelengths is None else [float(w) for w in np.asarray(wavelengths, dtype=np.float64).ravel()]
+    values = np.asarray(_rouge.skin_reflectance(tone=tone, wavelengths=wl, **params))
+    if as_sd:
+        import colour
+
+        grid = np.asarray(wl if wl is not None else working_wavelengths())
+        return colour.SpectralDistribution(values, grid, name=tone or "skin")
+    return values
+
+
+def skin_fit(R: Any, wavelengths: Any = None, *, epidermis_thickness_mm: float = 0.1, extrapolate: bool = False) -> Any:
+    """Fits the skin model to measured reflectance (rows of ``R`` with wavelength last, at
+    ``wavelengths`` nm; or a colour-science ``SpectralDistribution`` /
+    ``MultiSpectralDistributions``). Returns a dict per spectrum (a list for several): ``params``,
+    ``wavelengths``, ``fitted_reflectance``, ``delta_E`` (CIEDE2000, D65, CIE 1931), ``rms``,
+    ``Lab_measured``, ``Lab_fitted``, ``at_bounds``."""
+    from ._spectral import unwrap
+
+    values, sd_wl = unwrap(R)
+    if sd_wl is not None:
+        wavelengths = sd_wl
+    if wavelengths is None:
+        wavelengths = working_wavelengths()
+    values = np.asarray(values, dtype=np.float64)
+    single = values.ndim == 1
+    rows = np.atleast_2d(values)
+    out = _rouge.skin_fit(rows.tolist(), [float(w) for w in np.asarray(wavelengths).ravel()],
+                          epidermis_thickness_mm=epidermis_thickness_mm, extrapolate=extrapolate)
+    return out[0] if single else out
+
+
+def skin_tones() -> list[dict[str, Any]]:
+    """Rouge's named skin tones, very light to very deep: ``name``, ``fitzpatrick``, ``params``, ``source``."""
+    return _rouge.skin_tones_list()
+
+
 def measurement_to_msds(measurement: Measurement) -> Any:
     """A measurement's R∞, R and Rg as a colour-science ``MultiSpectralDistributions``."""
     m = measurement
@@ -143,5 +187,8 @@ __all__ = [
     "sd_to_Lab",
     "sd_to_XYZ",
     "sd_to_sRGB",
+    "skin_fit",
+    "skin_reflectance",
+    "skin_tones",
     "working_wavelengths",
 ]
