@@ -45,7 +45,7 @@ pub struct FitArgs {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Write one JSON object per spectrum here (name, params, wavelengths_nm, fitted_reflectance,
-    /// delta_e, rms, lab_measured, lab_fitted, at_bounds).
+    /// measured_reflectance, delta_e, rms, lab_measured, lab_fitted, ita_deg, at_bounds).
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Draw measured against fitted for up to six spectra across the ITA range into this PNG.
@@ -243,14 +243,17 @@ fn fit(a: &FitArgs) -> Result<()> {
             .iter()
             .zip(&fits)
             .map(|((name, sp), f)| {
-                let wl: Vec<f64> =
-                    sp.wavelengths_nm().iter().copied().filter(|w| (380.0..=780.0).contains(w)).collect();
+                let inside = |w: &&f64| (380.0..=780.0).contains(*w);
+                let wl: Vec<f64> = sp.wavelengths_nm().iter().filter(inside).copied().collect();
+                let measured: Vec<f64> =
+                    sp.wavelengths_nm().iter().zip(sp.values()).filter(|(w, _)| inside(w)).map(|(_, v)| *v).collect();
                 let fitted = f.params.reflectance_at(&wl).unwrap_or_default();
                 json!({
                     "name": name,
                     "params": f.params,
                     "wavelengths_nm": wl,
                     "fitted_reflectance": fitted,
+                    "measured_reflectance": measured,
                     "delta_e": f.delta_e_2000,
                     "rms": f.rms,
                     "lab_measured": f.lab_measured,

@@ -33,7 +33,7 @@ fn limits_of_the_model() {
     // All melanin, a thick epidermis: little but the surface's reflection comes back in the blue.
     let dark =
         SkinParams { melanin_fraction: 0.6, epidermis_thickness_mm: 0.2, ..light() }.reflectance_at(&wl).unwrap();
-    assert!(dark[0] < specular_reflectance() + 0.002, "{}", dark[0]);
+    assert!(dark[0] < specular_reflectance() + 0.005, "{}", dark[0]);
     assert!(dark.iter().all(|r| *r >= specular_reflectance() - 1e-12));
 }
 

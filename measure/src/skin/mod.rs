@@ -86,12 +86,12 @@ impl SkinParams {
     /// The `light` tone of data/skin/tones.json (ITA 50°, Fitzpatrick II): the default skin
     /// (a test keeps the two equal).
     pub const LIGHT: SkinParams = SkinParams {
-        melanin_fraction: 0.01679,
-        pheomelanin_share: 0.539189,
-        blood_fraction: 0.006698,
-        oxygen_saturation: 0.68759,
-        scattering_500nm_per_mm: 5.252525,
-        scattering_power: 3.463573,
+        melanin_fraction: 0.017425,
+        pheomelanin_share: 0.668073,
+        blood_fraction: 0.007086,
+        oxygen_saturation: 0.735719,
+        scattering_500nm_per_mm: 5.381874,
+        scattering_power: 3.324154,
         epidermis_thickness_mm: SkinParams::DEFAULT_EPIDERMIS_MM,
     };
 

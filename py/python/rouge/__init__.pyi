@@ -150,3 +150,13 @@ def fit_mix_Duncan(
     skin: ArrayLike | None = None, thickness_mm: float | None = None, illuminant: str = "D65",
     observer: str = "CIE 1931 2 Degree Standard Observer",
 ) -> dict[str, Any]: ...
+
+# The spectral skin model (docs/SKIN.md).
+def skin_reflectance(
+    *, tone: str | None = None, wavelengths: ArrayLike | None = None, as_sd: bool = False, **params: float,
+) -> Array | Any: ...
+def skin_fit(
+    R: ArrayLike | Spectral, wavelengths: ArrayLike | None = None, *, epidermis_thickness_mm: float = 0.1,
+    extrapolate: bool = False,
+) -> dict[str, Any] | list[dict[str, Any]]: ...
+def skin_tones() -> list[dict[str, Any]]: ...
