@@ -8,7 +8,7 @@ use rouge_measure::analysis::skin::read_sampled_skins;
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
 use rouge_measure::skin::fit::{SkinFitter, lab_d65};
 use rouge_measure::skin::optics::{SkinOptics, rgb_medium};
-use rouge_measure::skin::{FitOptions, SkinFit, SkinParams, ita_deg, skin_tone, skin_tones};
+use rouge_measure::skin::{FitOptions, SkinFit, SkinParams, Specular, ita_deg, skin_tone, skin_tones};
 use rouge_measure::spectrum::{Extrapolation, Spectrum, working_wavelength_nm};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -38,6 +38,10 @@ pub struct FitArgs {
     /// Hold the end values of spectra that do not cover 380-780 nm (e.g. 360-740 nm data).
     #[arg(long)]
     pub extrapolate: bool,
+    /// Whether the spectra include the surface's specular reflection: `included` (SCI, the
+    /// default) or `excluded` (SCE, a d/8° sphere with its light trap open).
+    #[arg(long, default_value = "included", value_parser = parse_specular)]
+    pub specular: Specular,
     /// Thickness of the epidermis, held fixed in the fit, mm.
     #[arg(long, default_value_t = SkinParams::DEFAULT_EPIDERMIS_MM)]
     pub epidermis_mm: f64,
@@ -131,6 +135,14 @@ pub struct TonesArgs {
     pub plot: Option<PathBuf>,
 }
 
+fn parse_specular(s: &str) -> Result<Specular, String> {
+    match s {
+        "included" | "sci" | "SCI" => Ok(Specular::Included),
+        "excluded" | "sce" | "SCE" => Ok(Specular::Excluded),
+        _ => Err(format!("`{s}`: `included` (SCI) or `excluded` (SCE)")),
+    }
+}
+
 pub fn run(cmd: &SkinCommand) -> Result<()> {
     match cmd {
         SkinCommand::Fit(a) => fit(a),
@@ -167,6 +179,7 @@ fn fit(a: &FitArgs) -> Result<()> {
         bail!("{}: no spectra", a.file.display());
     }
     let options = FitOptions {
+        specular: a.specular,
         epidermis_thickness_mm: a.epidermis_mm,
         extrapolation: if a.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse },
         ..FitOptions::default()

@@ -6,7 +6,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rouge_measure::skin::fit::SkinFitter;
-use rouge_measure::skin::{FitOptions, SkinError, SkinParams, skin_tone, skin_tones};
+use rouge_measure::skin::{FitOptions, SkinError, SkinParams, Specular, skin_tone, skin_tones};
 use rouge_measure::spectrum::{Extrapolation, working_wavelength_nm};
 
 fn err(e: SkinError) -> PyErr {
@@ -65,9 +65,11 @@ pub fn skin_reflectance(
 /// Fits the skin model to each row of `R` (reflectances as fractions at `wavelengths`, nm).
 /// Returns one dict per row: `params` (dict), `fitted_reflectance` (at `wavelengths` inside
 /// 380-780 nm), `delta_E` (CIEDE2000, D65, CIE 1931), `rms`, `Lab_measured`, `Lab_fitted`,
-/// `at_bounds`. `extrapolate` holds the end values of spectra that stop short of 380/780 nm.
+/// `at_bounds`. `extrapolate` holds the end values of spectra that stop short of 380/780 nm;
+/// `specular` says whether the measurement includes the surface reflection (`included`, SCI) or
+/// not (`excluded`, SCE).
 #[pyfunction]
-#[pyo3(signature = (R, wavelengths, *, epidermis_thickness_mm=0.1, extrapolate=false))]
+#[pyo3(signature = (R, wavelengths, *, epidermis_thickness_mm=0.1, extrapolate=false, specular="included"))]
 #[allow(non_snake_case)]
 pub fn skin_fit<'py>(
     py: Python<'py>,
@@ -75,8 +77,19 @@ pub fn skin_fit<'py>(
     wavelengths: Vec<f64>,
     epidermis_thickness_mm: f64,
     extrapolate: bool,
+    specular: &str,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let specular = match specular {
+        "included" => Specular::Included,
+        "excluded" => Specular::Excluded,
+        other => {
+            return Err(crate::errors::RougeError::new_err(format!(
+                "specular=`{other}`: `included` (SCI) or `excluded` (SCE)"
+            )));
+        }
+    };
     let options = FitOptions {
+        specular,
         epidermis_thickness_mm,
         extrapolation: if extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse },
         ..FitOptions::default()

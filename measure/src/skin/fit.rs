@@ -18,6 +18,7 @@
 //! **Never NaN.** A spectrum the model cannot explain (a tattoo, a paint chip) gets its best fit,
 //! its ΔE2000 and RMS, and the parameters pinned at a bound are listed in [`SkinFit::at_bounds`].
 
+use super::transport::specular_reflectance;
 use super::{SkinError, SkinParams};
 use crate::colorimetry::{Colorimeter, Lab, Viewing, delta_e_2000_raw};
 use crate::spectrum::{Extrapolation, SampledSpectrum, Spectrum, WORKING_LEN, working_wavelength_nm};
@@ -36,9 +37,22 @@ pub const GOOD_ENOUGH_DELTA_E: f64 = 0.3;
 /// Number of free parameters.
 pub const FREE: usize = 6;
 
+/// Whether the instrument's reflectance includes the surface's specular reflection: a d/8°
+/// sphere in SCI mode (specular component included) or SCE (its light trap open).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Specular {
+    /// SCI: the model's total reflectance.
+    #[default]
+    Included,
+    /// SCE: the total minus the smooth surface's Fresnel reflection.
+    Excluded,
+}
+
 /// How to fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FitOptions {
+    /// What the measurement includes of the surface's specular reflection.
+    pub specular: Specular,
     /// The epidermis' thickness, held fixed, mm.
     pub epidermis_thickness_mm: f64,
     /// Hold the end values out to 380/780 nm when a spectrum does not cover them (the ΔE and the
@@ -51,6 +65,7 @@ pub struct FitOptions {
 impl Default for FitOptions {
     fn default() -> Self {
         FitOptions {
+            specular: Specular::Included,
             epidermis_thickness_mm: SkinParams::DEFAULT_EPIDERMIS_MM,
             extrapolation: Extrapolation::Refuse,
             max_iterations: 60,
@@ -107,9 +122,14 @@ fn from_unit(u: &Vector6<f64>, thickness_mm: f64) -> SkinParams {
     SkinParams::from_array(a)
 }
 
-/// The model on the working grid, with μs′d kept inside the table (see [`SkinParams::validate`]).
-fn model(u: &Vector6<f64>, thickness_mm: f64) -> Result<[f64; WORKING_LEN], SkinError> {
-    from_unit(u, thickness_mm).reflectance_on_grid_unchecked()
+/// The model on the working grid as the instrument reads it, with μs′d kept inside the table
+/// (see [`SkinParams::validate`]).
+fn model(u: &Vector6<f64>, options: &FitOptions) -> Result<[f64; WORKING_LEN], SkinError> {
+    let r = from_unit(u, options.epidermis_thickness_mm).reflectance_on_grid_unchecked()?;
+    Ok(match options.specular {
+        Specular::Included => r,
+        Specular::Excluded => r.map(|v| v - specular_reflectance()),
+    })
 }
 
 fn lab_of(values: &[f64; WORKING_LEN]) -> [f64; 3] {
@@ -150,7 +170,7 @@ impl SkinFitter {
                             ..probe
                         };
                         let u = to_unit(&p);
-                        seeds.push((u, lab_of(&model(&u, options.epidermis_thickness_mm)?)));
+                        seeds.push((u, lab_of(&model(&u, &options)?)));
                     }
                 }
             }
@@ -198,7 +218,7 @@ impl SkinFitter {
             evaluations += evals;
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 best = Some((cost, u));
-                let de = delta_e_2000_raw(lab_of(&model(&u, self.options.epidermis_thickness_mm)?), target_lab);
+                let de = delta_e_2000_raw(lab_of(&model(&u, &self.options)?), target_lab);
                 if de < GOOD_ENOUGH_DELTA_E {
                     break;
                 }
@@ -208,7 +228,7 @@ impl SkinFitter {
             return Err(SkinError::Measurement { wavelength_nm: None, message: "no seed to start from".into() });
         };
         let t = self.options.epidermis_thickness_mm;
-        let fitted = model(&u, t)?;
+        let fitted = model(&u, &self.options)?;
         let lab_fitted = lab_of(&fitted);
         let n = mask.iter().filter(|m| **m).count().max(1);
         let rms = ((0..WORKING_LEN).filter(|&i| mask[i]).map(|i| (fitted[i] - target[i]).powi(2)).sum::<f64>()
@@ -240,9 +260,8 @@ impl SkinFitter {
         mask: &[bool; WORKING_LEN],
         target_lab: [f64; 3],
     ) -> Result<(f64, Vector6<f64>, usize), SkinError> {
-        let t = self.options.epidermis_thickness_mm;
         let eval = |u: &Vector6<f64>| -> Result<DVector<f64>, SkinError> {
-            Ok(residuals(&model(u, t)?, target, mask, target_lab))
+            Ok(residuals(&model(u, &self.options)?, target, mask, target_lab))
         };
         let mut u = u0;
         let mut r = eval(&u)?;

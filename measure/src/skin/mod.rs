@@ -25,7 +25,7 @@ pub mod optics;
 pub mod tones;
 pub mod transport;
 
-pub use fit::{FitOptions, SkinFit, SkinFitter, fit_reflectance};
+pub use fit::{FitOptions, SkinFit, SkinFitter, Specular, fit_reflectance};
 pub use optics::{LayerOptics, SkinOptics};
 pub use tones::{SkinTone, ita_deg, skin_tone, skin_tones};
 

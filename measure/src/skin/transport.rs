@@ -96,9 +96,8 @@ fn weights(axis: &[f64], x: f64, extrapolate: bool) -> (usize, [f64; 4]) {
     let x = x.clamp(axis[0], axis[n - 1]);
     let first = i.saturating_sub(1).min(n - 4);
     let nodes = &axis[first..first + 4];
-    let w = std::array::from_fn(|k| {
-        (0..4).filter(|&m| m != k).map(|m| (x - nodes[m]) / (nodes[k] - nodes[m])).product()
-    });
+    let w =
+        std::array::from_fn(|k| (0..4).filter(|&m| m != k).map(|m| (x - nodes[m]) / (nodes[k] - nodes[m])).product());
     (first, w)
 }
 

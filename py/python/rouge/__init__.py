@@ -120,12 +120,16 @@ def skin_reflectance(*, tone: str | None = None, wavelengths: Any = None, as_sd:
     return values
 
 
-def skin_fit(R: Any, wavelengths: Any = None, *, epidermis_thickness_mm: float = 0.1, extrapolate: bool = False) -> Any:
+def skin_fit(
+    R: Any, wavelengths: Any = None, *, epidermis_thickness_mm: float = 0.1, extrapolate: bool = False,
+    specular: str = "included",
+) -> Any:
     """Fits the skin model to measured reflectance (rows of ``R`` with wavelength last, at
     ``wavelengths`` nm; or a colour-science ``SpectralDistribution`` /
     ``MultiSpectralDistributions``). Returns a dict per spectrum (a list for several): ``params``,
     ``wavelengths``, ``fitted_reflectance``, ``delta_E`` (CIEDE2000, D65, CIE 1931), ``rms``,
-    ``Lab_measured``, ``Lab_fitted``, ``at_bounds``."""
+    ``Lab_measured``, ``Lab_fitted``, ``at_bounds``. ``specular``: ``"included"`` (SCI) or
+    ``"excluded"`` (SCE)."""
     from ._spectral import unwrap
 
     values, sd_wl = unwrap(R)
@@ -137,7 +141,7 @@ def skin_fit(R: Any, wavelengths: Any = None, *, epidermis_thickness_mm: float =
     single = values.ndim == 1
     rows = np.atleast_2d(values)
     out = _rouge.skin_fit(rows.tolist(), [float(w) for w in np.asarray(wavelengths).ravel()],
-                          epidermis_thickness_mm=epidermis_thickness_mm, extrapolate=extrapolate)
+                          epidermis_thickness_mm=epidermis_thickness_mm, extrapolate=extrapolate, specular=specular)
     return out[0] if single else out
 
 
