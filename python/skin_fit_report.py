@@ -93,10 +93,10 @@ def main() -> int:
         wl = np.array(f["wavelengths_nm"])
         a.plot(wl, f["fitted_reflectance"], "k-", label="fitted")
         lab = f["lab_measured"]
-        a.set_title(f"{f['name']}: ITA {f['ita_deg']:.0f}°, ΔE {f['delta_e']:.2f}", fontsize=9)
+        bounds = ", ".join(b.replace("_500nm_per_mm", "").replace("_", " ") for b in f["at_bounds"]) or "none"
+        a.set_title(f"{f['name']}: ITA {f['ita_deg']:.0f}°, L*a*b* {lab[0]:.0f} {lab[1]:.0f} {lab[2]:.0f}, ΔE {f['delta_e']:.2f}\n"
+                    f"at bounds: {bounds}", fontsize=8)
         a.set_xlabel("wavelength (nm)")
-        a.text(0.02, 0.92, f"L*a*b* {lab[0]:.0f} {lab[1]:.0f} {lab[2]:.0f}; at bounds: {', '.join(f['at_bounds']) or 'none'}",
-               transform=a.transAxes, fontsize=7)
         if "measured_reflectance" in f:
             a.plot(wl, f["measured_reflectance"], "o", ms=3, color="#a0705a", label="measured")
     axes[0, 0].legend()
