@@ -66,11 +66,14 @@ def test_cli_and_package_agree_and_colour_matches_colour_science(rouge, tmp_path
     shape = colour.SpectralShape(380, 780, 5)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
     ill = colour.SDS_ILLUMINANTS["D65"]
+    # Rouge's Lab is relative to the white computed on the working grid (docs/ARCHITECTURE.md).
+    ones = colour.SpectralDistribution(np.ones(81), shape.wavelengths)
+    white = colour.XYZ_to_xy(colour.sd_to_XYZ(ones, cmfs, ill, method="Integration", shape=shape) / 100)
     for tone in json.loads(out.read_text()):
         r = rouge_py.skin_reflectance(tone=tone["name"])
         sd = colour.SpectralDistribution(r, shape.wavelengths)
         xyz = colour.sd_to_XYZ(sd, cmfs, ill, method="Integration", shape=shape) / 100
-        lab = colour.XYZ_to_Lab(xyz, colour.CCS_ILLUMINANTS["CIE 1931 2 Degree Standard Observer"]["D65"])
+        lab = colour.XYZ_to_Lab(xyz, white)
         np.testing.assert_allclose(tone["lab"], lab, atol=1e-6)
         assert tone["ita"] == pytest.approx(np.degrees(np.arctan2(lab[0] - 50, lab[2])), abs=1e-6)
 
@@ -170,3 +173,17 @@ def test_the_tabulated_transport_is_adding_doubling_in_colour(rouge, tmp_path, t
     # The fit's median error over the database is 0.28 ΔE2000 (docs/SKIN.md): the transport's own
     # error must be well below it.
     assert de < 0.05 and dr < 2e-3, (tone, de, dr)
+
+
+def test_analyses_take_named_tones(rouge, tmp_path):
+    out = tmp_path / "cov.json"
+    p = rouge("analyze", "coverage", "foundation_02_ivory", "--skin-tone", "light,deep", "--json", str(out))
+    assert p.returncode == 0, p.stderr
+    skins = json.loads(out.read_text())["skins"]
+    assert [s["name"] for s in skins] == ["tone light", "tone deep"]
+    # The deep tone is darker than the light one, by the model.
+    assert skins[1]["lab"][0] < skins[0]["lab"][0] - 15
+    p = rouge("analyze", "match", "foundation_02_ivory", "--skin-tone", "all")
+    assert p.returncode == 0 and "tone very-deep" in p.stdout, p.stdout + p.stderr
+    p = rouge("analyze", "coverage", "foundation_02_ivory", "--skin-tone", "mauve")
+    assert p.returncode == 2 and "very-light" in p.stderr
