@@ -51,10 +51,10 @@ pub struct SceneArgs {
     #[arg(long)]
     pub normal_map: Option<PathBuf>,
     /// Image width, pixels.
-    #[arg(long, default_value_t = 1280)]
+    #[arg(long, default_value_t = 1280, allow_negative_numbers = true)]
     pub width: u32,
     /// Image height, pixels.
-    #[arg(long, default_value_t = 720)]
+    #[arg(long, default_value_t = 720, allow_negative_numbers = true)]
     pub height: u32,
     /// Camera yaw around the head, degrees (positive: from the head's left).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
@@ -92,6 +92,10 @@ pub struct SceneArgs {
     /// Which skin of --skin.
     #[arg(long, requires = "skin")]
     pub skin_sample: Option<String>,
+    /// A named tone of the spectral skin model (`rouge skin tones`: very-light ... very-deep):
+    /// the skin's colour from the tone's reflectance spectrum (docs/SKIN.md).
+    #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin"])]
+    pub skin_tone: Option<String>,
     /// Morph the mesh toward its bounding sphere by this fraction (0 to 1): a deformation for
     /// testing what depends on the rest pose (the baked local thickness of --subsurface thickness).
     #[arg(long, default_value_t = 0.0)]
@@ -207,6 +211,11 @@ impl SceneArgs {
             };
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(spectrum) };
         }
+        if let Some(name) = &self.skin_tone {
+            let tone = rouge_measure::skin::skin_tone(name).context("--skin-tone")?;
+            let spectrum = tone.params.reflectance().with_context(|| format!("--skin-tone {name}"))?;
+            scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
+        }
         let mut fit = None;
         if let Some(medium) = self.medium()? {
             let (skin, fitted) = Skin::from_medium(&medium, self.profile.model());
@@ -264,10 +273,19 @@ impl SceneArgs {
         Ok(FacePose { expression: parse(&self.expression, "--expression")?, shape: parse(&self.shape, "--shape")? })
     }
 
-    /// Checks the image size and the morph.
+    /// Checks the image size, the camera angles, the mesh scale and the morph.
     pub fn check(&self) -> Result<()> {
         if !(0.0..=1.0).contains(&self.morph) {
             bail!("--morph {}: must be 0 to 1", self.morph);
+        }
+        // A non-finite or astronomically large angle rendered an empty frame with exit 0.
+        for (flag, deg) in [("--yaw", self.yaw), ("--pitch", self.pitch)] {
+            if !(deg.is_finite() && deg.abs() <= 3600.0) {
+                bail!("{flag} {deg}: must be a finite angle in degrees, -3600 to 3600");
+            }
+        }
+        if !(self.mesh_scale.is_finite() && self.mesh_scale > 0.0) {
+            bail!("--mesh-scale {}: must be a finite number of millimetres per unit above 0", self.mesh_scale);
         }
         if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
             bail!("--width {} --height {}: each must be 1-16384 pixels", self.width, self.height);

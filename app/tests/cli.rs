@@ -484,3 +484,48 @@ fn a_skin_reflectance_file_sets_the_skin_colour_and_a_missing_sample_is_named() 
     let o = rouge(&["render", "--skin", "data/skin/colorchecker_skin.csv", "--medium", "skin1", "--out", "never.png"]);
     assert_eq!(o.status.code(), Some(2), "--skin and --medium both set the skin");
 }
+
+#[test]
+fn a_named_skin_tone_sets_the_skin_colour() {
+    let albedo = |tone: &str| -> f64 {
+        let args = ["render", "--skin-tone", tone, "--look", "bare", "--explain", "--width", "32", "--height", "24"];
+        let o = rouge(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s = stdout(&o);
+        let line = s.lines().find(|l| l.starts_with("skin: ")).expect("the skin line of the plan").to_string();
+        let at = line.find("albedo ").expect("albedo") + 7;
+        line[at..].split(',').next().and_then(|v| v.trim().parse().ok()).expect("a number")
+    };
+    let (light, deep) = (albedo("very-light"), albedo("very-deep"));
+    assert!(deep < 0.3 * light, "very-deep {deep} very-light {light}");
+    let o = rouge(&["render", "--skin-tone", "mauve", "--out", "never.png"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--skin-tone") && stderr(&o).contains("very-deep"), "{}", stderr(&o));
+    let o = rouge(&["render", "--skin-tone", "deep", "--medium", "skin1", "--out", "never.png"]);
+    assert_eq!(o.status.code(), Some(2), "--skin-tone and --medium both set the skin");
+}
+
+/// Issue 30: non-finite camera angles and mesh scales rendered an empty frame with exit 0 over the
+/// previous image; a negative size got clap's "unexpected argument". Each is now an error that
+/// names the option, and the previous output is left as it was.
+#[test]
+fn bad_camera_and_scale_values_are_named_and_keep_the_old_image() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("keep.png");
+    std::fs::write(&out, b"the previous image").expect("write");
+    let out_s = out.to_str().expect("utf-8");
+    for (bad, says) in [
+        (&["--yaw", "nan"][..], "--yaw"),
+        (&["--yaw", "inf"][..], "--yaw"),
+        (&["--yaw", "1e308"][..], "--yaw"),
+        (&["--pitch", "nan"][..], "--pitch"),
+        (&["--mesh-scale", "nan"][..], "--mesh-scale"),
+        (&["--mesh-scale", "0"][..], "--mesh-scale"),
+        (&["--width", "-5"][..], "--width"),
+    ] {
+        let o = rouge(&[&["render", "--out", out_s][..], bad].concat());
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{bad:?}: {}", stderr(&o));
+        assert_eq!(std::fs::read(&out).expect("read"), b"the previous image", "{bad:?}");
+    }
+}

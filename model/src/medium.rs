@@ -12,8 +12,10 @@ use crate::error::{ModelError, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// A homogeneous participating medium with a dielectric boundary.
+/// A homogeneous participating medium with a dielectric boundary. Unknown fields are refused (a
+/// misspelt `sigma_a_per_mm` would otherwise be silently ignored), as looks refuse them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Medium {
     /// Always `"rouge-medium"`.
     pub schema: String,
@@ -50,6 +52,7 @@ pub struct Medium {
 /// Parameters of the fast thickness translucency ([BarreBrisebois2011]) fitted by least squares
 /// to Mitsuba 3 references of a medium (docs/BENCHMARKS.md), with what they were fitted on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct FittedTranslucency {
     /// The local-thickness source fitted: `baked` or `shadow-map`.
     pub source: String,
@@ -64,6 +67,14 @@ pub struct FittedTranslucency {
     /// The reference scenes (data/reference/translucency/) fitted on, and the error.
     #[serde(default)]
     pub fitted_on: String,
+}
+
+/// Largest σa or σs′ a medium may have, mm⁻¹.
+pub const MAX_COEFFICIENT_PER_MM: f64 = 1e6;
+
+/// A number for an error message: `1e308` rather than its 309 digits.
+fn short(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
 }
 
 /// The names of the built-in media, in the order of [Jensen2001]'s table.
@@ -190,21 +201,23 @@ impl Medium {
         const CHANNELS: [&str; 3] = ["R", "G", "B"];
         for (c, channel) in CHANNELS.iter().enumerate() {
             let (a, s) = (self.sigma_a_per_mm[c], self.sigma_s_prime_per_mm[c]);
-            if !(a.is_finite() && a >= 0.0) {
-                return Err(format!("sigma_a_per_mm[{channel}] = {a}: must be finite and ≥ 0"));
+            // Past 1e6 /mm (a mean free path under a nanometre) the profiles' constants overflow
+            // into a NaN albedo; no medium needs it.
+            if !(a.is_finite() && (0.0..=MAX_COEFFICIENT_PER_MM).contains(&a)) {
+                return Err(format!("sigma_a_per_mm[{channel}] = {}: must be finite, 0 to 1e6", short(a)));
             }
-            if !(s.is_finite() && s >= 0.0) {
-                return Err(format!("sigma_s_prime_per_mm[{channel}] = {s}: must be finite and ≥ 0"));
+            if !(s.is_finite() && (0.0..=MAX_COEFFICIENT_PER_MM).contains(&s)) {
+                return Err(format!("sigma_s_prime_per_mm[{channel}] = {}: must be finite, 0 to 1e6", short(s)));
             }
             if a + s <= 0.0 {
                 return Err(format!("channel {channel}: σa + σs′ = 0, the medium is vacuum"));
             }
         }
         if !(self.g.is_finite() && self.g > -1.0 && self.g < 1.0) {
-            return Err(format!("g = {}: must lie in (−1, 1)", self.g));
+            return Err(format!("g = {}: must lie in (−1, 1)", short(self.g)));
         }
         if !(self.eta.is_finite() && (1.0..=3.0).contains(&self.eta)) {
-            return Err(format!("eta = {}: must lie in [1, 3] (inside over outside)", self.eta));
+            return Err(format!("eta = {}: must lie in [1, 3] (inside over outside)", short(self.eta)));
         }
         for t in &self.translucency {
             let ok = t.distortion.is_finite()

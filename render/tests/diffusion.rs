@@ -122,12 +122,26 @@ fn builtin_media_load_and_bad_media_say_why() {
     assert!(e.to_string().contains("vacuum"), "{e}");
     let e = Medium::from_coefficients("x", [0.1; 3], [1.0; 3], 0.5).expect_err("eta");
     assert!(e.to_string().contains("eta"), "{e}");
+    // Issue 30: 1e308 passed as finite and gave a NaN albedo (a green face); it is refused, and
+    // said in few digits.
+    let e = Medium::from_coefficients("x", [1e308, 0.1, 0.1], [1.0; 3], 1.3).expect_err("huge");
+    assert!(e.to_string().contains("sigma_a_per_mm[R] = 1e308"), "{e}");
+    let e = Medium::from_coefficients("x", [0.1; 3], [1.0, 1.0, 1e300], 1.3).expect_err("huge");
+    assert!(e.to_string().contains("1e300") && e.to_string().len() < 200, "{e}");
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("bad.json");
     std::fs::write(&path, "{\"schema\": \"rouge-medium\",\n \"version\": 1, \"name\": 3}").expect("write");
     let e = Medium::load(&path).expect_err("bad type");
     let msg = e.to_string();
     assert!(msg.contains("bad.json") && msg.contains("line 2"), "{msg}");
+    // Issue 30: an unknown field (here a misspelt one) was silently accepted; looks refuse them.
+    let good =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/media/skin1.json")).expect("skin1");
+    let misspelt = good.replacen("\"notes\"", "\"sigma_a_per_m\": [1, 1, 1],\n  \"notes\"", 1);
+    assert_ne!(good, misspelt);
+    std::fs::write(&path, misspelt).expect("write");
+    let msg = Medium::load(&path).expect_err("unknown field").to_string();
+    assert!(msg.contains("sigma_a_per_m") && msg.contains("unknown field"), "{msg}");
 }
 
 /// ∫₀^a f(r) 2πr dr by composite Simpson on r = a·t², which removes the kink of R at r = 0.
