@@ -419,3 +419,18 @@ fn save_into_a_missing_folder_names_the_file() {
     let e = Look::default_look().save(&path).unwrap_err().to_string();
     assert!(e.starts_with(&path.display().to_string()), "{e}");
 }
+
+/// Issue 30: a look with 100,000 layers (or 3,000 map layers) was loaded whole, maps and all,
+/// before the 8-layer limit was checked (2.6 GB, then an allocation abort). The count is checked
+/// first: 100,000 layers naming a map that does not exist fail on the count, not on the map.
+#[test]
+fn too_many_layers_are_refused_before_any_is_loaded() {
+    let dir = tempfile::tempdir().unwrap();
+    let layer = r#"{ "preset": "builtin:foundation_02_ivory", "thickness": { "map": "missing.exr" } }"#;
+    let json = look_json(&vec![layer; 100_000]);
+    let e = load_err(dir.path(), &json);
+    assert!(e.contains("100000 layers") && e.contains("at most 8"), "{e}");
+    let ok = r#"{ "preset": "builtin:foundation_02_ivory", "thickness": { "uniform_mm": 0.01 } }"#;
+    assert!(Look::from_json(&look_json(&[ok; 8]), &dir.path().join("l.json")).is_ok());
+    assert!(load_err(dir.path(), &look_json(&[ok; 9])).contains("9 layers"));
+}

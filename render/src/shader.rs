@@ -9,8 +9,8 @@
 use crate::error::{RenderError, Result};
 use crate::passes::Pass;
 
-/// Most cosmetic layers a look may have (two RGBA16F thickness targets).
-pub const MAX_LAYERS: usize = 8;
+/// Most cosmetic layers a look may have (two RGBA16F thickness targets): the look model's limit.
+pub const MAX_LAYERS: usize = rouge_model::look::MAX_LAYERS;
 
 /// Which local thickness the thickness translucency reads ([`crate::local_thickness`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -34,6 +34,9 @@ pub const VERSION: u32 = 1;
 /// Largest thickness a look may give anywhere, mm. Cosmetic films are 5-100 µm; anything
 /// near this bound is a unit mistake (µm written as mm), caught here rather than rendered.
 pub const MAX_THICKNESS_MM: f32 = 10.0;
+/// Most cosmetic layers a look may have (the renderer's two RGBA16F thickness targets). Checked
+/// before any layer's preset or map is loaded, so a small file cannot ask for gigabytes.
+pub const MAX_LAYERS: usize = 8;
 /// Prefix of a preset reference that names a preset built into the binary.
 pub const BUILTIN_PREFIX: &str = "builtin:";
 
@@ -269,6 +272,9 @@ impl Look {
         // First the document without looking into the layers, then the layers: serde's message
         // has the line and column, and a layer's error is prefixed with the layer.
         let shape: LookIn<serde_json::Value> = serde_json::from_str(text).map_err(|e| err(e.to_string()))?;
+        if shape.layers.len() > MAX_LAYERS {
+            return Err(err(format!("{} layers: a look has at most {MAX_LAYERS}", shape.layers.len())));
+        }
         let doc: LookIn<LayerIn> = serde_json::from_str(text).map_err(|e| {
             let bad =
                 shape.layers.iter().enumerate().find(|(_, l)| serde_json::from_value::<LayerIn>((*l).clone()).is_err());
