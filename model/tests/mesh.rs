@@ -354,3 +354,29 @@ fn gltf_scanned_head_if_available() {
     assert_eq!(s.faces.len(), 3 * m.faces.len());
     assert!(s.positions.iter().all(|p| p.is_finite()));
 }
+
+/// Issue 30: malformed glTF files panicked (exit 101) inside the gltf crate, looped for ever, or
+/// took half a minute; each is now an error that names the file and the fault.
+#[test]
+fn malformed_gltf_files_are_errors_not_panics_or_hangs() {
+    let dir = tempfile::tempdir().unwrap();
+    let good: serde_json::Value = serde_json::from_str(&quad_gltf(true)).unwrap();
+    let cases: [(&str, fn(&mut serde_json::Value), &str); 5] = [
+        // POSITION names an accessor that does not exist (gltf-json's validation indexed it).
+        ("missing.gltf", |d| d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99.into(), "accessor 99"),
+        ("none.gltf", |d| d["accessors"] = serde_json::json!([]), "there are 0"),
+        // Indices on a float VEC3 accessor (the reader's `unreachable!`).
+        ("float_indices.gltf", |d| d["meshes"][0]["primitives"][0]["indices"] = 0.into(), "indices accessor 0"),
+        // A node that is its own grandchild.
+        ("cycle.gltf", |d| d["nodes"] = serde_json::json!([{"mesh": 0, "children": [1]}, {"children": [0]}]), "cycle"),
+        // One node placed 100,000 times.
+        ("many.gltf", |d| d["scenes"][0]["nodes"] = serde_json::json!(vec![0; 100_000]), "more than 10000 nodes"),
+    ];
+    for (name, break_it, says) in cases {
+        let mut doc = good.clone();
+        break_it(&mut doc);
+        let p = write(&dir, name, &doc.to_string());
+        let e = load_gltf(&p, 1.0).expect_err(name).to_string();
+        assert!(e.contains(name) && e.contains(says), "{name}: {e}");
+    }
+}

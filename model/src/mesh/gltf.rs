@@ -12,6 +12,51 @@ fn gltf_err(path: &Path, message: impl Into<String>) -> MeshError {
     MeshError::Gltf { path: PathBuf::from(path), message: message.into() }
 }
 
+/// Deepest node hierarchy accepted (glTF forbids cycles; a cycle would otherwise never end).
+pub const MAX_NODE_DEPTH: usize = 64;
+/// Most node placements a scene may make (each reference of a node, and of its children, counts).
+pub const MAX_NODE_INSTANCES: usize = 10_000;
+/// Most triangles a glTF mesh may place, before subdivision.
+pub const MAX_TRIANGLES: usize = 5_000_000;
+
+/// Every accessor a primitive names exists (gltf-json's validation assumes so and panics).
+fn check_accessor_references(root: &gltf::json::Root) -> Result<(), String> {
+    let count = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let named = prim.attributes.values().map(|i| i.value()).chain(prim.indices.as_ref().map(|i| i.value()));
+            for index in named {
+                if index >= count {
+                    return Err(format!("mesh {m} primitive {p} names accessor {index}, but there are {count}"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The accessors the reader takes have the types it can read (the gltf crate's reader hits
+/// `unreachable!` on float indices).
+fn check_accessor_types(prim: &gltf::Primitive) -> Result<(), String> {
+    use gltf::Semantic;
+    use gltf::accessor::{DataType as T, Dimensions as D};
+    let ok = |semantic: &str, a: Option<gltf::Accessor>, dims: D, types: &[T]| -> Result<(), String> {
+        match a {
+            Some(a) if a.dimensions() != dims || !types.contains(&a.data_type()) => Err(format!(
+                "{semantic} accessor {} is {:?} {:?}, expected {dims:?} of {types:?}",
+                a.index(),
+                a.dimensions(),
+                a.data_type()
+            )),
+            _ => Ok(()),
+        }
+    };
+    ok("indices", prim.indices(), D::Scalar, &[T::U8, T::U16, T::U32])?;
+    ok("POSITION", prim.get(&Semantic::Positions), D::Vec3, &[T::F32])?;
+    ok("NORMAL", prim.get(&Semantic::Normals), D::Vec3, &[T::F32])?;
+    ok("TEXCOORD_0", prim.get(&Semantic::TexCoords(0)), D::Vec2, &[T::F32, T::U8, T::U16])
+}
+
 /// Decodes standard or URL-safe base64 (padding optional, whitespace ignored).
 fn decode_base64(s: &str) -> Option<Vec<u8>> {
     let mut out = Vec::with_capacity(s.len() * 3 / 4);
@@ -80,8 +125,12 @@ pub fn load_gltf(path: impl AsRef<Path>, scale_to_mm: f32) -> Result<Mesh, MeshE
     let path = path.as_ref();
     check_scale(scale_to_mm)?;
     let bytes = std::fs::read(path).map_err(|source| MeshError::Io { path: path.to_owned(), source })?;
-    let gltf = gltf::Gltf::from_slice(&bytes).map_err(|e| gltf_err(path, e.to_string()))?;
+    // gltf-json's own validation indexes a primitive's accessors without checking them (it
+    // panicked on a POSITION naming a missing accessor): the references are checked here first.
+    let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| gltf_err(path, e.to_string()))?;
     let gltf::Gltf { document, blob } = gltf;
+    check_accessor_references(document.as_json()).map_err(|m| gltf_err(path, m))?;
+    let document = gltf::Document::from_json(document.into_json()).map_err(|e| gltf_err(path, e.to_string()))?;
     let buffers = load_buffers(&document, blob, path)?;
     let scene =
         document.default_scene().or_else(|| document.scenes().next()).ok_or_else(|| gltf_err(path, "no scene"))?;
@@ -89,11 +138,21 @@ pub fn load_gltf(path: impl AsRef<Path>, scale_to_mm: f32) -> Result<Mesh, MeshE
     let mut mesh = Mesh::default();
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let mut missing_normals = false;
-    let mut stack: Vec<(gltf::Node, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
-    while let Some((node, parent)) = stack.pop() {
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> = scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    let mut instances = 0usize;
+    while let Some((node, parent, depth)) = stack.pop() {
+        // A node that is its own ancestor looped for ever; one node referenced 100,000 times
+        // rendered for half a minute. Both are refused (docs/FORMATS.md).
+        if depth > MAX_NODE_DEPTH {
+            return Err(gltf_err(path, format!("the node hierarchy is deeper than {MAX_NODE_DEPTH} (a cycle?)")));
+        }
+        instances += 1;
+        if instances > MAX_NODE_INSTANCES {
+            return Err(gltf_err(path, format!("the scene places more than {MAX_NODE_INSTANCES} nodes")));
+        }
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         for child in node.children() {
-            stack.push((child, world));
+            stack.push((child, world, depth + 1));
         }
         let Some(gmesh) = node.mesh() else { continue };
         let to_mm = Mat4::from_scale(Vec3::splat(scale_to_mm)) * world;
@@ -103,10 +162,17 @@ pub fn load_gltf(path: impl AsRef<Path>, scale_to_mm: f32) -> Result<Mesh, MeshE
             if prim.mode() != gltf::mesh::Mode::Triangles {
                 continue;
             }
+            check_accessor_types(&prim).map_err(|m| gltf_err(path, m))?;
             let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
             let positions: Vec<Vec3> = reader
                 .read_positions()
-                .ok_or_else(|| gltf_err(path, "primitive without POSITION"))?
+                .ok_or_else(|| match prim.get(&gltf::Semantic::Positions) {
+                    Some(a) => gltf_err(
+                        path,
+                        format!("POSITION accessor {} cannot be read (it runs past its buffer view)", a.index()),
+                    ),
+                    None => gltf_err(path, "primitive without POSITION"),
+                })?
                 .map(|p| to_mm.transform_point3(Vec3::from_array(p)))
                 .collect();
             let uvs: Vec<Vec2> = reader
@@ -146,6 +212,9 @@ pub fn load_gltf(path: impl AsRef<Path>, scale_to_mm: f32) -> Result<Mesh, MeshE
                 _ => mesh.normals.extend(std::iter::repeat_n(Vec3::Z, positions.len())),
             }
             let start = mesh.faces.len();
+            if start + indices.len() / 3 > MAX_TRIANGLES {
+                return Err(gltf_err(path, format!("more than {MAX_TRIANGLES} triangles")));
+            }
             for tri in indices.chunks_exact(3) {
                 if tri.iter().any(|&i| i as usize >= positions.len()) {
                     return Err(gltf_err(path, "index out of range"));
