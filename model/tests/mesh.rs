@@ -361,7 +361,8 @@ fn gltf_scanned_head_if_available() {
 fn malformed_gltf_files_are_errors_not_panics_or_hangs() {
     let dir = tempfile::tempdir().unwrap();
     let good: serde_json::Value = serde_json::from_str(&quad_gltf(true)).unwrap();
-    let cases: [(&str, fn(&mut serde_json::Value), &str); 5] = [
+    type Breakage = fn(&mut serde_json::Value);
+    let cases: [(&str, Breakage, &str); 5] = [
         // POSITION names an accessor that does not exist (gltf-json's validation indexed it).
         ("missing.gltf", |d| d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99.into(), "accessor 99"),
         ("none.gltf", |d| d["accessors"] = serde_json::json!([]), "there are 0"),
