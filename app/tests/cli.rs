@@ -464,6 +464,13 @@ fn thickness_translucency_renders_a_glowing_wedge_and_refuses_bad_parameters() {
     }
 }
 
+/// The red albedo on the `skin:` line of `rouge render --explain`'s plan.
+fn plan_skin_albedo_red(plan: &str) -> f64 {
+    let line = plan.lines().find(|l| l.starts_with("skin: ")).expect("the skin line of the plan");
+    let at = line.find("albedo ").expect("albedo") + 7;
+    line[at..].split(',').next().and_then(|v| v.trim().parse().ok()).expect("a number")
+}
+
 #[test]
 fn a_skin_reflectance_file_sets_the_skin_colour_and_a_missing_sample_is_named() {
     let args = ["render", "--skin", "data/skin/colorchecker_skin.csv", "--look", "bare", "--explain"];
@@ -472,12 +479,8 @@ fn a_skin_reflectance_file_sets_the_skin_colour_and_a_missing_sample_is_named() 
     let dark = stdout(&o);
     let o = rouge(&[&args[..], &["--skin-sample", "light_skin", "--width", "32", "--height", "24"]].concat());
     let light = stdout(&o);
-    let albedo = |s: &str| -> f64 {
-        let line = s.lines().find(|l| l.starts_with("skin: ")).expect("the skin line of the plan");
-        let at = line.find("albedo ").expect("albedo") + 7;
-        line[at..].split(',').next().and_then(|v| v.trim().parse().ok()).expect("a number")
-    };
-    assert!(albedo(&dark) < 0.6 * albedo(&light), "dark {} light {}", albedo(&dark), albedo(&light));
+    let (dark, light) = (plan_skin_albedo_red(&dark), plan_skin_albedo_red(&light));
+    assert!(dark < 0.6 * light, "dark {dark} light {light}");
     let o = rouge(&[&args[..], &["--skin-sample", "olive", "--out", "never.png"]].concat());
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("no skin `olive`") && stderr(&o).contains("dark_skin, light_skin"), "{}", stderr(&o));
@@ -491,10 +494,7 @@ fn a_named_skin_tone_sets_the_skin_colour() {
         let args = ["render", "--skin-tone", tone, "--look", "bare", "--explain", "--width", "32", "--height", "24"];
         let o = rouge(&args);
         assert!(o.status.success(), "{}", stderr(&o));
-        let s = stdout(&o);
-        let line = s.lines().find(|l| l.starts_with("skin: ")).expect("the skin line of the plan").to_string();
-        let at = line.find("albedo ").expect("albedo") + 7;
-        line[at..].split(',').next().and_then(|v| v.trim().parse().ok()).expect("a number")
+        plan_skin_albedo_red(&stdout(&o))
     };
     let (light, deep) = (albedo("very-light"), albedo("very-deep"));
     assert!(deep < 0.3 * light, "very-deep {deep} very-light {light}");
