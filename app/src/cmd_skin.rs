@@ -8,7 +8,7 @@ use rouge_measure::analysis::skin::read_sampled_skins;
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
 use rouge_measure::skin::fit::{SkinFitter, lab_d65};
 use rouge_measure::skin::optics::{SkinOptics, rgb_medium};
-use rouge_measure::skin::{FitOptions, SkinFit, SkinParams, Specular, ita_deg, skin_tone, skin_tones};
+use rouge_measure::skin::{FitOptions, SkinFit, SkinParams, Specular, ita_deg, skin_tones};
 use rouge_measure::spectrum::{Extrapolation, Spectrum, working_wavelength_nm};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -91,24 +91,16 @@ pub struct ParamArgs {
 
 impl ParamArgs {
     pub fn params(&self) -> Result<SkinParams> {
-        let mut p = match &self.tone {
-            Some(name) => skin_tone(name)?.params,
-            None => SkinParams::LIGHT,
-        };
-        let set = |v: Option<f64>, field: &mut f64| {
-            if let Some(v) = v {
-                *field = v;
-            }
-        };
-        set(self.melanin, &mut p.melanin_fraction);
-        set(self.pheomelanin, &mut p.pheomelanin_share);
-        set(self.blood, &mut p.blood_fraction);
-        set(self.saturation, &mut p.oxygen_saturation);
-        set(self.scattering, &mut p.scattering_500nm_per_mm);
-        set(self.scattering_power, &mut p.scattering_power);
-        set(self.epidermis_mm, &mut p.epidermis_thickness_mm);
-        p.validate()?;
-        Ok(p)
+        let overrides = [
+            self.melanin,
+            self.pheomelanin,
+            self.blood,
+            self.saturation,
+            self.scattering,
+            self.scattering_power,
+            self.epidermis_mm,
+        ];
+        Ok(SkinParams::from_tone(self.tone.as_deref(), overrides)?)
     }
 }
 
@@ -151,13 +143,10 @@ pub fn run(cmd: &SkinCommand) -> Result<()> {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file beside it, so a failed write leaves the
+/// Writes `bytes` atomically ([`rouge_measure::preset::write_atomic`]): a failed write leaves the
 /// previous file whole.
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let tmp = dir.join(format!(".{}.tmp", path.file_name().and_then(|n| n.to_str()).unwrap_or("out")));
-    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))
+    rouge_measure::preset::write_atomic(path, bytes).with_context(|| format!("cannot write {}", path.display()))
 }
 
 fn percentile(sorted: &[f64], q: f64) -> f64 {
@@ -271,7 +260,7 @@ fn fit(a: &FitArgs) -> Result<()> {
                     "rms": f.rms,
                     "lab_measured": f.lab_measured,
                     "lab_fitted": f.lab_fitted,
-                    "ita_deg": ita_deg(&lab_d65(&f.measured)),
+                    "ita_deg": f.ita_deg(),
                     "at_bounds": f.at_bounds,
                 })
             })
@@ -287,8 +276,7 @@ fn fit(a: &FitArgs) -> Result<()> {
 /// Up to six spectra evenly spread over the ITA range, measured (dots) against fitted (line).
 fn fit_plot(names: &[&str], fits: &[SkinFit]) -> Result<Vec<u8>> {
     let mut order: Vec<usize> = (0..fits.len()).collect();
-    let ita = |i: usize| ita_deg(&lab_d65(&fits[i].measured));
-    order.sort_by(|&x, &y| ita(y).total_cmp(&ita(x)));
+    order.sort_by(|&x, &y| fits[y].ita_deg().total_cmp(&fits[x].ita_deg()));
     let n = order.len().min(6);
     let picks: Vec<usize> = (0..n).map(|k| order[if n > 1 { k * (order.len() - 1) / (n - 1) } else { 0 }]).collect();
     let charts: Vec<Chart> = picks
@@ -298,7 +286,7 @@ fn fit_plot(names: &[&str], fits: &[SkinFit]) -> Result<Vec<u8>> {
             let rgb = srgb8(&f.measured);
             let wl = |j: usize| working_wavelength_nm(j);
             Chart {
-                title: format!("{}: ITA {:.0}°, ΔE00 {:.2}", names[i], ita(i), f.delta_e_2000),
+                title: format!("{}: ITA {:.0}°, ΔE00 {:.2}", names[i], f.ita_deg(), f.delta_e_2000),
                 x_label: "wavelength (nm)".into(),
                 y_label: "reflectance".into(),
                 series: vec![

@@ -6,7 +6,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rouge_measure::skin::fit::SkinFitter;
-use rouge_measure::skin::{FitOptions, SkinError, SkinParams, Specular, skin_tone, skin_tones};
+use rouge_measure::skin::{FitOptions, SkinError, SkinParams, Specular, skin_tones};
 use rouge_measure::spectrum::{Extrapolation, working_wavelength_nm};
 
 fn err(e: SkinError) -> PyErr {
@@ -38,12 +38,7 @@ pub fn skin_reflectance(
     epidermis_thickness_mm: Option<f64>,
     wavelengths: Option<Vec<f64>>,
 ) -> PyResult<Vec<f64>> {
-    let mut p = match tone {
-        Some(name) => skin_tone(name).map_err(err)?.params,
-        None => SkinParams::LIGHT,
-    };
-    let mut a = p.to_array();
-    let given = [
+    let overrides = [
         melanin_fraction,
         pheomelanin_share,
         blood_fraction,
@@ -52,12 +47,7 @@ pub fn skin_reflectance(
         scattering_power,
         epidermis_thickness_mm,
     ];
-    for (slot, v) in a.iter_mut().zip(given) {
-        if let Some(v) = v {
-            *slot = v;
-        }
-    }
-    p = SkinParams::from_array(a);
+    let p = SkinParams::from_tone(tone, overrides).map_err(err)?;
     let wl = wavelengths.unwrap_or_else(|| (0..81).map(working_wavelength_nm).collect());
     p.reflectance_at(&wl).map_err(err)
 }

@@ -98,6 +98,13 @@ pub struct SkinFit {
     pub evaluations: usize,
 }
 
+impl SkinFit {
+    /// Individual Typology Angle of the measured skin, degrees ([`super::ita_deg`]).
+    pub fn ita_deg(&self) -> f64 {
+        super::ita_deg(&Lab { lab: self.lab_measured, viewing: Viewing::D65_1931 })
+    }
+}
+
 /// Fits many spectra with one seed table.
 #[derive(Debug)]
 pub struct SkinFitter {
@@ -133,8 +140,7 @@ fn model(u: &Vector6<f64>, options: &FitOptions) -> Result<[f64; WORKING_LEN], S
 }
 
 fn lab_of(values: &[f64; WORKING_LEN]) -> [f64; 3] {
-    let c = Colorimeter::get(Viewing::D65_1931);
-    c.lab(&c.xyz(&Spectrum(*values))).lab
+    lab_d65(&Spectrum(*values)).lab
 }
 
 /// Residuals: the spectral differences where `mask`, then the three Lab differences.
@@ -208,18 +214,17 @@ impl SkinFitter {
         let (first, last) = (wavelengths_nm[0], wavelengths_nm[wavelengths_nm.len() - 1]);
         let mask: [bool; WORKING_LEN] = std::array::from_fn(|i| (first..=last).contains(&working_wavelength_nm(i)));
         let target_lab = lab_of(&target);
+        let dist: Vec<f64> = self.seeds.iter().map(|(_, lab)| delta_e_2000_raw(*lab, target_lab)).collect();
         let mut order: Vec<usize> = (0..self.seeds.len()).collect();
-        let dist = |i: usize| delta_e_2000_raw(self.seeds[i].1, target_lab);
-        order.sort_by(|&a, &b| dist(a).total_cmp(&dist(b)));
+        order.sort_by(|&a, &b| dist[a].total_cmp(&dist[b]));
         let mut best: Option<(f64, Vector6<f64>)> = None;
         let mut evaluations = 0;
         for &s in order.iter().take(SEEDS) {
-            let (cost, u, evals) = self.solve(self.seeds[s].0, &target, &mask, target_lab)?;
+            let (cost, u, lab, evals) = self.solve(self.seeds[s].0, &target, &mask, target_lab)?;
             evaluations += evals;
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 best = Some((cost, u));
-                let de = delta_e_2000_raw(lab_of(&model(&u, &self.options)?), target_lab);
-                if de < GOOD_ENOUGH_DELTA_E {
+                if delta_e_2000_raw(lab, target_lab) < GOOD_ENOUGH_DELTA_E {
                     break;
                 }
             }
@@ -252,14 +257,15 @@ impl SkinFitter {
         })
     }
 
-    /// Projected Levenberg-Marquardt from `u0`: (cost, parameters, model evaluations).
+    /// Projected Levenberg-Marquardt from `u0`: (cost, parameters, the model's CIELAB there, model
+    /// evaluations).
     fn solve(
         &self,
         u0: Vector6<f64>,
         target: &[f64; WORKING_LEN],
         mask: &[bool; WORKING_LEN],
         target_lab: [f64; 3],
-    ) -> Result<(f64, Vector6<f64>, usize), SkinError> {
+    ) -> Result<(f64, Vector6<f64>, [f64; 3], usize), SkinError> {
         let eval = |u: &Vector6<f64>| -> Result<DVector<f64>, SkinError> {
             Ok(residuals(&model(u, &self.options)?, target, mask, target_lab))
         };
@@ -311,7 +317,11 @@ impl SkinFitter {
                 break;
             }
         }
-        Ok((cost, u, evaluations))
+        // The last three residuals are LAB_WEIGHT·(Lab − target): the model's Lab without
+        // evaluating it again.
+        let n = r.len();
+        let lab = std::array::from_fn(|k| target_lab[k] + r[n - 3 + k] / LAB_WEIGHT);
+        Ok((cost, u, lab, evaluations))
     }
 }
 

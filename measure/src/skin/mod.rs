@@ -95,6 +95,25 @@ impl SkinParams {
         epidermis_thickness_mm: SkinParams::DEFAULT_EPIDERMIS_MM,
     };
 
+    /// The named `tone` (or [`SkinParams::LIGHT`] without one) with each `Some` of `overrides`
+    /// (in the order of [`SkinParams::RANGES`]) in place of its value, validated: what `rouge skin
+    /// spectrum` and Python's `skin_reflectance` take.
+    pub fn from_tone(tone: Option<&str>, overrides: [Option<f64>; 7]) -> Result<SkinParams, SkinError> {
+        let base = match tone {
+            Some(name) => skin_tone(name)?.params,
+            None => SkinParams::LIGHT,
+        };
+        let mut a = base.to_array();
+        for (slot, v) in a.iter_mut().zip(overrides) {
+            if let Some(v) = v {
+                *slot = v;
+            }
+        }
+        let p = SkinParams::from_array(a);
+        p.validate()?;
+        Ok(p)
+    }
+
     /// The parameters as an array, in the order of [`SkinParams::RANGES`].
     pub fn to_array(&self) -> [f64; 7] {
         [
@@ -140,13 +159,6 @@ impl SkinParams {
         Ok(())
     }
 
-    /// The model's reflectance at `wavelength_nm` (380-780 nm), without validating the
-    /// parameters (for the fit's inner loop; they must have passed [`SkinParams::validate`] or be
-    /// inside [`SkinParams::RANGES`]).
-    pub(crate) fn reflectance_unchecked(&self, wavelength_nm: f64) -> Result<f64, SkinError> {
-        self.reflectance_of(&SkinOptics::at(self, wavelength_nm))
-    }
-
     /// The slab's reflectance for the layers' optics at one wavelength.
     fn reflectance_of(&self, o: &SkinOptics) -> Result<f64, SkinError> {
         let wavelength_nm = o.wavelength_nm;
@@ -166,7 +178,7 @@ impl SkinParams {
                 if !(MIN_WAVELENGTH_NM..=MAX_WAVELENGTH_NM).contains(&w) {
                     return Err(SkinError::Wavelength { wavelength_nm: w });
                 }
-                self.reflectance_unchecked(w)
+                self.reflectance_of(&SkinOptics::at(self, w))
             })
             .collect()
     }
@@ -177,8 +189,8 @@ impl SkinParams {
         self.reflectance_on_grid_unchecked().map(Spectrum)
     }
 
-    /// [`SkinParams::reflectance`] without validation (the fit's inner loop; see
-    /// [`SkinParams::reflectance_unchecked`]).
+    /// [`SkinParams::reflectance`] without validation, for the fit's inner loop: the parameters
+    /// must lie inside [`SkinParams::RANGES`] (μs′d past the table is clamped to its edge).
     pub(crate) fn reflectance_on_grid_unchecked(&self) -> Result<[f64; WORKING_LEN], SkinError> {
         let optics = SkinOptics::on_working_grid(self);
         let mut out = [0.0; WORKING_LEN];

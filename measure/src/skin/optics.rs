@@ -128,25 +128,23 @@ pub const MIN_REDUCED_ALBEDO: f64 = 1e-3;
 /// matrix, clipped at 0), and σa is chosen so that a semi-infinite slab of that medium under the
 /// same surface has the channel's reflectance (the same adding-doubling table with no epidermis,
 /// inverted by bisection on the reduced albedo). A tone on screen and its diffusion profile
-/// then come from the same skin: the profile's total reflectance is the tone's colour.
+/// then come from the same skin: that medium's total reflectance by transport is the tone's
+/// colour (the renderer's diffusion profiles return 0.02-0.03 less, docs/SKIN.md).
 pub fn rgb_medium(p: &SkinParams) -> Result<RgbMedium, SkinError> {
     let reflectance = p.reflectance()?;
     let colorimeter = Colorimeter::get(Viewing::D65_1931);
     let albedo = colorimeter.srgb_linear(&colorimeter.xyz(&reflectance));
     // The channels' spectral weights: the sRGB matrix applied to the colorimeter's x̄ȳz̄ weights.
     let w = colorimeter.weights();
-    let mut sigma_s = [0.0; 3];
-    for (c, s) in sigma_s.iter_mut().enumerate() {
-        let (mut num, mut den) = (0.0, 0.0);
-        let optics = SkinOptics::on_working_grid(p);
-        for (i, o) in optics.iter().enumerate() {
-            let xyz = crate::colorimetry::Xyz { xyz: [w[0][i], w[1][i], w[2][i]], viewing: Viewing::D65_1931 };
-            let weight = colorimeter.srgb_linear(&xyz)[c].max(0.0);
-            num += weight * o.dermis.mu_s_reduced_per_mm;
-            den += weight;
+    let (mut num, mut den) = ([0.0; 3], [0.0; 3]);
+    for (i, o) in SkinOptics::on_working_grid(p).iter().enumerate() {
+        let xyz = crate::colorimetry::Xyz { xyz: [w[0][i], w[1][i], w[2][i]], viewing: Viewing::D65_1931 };
+        for (c, weight) in colorimeter.srgb_linear(&xyz).into_iter().enumerate() {
+            num[c] += weight.max(0.0) * o.dermis.mu_s_reduced_per_mm;
+            den[c] += weight.max(0.0);
         }
-        *s = num / den;
     }
+    let sigma_s: [f64; 3] = std::array::from_fn(|c| num[c] / den[c]);
     let mut sigma_a = [0.0; 3];
     for c in 0..3 {
         let target = albedo[c].clamp(0.0, 1.0);

@@ -138,13 +138,12 @@ pub fn two_layer_reflectance(tau_a_epi: f64, tau_sr_epi: f64, reduced_albedo_der
     let (is, ws) = weights(&t.tau_s, tau_sr_epi, false);
     let (iy, wy) = weights(&t.y, (1.0 - reduced_albedo_derm).sqrt(), false);
     let (ns, ny) = (t.tau_s.len(), t.y.len());
-    let node = |first: usize, k: usize| first + k;
     let mut ln_r = 0.0;
     for (ka, &wa) in wa.iter().enumerate().filter(|(_, w)| **w != 0.0) {
         for (ks, &ws) in ws.iter().enumerate().filter(|(_, w)| **w != 0.0) {
-            let row = (node(ia, ka) * ns + node(is, ks)) * ny;
+            let row = ((ia + ka) * ns + is + ks) * ny;
             for (ky, &wy) in wy.iter().enumerate().filter(|(_, w)| **w != 0.0) {
-                ln_r += wa * ws * wy * t.ln_r[row + node(iy, ky)];
+                ln_r += wa * ws * wy * t.ln_r[row + iy + ky];
             }
         }
     }
