@@ -7,9 +7,9 @@ use crate::thickness_args::{BakePose, ThicknessArgs};
 use anyhow::{Result, bail};
 use clap::Args;
 use rouge_model::thickness::CacheUse;
+use rouge_render::DipoleKind;
 use rouge_render::SubsurfaceModel;
 use rouge_render::job::render_to_file;
-use rouge_render::passes::dipole::DipoleKind;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -133,7 +133,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let loaded_scene = job.load()?;
     let mut prepared = job.prepare_loaded(&loaded_scene)?;
-    let supersample = rouge_render::aa_study::apply_mode(&mut prepared.renderer, aa, coverage)?;
+    let supersample = prepared.renderer.set_aa_mode(aa, coverage)?;
     if aa != rouge_render::aa::AaMode::None && supersample == 1 {
         prepared.renderer.prepare_edges(&loaded_scene.mesh);
     }
@@ -170,13 +170,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             bail!("--aa {}: supersampling writes PNG only", args.aa);
         }
         let (w, h) = prepared.size;
-        let linear = rouge_render::aa_study::render_linear_srgb(
-            &mut prepared.renderer,
-            &prepared.scene,
-            &prepared.camera,
-            (w, h),
-            supersample,
-        )?;
+        let linear = prepared.renderer.render_linear_srgb(&prepared.scene, &prepared.camera, (w, h), supersample)?;
         rouge_render::job::write_png(out, w, h, &rouge_render::aa::encode_srgb8(&linear))?;
     } else {
         render_to_file(&mut prepared, out)?;

@@ -5,7 +5,7 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use rouge_render::SubsurfaceModel;
-use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
+use rouge_render::{DipoleKind, DipoleSettings};
 
 #[derive(Debug, Clone, Args)]
 pub struct DipoleArgs {

@@ -71,32 +71,6 @@ pub struct EdgeTable {
     pub sorted_list_us: f64,
 }
 
-/// The frame's display image in linear sRGB, supersampled k×k (k = 1: as it is).
-///
-/// # Errors
-/// As [`Renderer::render`].
-pub fn render_linear_srgb(
-    r: &mut Renderer,
-    scene: &Scene,
-    camera: &Camera,
-    (w, h): (u32, u32),
-    k: u32,
-) -> Result<Vec<[f32; 3]>> {
-    r.render(scene, camera, w * k, h * k, true)?;
-    let linear = aa::decode_srgb8(&r.read_display()?);
-    if k == 1 { Ok(linear) } else { aa::box_downsample(&linear, (w as usize, h as usize), k as usize) }
-}
-
-/// Sets `r`'s edge overdraw for `mode` and returns its supersampling factor.
-///
-/// # Errors
-/// As [`AaMode::frame`].
-pub fn apply_mode(r: &mut Renderer, mode: AaMode, coverage: EdgeCoverage) -> Result<u32> {
-    let (edge, k) = mode.frame(coverage)?;
-    r.set_edge_aa(edge);
-    Ok(k)
-}
-
 /// The pixels within 2 pixels of an edge drawn from `camera` (visible or not: the mask does not
 /// depend on the mode measured).
 pub fn edge_mask(r: &Renderer, camera: &Camera, (w, h): (u32, u32)) -> Vec<bool> {
@@ -139,7 +113,7 @@ pub fn run(
     let mut references = Vec::new();
     let mut masks = Vec::new();
     for camera in &cameras {
-        references.push(render_linear_srgb(r, scene, camera, study.size, study.reference_k)?);
+        references.push(r.render_linear_srgb(scene, camera, study.size, study.reference_k)?);
         masks.push(edge_mask(r, camera, study.size));
     }
     let mut rows = Vec::new();
@@ -148,12 +122,12 @@ pub fn run(
         runs.push((AaMode::Edges, EdgeCoverage::TwoSided, true));
     }
     for (mode, coverage, gpu) in runs {
-        let k = apply_mode(r, mode, coverage)?;
+        let k = r.set_aa_mode(mode, coverage)?;
         r.set_edge_gpu_classify(gpu);
         let mut images = Vec::new();
         let (mut rmse, mut de) = (0.0, 0.0);
         for (i, camera) in cameras.iter().enumerate() {
-            let image = render_linear_srgb(r, scene, camera, study.size, k)?;
+            let image = r.render_linear_srgb(scene, camera, study.size, k)?;
             let e = aa::edge_error(&image, &references[i], &masks[i]);
             rmse += e.rmse;
             de += e.delta_e_mean;

@@ -1,6 +1,6 @@
 //! Translucency through an on-the-fly cube-map atlas ([Benmounah2009], paper 000): the geometry
-//! of the atlas and the CPU twins of the choices its shaders make. The passes are
-//! `crate::passes::cube_atlas` (shaders/atlas_irradiance.wgsl, shaders/atlas_gather.wgsl).
+//! of the atlas and the CPU twins of the choices its shaders make (shaders/atlas_irradiance.wgsl,
+//! shaders/atlas_gather.wgsl), its settings, and the atlas read back ([`AtlasImage`]).
 //!
 //! Every frame the mesh is drawn orthographically onto the six faces of its bounding cube (an
 //! array texture of six layers; seven on GL, [`crate::targets::array_layers`]), storing the irradiance E(x) that enters the medium (eq. 4: lights
@@ -382,6 +382,47 @@ impl AtlasFrame {
             OcclusionTest::TangentPlane => {
                 n.dot(stored - x).abs() < 0.5 * texel + 0.01 && n.dot(stored_normal) > MAX_NORMAL_ANGLE_COS
             }
+        }
+    }
+}
+
+/// The atlas read back to the CPU (tests, inspection): per face, row-major texels.
+#[derive(Clone, Debug)]
+pub struct AtlasImage {
+    /// The cube.
+    pub frame: AtlasFrame,
+    /// Per face: irradiance (rgb) and n·(p − c) (a).
+    pub irradiance: Vec<Vec<[f32; 4]>>,
+    /// Per face: normal (xyz) and medium flag (w).
+    pub normals: Vec<Vec<[f32; 4]>>,
+    /// Per face: [0, 1] depth (1 where nothing was drawn).
+    pub depths: Vec<Vec<f32>>,
+}
+
+impl AtlasImage {
+    /// The point stored at texel (`x`, `y`) of face `f` and its n·p, or `None` where nothing is.
+    pub fn stored(&self, f: usize, x: u32, y: u32) -> Option<(glam::Vec3, f32)> {
+        let i = (y * self.frame.px + x) as usize;
+        let z = *self.depths[f].get(i)?;
+        (z < 1.0).then(|| {
+            let t = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            (self.frame.unproject(f, t, z), self.irradiance[f][i][3])
+        })
+    }
+
+    /// Whether face `f` holds point `x` (normal `n`) under `test` ([`AtlasFrame::holds`] on what
+    /// the atlas stored at the texel `x` projects to).
+    pub fn holds(&self, f: usize, test: OcclusionTest, x: glam::Vec3, n: glam::Vec3) -> bool {
+        let (t, _) = self.frame.project(f, x);
+        let px = self.frame.px as f32;
+        if t.x < 0.0 || t.y < 0.0 || t.x >= px || t.y >= px {
+            return false;
+        }
+        let i = (t.y as u32 * self.frame.px + t.x as u32) as usize;
+        let normal = glam::Vec4::from_array(self.normals[f][i]).truncate();
+        match self.stored(f, t.x as u32, t.y as u32) {
+            Some((p, plane)) => self.frame.holds(test, x, n, p, normal, plane),
+            None => false,
         }
     }
 }

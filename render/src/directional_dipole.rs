@@ -1,6 +1,7 @@
 //! The directional dipole BSSRDF of Frisvad, Hachisuka and Kjeldsen ([Frisvad2014]) and, for
 //! comparison in the same pipeline, Jensen's standard dipole BSSRDF ([Jensen2001] eq. 6), in
-//! double precision. The WGSL twins are in shaders/dipole_radiance.wgsl.
+//! double precision. The WGSL twins are in shaders/dipole_radiance.wgsl. [`DipoleKind`] and
+//! [`DipoleSettings`] choose the BSSRDF and the sampling of the dipole passes that gather it.
 //!
 //! # The directional dipole, derived
 //! Light of direction ω_i (toward the light) enters at x_i with normal n_i and is refracted to
@@ -50,7 +51,8 @@
 //! ω_i·n_i ≤ 0, gives 0). Diffusion is accurate for α′ near 1 and beyond a mean free path.
 
 use crate::diffusion::{ChannelProfile, ProfileModel, fresnel_dielectric, fresnel_moment};
-use glam::DVec3;
+use crate::error::{RenderError, Result};
+use glam::{DVec3, Vec3};
 use rouge_model::medium::Medium;
 use std::f64::consts::PI;
 
@@ -251,4 +253,131 @@ pub fn standard_dipole_bssrdf(profiles: &[ChannelProfile; 3], eta: f64, g: &Geom
 /// The classic dipole profiles of `medium`, for [`standard_dipole_bssrdf`].
 pub fn standard_dipole_profiles(medium: &Medium) -> [ChannelProfile; 3] {
     crate::diffusion::medium_profiles(medium, ProfileModel::ClassicDipole)
+}
+
+/// Most radiance-map directions.
+pub const MAX_DIRECTIONS: usize = 32;
+
+/// Which BSSRDF the dipole passes gather.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DipoleKind {
+    /// [Frisvad2014]'s directional dipole.
+    Directional,
+    /// [Jensen2001]'s standard (classic) dipole.
+    Standard,
+}
+
+impl DipoleKind {
+    /// The `--subsurface` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            DipoleKind::Directional => "directional-dipole",
+            DipoleKind::Standard => "standard-dipole",
+        }
+    }
+}
+
+/// The settings of the dipole passes ([DirDipoleThesis] sections 4.2 and 4.4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DipoleSettings {
+    /// Disk samples N per radiance-map texel and light (1 to 256).
+    pub samples: u32,
+    /// Radiance-map directions K (1 to [`MAX_DIRECTIONS`]), spread on the sphere.
+    pub directions: u32,
+    /// Radiance-map side, texels.
+    pub map_px: u32,
+    /// Light G-buffer side, texels.
+    pub light_map_px: u32,
+    /// Fix 1 (section 4.4.1): the exit point looked up ε_g inside, across the light.
+    pub shrink: bool,
+    /// Fix 2 (section 4.4.2): the pixel looked up ε_c inside along its normal.
+    pub intrusion: bool,
+    /// Fix 3 (section 4.4.3): visibility compared in mm with a bias ε_b.
+    pub world_bias: bool,
+    /// Keep blending new samples into the maps while lights, mesh and settings stay.
+    pub progressive: bool,
+}
+
+impl Default for DipoleSettings {
+    fn default() -> Self {
+        DipoleSettings {
+            samples: 16,
+            directions: 8,
+            map_px: 256,
+            light_map_px: 512,
+            shrink: true,
+            intrusion: true,
+            world_bias: true,
+            progressive: true,
+        }
+    }
+}
+
+impl DipoleSettings {
+    /// Checks the ranges.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] naming the setting.
+    pub fn check(&self) -> Result<()> {
+        let bad = |what: &str, v: u32, range: &str| Err(RenderError::Invalid(format!("dipole {what} {v}: {range}")));
+        if !(1..=256).contains(&self.samples) {
+            return bad("samples", self.samples, "1 to 256");
+        }
+        if !(1..=MAX_DIRECTIONS as u32).contains(&self.directions) {
+            return bad("directions", self.directions, "1 to 32");
+        }
+        if !(16..=4096).contains(&self.map_px) {
+            return bad("radiance map size", self.map_px, "16 to 4096 texels");
+        }
+        if !(16..=4096).contains(&self.light_map_px) {
+            return bad("light map size", self.light_map_px, "16 to 4096 texels");
+        }
+        Ok(())
+    }
+}
+
+/// `k` of `count` directions spread evenly on the unit sphere (the Fibonacci lattice through both
+/// poles; a single direction is +Z, the default camera's).
+pub fn direction(k: u32, count: u32) -> Vec3 {
+    if count <= 1 {
+        return Vec3::Z;
+    }
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    let y = 1.0 - 2.0 * k as f32 / (count - 1) as f32;
+    let r = (1.0 - y * y).max(0.0).sqrt();
+    let phi = golden * k as f32;
+    Vec3::new(r * phi.cos(), y, r * phi.sin())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directions_cover_the_sphere_evenly() {
+        for k in [1u32, 4, 8, 16, 32] {
+            let ds: Vec<Vec3> = (0..k).map(|i| direction(i, k)).collect();
+            assert!(ds.iter().all(|d| (d.length() - 1.0).abs() < 1e-5));
+            if k >= 8 {
+                // Every direction of the sphere is within 60° of one of them.
+                for i in 0..200 {
+                    let probe = direction(i, 200);
+                    let best = ds.iter().map(|d| d.dot(probe)).fold(-1.0f32, f32::max);
+                    assert!(best > 0.5, "{k} directions leave {probe} uncovered");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn settings_out_of_range_are_errors() {
+        assert!(DipoleSettings::default().check().is_ok());
+        for bad in [
+            DipoleSettings { samples: 0, ..Default::default() },
+            DipoleSettings { directions: 33, ..Default::default() },
+            DipoleSettings { map_px: 8, ..Default::default() },
+        ] {
+            assert!(bad.check().is_err());
+        }
+    }
 }

@@ -1,14 +1,21 @@
 //! Rouge renderer: real-time skin with layered cosmetics ([Huang2013] section 3, figure 1) on wgpu.
 //!
 //! It uploads what `rouge-model` gives it (meshes, looks, thickness maps) and knows no UI.
-//! Headless first: [`gpu::Gpu`] opens a device without a window (Mesa lavapipe where there is no
-//! GPU), and the painting app hands in its own device. Modules:
-//! - [`env`]: HDR environment maps and their spherical-harmonics irradiance ([Benmounah2009] section 4.1.2).
-//! - [`sss`]: the skin diffusion profile, the separable kernel and the brute-force reference.
+//! Headless first: [`Gpu`] opens a device without a window (Mesa lavapipe where there is no
+//! GPU), and the painting app hands in its own device. The public surface:
+//! - [`Renderer`]: uploads (mesh, look, skin maps) and the frame; [`Scene`], [`Camera`] and the
+//!   skin's [`SubsurfaceModel`] describe what it draws.
 //! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
-//! - [`passes`]: one module per pass, each with its pipelines, layouts and uniforms.
-//! - [`renderer`]: uploads and the frame itself; [`targets`], [`shader`], [`uniforms`],
-//!   [`profiler`] and [`wgpu_util`] serve it.
+//! - [`job`]: headless renders to PNG/EXR, the `rouge render` path.
+//! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
+//!   [`diffusion`], [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`]
+//!   (environment maps and their spherical-harmonics irradiance, [Benmounah2009] section 4.1.2),
+//!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
+//! - Studies and references: [`study`], [`translucency`], [`aa_study`], [`mitsuba`],
+//!   [`profile_fit`].
+//!
+//! Inside, one module per pass (`passes`, each declared once in its registry), the shader
+//! preprocessor (`shader`), the uniforms, targets and wgpu helpers serve the renderer only.
 
 pub mod aa;
 pub mod aa_study;
@@ -20,27 +27,31 @@ pub mod env;
 pub mod error;
 pub mod frame;
 pub mod gpu;
-pub mod gpu_look;
-pub mod gpu_mesh;
+pub(crate) mod gpu_look;
+pub(crate) mod gpu_mesh;
 pub mod job;
 pub mod local_thickness;
 pub mod mitsuba;
-pub mod passes;
+pub(crate) mod passes;
 pub mod profile_fit;
-pub mod profiler;
+pub(crate) mod profiler;
 pub mod renderer;
 pub mod scene;
-pub mod shader;
+pub(crate) mod shader;
 pub mod silhouettes;
 pub mod specular;
 pub mod sss;
 pub mod study;
 pub mod targets;
 pub mod translucency;
-pub mod uniforms;
-pub mod wgpu_util;
+pub(crate) mod uniforms;
+pub(crate) mod wgpu_util;
 
+pub use directional_dipole::{DipoleKind, DipoleSettings};
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
+pub use profiler::PassTiming;
 pub use renderer::Renderer;
 pub use scene::{Camera, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};
+pub use shader::{MAX_LAYERS, ThicknessVariant, Variant};
+pub use uniforms::{MAX_LIGHTS, SceneConstants};

@@ -4,25 +4,14 @@
 //! irradiance through it, specular lobes) → the skin's subsurface model → composition.
 
 use crate::error::{RenderError, Result};
-use crate::frame::{FramePlan, FrameSettings, Step, Uploaded};
+use crate::frame::{FramePlan, FrameSettings, Uploaded};
 use crate::gpu_look::{GpuLook, SkinTextures};
 use crate::gpu_mesh::GpuMesh;
-use crate::passes::composite::CompositePass;
 use crate::passes::cube_atlas::AtlasResources;
-use crate::passes::cube_atlas::gather::AtlasGatherPass;
-use crate::passes::cube_atlas::irradiance::AtlasIrradiancePass;
 use crate::passes::depth_copy::DepthCopyPass;
-use crate::passes::dipole::combine::DipoleCombinePass;
-use crate::passes::dipole::light::DipoleLightPass;
-use crate::passes::dipole::radiance::DipoleRadiancePass;
-use crate::passes::dipole::{DipoleResources, DipoleUniform, state_key};
-use crate::passes::edge_overdraw::{EdgeOverdrawPass, GpuEdges};
-use crate::passes::gbuffer::GbufferPass;
-use crate::passes::lighting::LightingPass;
-use crate::passes::shadow::ShadowPass;
-use crate::passes::sss::SssPass;
-use crate::passes::thickness::{ThicknessPass, ThicknessUniform};
-use crate::passes::{FrameContext, FrameEncoder, Shared};
+use crate::passes::dipole::DipoleResources;
+use crate::passes::edge_overdraw::GpuEdges;
+use crate::passes::{FrameEncoder, Passes, Recording, Shared};
 use crate::profiler::{PassTiming, Profiler};
 use crate::scene::{Camera, Scene};
 use crate::shader::Variant;
@@ -33,28 +22,12 @@ use rouge_model::TexelRect;
 use rouge_model::look::{Look, ThicknessMap};
 use rouge_model::mesh::{Bounds, TriangleMesh};
 
+mod antialiasing;
 mod readback;
 
 pub use crate::gpu_look::LayerInput;
 pub use crate::targets::egui_view;
 pub use readback::{FrameCapture, FrameDepth, ThicknessImage};
-
-/// Every pass of the frame.
-#[derive(Debug)]
-struct Passes {
-    shadow: ShadowPass,
-    gbuffer: GbufferPass,
-    lighting: LightingPass,
-    sss: SssPass,
-    thickness: ThicknessPass,
-    dipole_light: DipoleLightPass,
-    dipole_radiance: DipoleRadiancePass,
-    dipole_combine: DipoleCombinePass,
-    atlas_irradiance: AtlasIrradiancePass,
-    atlas_gather: AtlasGatherPass,
-    composite: CompositePass,
-    edge_overdraw: EdgeOverdrawPass,
-}
 
 /// What the last frame was, for readback and picking.
 #[derive(Debug)]
@@ -100,20 +73,7 @@ impl Renderer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Renderer {
         let formats = Formats::for_device(device);
         let shared = Shared::new(device, queue, formats);
-        let passes = Passes {
-            shadow: ShadowPass::new(&shared),
-            gbuffer: GbufferPass::new(&shared),
-            lighting: LightingPass::new(&shared),
-            sss: SssPass::new(&shared),
-            thickness: ThicknessPass::new(&shared),
-            dipole_light: DipoleLightPass::new(&shared.device),
-            dipole_radiance: DipoleRadiancePass::new(&shared.device),
-            dipole_combine: DipoleCombinePass::new(&shared.device),
-            atlas_irradiance: AtlasIrradiancePass::new(&shared.device),
-            atlas_gather: AtlasGatherPass::new(&shared.device),
-            composite: CompositePass::new(&shared),
-            edge_overdraw: EdgeOverdrawPass::new(&shared),
-        };
+        let passes = Passes::new(&shared);
         Renderer {
             passes,
             targets: TargetPool::new(formats),
@@ -325,12 +285,12 @@ impl Renderer {
     ) -> Result<wgpu::Texture> {
         let plan = self.plan(scene, width, height, display)?;
         let device = self.shared.device.clone();
-        validated(&device, "frame", || self.record_and_submit(&plan, scene, camera))
+        validated(&device, "frame", || self.record_and_submit(&plan, camera))
     }
 
-    /// Records the passes of `plan` in order and submits them.
-    fn record_and_submit(&mut self, plan: &FramePlan, scene: &Scene, camera: &Camera) -> Result<wgpu::Texture> {
-        let display = plan.variant.display;
+    /// Records the passes of `plan` in order and submits them: the plan carries what the frame
+    /// takes from the scene; the camera places it.
+    fn record_and_submit(&mut self, plan: &FramePlan, camera: &Camera) -> Result<wgpu::Texture> {
         let Renderer {
             shared,
             passes,
@@ -343,7 +303,8 @@ impl Renderer {
             timings,
             last,
             edges,
-            edge_aa,
+            edge_gpu_classify,
+            edge_stats,
             dipole,
             atlas,
             mesh_generation,
@@ -356,85 +317,39 @@ impl Renderer {
         targets.ensure(device, plan.targets.iter().copied());
         passes.shadow.ensure_maps(shared, plan.shadow_maps);
         let view = FrameView::new(camera, &mesh.bounds, plan.size);
-        let frame = FrameUniform::new(scene, camera, &view, &mesh.bounds, plan.size, (look.layers, look.params));
+        let frame =
+            FrameUniform::new(&plan.constants, camera, &view, &mesh.bounds, plan.size, (look.layers, look.params));
         shared.write_frame(&frame);
-        if let crate::scene::SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface {
-            let (falloff, cutoff_mm) = source.falloff();
-            passes.thickness.write_uniform(shared, &ThicknessUniform::new(*params, falloff, cutoff_mm));
-        }
-        if let (crate::scene::SubsurfaceModel::Dipole { kind, settings }, Some(medium)) =
-            (&scene.skin.subsurface, &scene.skin.medium)
-            && plan.variant.dipole
-        {
-            let slots = crate::passes::dipole::dipole_lights(scene).len().min(crate::uniforms::MAX_LIGHTS) as u32;
-            dipole.ensure(device, settings, slots, shared.formats.min_array_layers);
-            let key = state_key(*kind, medium, settings, scene, *mesh_generation);
-            let frame_index = dipole.next_frame(key, settings.progressive);
-            let u = DipoleUniform::new(*kind, medium, settings, scene, &mesh.bounds, frame_index);
-            shared.queue.write_buffer(&dipole.uniform, 0, bytemuck::bytes_of(&u));
-        }
-        if let (crate::scene::SubsurfaceModel::CubeAtlas { settings }, Some(medium)) =
-            (&scene.skin.subsurface, &scene.skin.medium)
-            && plan.variant.atlas
-        {
-            atlas.ensure(device, settings);
-            atlas.update(&shared.queue, medium, settings, &mesh.bounds);
-        }
-        if let Some(kernel) = &plan.kernel {
-            passes.sss.write_uniforms(shared, kernel, scene.sss.width, scene.sss.follow_mm, scene.sss.samples);
-        }
 
         let profiler = if *profiling { profiler.as_mut() } else { None };
-        let mut enc = FrameEncoder {
-            encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("Renderer::frame") }),
-            profiler,
+        let encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("Renderer::frame") });
+        let mut rec = Recording {
+            shared,
+            targets,
+            variant: plan.variant,
+            enc: FrameEncoder { encoder, profiler },
+            mesh,
+            mesh_generation: *mesh_generation,
+            look,
+            textures,
+            shadow_maps: passes.shadow.maps_view(),
+            dipole,
+            atlas,
+            edges: edges.as_mut(),
+            edge_gpu_classify: *edge_gpu_classify,
+            eye: camera.position(),
+            edge_stats: None,
         };
-        if let Some(p) = enc.profiler.as_mut() {
+        if let Some(p) = rec.enc.profiler.as_mut() {
             p.begin_frame();
         }
-        let shadow_maps = passes.shadow.maps_view();
-        let variant = plan.variant;
-        let ctx = FrameContext { shared, targets, variant };
         for planned in &plan.passes {
-            match planned.step {
-                Step::Shadow { light, layer } => passes.shadow.record(shared, &mut enc, mesh, light, layer)?,
-                Step::Gbuffer => passes.gbuffer.record(ctx, &mut enc, mesh, look, textures)?,
-                Step::Lighting => passes.lighting.record(ctx, &mut enc, look, &shadow_maps)?,
-                Step::Thickness => passes.thickness.record(ctx, &mut enc, &shadow_maps)?,
-                Step::DipoleLight { slots } => passes.dipole_light.record(ctx, &mut enc, mesh, dipole, slots)?,
-                Step::DipoleRadiance => {
-                    let directions = match &scene.skin.subsurface {
-                        crate::scene::SubsurfaceModel::Dipole { settings, .. } => settings.directions,
-                        _ => 0,
-                    };
-                    passes.dipole_radiance.record(ctx, &mut enc, mesh, dipole, directions)?
-                }
-                Step::DipoleCombine => passes.dipole_combine.record(ctx, &mut enc, dipole)?,
-                Step::AtlasIrradiance => passes.atlas_irradiance.record(ctx, &mut enc, mesh, atlas, &shadow_maps)?,
-                Step::AtlasGather => passes.atlas_gather.record(ctx, &mut enc, atlas)?,
-                Step::Sss(direction) => passes.sss.record(ctx, &mut enc, direction)?,
-                Step::Composite { skin } => passes.composite.record(ctx, &mut enc, skin)?,
-                Step::EdgeOverdraw { sorted } => {
-                    let edges = edges.as_mut().ok_or_else(|| {
-                        RenderError::Invalid("edge antialiasing needs the mesh's edges: call prepare_edges".into())
-                    })?;
-                    let coverage = match *edge_aa {
-                        crate::aa::EdgeAa::Unsorted(c) | crate::aa::EdgeAa::Sorted(c) => c,
-                        crate::aa::EdgeAa::Off => crate::aa::EdgeCoverage::TwoSided,
-                    };
-                    // The CPU's list (search, classification, sort when asked) unless the GPU is to
-                    // classify every edge: `rouge bench aa` measured the list faster (the vertex
-                    // stage over every edge of the head costs more than the CPU's search).
-                    let list = (sorted || !self.edge_gpu_classify).then(|| {
-                        let (list, stats) = edges.frames.frame(camera.position(), sorted);
-                        self.edge_stats = stats;
-                        list
-                    });
-                    passes.edge_overdraw.record(ctx, &mut enc, edges, coverage, list.as_deref())?;
-                }
-            }
+            passes.record(&mut rec, &planned.step)?;
         }
-        let FrameEncoder { mut encoder, profiler } = enc;
+        let FrameEncoder { mut encoder, profiler } = rec.enc;
+        if let Some(stats) = rec.edge_stats {
+            *edge_stats = stats;
+        }
         if let Some(p) = &profiler {
             p.resolve(&mut encoder);
         }
@@ -443,8 +358,9 @@ impl Renderer {
             Some(p) => p.read(device)?,
             None => Vec::new(),
         };
+        let variant = plan.variant;
         *last = Some(LastFrame { variant, sss_ran: plan.kernel.is_some(), view, depth: std::sync::Mutex::new(None) });
-        let out = if display { Target::Display } else { Target::Linear };
+        let out = if variant.display { Target::Display } else { Target::Linear };
         targets.get(out).cloned().ok_or_else(|| RenderError::Gpu("the output target was not created".into()))
     }
 

@@ -3,10 +3,10 @@
 
 use crate::cube_atlas::AtlasSettings;
 use crate::diffusion::ProfileModel;
+use crate::directional_dipole::{DipoleKind, DipoleSettings};
 use crate::env::ShIrradiance;
 use crate::error::{RenderError, Result};
 use crate::local_thickness::{ThicknessSource, TranslucencyParams};
-use crate::passes::dipole::{DipoleKind, DipoleSettings};
 use crate::profile_fit::FittedProfile;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
@@ -142,7 +142,7 @@ pub enum SubsurfaceModel {
     },
     /// The directional dipole ([Frisvad2014]) or the standard dipole ([Jensen2001]) of the
     /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
-    /// ([DirDipoleThesis], `crate::passes::dipole`). Takes over the skin's direct light; needs
+    /// ([DirDipoleThesis], the dipole passes). Takes over the skin's direct light; needs
     /// `Skin::medium`.
     Dipole {
         /// Which BSSRDF.

@@ -1,11 +1,9 @@
 //! The uniforms every pass sees (WGSL `Frame`, `Light`, `Layer` in shaders/common.wgsl) and how
 //! they are built from the scene and the camera: view and projection, lights with their shadow
-//! matrices. Keep in sync with common.wgsl; tests/shaders.rs checks the layouts with naga.
+//! matrices. Keep in sync with common.wgsl; the shader tests (src/shader/tests.rs) check the
+//! layouts with naga.
 
-use crate::passes::dipole::DipoleUniform;
-use crate::passes::sss::SssUniform;
-use crate::passes::thickness::ThicknessUniform;
-use crate::scene::{Camera, LightKind, Scene};
+use crate::scene::{Camera, Light, LightKind, Scene};
 use crate::shader::MAX_LAYERS;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
@@ -97,11 +95,44 @@ impl FrameView {
     }
 }
 
+/// What the frame uniform takes from the scene: the frame plan keeps it, so that recording a
+/// frame never goes back to the scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneConstants {
+    /// The lights.
+    pub lights: Vec<Light>,
+    /// Exposure of the tone mapping.
+    pub exposure: f32,
+    /// Skin roughness, F0, specular on, unused.
+    pub skin: [f32; 4],
+    /// SSS width, follow (mm), sample count, unused.
+    pub sss: [f32; 4],
+    /// Background.
+    pub background: [f32; 4],
+    /// SH irradiance coefficients (zero without an environment).
+    pub sh: [[f32; 4]; 9],
+}
+
+impl SceneConstants {
+    /// What the frame uniform takes from `scene`.
+    pub fn new(scene: &Scene) -> SceneConstants {
+        let [r, g, b] = scene.background;
+        SceneConstants {
+            lights: scene.lights.clone(),
+            exposure: scene.exposure,
+            skin: [scene.skin.roughness, scene.skin.f0(), if scene.specular { 1.0 } else { 0.0 }, 0.0],
+            sss: [scene.sss.width, scene.sss.follow_mm, scene.sss.samples as f32, 0.0],
+            background: [r, g, b, 0.0],
+            sh: scene.environment.map_or([[0.0; 4]; 9], |sh| sh.to_gpu()),
+        }
+    }
+}
+
 impl FrameUniform {
-    /// The uniform of one frame: `scene` seen by `camera` at `size`, the mesh's `bounds`, and the
-    /// uploaded look's `layers` (count and specular parameters).
+    /// The uniform of one frame: the scene's `constants` seen by `camera` at `size`, the mesh's
+    /// `bounds`, and the uploaded look's `layers` (count and specular parameters).
     pub fn new(
-        scene: &Scene,
+        constants: &SceneConstants,
         camera: &Camera,
         view: &FrameView,
         bounds: &Bounds,
@@ -115,13 +146,13 @@ impl FrameUniform {
             view: camera.view().to_cols_array_2d(),
             camera_pos: camera.position().extend(1.0).to_array(),
             viewport: [width, height, 1.0 / width, 1.0 / height],
-            projection: [view.focal_px, view.near, view.far, scene.exposure],
-            skin: [scene.skin.roughness, scene.skin.f0(), if scene.specular { 1.0 } else { 0.0 }, 0.0],
-            sss: [scene.sss.width, scene.sss.follow_mm, scene.sss.samples as f32, 0.0],
-            background: [scene.background[0], scene.background[1], scene.background[2], 0.0],
-            counts: [scene.lights.len() as u32, layers.0, rouge_measure::layer_table::TABLE_ENTRIES as u32, 0],
-            sh: scene.environment.map_or([[0.0; 4]; 9], |sh| sh.to_gpu()),
-            lights: light_uniforms(scene, bounds),
+            projection: [view.focal_px, view.near, view.far, constants.exposure],
+            skin: constants.skin,
+            sss: constants.sss,
+            background: constants.background,
+            counts: [constants.lights.len() as u32, layers.0, rouge_measure::layer_table::TABLE_ENTRIES as u32, 0],
+            sh: constants.sh,
+            lights: light_uniforms(&constants.lights, bounds),
             layers: layers.1,
         }
     }
@@ -140,15 +171,15 @@ pub fn orthographic_toward(toward: Vec3, centre: Vec3, radius: f32) -> (Mat4, f3
     (proj * view, near, far)
 }
 
-/// The lights of `scene` around a mesh with `bounds`; shadowing lights get consecutive shadow
+/// The scene's `lights` around a mesh with `bounds`; shadowing lights get consecutive shadow
 /// map layers in scene order, with an orthographic (directional) or perspective (point) matrix
 /// that encloses the mesh's bounding sphere.
-pub fn light_uniforms(scene: &Scene, bounds: &Bounds) -> [LightUniform; MAX_LIGHTS] {
+pub fn light_uniforms(lights: &[Light], bounds: &Bounds) -> [LightUniform; MAX_LIGHTS] {
     let centre = bounds.center();
     let radius = 0.5 * bounds.size().length();
-    let mut lights = [LightUniform::default(); MAX_LIGHTS];
+    let mut out = [LightUniform::default(); MAX_LIGHTS];
     let mut shadow_layer = 0;
-    for (slot, l) in lights.iter_mut().zip(&scene.lights) {
+    for (slot, l) in out.iter_mut().zip(lights) {
         let (position, d2, light_pos, to_centre) = match l.kind {
             LightKind::Directional { toward } => {
                 let t = toward.normalize_or_zero();
@@ -189,108 +220,5 @@ pub fn light_uniforms(scene: &Scene, bounds: &Bounds) -> [LightUniform; MAX_LIGH
         }
         *slot = u;
     }
-    lights
-}
-
-/// A uniform struct's WGSL name, size in bytes, and (field, offset) pairs.
-pub type UniformLayout = (&'static str, usize, Vec<(&'static str, usize)>);
-
-/// Field offsets of the uniforms, for the layout test against naga's view of the WGSL.
-pub fn uniform_layouts() -> Vec<UniformLayout> {
-    use crate::passes::cube_atlas::AtlasUniform;
-    use std::mem::{offset_of, size_of};
-    vec![
-        (
-            "Frame",
-            size_of::<FrameUniform>(),
-            vec![
-                ("view_proj", offset_of!(FrameUniform, view_proj)),
-                ("inv_view_proj", offset_of!(FrameUniform, inv_view_proj)),
-                ("view", offset_of!(FrameUniform, view)),
-                ("camera_pos", offset_of!(FrameUniform, camera_pos)),
-                ("viewport", offset_of!(FrameUniform, viewport)),
-                ("projection", offset_of!(FrameUniform, projection)),
-                ("skin", offset_of!(FrameUniform, skin)),
-                ("sss", offset_of!(FrameUniform, sss)),
-                ("background", offset_of!(FrameUniform, background)),
-                ("counts", offset_of!(FrameUniform, counts)),
-                ("sh", offset_of!(FrameUniform, sh)),
-                ("lights", offset_of!(FrameUniform, lights)),
-                ("layers", offset_of!(FrameUniform, layers)),
-            ],
-        ),
-        (
-            "Light",
-            size_of::<LightUniform>(),
-            vec![
-                ("position", offset_of!(LightUniform, position)),
-                ("color", offset_of!(LightUniform, color)),
-                ("shadow", offset_of!(LightUniform, shadow)),
-                ("translucency", offset_of!(LightUniform, translucency)),
-                ("shadow_view_proj", offset_of!(LightUniform, shadow_view_proj)),
-            ],
-        ),
-        ("Layer", size_of::<LayerUniform>(), vec![("params", offset_of!(LayerUniform, params))]),
-        (
-            "DipolePass",
-            size_of::<DipoleUniform>(),
-            vec![
-                ("channel", offset_of!(DipoleUniform, channel)),
-                ("extra", offset_of!(DipoleUniform, extra)),
-                ("boundary", offset_of!(DipoleUniform, boundary)),
-                ("classic", offset_of!(DipoleUniform, classic)),
-                ("sampling", offset_of!(DipoleUniform, sampling)),
-                ("fixes", offset_of!(DipoleUniform, fixes)),
-                ("counts", offset_of!(DipoleUniform, counts)),
-                ("light_view_proj", offset_of!(DipoleUniform, light_view_proj)),
-                ("light_inv_view_proj", offset_of!(DipoleUniform, light_inv_view_proj)),
-                ("light_info", offset_of!(DipoleUniform, light_info)),
-                ("dir_view_proj", offset_of!(DipoleUniform, dir_view_proj)),
-                ("dir_axis", offset_of!(DipoleUniform, dir_axis)),
-                ("dir_planes", offset_of!(DipoleUniform, dir_planes)),
-            ],
-        ),
-        (
-            "AtlasPass",
-            size_of::<AtlasUniform>(),
-            vec![
-                ("view_proj", offset_of!(AtlasUniform, view_proj)),
-                ("axis", offset_of!(AtlasUniform, axis)),
-                ("right", offset_of!(AtlasUniform, right)),
-                ("up", offset_of!(AtlasUniform, up)),
-                ("cube", offset_of!(AtlasUniform, cube)),
-                ("medium", offset_of!(AtlasUniform, medium)),
-                ("params", offset_of!(AtlasUniform, params)),
-                ("settings", offset_of!(AtlasUniform, settings)),
-                ("kernel", offset_of!(AtlasUniform, kernel)),
-                ("sh_fresnel", offset_of!(AtlasUniform, sh_fresnel)),
-            ],
-        ),
-        (
-            "ThicknessPass",
-            size_of::<ThicknessUniform>(),
-            vec![
-                ("materials", offset_of!(ThicknessUniform, materials)),
-                ("falloff", offset_of!(ThicknessUniform, falloff)),
-                ("kind", offset_of!(ThicknessUniform, kind)),
-            ],
-        ),
-        (
-            "EdgePass",
-            size_of::<crate::passes::edge_overdraw::EdgeUniform>(),
-            vec![
-                ("params", offset_of!(crate::passes::edge_overdraw::EdgeUniform, params)),
-                ("flags", offset_of!(crate::passes::edge_overdraw::EdgeUniform, flags)),
-            ],
-        ),
-        (
-            "SssPass",
-            size_of::<SssUniform>(),
-            vec![
-                ("dir", offset_of!(SssUniform, dir)),
-                ("count", offset_of!(SssUniform, count)),
-                ("samples", offset_of!(SssUniform, samples)),
-            ],
-        ),
-    ]
+    out
 }

@@ -241,9 +241,8 @@ fn the_atlas_passes_exist_only_when_a_material_uses_the_model() {
     let wedge = builtin("wedge");
     let mut s = scene(&dense(), AtlasSettings::default(), LightRig::Studio);
     let r = renderer(&gpu, &wedge, &s);
-    let steps = |plan: &rouge_render::frame::FramePlan| -> Vec<String> {
-        plan.passes.iter().map(|p| rouge_render::frame::step_name(p.step)).collect()
-    };
+    let steps =
+        |plan: &rouge_render::frame::FramePlan| -> Vec<String> { plan.passes.iter().map(|p| p.step.name()).collect() };
     let plan = r.plan(&s, 64, 64, true).expect("plan");
     assert!(steps(&plan).ends_with(&["atlas irradiance".to_string(), "atlas gather".into(), "composite".into()]));
     assert!(plan.variant.atlas && plan.variant.dipole && plan.kernel.is_none());

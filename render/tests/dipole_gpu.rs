@@ -7,8 +7,8 @@ use rouge_model::look::Look;
 use rouge_model::medium::Medium;
 use rouge_model::mesh::{TriangleMesh, load_mesh};
 use rouge_render::directional_dipole::{DirectionalDipole, Geometry, standard_dipole_bssrdf, standard_dipole_profiles};
-use rouge_render::passes::dipole::{DipoleKind, DipoleSettings};
 use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
+use rouge_render::{DipoleKind, DipoleSettings};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -116,9 +116,8 @@ fn the_passes_exist_only_when_a_material_uses_a_dipole() {
     let mut r = Renderer::new(&gpu.device, &gpu.queue);
     r.set_mesh(&wedge(), [0.5; 3]).expect("mesh");
     let mut s = scene(DipoleKind::Directional, DipoleSettings::default(), LightRig::Back);
-    let steps = |plan: &rouge_render::frame::FramePlan| -> Vec<String> {
-        plan.passes.iter().map(|p| rouge_render::frame::step_name(p.step)).collect()
-    };
+    let steps =
+        |plan: &rouge_render::frame::FramePlan| -> Vec<String> { plan.passes.iter().map(|p| p.step.name()).collect() };
     let plan = r.plan(&s, 64, 64, true).expect("plan");
     assert!(steps(&plan).ends_with(&[
         "dipole light".to_string(),

@@ -156,14 +156,14 @@ fn concave_edges_of_a_closed_mesh_are_never_drawn_and_boundaries_always_are() {
 fn the_overdraw_pass_exists_only_with_edge_antialiasing() {
     let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false };
     let settings = |aa, display| FrameSettings { width: 64, height: 48, display, max_side: 8192, aa };
-    let has = |plan: &FramePlan| plan.passes.iter().any(|p| matches!(p.step, Step::EdgeOverdraw { .. }));
+    let has = |plan: &FramePlan| plan.passes.iter().any(|p| matches!(p.step, Step::EdgeOverdraw(_)));
     let scene = Scene::studio();
     let off = FramePlan::new(&scene, up, settings(EdgeAa::Off, true)).expect("plan");
     assert!(!has(&off) && off.explain().contains("edge antialiasing is off"));
     for aa in [EdgeAa::Unsorted(EdgeCoverage::Line), EdgeAa::Sorted(EdgeCoverage::TwoSided)] {
         let plan = FramePlan::new(&scene, up, settings(aa, true)).expect("plan");
         assert!(has(&plan));
-        assert!(matches!(plan.passes.last().map(|p| p.step), Some(Step::EdgeOverdraw { .. })), "not after composite");
+        assert!(matches!(plan.passes.last().map(|p| &p.step), Some(Step::EdgeOverdraw(_))), "not after composite");
         let linear = FramePlan::new(&scene, up, settings(aa, false)).expect("plan");
         assert!(!has(&linear) && linear.explain().contains("no display image"));
     }
@@ -264,10 +264,10 @@ fn sorted_overdraw_fixes_a_silhouette_crossing_another_discontinuity() {
     let camera = rouge_render::Camera::framing(&r.mesh_bounds().expect("bounds"), 15.0, 20.0);
     let size = (96, 72);
     r.set_edge_aa(EdgeAa::Off);
-    let reference = aa_study::render_linear_srgb(&mut r, &scene, &camera, size, 8).expect("reference");
+    let reference = r.render_linear_srgb(&scene, &camera, size, 8).expect("reference");
     let mut frame = |aa| {
         r.set_edge_aa(aa);
-        aa_study::render_linear_srgb(&mut r, &scene, &camera, size, 1).expect("frame")
+        r.render_linear_srgb(&scene, &camera, size, 1).expect("frame")
     };
     let unsorted = frame(EdgeAa::Unsorted(EdgeCoverage::TwoSided));
     let sorted = frame(EdgeAa::Sorted(EdgeCoverage::TwoSided));

@@ -132,8 +132,8 @@ impl RougeApp {
         self.view.scene.skin.medium = physical.then(|| skin1().cloned()).flatten();
         self.view.scene.skin.subsurface = match choice {
             SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
-                kind: rouge_render::passes::dipole::DipoleKind::Directional,
-                settings: rouge_render::passes::dipole::DipoleSettings::default(),
+                kind: rouge_render::DipoleKind::Directional,
+                settings: rouge_render::DipoleSettings::default(),
             },
             SubsurfaceChoice::CubeAtlas => {
                 SubsurfaceModel::CubeAtlas { settings: rouge_render::cube_atlas::AtlasSettings::default() }

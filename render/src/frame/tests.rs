@@ -1,14 +1,21 @@
 //! The frame plan's unit tests: which passes, targets and variants a scene gets.
 
 use super::*;
+use crate::local_thickness::ThicknessSource;
+use crate::scene::SubsurfaceModel;
+use crate::shader::ThicknessVariant;
 use glam::Vec3;
+
+fn read(plan: &FramePlan, i: usize, r: Resource) -> bool {
+    plan.passes[i].reads.contains(&r)
+}
 
 fn settings() -> FrameSettings {
     FrameSettings { width: 64, height: 48, display: true, max_side: 8192, aa: EdgeAa::Off }
 }
 
 fn steps(plan: &FramePlan) -> Vec<String> {
-    plan.passes.iter().map(|p| step_name(p.step)).collect()
+    plan.passes.iter().map(|p| p.step.name()).collect()
 }
 
 #[test]
@@ -37,7 +44,7 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     )
     .expect("plan");
     assert_eq!(steps(&plan), ["gbuffer", "lighting", "composite"]);
-    assert_eq!(plan.passes[2].step, Step::Composite { skin: Target::Diffuse });
+    assert_eq!(plan.passes[2].step, Step::Composite(Target::Diffuse));
     for t in [Target::ThicknessA, Target::ThicknessB, Target::SssScratch, Target::Scattered, Target::ExitT] {
         assert!(!plan.targets.contains(&t), "{t:?} allocated for a bare frame without SSS");
     }
@@ -58,7 +65,7 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
 
 #[test]
 fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
-    use crate::local_thickness::{ThicknessSource, TranslucencyParams};
+    use crate::local_thickness::TranslucencyParams;
     let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true };
     let mut scene = Scene::rig(crate::scene::LightRig::Back);
     // Not used: neither the pass nor the target.
@@ -74,7 +81,7 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
     assert!(plan.targets.contains(&Target::LocalThickness) && plan.kernel.is_none());
     assert_eq!(plan.variant.thickness, ThicknessVariant::Baked);
-    assert!(plan.passes[1].reads.contains(&"local-thickness map".to_string()));
+    assert!(read(&plan, 1, Resource::LocalThicknessMap));
     // The baked source without its map is an error that says what to do.
     let none = Uploaded { local_thickness_map: false, ..up };
     let err = FramePlan::new(&scene, none, settings()).expect_err("no map");
@@ -84,7 +91,9 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
         SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(false, None, 8, 20.0) };
     let plan = FramePlan::new(&scene, none, settings()).expect("plan");
     assert_eq!(plan.variant.thickness, ThicknessVariant::ShadowMap);
-    assert!(plan.passes.iter().any(|p| p.step == Step::Thickness && p.reads.contains(&"shadow maps".into())));
+    assert!(
+        plan.passes.iter().any(|p| matches!(p.step, Step::Thickness(_)) && p.reads.contains(&Resource::ShadowMaps))
+    );
     scene.lights[0].shadows = false;
     let plan = FramePlan::new(&scene, none, settings()).expect("plan");
     assert!(!plan.targets.contains(&Target::LocalThickness));

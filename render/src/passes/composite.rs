@@ -2,9 +2,9 @@
 //! or not) leaving through the stack (× T), plus the surface radiance, over the background; then
 //! linear radiance (EXR) or exposure, Khronos PBR Neutral and sRGB encoding (PNG, the app).
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant};
 use crate::targets::Target;
 use crate::wgpu_util::{color, float_tex, layout, tex};
 
@@ -20,9 +20,17 @@ pub fn output(variant: Variant) -> Target {
     if variant.display { Target::Display } else { Target::Linear }
 }
 
-impl CompositePass {
-    /// The pass on `shared`'s device.
-    pub fn new(shared: &Shared) -> CompositePass {
+impl FramePass for CompositePass {
+    /// The skin radiance composed: the diffuse or the scattered one.
+    type Step = Target;
+    const SHADER: PassShader = PassShader {
+        owner: "CompositePass",
+        file: "shaders/composite.wgsl",
+        source: include_str!("../shaders/composite.wgsl"),
+        reduce: |v| Variant { layers: v.layers.min(1), display: v.display, ..Variant::BARE },
+    };
+
+    fn new(shared: &Shared) -> CompositePass {
         let layout = layout(
             &shared.device,
             "CompositePass::layout",
@@ -31,17 +39,18 @@ impl CompositePass {
         CompositePass { layout, pipelines: Pipelines::default() }
     }
 
+    fn name(_: &Target) -> String {
+        "composite".into()
+    }
+
     /// Records the pass from `skin` (the diffuse or the scattered radiance) into [`output`].
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, skin: Target) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
-        let key = ctx.variant.for_pass(Pass::Composite);
+    fn record(&mut self, rec: &mut Recording<'_>, &skin: &Target) -> Result<()> {
+        let (shared, targets) = (rec.shared, rec.targets);
+        let key = rec.key(&Self::SHADER);
         let out = output(key);
         let format = out.format(shared.formats);
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            pass: Pass::Composite,
+            shader: &Self::SHADER,
             variant: key,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,
@@ -64,7 +73,7 @@ impl CompositePass {
                 tex(3, &normal),
             ],
         });
-        let mut pass = enc.begin("composite", &[color(&out, wgpu::Color::TRANSPARENT)], None);
+        let mut pass = rec.enc.begin("composite", &[color(&out, wgpu::Color::TRANSPARENT)], None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);

@@ -3,13 +3,21 @@
 //! frame captures read depth everywhere. Not part of the frame plan: it runs on demand, when
 //! the depth of the last frame is read back.
 
-use super::{FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FrameEncoder, PipelineSpec, Pipelines, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant, bare};
 use crate::wgpu_util::{color, float_tex, layout, tex};
 
 /// Format of the copy: the depth's f32 bits in four unorm bytes (exact: k/255 rounds back to k).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// The depth copy's shader.
+pub const SHADER: PassShader = PassShader {
+    owner: "DepthCopyPass",
+    file: "shaders/depth_copy.wgsl",
+    source: include_str!("../shaders/depth_copy.wgsl"),
+    reduce: bare,
+};
 
 /// The depth copy pass.
 #[derive(Debug)]
@@ -38,7 +46,7 @@ impl DepthCopyPass {
         out: &wgpu::TextureView,
     ) -> Result<()> {
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass: Pass::DepthCopy,
+            shader: &SHADER,
             variant: Variant::BARE,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,

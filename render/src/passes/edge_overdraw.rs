@@ -10,9 +10,10 @@
 //! hidden ones (brute force on the GPU, no CPU work per frame;
 //! [`crate::Renderer::set_edge_gpu_classify`]).
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::aa::EdgeCoverage;
-use crate::error::Result;
+use crate::error::{RenderError, Result};
+use crate::shader::{PassShader, bare};
 use crate::silhouettes::{EdgeFrames, EdgeInstance};
 use crate::targets::Target;
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, texture, uniform_entry, view};
@@ -110,9 +111,25 @@ pub struct EdgeOverdrawPass {
     sorted: Option<(wgpu::Buffer, usize)>,
 }
 
-impl EdgeOverdrawPass {
-    /// The pass on `shared`'s device.
-    pub fn new(shared: &Shared) -> EdgeOverdrawPass {
+/// The edge overdraw of a frame: the order of the edges and their coverage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeStep {
+    /// Silhouettes and near-silhouette sharp edges sorted back to front on the CPU.
+    pub sorted: bool,
+    /// The coverage drawn.
+    pub coverage: EdgeCoverage,
+}
+
+impl FramePass for EdgeOverdrawPass {
+    type Step = EdgeStep;
+    const SHADER: PassShader = PassShader {
+        owner: "EdgeOverdrawPass",
+        file: "shaders/edge_overdraw.wgsl",
+        source: include_str!("../shaders/edge_overdraw.wgsl"),
+        reduce: bare,
+    };
+
+    fn new(shared: &Shared) -> EdgeOverdrawPass {
         let device = &shared.device;
         let layout = layout(
             device,
@@ -124,22 +141,28 @@ impl EdgeOverdrawPass {
         EdgeOverdrawPass { layout, pipelines: Pipelines::default(), uniform, copy: None, sorted: None }
     }
 
-    /// Records the pass over [`Target::Display`]: all of `edges` classified on the GPU, or, when
-    /// `sorted` holds this frame's list ([`EdgeFrames::frame`]), that list in its order.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        edges: &mut GpuEdges,
-        coverage: EdgeCoverage,
-        sorted: Option<&[EdgeInstance]>,
-    ) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
+    fn name(_: &EdgeStep) -> String {
+        "edge overdraw".into()
+    }
+
+    /// Records the pass over [`Target::Display`]: the CPU's list of this frame's edges
+    /// ([`EdgeFrames::frame`], sorted when the step says so) in its order, or, when the GPU is to
+    /// classify them ([`Recording::edge_gpu_classify`], unsorted only), every edge of the mesh.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &EdgeStep) -> Result<()> {
+        let (shared, targets) = (rec.shared, rec.targets);
         let device = &shared.device;
-        let key = ctx.variant.for_pass(Pass::EdgeOverdraw);
+        let edges = rec.edges.as_deref_mut().ok_or_else(|| {
+            RenderError::Invalid("edge antialiasing needs the mesh's edges: call prepare_edges".into())
+        })?;
+        // The CPU's list (search, classification, sort when asked) unless the GPU is to classify
+        // every edge: `rouge bench aa` measured the list faster (the vertex stage over every edge
+        // of the head costs more than the CPU's search).
+        let sorted = (step.sorted || !rec.edge_gpu_classify).then(|| {
+            let (list, stats) = edges.frames.frame(rec.eye, step.sorted);
+            rec.edge_stats = Some(stats);
+            list
+        });
+        let key = (Self::SHADER.reduce)(rec.variant);
         let format = Target::Display.format(shared.formats);
         let blend = wgpu::BlendState {
             color: wgpu::BlendComponent {
@@ -150,7 +173,7 @@ impl EdgeOverdrawPass {
             alpha: crate::wgpu_util::KEEP_DST_ALPHA,
         };
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            pass: Pass::EdgeOverdraw,
+            shader: &Self::SHADER,
             variant: key,
             layout: &self.layout,
             vertices: Vertices::EdgeInstances,
@@ -162,14 +185,14 @@ impl EdgeOverdrawPass {
         })?;
         let display = targets
             .get(Target::Display)
-            .ok_or_else(|| crate::RenderError::Gpu("the display target was not created".into()))?;
+            .ok_or_else(|| RenderError::Gpu("the display target was not created".into()))?;
         let size = (display.width(), display.height());
         if self.copy.as_ref().is_none_or(|c| (c.width(), c.height()) != size || c.format() != format) {
             let usage = wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::TEXTURE_BINDING;
             self.copy = Some(texture(device, "EdgeOverdrawPass::copy", size, 1, format, usage, &[]));
         }
-        let copy = self.copy.as_ref().ok_or_else(|| crate::RenderError::Gpu("no copy texture".into()))?;
-        enc.encoder.copy_texture_to_texture(
+        let copy = self.copy.as_ref().ok_or_else(|| RenderError::Gpu("no copy texture".into()))?;
+        rec.enc.encoder.copy_texture_to_texture(
             display.as_image_copy(),
             copy.as_image_copy(),
             wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
@@ -177,9 +200,9 @@ impl EdgeOverdrawPass {
         shared.queue.write_buffer(
             &self.uniform,
             0,
-            bytemuck::bytes_of(&EdgeUniform::new(coverage, edges.frames.set.closed)),
+            bytemuck::bytes_of(&EdgeUniform::new(step.coverage, edges.frames.set.closed)),
         );
-        let (buffer, count) = match sorted {
+        let (buffer, count) = match sorted.as_deref() {
             None => {
                 let all = edges.all.get_or_insert_with(|| instance_buffer(device, &edges.frames.all_instances()));
                 (&*all, edges.frames.set.edges.len())
@@ -190,7 +213,7 @@ impl EdgeOverdrawPass {
                 } else if let Some((b, _)) = &self.sorted {
                     shared.queue.write_buffer(b, 0, bytemuck::cast_slice(list));
                 }
-                let (b, _) = self.sorted.as_ref().ok_or_else(|| crate::RenderError::Gpu("no edge buffer".into()))?;
+                let (b, _) = self.sorted.as_ref().ok_or_else(|| RenderError::Gpu("no edge buffer".into()))?;
                 (b, list.len())
             }
         };
@@ -206,7 +229,7 @@ impl EdgeOverdrawPass {
             depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
             stencil_ops: None,
         };
-        let mut pass = enc.begin("edge overdraw", &[color_load(&out)], Some(depth_attachment));
+        let mut pass = rec.enc.begin("edge overdraw", &[color_load(&out)], Some(depth_attachment));
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);

@@ -5,11 +5,9 @@
 //! material uses the thickness model. Each target keeps its location (4 for the local thickness)
 //! whatever the others, so a left-out target leaves its location empty.
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::gpu_look::{GpuLook, SkinTextures};
-use crate::gpu_mesh::GpuMesh;
-use crate::shader::{ThicknessVariant, Variant};
+use crate::shader::{PassShader, ThicknessVariant, Variant};
 use crate::targets::Target;
 use crate::wgpu_util::{color, depth_clear, float_tex, layout, sampler, sampler_entry, tex, tex_entry};
 
@@ -40,9 +38,22 @@ pub fn outputs(variant: Variant) -> Vec<Target> {
     slots(variant).into_iter().flatten().collect()
 }
 
-impl GbufferPass {
-    /// The pass on `shared`'s device.
-    pub fn new(shared: &Shared) -> GbufferPass {
+impl FramePass for GbufferPass {
+    type Step = ();
+    const SHADER: PassShader = PassShader {
+        owner: "GbufferPass",
+        file: "shaders/gbuffer.wgsl",
+        source: include_str!("../shaders/gbuffer.wgsl"),
+        reduce: |v| Variant {
+            layers: v.layers,
+            albedo_map: v.albedo_map,
+            normal_map: v.normal_map,
+            thickness: v.thickness,
+            ..Variant::BARE
+        },
+    };
+
+    fn new(shared: &Shared) -> GbufferPass {
         let layout = layout(
             &shared.device,
             "GbufferPass::layout",
@@ -57,24 +68,18 @@ impl GbufferPass {
         GbufferPass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records the pass: `mesh` with `look`'s thickness maps and the skin `textures` into the
-    /// targets of [`outputs`] and [`Target::Depth`].
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        mesh: &GpuMesh,
-        look: &GpuLook,
-        textures: &SkinTextures,
-    ) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
-        let key = ctx.variant.for_pass(Pass::Gbuffer);
+    fn name(_: &()) -> String {
+        "gbuffer".into()
+    }
+
+    /// Records the mesh with the look's thickness maps and the skin textures into the targets of
+    /// [`outputs`] and [`Target::Depth`].
+    fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
+        let (shared, targets, look, textures) = (rec.shared, rec.targets, rec.look, rec.textures);
+        let key = rec.key(&Self::SHADER);
         let slots = slots(key);
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            pass: Pass::Gbuffer,
+            shader: &Self::SHADER,
             variant: key,
             layout: &self.layout,
             vertices: Vertices::Mesh,
@@ -99,11 +104,11 @@ impl GbufferPass {
         let depth = targets.view(Target::Depth)?;
         let attachments: Vec<_> =
             views.iter().map(|v| v.as_ref().and_then(|v| color(v, wgpu::Color::TRANSPARENT))).collect();
-        let mut pass = enc.begin("gbuffer", &attachments, depth_clear(&depth));
+        let mut pass = rec.enc.begin("gbuffer", &attachments, depth_clear(&depth));
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);
-        mesh.draw(&mut pass);
+        rec.mesh.draw(&mut pass);
         Ok(())
     }
 }

@@ -4,10 +4,9 @@
 //! ([Huang2013] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
 //! radiance leaving at the surface, and, with layers, the stack's exit transmittance.
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::gpu_look::GpuLook;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{color, float_tex, layout, sampler, sampler_entry, storage_entry, tex, tex_entry};
 
@@ -39,9 +38,23 @@ pub fn outputs(variant: Variant) -> Vec<Target> {
     t
 }
 
-impl LightingPass {
-    /// The pass on `shared`'s device.
-    pub fn new(shared: &Shared) -> LightingPass {
+impl FramePass for LightingPass {
+    type Step = ();
+    const SHADER: PassShader = PassShader {
+        owner: "LightingPass",
+        file: "shaders/lighting.wgsl",
+        source: include_str!("../shaders/lighting.wgsl"),
+        reduce: |v| Variant {
+            layers: v.layers,
+            shadows: v.shadows,
+            env: v.env,
+            dipole: v.dipole,
+            atlas: v.atlas,
+            ..Variant::BARE
+        },
+    };
+
+    fn new(shared: &Shared) -> LightingPass {
         let layout = layout(
             &shared.device,
             "LightingPass::layout",
@@ -60,22 +73,17 @@ impl LightingPass {
         LightingPass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records the pass from the G-buffer, `look`'s tables and the `shadow_maps` array.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        look: &GpuLook,
-        shadow_maps: &wgpu::TextureView,
-    ) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
-        let key = ctx.variant.for_pass(Pass::Lighting);
+    fn name(_: &()) -> String {
+        "lighting".into()
+    }
+
+    /// Records the pass from the G-buffer, the look's tables and the shadow maps.
+    fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
+        let (shared, targets) = (rec.shared, rec.targets);
+        let key = rec.key(&Self::SHADER);
         let outs = outputs(key);
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            pass: Pass::Lighting,
+            shader: &Self::SHADER,
             variant: key,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,
@@ -101,8 +109,8 @@ impl LightingPass {
                 tex(2, &depth),
                 tex(3, thickness_a.as_ref().unwrap_or(&shared.dummy)),
                 tex(4, thickness_b.as_ref().unwrap_or(&shared.dummy)),
-                wgpu::BindGroupEntry { binding: 5, resource: look.tables.as_entire_binding() },
-                tex(6, shadow_maps),
+                wgpu::BindGroupEntry { binding: 5, resource: rec.look.tables.as_entire_binding() },
+                tex(6, &rec.shadow_maps),
                 sampler(7, &shared.shadow_sampler),
             ],
         });
@@ -113,7 +121,7 @@ impl LightingPass {
             .zip(&views)
             .map(|(&t, v)| color(v, if t == Target::ExitT { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT }))
             .collect();
-        let mut pass = enc.begin("lighting", &attachments, None);
+        let mut pass = rec.enc.begin("lighting", &attachments, None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);

@@ -1,9 +1,17 @@
-//! One module per pass of the frame ([Huang2013] figure 1). Each pass owns its bind-group
-//! layout, its pipelines per [`Variant`] (built on first use), its uniform structs, and one
-//! `record` function from named inputs to named outputs. [`crate::frame`] decides which passes
-//! run; [`crate::Renderer::render`] walks that plan.
+//! One module per pass of the frame ([Huang2013] figure 1). Each pass module declares, in one
+//! place, its shader ([`PassShader`]: WGSL file and variant reduction), what the plan gives each
+//! of its steps ([`FramePass::Step`]), its name in timings and `--explain`, the targets it reads
+//! and writes, and one `record` from those to its outputs; it owns its bind-group layout,
+//! pipelines per reduced [`Variant`] (built on first use) and uniform structs.
 //!
-//! Labels name the owner (`"LightingPass::pipeline"`), so validation errors point at the file.
+//! [`frame_passes!`] below registers every pass once: it makes the frame's [`Step`] (one variant
+//! per pass, holding the pass's step), the renderer's set of passes, the dispatch from a step to
+//! its pass, and the list of shaders the tests validate. [`crate::frame`] decides which steps run;
+//! [`crate::Renderer::render`] records them in order through [`Passes::record`], and never looks
+//! at the scene again. Labels name the owner (`"LightingPass::pipeline"`), so validation errors
+//! point at the file.
+//!
+//! How to add a pass: docs/ARCHITECTURE.md, "How to add a pass".
 
 pub mod composite;
 pub mod cube_atlas;
@@ -18,98 +26,103 @@ pub mod sss;
 pub mod thickness;
 
 use crate::error::Result;
+use crate::gpu_look::{GpuLook, SkinTextures};
+use crate::gpu_mesh::GpuMesh;
 use crate::profiler::Profiler;
-use crate::shader::{Variant, shader_source};
-use crate::targets::{DEPTH_FORMAT, Formats};
+use crate::shader::{PassShader, Variant, shader_source};
+use crate::silhouettes::FrameEdgeStats;
+use crate::targets::{DEPTH_FORMAT, Formats, TargetPool};
 use crate::uniforms::FrameUniform;
 use crate::wgpu_util::{layout, texture, uniform_buffer, uniform_entry, view};
 
-/// The passes, for shader sources, pipelines and timings.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Pass {
-    /// Depth from a light.
-    Shadow,
-    /// Normals, albedo, layer thickness.
-    Gbuffer,
-    /// Stack, irradiance, specular.
-    Lighting,
-    /// One direction of the separable blur.
-    Sss,
-    /// Thickness translucency ([BarreBrisebois2011]), added to the skin's diffuse radiance.
-    Thickness,
-    /// Composition and tone mapping.
-    Composite,
-    /// Depth into a colour target, for readback where depth cannot be copied (GL).
-    DepthCopy,
-    /// Discontinuity edge overdraw ([Sander2001]) over the composited image.
-    EdgeOverdraw,
-    /// The dipole models' light G-buffer.
-    DipoleLight,
-    /// The dipole models' radiance maps.
-    DipoleRadiance,
-    /// The dipole models' combination.
-    DipoleCombine,
-    /// The cube atlas's six faces of irradiance ([Benmounah2009]).
-    AtlasIrradiance,
-    /// The cube atlas's gather, added to the skin's diffuse radiance.
-    AtlasGather,
+/// A pass of the frame, as the registry ([`frame_passes!`]) takes it.
+pub trait FramePass: Sized {
+    /// What the plan gives each step of this pass (its slots, directions, uniforms' contents).
+    type Step: Clone + std::fmt::Debug + PartialEq;
+    /// The pass's shader.
+    const SHADER: PassShader;
+    /// The pass on `shared`'s device.
+    fn new(shared: &Shared) -> Self;
+    /// The step's name, as in timings and `--explain`.
+    fn name(step: &Self::Step) -> String;
+    /// Records `step` into the frame.
+    ///
+    /// # Errors
+    /// When a pipeline cannot be built or a target is missing.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &Self::Step) -> Result<()>;
 }
 
-impl Pass {
-    /// Every pass.
-    pub const ALL: [Pass; 13] = [
-        Pass::Shadow,
-        Pass::Gbuffer,
-        Pass::Lighting,
-        Pass::Sss,
-        Pass::Thickness,
-        Pass::Composite,
-        Pass::DepthCopy,
-        Pass::EdgeOverdraw,
-        Pass::DipoleLight,
-        Pass::DipoleRadiance,
-        Pass::DipoleCombine,
-        Pass::AtlasIrradiance,
-        Pass::AtlasGather,
-    ];
-
-    /// The pass's WGSL file name (for errors).
-    pub fn file_name(self) -> &'static str {
-        match self {
-            Pass::Shadow => "shaders/shadow.wgsl",
-            Pass::Gbuffer => "shaders/gbuffer.wgsl",
-            Pass::Lighting => "shaders/lighting.wgsl",
-            Pass::Sss => "shaders/sss.wgsl",
-            Pass::Thickness => "shaders/thickness.wgsl",
-            Pass::Composite => "shaders/composite.wgsl",
-            Pass::DepthCopy => "shaders/depth_copy.wgsl",
-            Pass::DipoleLight => "shaders/dipole_light.wgsl",
-            Pass::DipoleRadiance => "shaders/dipole_radiance.wgsl",
-            Pass::DipoleCombine => "shaders/dipole_combine.wgsl",
-            Pass::EdgeOverdraw => "shaders/edge_overdraw.wgsl",
-            Pass::AtlasIrradiance => "shaders/atlas_irradiance.wgsl",
-            Pass::AtlasGather => "shaders/atlas_gather.wgsl",
+/// Registers the frame's passes: `Step variant => field: pass type`, in no particular order (the
+/// plan orders the steps). Adding a pass adds one line here.
+macro_rules! frame_passes {
+    ($($(#[$doc:meta])* $step:ident => $field:ident: $pass:ty),* $(,)?) => {
+        /// One step of the frame: a pass, with what the plan gives it.
+        #[derive(Clone, Debug, PartialEq)]
+        #[allow(clippy::large_enum_variant, reason = "a frame has a dozen steps; the SSS kernel's samples travel by value")]
+        pub enum Step {
+            $($(#[$doc])* $step(<$pass as FramePass>::Step),)*
         }
-    }
 
-    /// The pass's WGSL source before preprocessing.
-    pub fn source(self) -> &'static str {
-        match self {
-            Pass::Shadow => include_str!("../shaders/shadow.wgsl"),
-            Pass::Gbuffer => include_str!("../shaders/gbuffer.wgsl"),
-            Pass::Lighting => include_str!("../shaders/lighting.wgsl"),
-            Pass::Sss => include_str!("../shaders/sss.wgsl"),
-            Pass::Thickness => include_str!("../shaders/thickness.wgsl"),
-            Pass::Composite => include_str!("../shaders/composite.wgsl"),
-            Pass::DepthCopy => include_str!("../shaders/depth_copy.wgsl"),
-            Pass::DipoleLight => include_str!("../shaders/dipole_light.wgsl"),
-            Pass::DipoleRadiance => include_str!("../shaders/dipole_radiance.wgsl"),
-            Pass::DipoleCombine => include_str!("../shaders/dipole_combine.wgsl"),
-            Pass::EdgeOverdraw => include_str!("../shaders/edge_overdraw.wgsl"),
-            Pass::AtlasIrradiance => include_str!("../shaders/atlas_irradiance.wgsl"),
-            Pass::AtlasGather => include_str!("../shaders/atlas_gather.wgsl"),
+        impl Step {
+            /// The step's name, as in timings and `--explain`.
+            pub fn name(&self) -> String {
+                match self {
+                    $(Step::$step(s) => <$pass>::name(s),)*
+                }
+            }
         }
-    }
+
+        /// Every pass of the frame.
+        #[derive(Debug)]
+        pub(crate) struct Passes {
+            $(pub(crate) $field: $pass,)*
+        }
+
+        impl Passes {
+            /// Every pass on `shared`'s device.
+            pub(crate) fn new(shared: &Shared) -> Passes {
+                Passes { $($field: <$pass>::new(shared),)* }
+            }
+
+            /// Records `step` with its pass.
+            pub(crate) fn record(&mut self, rec: &mut Recording<'_>, step: &Step) -> Result<()> {
+                match step {
+                    $(Step::$step(s) => self.$field.record(rec, s),)*
+                }
+            }
+        }
+
+        /// The shaders of every pass, the frame's and the depth copy (which runs on demand).
+        #[cfg(test)]
+        pub(crate) const SHADERS: &[&PassShader] = &[$(&<$pass as FramePass>::SHADER,)* &depth_copy::SHADER];
+    };
+}
+
+frame_passes! {
+    /// Depth of the mesh from one light into its layer of the shadow maps.
+    Shadow => shadow: shadow::ShadowPass,
+    /// The G-buffer.
+    Gbuffer => gbuffer: gbuffer::GbufferPass,
+    /// Lighting through the cosmetic stack.
+    Lighting => lighting: lighting::LightingPass,
+    /// Thickness translucency added to the skin's diffuse radiance.
+    Thickness => thickness: thickness::ThicknessPass,
+    /// The dipole models' light G-buffer, one view per directional light.
+    DipoleLight => dipole_light: dipole::light::DipoleLightPass,
+    /// The dipole models' K radiance maps.
+    DipoleRadiance => dipole_radiance: dipole::radiance::DipoleRadiancePass,
+    /// The dipole models' combination, added to the skin's diffuse radiance.
+    DipoleCombine => dipole_combine: dipole::combine::DipoleCombinePass,
+    /// The cube atlas's six faces of irradiance, drawn from the current mesh.
+    AtlasIrradiance => atlas_irradiance: cube_atlas::irradiance::AtlasIrradiancePass,
+    /// The cube atlas's gather, added to the skin's diffuse radiance.
+    AtlasGather => atlas_gather: cube_atlas::gather::AtlasGatherPass,
+    /// One direction of the screen-space scattering blur.
+    Sss => sss: sss::SssPass,
+    /// Composition of the skin radiance (diffuse or scattered) with the surface radiance.
+    Composite => composite: composite::CompositePass,
+    /// Discontinuity edges drawn over the display image ([Sander2001]).
+    EdgeOverdraw => edge_overdraw: edge_overdraw::EdgeOverdrawPass,
 }
 
 /// What every pass shares: the device, the frame uniform and its bind group (group 0 of every
@@ -204,9 +217,9 @@ pub enum Vertices {
 /// What differs between the passes' pipelines.
 #[derive(Debug)]
 pub struct PipelineSpec<'a> {
-    /// The pass (shader file and label).
-    pub pass: Pass,
-    /// The variant, already reduced with [`Variant::for_pass`].
+    /// The pass's shader (file and label).
+    pub shader: &'static PassShader,
+    /// The variant, already reduced with the shader's [`PassShader::reduce`].
     pub variant: Variant,
     /// Group 1 of the pipeline.
     pub layout: &'a wgpu::BindGroupLayout,
@@ -230,8 +243,8 @@ pub struct PipelineSpec<'a> {
 /// [`crate::RenderError::Shader`] when the shader source breaks a preprocessor rule.
 pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::RenderPipeline> {
     let device = &shared.device;
-    let label = format!("{:?}Pass::pipeline {:?}", spec.pass, spec.variant);
-    let source = shader_source(spec.pass, spec.variant, shared.formats.encode_srgb_in_shader)?;
+    let label = format!("{}::pipeline {:?}", spec.shader.owner, spec.variant);
+    let source = shader_source(spec.shader, spec.variant, shared.formats.encode_srgb_in_shader)?;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -288,16 +301,48 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
     }))
 }
 
-/// What every pass reads while recording a frame: the shared objects, the frame's targets and
-/// the frame's shader variant.
-#[derive(Clone, Copy, Debug)]
-pub struct FrameContext<'a> {
+/// What the passes record a frame with: the shared objects, the frame's targets and variant,
+/// the encoder, and what is uploaded (mesh, look, skin textures, the subsurface models' resources,
+/// the edges). Made by [`crate::Renderer`] for one frame; the steps carry the rest.
+#[derive(Debug)]
+pub struct Recording<'a> {
     /// Device, frame uniform, samplers.
     pub shared: &'a Shared,
     /// The targets the plan created.
-    pub targets: &'a crate::targets::TargetPool,
-    /// The frame's variant (each pass reduces it with [`Variant::for_pass`]).
+    pub targets: &'a TargetPool,
+    /// The frame's variant (each pass reduces it with its [`PassShader::reduce`]).
     pub variant: Variant,
+    /// The frame's encoder.
+    pub enc: FrameEncoder<'a>,
+    /// The mesh.
+    pub mesh: &'a GpuMesh,
+    /// Counts mesh uploads (the dipole maps depend on the mesh).
+    pub mesh_generation: u64,
+    /// The look's tables and thickness maps.
+    pub look: &'a GpuLook,
+    /// The skin's albedo, normal and local-thickness textures.
+    pub textures: &'a SkinTextures,
+    /// The shadow-map array (a stand-in when no light casts shadows).
+    pub shadow_maps: wgpu::TextureView,
+    /// The dipole models' maps and their accumulation.
+    pub dipole: &'a mut dipole::DipoleResources,
+    /// The cube atlas.
+    pub atlas: &'a mut cube_atlas::AtlasResources,
+    /// The mesh's discontinuity edges, when prepared.
+    pub edges: Option<&'a mut edge_overdraw::GpuEdges>,
+    /// Whether unsorted edge overdraw has the GPU classify every edge.
+    pub edge_gpu_classify: bool,
+    /// The camera's position, mm (the edges' classification and sort).
+    pub eye: glam::Vec3,
+    /// Edge counts of this frame's edge list, when the CPU made one (set by the pass).
+    pub edge_stats: Option<FrameEdgeStats>,
+}
+
+impl Recording<'_> {
+    /// The frame's variant reduced for `shader`.
+    pub fn key(&self, shader: &PassShader) -> Variant {
+        (shader.reduce)(self.variant)
+    }
 }
 
 /// The command encoder of a frame with its optional profiler: passes begin here.
@@ -332,8 +377,8 @@ impl FrameEncoder<'_> {
 impl FrameEncoder<'_> {
     /// Draws `mesh` once per layer `0..layers` of the array textures `colours` and `depth`, each
     /// layer cleared (transparent, far) and drawn as instance `layer`, so that the vertex shader
-    /// picks the layer's view: the dipoles' light G-buffer and radiance maps, the cube atlas's
-    /// faces. Bind group 0 is the frame's, 1 is `group`; `(pipeline, group)` draw it.
+    /// (`vs_layer`, shaders/layered_mesh.wgsl) picks the layer's view: the dipoles' light
+    /// G-buffer and radiance maps, the cube atlas's faces. Bind group 0 is the frame's, 1 is `group`; `(pipeline, group)` draw it.
     pub fn draw_mesh_per_layer(
         &mut self,
         label: &str,

@@ -2,10 +2,9 @@
 //! shadow-map array (shaders/shadow.wgsl). The light's matrix is in the frame uniform
 //! ([`crate::uniforms::light_uniforms`]); this pass's uniform says which light.
 
-use super::{FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::gpu_mesh::GpuMesh;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant, bare};
 use crate::targets::DEPTH_FORMAT;
 use crate::uniforms::{MAX_LIGHTS, SHADOW_MAP_SIZE};
 use crate::wgpu_util::{buf, buffer_init, depth_clear, layout, texture, uniform_entry};
@@ -20,9 +19,26 @@ pub struct ShadowPass {
     maps: wgpu::Texture,
 }
 
-impl ShadowPass {
+/// One shadow map: the light (its index in the scene) and its layer of the shadow-map array.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShadowStep {
+    /// The light's index in the scene.
+    pub light: usize,
+    /// Its layer of the shadow-map array.
+    pub layer: u32,
+}
+
+impl FramePass for ShadowPass {
+    type Step = ShadowStep;
+    const SHADER: PassShader = PassShader {
+        owner: "ShadowPass",
+        file: "shaders/shadow.wgsl",
+        source: include_str!("../shaders/shadow.wgsl"),
+        reduce: bare,
+    };
+
     /// The pass on `shared`'s device, with a 1×1 stand-in map until a shadowing light comes.
-    pub fn new(shared: &Shared) -> ShadowPass {
+    fn new(shared: &Shared) -> ShadowPass {
         let device = &shared.device;
         let layout = layout(device, "ShadowPass::layout", &[uniform_entry(0, wgpu::ShaderStages::VERTEX)]);
         let light_indices = (0..MAX_LIGHTS as u32)
@@ -44,6 +60,41 @@ impl ShadowPass {
         ShadowPass { layout, pipelines: Pipelines::default(), light_indices, maps }
     }
 
+    fn name(step: &ShadowStep) -> String {
+        format!("shadow {}", step.layer)
+    }
+
+    /// Records the depth of the mesh from the step's light into its layer.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &ShadowStep) -> Result<()> {
+        let shared = rec.shared;
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
+            shader: &Self::SHADER,
+            variant: Variant::BARE,
+            layout: &self.layout,
+            vertices: Vertices::MeshPositions,
+            vs: "vs_shadow",
+            fs: None,
+            targets: vec![],
+            blend: None,
+            depth: Some(wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }),
+        })?;
+        let target = self.maps.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("ShadowPass::map"),
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            base_array_layer: step.layer,
+            array_layer_count: Some(1),
+            ..Default::default()
+        });
+        let mut pass = rec.enc.begin(&Self::name(step), &[], depth_clear(&target));
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &shared.frame_group, &[]);
+        pass.set_bind_group(1, &self.light_indices[step.light], &[]);
+        rec.mesh.draw(&mut pass);
+        Ok(())
+    }
+}
+
+impl ShadowPass {
     fn create_maps(device: &wgpu::Device, size: (u32, u32), layers: u32, label: &str) -> wgpu::Texture {
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
         texture(device, label, size, layers, DEPTH_FORMAT, usage, &[])
@@ -61,43 +112,5 @@ impl ShadowPass {
     /// The shadow-map array as the lighting pass samples it.
     pub fn maps_view(&self) -> wgpu::TextureView {
         crate::wgpu_util::array_view(&self.maps)
-    }
-
-    /// Records the depth of `mesh` from light `light` (its slot in the scene) into map `layer`.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built.
-    pub fn record(
-        &mut self,
-        shared: &Shared,
-        enc: &mut FrameEncoder<'_>,
-        mesh: &GpuMesh,
-        light: usize,
-        layer: u32,
-    ) -> Result<()> {
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass: Pass::Shadow,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::MeshPositions,
-            vs: "vs_shadow",
-            fs: None,
-            targets: vec![],
-            blend: None,
-            depth: Some(wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }),
-        })?;
-        let target = self.maps.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("ShadowPass::map"),
-            dimension: Some(wgpu::TextureViewDimension::D2),
-            base_array_layer: layer,
-            array_layer_count: Some(1),
-            ..Default::default()
-        });
-        let mut pass = enc.begin(&format!("shadow {layer}"), &[], depth_clear(&target));
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &shared.frame_group, &[]);
-        pass.set_bind_group(1, &self.light_indices[light], &[]);
-        mesh.draw(&mut pass);
-        Ok(())
     }
 }

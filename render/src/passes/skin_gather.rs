@@ -10,9 +10,9 @@
 //! exit pixel's (the stack varies slowly against the diffusion length), so the composite's exit
 //! T is not the only one: without it, skin under foundation read 1/T too bright.
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
+use super::{PipelineSpec, Pipelines, Recording, Vertices};
 use crate::error::Result;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, tex_entry, uniform_entry};
 
@@ -29,22 +29,22 @@ const EXIT_T_BINDING: u32 = 15;
 pub struct SkinGather {
     layout: wgpu::BindGroupLayout,
     pipelines: Pipelines,
-    pass: Pass,
+    shader: &'static PassShader,
     fs: &'static str,
 }
 
 impl SkinGather {
-    /// The layout of `pass` (fragment entry `fs`): the uniform, the three G-buffer targets and
-    /// `arrays` 2D arrays.
-    pub fn new(device: &wgpu::Device, pass: Pass, fs: &'static str, arrays: u32) -> SkinGather {
+    /// The layout of the pass of `shader` (fragment entry `fs`): the uniform, the three G-buffer
+    /// targets and `arrays` 2D arrays.
+    pub fn new(device: &wgpu::Device, shader: &'static PassShader, fs: &'static str, arrays: u32) -> SkinGather {
         let mut entries = vec![uniform_entry(0, wgpu::ShaderStages::FRAGMENT)];
         entries.extend((1..=3).map(|b| float_tex(b, false)));
         entries.extend((0..arrays).map(|i| {
             tex_entry(4 + i, wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2Array)
         }));
         entries.push(float_tex(EXIT_T_BINDING, false));
-        let layout = layout(device, &format!("{pass:?}Pass::layout"), &entries);
-        SkinGather { layout, pipelines: Pipelines::default(), pass, fs }
+        let layout = layout(device, &format!("{}::layout", shader.owner), &entries);
+        SkinGather { layout, pipelines: Pipelines::default(), shader, fs }
     }
 
     /// Records the pass labelled `label` into [`Target::Diffuse`] (added), with `uniform` and the
@@ -54,16 +54,15 @@ impl SkinGather {
     /// When the pipeline cannot be built or a target is missing.
     pub fn record(
         &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
+        rec: &mut Recording<'_>,
         label: &str,
         uniform: &wgpu::Buffer,
         arrays: &[wgpu::TextureView],
     ) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
-        let (pass, fs) = (self.pass, self.fs);
+        let (shared, targets) = (rec.shared, rec.targets);
+        let (shader, fs) = (self.shader, self.fs);
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass,
+            shader,
             variant: Variant::BARE,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,
@@ -78,16 +77,16 @@ impl SkinGather {
         let (normal, albedo, depth) = (normal?, albedo?, depth?);
         let diffuse = targets.view(Target::Diffuse)?;
         // The shader reads the stack's T only when the frame has layers (`frame.counts.y`).
-        let exit_t = if ctx.variant.layers > 0 { Some(targets.view(Target::ExitT)?) } else { None };
+        let exit_t = if rec.variant.layers > 0 { Some(targets.view(Target::ExitT)?) } else { None };
         let mut entries = vec![buf(0, uniform), tex(1, &normal), tex(2, &albedo), tex(3, &depth)];
         entries.extend(arrays.iter().enumerate().map(|(i, v)| tex(4 + i as u32, v)));
         entries.push(tex(EXIT_T_BINDING, exit_t.as_ref().unwrap_or(&shared.dummy)));
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("{pass:?}Pass::group")),
+            label: Some(&format!("{}::group", shader.owner)),
             layout: &self.layout,
             entries: &entries,
         });
-        let mut rp = enc.begin(label, &[color_load(&diffuse)], None);
+        let mut rp = rec.enc.begin(label, &[color_load(&diffuse)], None);
         rp.set_pipeline(pipeline);
         rp.set_bind_group(0, &shared.frame_group, &[]);
         rp.set_bind_group(1, &group, &[]);

@@ -3,9 +3,9 @@
 //! It runs for materials whose subsurface model is
 //! [`crate::scene::SubsurfaceModel::ScreenSpace`].
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant, bare};
 use crate::sss::{MAX_SAMPLES, SeparableKernel};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color, float_tex, layout, sampler, sampler_entry, tex, uniform_buffer, uniform_entry};
@@ -13,7 +13,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// One SSS pass's uniform, as in WGSL `SssPass`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct SssUniform {
     /// Direction (px), width, follow (mm).
     pub dir: [f32; 4],
@@ -65,9 +65,38 @@ pub struct SssPass {
     uniforms: [wgpu::Buffer; 2],
 }
 
-impl SssPass {
+/// One direction of the blur, with its uniform.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SssStep {
+    /// The direction.
+    pub direction: Direction,
+    /// Its uniform: the kernel's samples, the width and the depth following.
+    pub uniform: SssUniform,
+}
+
+impl SssStep {
+    /// The step of `direction`: `kernel` scaled by `width`, `follow_mm` of depth, `count` samples.
+    pub fn new(direction: Direction, kernel: &SeparableKernel, width: f32, follow_mm: f32, count: u32) -> SssStep {
+        let [x, y] = match direction {
+            Direction::Horizontal => [1.0, 0.0],
+            Direction::Vertical => [0.0, 1.0],
+        };
+        let uniform = SssUniform { dir: [x, y, width, follow_mm], count: [count, 0, 0, 0], samples: kernel.to_gpu() };
+        SssStep { direction, uniform }
+    }
+}
+
+impl FramePass for SssPass {
+    type Step = SssStep;
+    const SHADER: PassShader = PassShader {
+        owner: "SssPass",
+        file: "shaders/sss.wgsl",
+        source: include_str!("../shaders/sss.wgsl"),
+        reduce: bare,
+    };
+
     /// The passes on `shared`'s device.
-    pub fn new(shared: &Shared) -> SssPass {
+    fn new(shared: &Shared) -> SssPass {
         let device = &shared.device;
         let layout = layout(
             device,
@@ -86,23 +115,17 @@ impl SssPass {
         SssPass { layout, pipelines: Pipelines::default(), uniforms }
     }
 
-    /// Writes both directions' uniforms: `kernel` scaled by `width`, `follow_mm` of depth.
-    pub fn write_uniforms(&self, shared: &Shared, kernel: &SeparableKernel, width: f32, follow_mm: f32, count: u32) {
-        let samples = kernel.to_gpu();
-        for (buffer, dir) in self.uniforms.iter().zip([[1.0, 0.0], [0.0, 1.0]]) {
-            let u = SssUniform { dir: [dir[0], dir[1], width, follow_mm], count: [count, 0, 0, 0], samples };
-            shared.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
-        }
+    fn name(step: &SssStep) -> String {
+        step.direction.label().into()
     }
 
-    /// Records one direction of the blur.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, direction: Direction) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
+    /// Writes the direction's uniform (each direction has its own buffer) and records it.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &SssStep) -> Result<()> {
+        let (shared, targets, direction) = (rec.shared, rec.targets, step.direction);
+        let buffer = &self.uniforms[direction.index()];
+        shared.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&step.uniform));
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            pass: Pass::Sss,
+            shader: &Self::SHADER,
             variant: Variant::BARE,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,
@@ -124,7 +147,7 @@ impl SssPass {
                 sampler(3, &shared.linear_sampler),
             ],
         });
-        let mut pass = enc.begin(direction.label(), &[color(&dst, wgpu::Color::TRANSPARENT)], None);
+        let mut pass = rec.enc.begin(direction.label(), &[color(&dst, wgpu::Color::TRANSPARENT)], None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);

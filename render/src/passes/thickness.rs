@@ -5,9 +5,10 @@
 //! the local thickness and the material id ([`Target::LocalThickness`]), and the per-material
 //! parameters live in this pass's uniform, indexed by that id (the talk's material-id packing).
 
-use super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
 use crate::local_thickness::TranslucencyParams;
+use crate::shader::{PassShader, Variant};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, tex_entry, uniform_buffer, uniform_entry};
 use bytemuck::{Pod, Zeroable};
@@ -20,7 +21,7 @@ pub const SKIN_MATERIAL_ID: usize = 1;
 
 /// The pass's uniform, as in WGSL `ThicknessPass`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct ThicknessUniform {
     /// Per material id: distortion, power, scale, ambient (id 0: none, all zero).
     pub materials: [[f32; 4]; MATERIAL_IDS],
@@ -57,9 +58,17 @@ pub fn inputs() -> [Target; 4] {
     [Target::Normal, Target::Albedo, Target::Depth, Target::LocalThickness]
 }
 
-impl ThicknessPass {
-    /// The pass on `shared`'s device.
-    pub fn new(shared: &Shared) -> ThicknessPass {
+impl FramePass for ThicknessPass {
+    /// The uniform: the skin's parameters and the local thickness's falloff.
+    type Step = ThicknessUniform;
+    const SHADER: PassShader = PassShader {
+        owner: "ThicknessPass",
+        file: "shaders/thickness.wgsl",
+        source: include_str!("../shaders/thickness.wgsl"),
+        reduce: |v| Variant { thickness: v.thickness, ..Variant::BARE },
+    };
+
+    fn new(shared: &Shared) -> ThicknessPass {
         let device = &shared.device;
         let layout = layout(
             device,
@@ -78,25 +87,17 @@ impl ThicknessPass {
         ThicknessPass { layout, pipelines: Pipelines::default(), uniform }
     }
 
-    /// Writes this frame's uniform.
-    pub fn write_uniform(&self, shared: &Shared, u: &ThicknessUniform) {
-        shared.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(u));
+    fn name(_: &ThicknessUniform) -> String {
+        "thickness".into()
     }
 
-    /// Records the pass: adds the translucency to [`Target::Diffuse`].
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        shadow_maps: &wgpu::TextureView,
-    ) -> Result<()> {
-        let (shared, targets) = (ctx.shared, ctx.targets);
-        let key = ctx.variant.for_pass(Pass::Thickness);
+    /// Writes the step's uniform and adds the translucency to [`Target::Diffuse`].
+    fn record(&mut self, rec: &mut Recording<'_>, uniform: &ThicknessUniform) -> Result<()> {
+        let (shared, targets) = (rec.shared, rec.targets);
+        shared.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
+        let key = rec.key(&Self::SHADER);
         let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            pass: Pass::Thickness,
+            shader: &Self::SHADER,
             variant: key,
             layout: &self.layout,
             vertices: Vertices::Fullscreen,
@@ -117,11 +118,11 @@ impl ThicknessPass {
                 tex(1, &albedo),
                 tex(2, &depth),
                 tex(3, &local),
-                tex(4, shadow_maps),
+                tex(4, &rec.shadow_maps),
                 buf(5, &self.uniform),
             ],
         });
-        let mut pass = enc.begin("thickness", &[color_load(&diffuse)], None);
+        let mut pass = rec.enc.begin("thickness", &[color_load(&diffuse)], None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);

@@ -57,7 +57,7 @@ impl Renderer {
     ///
     /// # Errors
     /// Before any frame used the cube-atlas model; GPU failures.
-    pub fn atlas_image(&self) -> Result<crate::passes::cube_atlas::AtlasImage> {
+    pub fn atlas_image(&self) -> Result<crate::cube_atlas::AtlasImage> {
         if !self.shared.formats.copy_depth {
             return Err(RenderError::Invalid(
                 "reading the cube atlas back copies its depth, which this backend (GL) cannot".into(),

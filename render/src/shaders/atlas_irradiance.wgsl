@@ -18,27 +18,11 @@
 //#insert sh_eval
 //#endif
 
-struct VsOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) skin: f32,
+fn layer_view_proj(layer: u32) -> mat4x4<f32> {
+    return atlas.view_proj[layer];
 }
 
-@vertex
-fn vs_atlas_irradiance(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(3) albedo: vec4<f32>,
-    @builtin(instance_index) face: u32,
-) -> VsOut {
-    var out: VsOut;
-    out.clip = atlas.view_proj[face] * vec4<f32>(position, 1.0);
-    out.world = position;
-    out.normal = normal;
-    out.skin = albedo.a;
-    return out;
-}
+//#insert layered_mesh
 
 struct AtlasOut {
     // rgb: irradiance entering the medium; a: n·(p − centre), mm
@@ -48,7 +32,7 @@ struct AtlasOut {
 }
 
 @fragment
-fn fs_atlas_irradiance(in: VsOut) -> AtlasOut {
+fn fs_atlas_irradiance(in: LayerVsOut) -> AtlasOut {
     var out: AtlasOut;
     let n = normalize(in.normal);
     let plane = dot(n, in.world - atlas.cube.xyz);

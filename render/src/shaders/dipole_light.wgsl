@@ -4,28 +4,14 @@
 //#insert diffusion
 //#insert dipole_common
 
-struct VsOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) normal: vec3<f32>,
-    @location(1) skin: f32,
+fn layer_view_proj(layer: u32) -> mat4x4<f32> {
+    return dipole.light_view_proj[layer];
 }
 
-@vertex
-fn vs_dipole_light(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(3) albedo: vec4<f32>,
-    @builtin(instance_index) slot: u32,
-) -> VsOut {
-    var out: VsOut;
-    out.clip = dipole.light_view_proj[slot] * vec4<f32>(position, 1.0);
-    out.normal = normal;
-    out.skin = albedo.a;
-    return out;
-}
+//#insert layered_mesh
 
 @fragment
-fn fs_dipole_light(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+fn fs_dipole_light(in: LayerVsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     var n = normalize(in.normal);
     if !front {
         n = -n;

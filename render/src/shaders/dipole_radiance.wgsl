@@ -16,29 +16,11 @@
 @group(1) @binding(2) var light_depths: texture_2d_array<f32>;
 @group(1) @binding(3) var previous_maps: texture_2d_array<f32>;
 
-struct VsOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) skin: f32,
-    @location(3) @interpolate(flat) k: u32,
+fn layer_view_proj(layer: u32) -> mat4x4<f32> {
+    return dipole.dir_view_proj[layer];
 }
 
-@vertex
-fn vs_dipole_radiance(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(3) albedo: vec4<f32>,
-    @builtin(instance_index) k: u32,
-) -> VsOut {
-    var out: VsOut;
-    out.clip = dipole.dir_view_proj[k] * vec4<f32>(position, 1.0);
-    out.world = position;
-    out.normal = normal;
-    out.skin = albedo.a;
-    out.k = k;
-    return out;
-}
+//#insert layered_mesh
 
 // A light G-buffer texel: world position and normal, or w = 0 where no skin is.
 struct Entry {
@@ -87,7 +69,7 @@ fn hash01(p: vec2<u32>, f: u32) -> f32 {
 }
 
 @fragment
-fn fs_dipole_radiance(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+fn fs_dipole_radiance(in: LayerVsOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     let texel = vec2<u32>(in.clip.xy);
     if in.skin < 0.5 {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
@@ -137,7 +119,7 @@ fn fs_dipole_radiance(in: VsOut, @builtin(front_facing) front: bool) -> @locatio
         total += light.color.rgb * sum;
     }
     if frame_index > 0.5 {
-        let previous = textureLoad(previous_maps, vec2<i32>(texel), i32(in.k), 0).rgb;
+        let previous = textureLoad(previous_maps, vec2<i32>(texel), i32(in.layer), 0).rgb;
         total = mix(previous, total, 1.0 / (frame_index + 1.0));
     }
     return vec4<f32>(total, 1.0);

@@ -3,27 +3,37 @@
 //! radiance ([Benmounah2009] sections 4.2-4.4).
 
 use super::super::skin_gather::SkinGather;
-use super::super::{FrameContext, FrameEncoder, Pass};
-use super::AtlasResources;
+use super::super::{FramePass, Recording, Shared};
 use crate::error::Result;
+use crate::shader::{PassShader, bare};
 use crate::wgpu_util::array_view;
 
 /// The gather pass.
 #[derive(Debug)]
 pub struct AtlasGatherPass(SkinGather);
 
-impl AtlasGatherPass {
-    /// The pass on `device`.
-    pub fn new(device: &wgpu::Device) -> AtlasGatherPass {
-        AtlasGatherPass(SkinGather::new(device, Pass::AtlasGather, "fs_atlas_gather", 3))
+impl FramePass for AtlasGatherPass {
+    type Step = ();
+    const SHADER: PassShader = PassShader {
+        owner: "AtlasGatherPass",
+        file: "shaders/atlas_gather.wgsl",
+        source: include_str!("../../shaders/atlas_gather.wgsl"),
+        reduce: bare,
+    };
+
+    fn new(shared: &Shared) -> AtlasGatherPass {
+        AtlasGatherPass(SkinGather::new(&shared.device, &Self::SHADER, "fs_atlas_gather", 3))
+    }
+
+    fn name(_: &()) -> String {
+        "atlas gather".into()
     }
 
     /// Records the gather into the skin's diffuse radiance (added).
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, res: &AtlasResources) -> Result<()> {
+    fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
+        let res = &*rec.atlas;
         let arrays = [array_view(&res.irradiance), array_view(&res.normals), array_view(&res.depths)];
-        self.0.record(ctx, enc, "atlas gather", &res.uniform, &arrays)
+        let uniform = res.uniform.clone();
+        self.0.record(rec, "atlas gather", &uniform, &arrays)
     }
 }

@@ -1,10 +1,11 @@
 //! Cube-atlas irradiance pass (shaders/atlas_irradiance.wgsl): the mesh onto the six faces of its
-//! bounding cube, one orthographic view each ([Benmounah2009] sections 4.1-4.2).
+//! bounding cube, one orthographic view each ([Benmounah2009] sections 4.1-4.2). As the first of
+//! the atlas passes of a frame, it also sizes the atlas and writes its uniform ([`AtlasStep`]).
 
-use super::super::{FrameContext, FrameEncoder, Pass, PipelineSpec, Pipelines, Vertices};
-use super::AtlasResources;
+use super::super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use super::AtlasStep;
 use crate::error::Result;
-use crate::gpu_mesh::GpuMesh;
+use crate::shader::{PassShader, Variant};
 use crate::targets::HDR_FORMAT;
 use crate::wgpu_util::{buf, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
 
@@ -15,11 +16,18 @@ pub struct AtlasIrradiancePass {
     pipelines: Pipelines,
 }
 
-impl AtlasIrradiancePass {
-    /// The pass on `device`.
-    pub fn new(device: &wgpu::Device) -> AtlasIrradiancePass {
+impl FramePass for AtlasIrradiancePass {
+    type Step = AtlasStep;
+    const SHADER: PassShader = PassShader {
+        owner: "AtlasIrradiancePass",
+        file: "shaders/atlas_irradiance.wgsl",
+        source: include_str!("../../shaders/atlas_irradiance.wgsl"),
+        reduce: |v| Variant { shadows: v.shadows, env: v.env, ..Variant::BARE },
+    };
+
+    fn new(shared: &Shared) -> AtlasIrradiancePass {
         let layout = layout(
-            device,
+            &shared.device,
             "AtlasIrradiancePass::layout",
             &[
                 uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
@@ -30,26 +38,23 @@ impl AtlasIrradiancePass {
         AtlasIrradiancePass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records the six faces of `mesh` into `res`.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        mesh: &GpuMesh,
-        res: &AtlasResources,
-        shadow_maps: &wgpu::TextureView,
-    ) -> Result<()> {
-        let shared = ctx.shared;
-        let variant = ctx.variant.for_pass(Pass::AtlasIrradiance);
+    fn name(_: &AtlasStep) -> String {
+        "atlas irradiance".into()
+    }
+
+    /// Sizes the atlas, writes its uniform and records the six faces of the mesh into it.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &AtlasStep) -> Result<()> {
+        let shared = rec.shared;
+        let variant = rec.key(&Self::SHADER);
+        let res = &mut *rec.atlas;
+        res.ensure(&shared.device, &step.settings);
+        res.update(&shared.queue, &step.medium, &step.settings, &rec.mesh.bounds);
         let pipeline = self.pipelines.get_or_build(shared, variant, || PipelineSpec {
-            pass: Pass::AtlasIrradiance,
+            shader: &Self::SHADER,
             variant,
             layout: &self.layout,
             vertices: Vertices::Mesh,
-            vs: "vs_atlas_irradiance",
+            vs: "vs_layer",
             fs: Some("fs_atlas_irradiance"),
             targets: vec![Some(HDR_FORMAT), Some(HDR_FORMAT)],
             blend: None,
@@ -58,10 +63,10 @@ impl AtlasIrradiancePass {
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("AtlasIrradiancePass::group"),
             layout: &self.layout,
-            entries: &[buf(0, &res.uniform), tex(1, shadow_maps), sampler(2, &shared.shadow_sampler)],
+            entries: &[buf(0, &res.uniform), tex(1, &rec.shadow_maps), sampler(2, &shared.shadow_sampler)],
         });
         let targets = (&[&res.irradiance, &res.normals][..], &res.depths);
-        enc.draw_mesh_per_layer("atlas irradiance", shared, (pipeline, &group), mesh, targets, 6);
+        rec.enc.draw_mesh_per_layer("atlas irradiance", shared, (pipeline, &group), rec.mesh, targets, 6);
         Ok(())
     }
 }

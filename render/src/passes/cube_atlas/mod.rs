@@ -73,6 +73,15 @@ impl AtlasUniform {
     }
 }
 
+/// What the cube-atlas passes need of the scene, planned once a frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AtlasStep {
+    /// The atlas's settings (checked).
+    pub settings: AtlasSettings,
+    /// The skin's medium.
+    pub medium: Medium,
+}
+
 /// The atlas: six layers of irradiance (+ n·p), normals (+ medium flag) and depth, and the
 /// uniform. Resized when the settings change; the contents are redrawn every frame.
 #[derive(Debug)]
@@ -94,47 +103,6 @@ pub struct AtlasResources {
 
 /// What [`AtlasUniform::new`] is made from.
 type UniformInputs = ([f64; 3], [f64; 3], f64, AtlasSettings, Bounds);
-
-/// The atlas read back to the CPU (tests, inspection): per face, row-major texels.
-#[derive(Clone, Debug)]
-pub struct AtlasImage {
-    /// The cube.
-    pub frame: AtlasFrame,
-    /// Per face: irradiance (rgb) and n·(p − c) (a).
-    pub irradiance: Vec<Vec<[f32; 4]>>,
-    /// Per face: normal (xyz) and medium flag (w).
-    pub normals: Vec<Vec<[f32; 4]>>,
-    /// Per face: [0, 1] depth (1 where nothing was drawn).
-    pub depths: Vec<Vec<f32>>,
-}
-
-impl AtlasImage {
-    /// The point stored at texel (`x`, `y`) of face `f` and its n·p, or `None` where nothing is.
-    pub fn stored(&self, f: usize, x: u32, y: u32) -> Option<(glam::Vec3, f32)> {
-        let i = (y * self.frame.px + x) as usize;
-        let z = *self.depths[f].get(i)?;
-        (z < 1.0).then(|| {
-            let t = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-            (self.frame.unproject(f, t, z), self.irradiance[f][i][3])
-        })
-    }
-
-    /// Whether face `f` holds point `x` (normal `n`) under `test` ([`AtlasFrame::holds`] on what
-    /// the atlas stored at the texel `x` projects to).
-    pub fn holds(&self, f: usize, test: crate::cube_atlas::OcclusionTest, x: glam::Vec3, n: glam::Vec3) -> bool {
-        let (t, _) = self.frame.project(f, x);
-        let px = self.frame.px as f32;
-        if t.x < 0.0 || t.y < 0.0 || t.x >= px || t.y >= px {
-            return false;
-        }
-        let i = (t.y as u32 * self.frame.px + t.x as u32) as usize;
-        let normal = glam::Vec4::from_array(self.normals[f][i]).truncate();
-        match self.stored(f, t.x as u32, t.y as u32) {
-            Some((p, plane)) => self.frame.holds(test, x, n, p, normal, plane),
-            None => false,
-        }
-    }
-}
 
 impl AtlasResources {
     /// Stand-ins of 1×1 until a frame needs the atlas, on a device whose
@@ -180,11 +148,12 @@ impl AtlasResources {
     ///
     /// # Errors
     /// [`crate::RenderError::Invalid`] before any frame drew it; GPU failures.
-    pub fn read(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> crate::Result<AtlasImage> {
+    pub fn read(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> crate::Result<crate::cube_atlas::AtlasImage> {
         use crate::wgpu_util::{halves_to_f32, read_texture_layer};
         let frame =
             self.frame.ok_or_else(|| crate::RenderError::Invalid("no frame has drawn the cube atlas yet".into()))?;
-        let mut image = AtlasImage { frame, irradiance: Vec::new(), normals: Vec::new(), depths: Vec::new() };
+        let mut image =
+            crate::cube_atlas::AtlasImage { frame, irradiance: Vec::new(), normals: Vec::new(), depths: Vec::new() };
         for f in 0..6 {
             image.irradiance.push(halves_to_f32(&read_texture_layer(device, queue, &self.irradiance, f, 8)?));
             image.normals.push(halves_to_f32(&read_texture_layer(device, queue, &self.normals, f, 8)?));

@@ -3,27 +3,37 @@
 //! the skin's diffuse radiance ([DirDipoleThesis] step 3).
 
 use super::super::skin_gather::SkinGather;
-use super::super::{FrameContext, FrameEncoder, Pass};
-use super::DipoleResources;
+use super::super::{FramePass, Recording, Shared};
 use crate::error::Result;
+use crate::shader::{PassShader, bare};
 use crate::wgpu_util::array_view;
 
 /// The combination pass.
 #[derive(Debug)]
 pub struct DipoleCombinePass(SkinGather);
 
-impl DipoleCombinePass {
-    /// The pass on `device`.
-    pub fn new(device: &wgpu::Device) -> DipoleCombinePass {
-        DipoleCombinePass(SkinGather::new(device, Pass::DipoleCombine, "fs_dipole_combine", 2))
+impl FramePass for DipoleCombinePass {
+    type Step = ();
+    const SHADER: PassShader = PassShader {
+        owner: "DipoleCombinePass",
+        file: "shaders/dipole_combine.wgsl",
+        source: include_str!("../../shaders/dipole_combine.wgsl"),
+        reduce: bare,
+    };
+
+    fn new(shared: &Shared) -> DipoleCombinePass {
+        DipoleCombinePass(SkinGather::new(&shared.device, &Self::SHADER, "fs_dipole_combine", 2))
+    }
+
+    fn name(_: &()) -> String {
+        "dipole combine".into()
     }
 
     /// Records the combination into the skin's diffuse radiance (added).
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built or a target is missing.
-    pub fn record(&mut self, ctx: FrameContext<'_>, enc: &mut FrameEncoder<'_>, res: &DipoleResources) -> Result<()> {
+    fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
+        let res = &*rec.dipole;
         let arrays = [array_view(res.current_and_previous().0), array_view(&res.map_depths)];
-        self.0.record(ctx, enc, "dipole combine", &res.uniform, &arrays)
+        let uniform = res.uniform.clone();
+        self.0.record(rec, "dipole combine", &uniform, &arrays)
     }
 }

@@ -1,11 +1,12 @@
 //! Dipole light G-buffer pass (shaders/dipole_light.wgsl): the mesh from each directional light,
 //! orthographically, into a layer of the light normals and depths ([DirDipoleThesis] step 1).
+//! As the first of the dipole passes of a frame, it also sizes their maps and writes their
+//! uniform ([`DipoleStep`]), starting the radiance maps afresh when what they depend on changed.
 
-use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
-use super::{DipoleResources, mesh_pipeline_spec};
+use super::super::{FramePass, Pipelines, Recording, Shared};
+use super::{DipoleStep, DipoleUniform, mesh_pipeline_spec};
 use crate::error::Result;
-use crate::gpu_mesh::GpuMesh;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant, bare};
 use crate::wgpu_util::{buf, layout, uniform_entry};
 
 /// The light G-buffer pass.
@@ -15,29 +16,35 @@ pub struct DipoleLightPass {
     pipelines: Pipelines,
 }
 
-impl DipoleLightPass {
-    /// The pass on `device`.
-    pub fn new(device: &wgpu::Device) -> DipoleLightPass {
+impl FramePass for DipoleLightPass {
+    type Step = DipoleStep;
+    const SHADER: PassShader = PassShader {
+        owner: "DipoleLightPass",
+        file: "shaders/dipole_light.wgsl",
+        source: include_str!("../../shaders/dipole_light.wgsl"),
+        reduce: bare,
+    };
+
+    fn new(shared: &Shared) -> DipoleLightPass {
         let layout =
-            layout(device, "DipoleLightPass::layout", &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)]);
+            layout(&shared.device, "DipoleLightPass::layout", &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)]);
         DipoleLightPass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records `slots` light views of `mesh`.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        mesh: &GpuMesh,
-        res: &DipoleResources,
-        slots: u32,
-    ) -> Result<()> {
-        let shared = ctx.shared;
+    fn name(_: &DipoleStep) -> String {
+        "dipole light".into()
+    }
+
+    /// Sizes the dipole maps, writes the passes' uniform and records one light view per slot.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &DipoleStep) -> Result<()> {
+        let shared = rec.shared;
+        let res = &mut *rec.dipole;
+        res.ensure(&shared.device, &step.settings, step.slots(), shared.formats.min_array_layers);
+        let frame_index = res.next_frame(step.state_key(rec.mesh_generation), step.settings.progressive);
+        let uniform = DipoleUniform::new(step, &rec.mesh.bounds, frame_index);
+        shared.queue.write_buffer(&res.uniform, 0, bytemuck::bytes_of(&uniform));
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
-            mesh_pipeline_spec(Pass::DipoleLight, &self.layout, "vs_dipole_light", "fs_dipole_light")
+            mesh_pipeline_spec(&Self::SHADER, &self.layout, "vs_layer", "fs_dipole_light")
         })?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("DipoleLightPass::group"),
@@ -45,7 +52,7 @@ impl DipoleLightPass {
             entries: &[buf(0, &res.uniform)],
         });
         let targets = (&[&res.light_normals][..], &res.light_depths);
-        enc.draw_mesh_per_layer("dipole light", shared, (pipeline, &group), mesh, targets, slots);
+        rec.enc.draw_mesh_per_layer("dipole light", shared, (pipeline, &group), rec.mesh, targets, step.slots());
         Ok(())
     }
 }

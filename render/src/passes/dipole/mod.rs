@@ -12,108 +12,13 @@ pub mod light;
 pub mod radiance;
 
 use crate::diffusion::{ChannelProfile, ProfileModel, medium_profiles};
-use crate::directional_dipole::DirectionalDipole;
-use crate::error::{RenderError, Result};
+use crate::directional_dipole::{DipoleKind, DipoleSettings, DirectionalDipole, MAX_DIRECTIONS, direction};
 use crate::scene::{LightKind, Scene};
 use crate::uniforms::{MAX_LIGHTS, orthographic_toward};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use rouge_model::medium::Medium;
 use rouge_model::mesh::Bounds;
-
-/// Most radiance-map directions.
-pub const MAX_DIRECTIONS: usize = 32;
-
-/// Which BSSRDF the dipole passes gather.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DipoleKind {
-    /// [Frisvad2014]'s directional dipole.
-    Directional,
-    /// [Jensen2001]'s standard (classic) dipole.
-    Standard,
-}
-
-impl DipoleKind {
-    /// The `--subsurface` name.
-    pub fn name(self) -> &'static str {
-        match self {
-            DipoleKind::Directional => "directional-dipole",
-            DipoleKind::Standard => "standard-dipole",
-        }
-    }
-}
-
-/// The settings of the dipole passes ([DirDipoleThesis] sections 4.2 and 4.4).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DipoleSettings {
-    /// Disk samples N per radiance-map texel and light (1 to 256).
-    pub samples: u32,
-    /// Radiance-map directions K (1 to [`MAX_DIRECTIONS`]), spread on the sphere.
-    pub directions: u32,
-    /// Radiance-map side, texels.
-    pub map_px: u32,
-    /// Light G-buffer side, texels.
-    pub light_map_px: u32,
-    /// Fix 1 (section 4.4.1): the exit point looked up ε_g inside, across the light.
-    pub shrink: bool,
-    /// Fix 2 (section 4.4.2): the pixel looked up ε_c inside along its normal.
-    pub intrusion: bool,
-    /// Fix 3 (section 4.4.3): visibility compared in mm with a bias ε_b.
-    pub world_bias: bool,
-    /// Keep blending new samples into the maps while lights, mesh and settings stay.
-    pub progressive: bool,
-}
-
-impl Default for DipoleSettings {
-    fn default() -> Self {
-        DipoleSettings {
-            samples: 16,
-            directions: 8,
-            map_px: 256,
-            light_map_px: 512,
-            shrink: true,
-            intrusion: true,
-            world_bias: true,
-            progressive: true,
-        }
-    }
-}
-
-impl DipoleSettings {
-    /// Checks the ranges.
-    ///
-    /// # Errors
-    /// [`RenderError::Invalid`] naming the setting.
-    pub fn check(&self) -> Result<()> {
-        let bad = |what: &str, v: u32, range: &str| Err(RenderError::Invalid(format!("dipole {what} {v}: {range}")));
-        if !(1..=256).contains(&self.samples) {
-            return bad("samples", self.samples, "1 to 256");
-        }
-        if !(1..=MAX_DIRECTIONS as u32).contains(&self.directions) {
-            return bad("directions", self.directions, "1 to 32");
-        }
-        if !(16..=4096).contains(&self.map_px) {
-            return bad("radiance map size", self.map_px, "16 to 4096 texels");
-        }
-        if !(16..=4096).contains(&self.light_map_px) {
-            return bad("light map size", self.light_map_px, "16 to 4096 texels");
-        }
-        Ok(())
-    }
-}
-
-/// `k` of `count` directions spread evenly on the unit sphere (the Fibonacci lattice through both
-/// poles; a single direction is +Z, the default camera's).
-pub fn direction(k: u32, count: u32) -> Vec3 {
-    if count <= 1 {
-        return Vec3::Z;
-    }
-    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
-    let y = 1.0 - 2.0 * k as f32 / (count - 1) as f32;
-    let r = (1.0 - y * y).max(0.0).sqrt();
-    let phi = golden * k as f32;
-    Vec3::new(r * phi.cos(), y, r * phi.sin())
-}
 
 /// The dipole passes' uniform, as WGSL `DipolePass` (shaders/dipole_common.wgsl).
 #[repr(C)]
@@ -147,27 +52,78 @@ pub struct DipoleUniform {
     pub dir_planes: [[f32; 4]; MAX_DIRECTIONS],
 }
 
-/// The scene lights the dipole passes take (directional ones, up to [`MAX_LIGHTS`]), by index.
-pub fn dipole_lights(scene: &Scene) -> Vec<usize> {
-    scene
-        .lights
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| matches!(l.kind, LightKind::Directional { .. }))
-        .map(|(i, _)| i)
-        .collect()
+/// A directional light of the scene as the dipole passes take it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalLight {
+    /// Its index in the scene (its irradiance and shadow are in the frame uniform's lights).
+    pub index: usize,
+    /// Toward the light.
+    pub toward: Vec3,
+    /// Irradiance, linear RGB.
+    pub irradiance: [f32; 3],
+}
+
+/// What the dipole passes need of the scene, planned once a frame: the model, the medium, the
+/// settings and the directional lights (point lights get no subsurface light from them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DipoleStep {
+    /// Which BSSRDF.
+    pub kind: DipoleKind,
+    /// The skin's medium.
+    pub medium: Medium,
+    /// The passes' settings.
+    pub settings: DipoleSettings,
+    /// The light views, at most [`MAX_LIGHTS`].
+    pub lights: Vec<DirectionalLight>,
+}
+
+impl DipoleStep {
+    /// The step for `medium` under the directional lights of `scene`.
+    pub fn new(kind: DipoleKind, medium: &Medium, settings: DipoleSettings, scene: &Scene) -> DipoleStep {
+        let lights = scene
+            .lights
+            .iter()
+            .enumerate()
+            .filter_map(|(index, l)| match l.kind {
+                LightKind::Directional { toward } => Some(DirectionalLight { index, toward, irradiance: l.irradiance }),
+                LightKind::Point { .. } => None,
+            })
+            .take(MAX_LIGHTS)
+            .collect();
+        DipoleStep { kind, medium: medium.clone(), settings, lights }
+    }
+
+    /// The light views.
+    pub fn slots(&self) -> u32 {
+        self.lights.len() as u32
+    }
+
+    /// A hash of what the radiance maps depend on: the medium, the kind, the settings, the lights
+    /// and the mesh's identity (its upload generation). Not the camera: the maps are
+    /// view-independent.
+    pub fn state_key(&self, mesh_generation: u64) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.kind.hash(&mut h);
+        mesh_generation.hash(&mut h);
+        let m = &self.medium;
+        for v in m.sigma_a_per_mm.iter().chain(&m.sigma_s_prime_per_mm).chain([&m.eta]) {
+            v.to_bits().hash(&mut h);
+        }
+        let s = &self.settings;
+        (s.samples, s.directions, s.map_px, s.light_map_px, s.shrink, s.intrusion, s.world_bias).hash(&mut h);
+        for l in &self.lights {
+            l.toward.to_array().map(f32::to_bits).hash(&mut h);
+            l.irradiance.map(f32::to_bits).hash(&mut h);
+        }
+        h.finish()
+    }
 }
 
 impl DipoleUniform {
-    /// The uniform for `medium` seen by the scene's directional lights around `bounds`.
-    pub fn new(
-        kind: DipoleKind,
-        medium: &Medium,
-        settings: &DipoleSettings,
-        scene: &Scene,
-        bounds: &Bounds,
-        frame_index: u32,
-    ) -> DipoleUniform {
+    /// The uniform of `step` around a mesh with `bounds`, for the samples of frame `frame_index`.
+    pub fn new(step: &DipoleStep, bounds: &Bounds, frame_index: u32) -> DipoleUniform {
+        let (kind, medium, settings) = (step.kind, &step.medium, &step.settings);
         let dipole = DirectionalDipole::new(medium);
         let classic: [ChannelProfile; 3] = medium_profiles(medium, ProfileModel::ClassicDipole);
         let centre = bounds.center();
@@ -194,15 +150,12 @@ impl DipoleUniform {
             2.0 * 2.0 * radius / settings.map_px as f32,
             bits as f32,
         ];
-        let lights = dipole_lights(scene);
-        let slots = lights.len().min(MAX_LIGHTS);
-        u.counts = [settings.directions, slots as u32, settings.light_map_px, settings.map_px];
-        for (slot, &li) in lights.iter().take(MAX_LIGHTS).enumerate() {
-            let LightKind::Directional { toward } = scene.lights[li].kind else { continue };
-            let (vp, near, far) = orthographic_toward(toward, centre, radius);
+        u.counts = [settings.directions, step.slots(), settings.light_map_px, settings.map_px];
+        for (slot, l) in step.lights.iter().enumerate() {
+            let (vp, near, far) = orthographic_toward(l.toward, centre, radius);
             u.light_view_proj[slot] = vp.to_cols_array_2d();
             u.light_inv_view_proj[slot] = vp.inverse().to_cols_array_2d();
-            u.light_info[slot] = [li as f32, near, far, texel_mm];
+            u.light_info[slot] = [l.index as f32, near, far, texel_mm];
         }
         for k in 0..settings.directions.min(MAX_DIRECTIONS as u32) {
             let d = direction(k, settings.directions);
@@ -215,49 +168,16 @@ impl DipoleUniform {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn directions_cover_the_sphere_evenly() {
-        for k in [1u32, 4, 8, 16, 32] {
-            let ds: Vec<Vec3> = (0..k).map(|i| direction(i, k)).collect();
-            assert!(ds.iter().all(|d| (d.length() - 1.0).abs() < 1e-5));
-            if k >= 8 {
-                // Every direction of the sphere is within 60° of one of them.
-                for i in 0..200 {
-                    let probe = direction(i, 200);
-                    let best = ds.iter().map(|d| d.dot(probe)).fold(-1.0f32, f32::max);
-                    assert!(best > 0.5, "{k} directions leave {probe} uncovered");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn settings_out_of_range_are_errors() {
-        assert!(DipoleSettings::default().check().is_ok());
-        for bad in [
-            DipoleSettings { samples: 0, ..Default::default() },
-            DipoleSettings { directions: 33, ..Default::default() },
-            DipoleSettings { map_px: 8, ..Default::default() },
-        ] {
-            assert!(bad.check().is_err());
-        }
-    }
-}
-
 /// The pipeline of a dipole pass that draws the mesh into an Rgba16Float target with depth
 /// (the light G-buffer and the radiance maps).
 pub fn mesh_pipeline_spec<'a>(
-    pass: super::Pass,
+    shader: &'static crate::shader::PassShader,
     layout: &'a wgpu::BindGroupLayout,
     vs: &'a str,
     fs: &'a str,
 ) -> super::PipelineSpec<'a> {
     super::PipelineSpec {
-        pass,
+        shader,
         variant: crate::shader::Variant::BARE,
         layout,
         vertices: super::Vertices::Mesh,
@@ -356,31 +276,4 @@ impl DipoleResources {
     pub fn frames_accumulated(&self) -> u32 {
         self.progress.map_or(0, |(_, n)| n)
     }
-}
-
-/// A hash of what the radiance maps depend on: the medium, the kind, the settings, the lights and
-/// the mesh's identity (its upload generation). Not the camera: the maps are view-independent.
-pub fn state_key(
-    kind: DipoleKind,
-    medium: &Medium,
-    settings: &DipoleSettings,
-    scene: &Scene,
-    mesh_generation: u64,
-) -> u64 {
-    use std::hash::{Hash, Hasher};
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    kind.hash(&mut h);
-    mesh_generation.hash(&mut h);
-    for v in medium.sigma_a_per_mm.iter().chain(&medium.sigma_s_prime_per_mm).chain([&medium.eta]) {
-        v.to_bits().hash(&mut h);
-    }
-    let s = settings;
-    (s.samples, s.directions, s.map_px, s.light_map_px, s.shrink, s.intrusion, s.world_bias).hash(&mut h);
-    for l in &scene.lights {
-        if let LightKind::Directional { toward } = l.kind {
-            toward.to_array().map(f32::to_bits).hash(&mut h);
-            l.irradiance.map(f32::to_bits).hash(&mut h);
-        }
-    }
-    h.finish()
 }

@@ -3,11 +3,10 @@
 //! ([DirDipoleThesis] step 2); after n frames of one state each texel holds the mean of its n
 //! frames (the shader mixes in the previous frame's map of the ping-pong pair).
 
-use super::super::{FrameContext, FrameEncoder, Pass, Pipelines};
-use super::{DipoleResources, mesh_pipeline_spec};
+use super::super::{FramePass, Pipelines, Recording, Shared};
+use super::mesh_pipeline_spec;
 use crate::error::Result;
-use crate::gpu_mesh::GpuMesh;
-use crate::shader::Variant;
+use crate::shader::{PassShader, Variant, bare};
 use crate::wgpu_util::{array_view, buf, layout, tex, tex_entry, uniform_entry};
 
 /// The radiance-map pass.
@@ -17,9 +16,18 @@ pub struct DipoleRadiancePass {
     pipelines: Pipelines,
 }
 
-impl DipoleRadiancePass {
-    /// The pass on `device`.
-    pub fn new(device: &wgpu::Device) -> DipoleRadiancePass {
+impl FramePass for DipoleRadiancePass {
+    /// The radiance-map directions K.
+    type Step = u32;
+    const SHADER: PassShader = PassShader {
+        owner: "DipoleRadiancePass",
+        file: "shaders/dipole_radiance.wgsl",
+        source: include_str!("../../shaders/dipole_radiance.wgsl"),
+        reduce: bare,
+    };
+
+    fn new(shared: &Shared) -> DipoleRadiancePass {
+        let device = &shared.device;
         let array =
             |b| tex_entry(b, wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2Array);
         let layout = layout(
@@ -30,21 +38,15 @@ impl DipoleRadiancePass {
         DipoleRadiancePass { layout, pipelines: Pipelines::default() }
     }
 
-    /// Records the `directions` maps of this frame.
-    ///
-    /// # Errors
-    /// When the pipeline cannot be built.
-    pub fn record(
-        &mut self,
-        ctx: FrameContext<'_>,
-        enc: &mut FrameEncoder<'_>,
-        mesh: &GpuMesh,
-        res: &DipoleResources,
-        directions: u32,
-    ) -> Result<()> {
-        let shared = ctx.shared;
+    fn name(_: &u32) -> String {
+        "dipole radiance".into()
+    }
+
+    /// Records this frame's maps, one per direction.
+    fn record(&mut self, rec: &mut Recording<'_>, &directions: &u32) -> Result<()> {
+        let (shared, res) = (rec.shared, &*rec.dipole);
         let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
-            mesh_pipeline_spec(Pass::DipoleRadiance, &self.layout, "vs_dipole_radiance", "fs_dipole_radiance")
+            mesh_pipeline_spec(&Self::SHADER, &self.layout, "vs_layer", "fs_dipole_radiance")
         })?;
         let (normals, depths) = (array_view(&res.light_normals), array_view(&res.light_depths));
         let (current, previous) = res.current_and_previous();
@@ -55,7 +57,7 @@ impl DipoleRadiancePass {
             entries: &[buf(0, &res.uniform), tex(1, &normals), tex(2, &depths), tex(3, &previous)],
         });
         let targets = (&[current][..], &res.map_depths);
-        enc.draw_mesh_per_layer("dipole radiance", shared, (pipeline, &group), mesh, targets, directions);
+        rec.enc.draw_mesh_per_layer("dipole radiance", shared, (pipeline, &group), rec.mesh, targets, directions);
         Ok(())
     }
 }

@@ -7,7 +7,6 @@
 //! name the file and line.
 
 use crate::error::{RenderError, Result};
-use crate::passes::Pass;
 
 /// Most cosmetic layers a look may have (two RGBA16F thickness targets): the look model's limit.
 pub const MAX_LAYERS: usize = rouge_model::look::MAX_LAYERS;
@@ -81,29 +80,6 @@ impl Variant {
         })
     }
 
-    /// The part of the variant a pass depends on (passes share pipelines across the rest).
-    pub fn for_pass(self, pass: Pass) -> Variant {
-        let none = Variant::BARE;
-        match pass {
-            Pass::Shadow | Pass::Sss | Pass::DepthCopy | Pass::EdgeOverdraw => none,
-            Pass::DipoleLight | Pass::DipoleRadiance | Pass::DipoleCombine | Pass::AtlasGather => none,
-            Pass::AtlasIrradiance => Variant { shadows: self.shadows, env: self.env, ..none },
-            Pass::Gbuffer => Variant {
-                layers: self.layers,
-                albedo_map: self.albedo_map,
-                normal_map: self.normal_map,
-                thickness: self.thickness,
-                ..none
-            },
-            Pass::Thickness => Variant { thickness: self.thickness, ..none },
-            Pass::Lighting => {
-                let (shadows, env, dipole, atlas) = (self.shadows, self.env, self.dipole, self.atlas);
-                Variant { layers: self.layers, shadows, env, dipole, atlas, ..none }
-            }
-            Pass::Composite => Variant { layers: self.layers.min(1), display: self.display, ..none },
-        }
-    }
-
     /// The `//#if` flags of this variant, with their values.
     fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 13] {
         [
@@ -124,17 +100,37 @@ impl Variant {
     }
 }
 
+/// A pass's shader, declared once in the pass's module: its owner (pipeline and bind-group
+/// labels), its WGSL file, and the part of the frame's [`Variant`] its pipelines depend on
+/// (passes share pipelines across the rest).
+#[derive(Debug)]
+pub struct PassShader {
+    /// The owner in labels, as `"LightingPass"` (validation errors then name the file).
+    pub owner: &'static str,
+    /// The WGSL file, relative to render/ (for errors).
+    pub file: &'static str,
+    /// Its source before preprocessing.
+    pub source: &'static str,
+    /// The reduction of the frame's variant to what the pass depends on.
+    pub reduce: fn(Variant) -> Variant,
+}
+
+/// The reduction of passes that depend on no flag of the variant.
+pub fn bare(_: Variant) -> Variant {
+    Variant::BARE
+}
+
 /// The WGSL source of `pass` specialised for `variant`, for a display target that stores sRGB
 /// in hardware (`encode_srgb` false) or one that needs the shader to encode it (`encode_srgb`
 /// true: backends without view formats, see [`crate::targets::Formats`]).
 ///
 /// # Errors
 /// [`RenderError::Shader`] when the pass file breaks a preprocessor rule.
-pub fn shader_source(pass: Pass, variant: Variant, encode_srgb: bool) -> Result<String> {
+pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> Result<String> {
     let mut out = format!("const LAYERS: u32 = {}u;\n", variant.layers);
     out.push_str(&rouge_measure::layer_table::wgsl_constants());
-    out.push_str(include_str!("shaders/common.wgsl"));
-    out.push_str(&preprocess(pass.file_name(), pass.source(), &variant.flags(encode_srgb))?);
+    out.push_str(include_str!("../shaders/common.wgsl"));
+    out.push_str(&preprocess(pass.file, pass.source, &variant.flags(encode_srgb))?);
     Ok(out)
 }
 
@@ -142,11 +138,12 @@ pub fn shader_source(pass: Pass, variant: Variant, encode_srgb: bool) -> Result<
 fn insertion(name: &str) -> Option<&'static str> {
     match name {
         "sh_eval" => Some(crate::env::WGSL_SH_EVAL),
-        "dipole_common" => Some(include_str!("shaders/dipole_common.wgsl")),
-        "diffusion" => Some(include_str!("shaders/diffusion.wgsl")),
-        "shadow_factor" => Some(include_str!("shaders/shadow_factor.wgsl")),
-        "atlas_common" => Some(include_str!("shaders/atlas_common.wgsl")),
-        "skin_pixel" => Some(include_str!("shaders/skin_pixel.wgsl")),
+        "dipole_common" => Some(include_str!("../shaders/dipole_common.wgsl")),
+        "diffusion" => Some(include_str!("../shaders/diffusion.wgsl")),
+        "shadow_factor" => Some(include_str!("../shaders/shadow_factor.wgsl")),
+        "atlas_common" => Some(include_str!("../shaders/atlas_common.wgsl")),
+        "skin_pixel" => Some(include_str!("../shaders/skin_pixel.wgsl")),
+        "layered_mesh" => Some(include_str!("../shaders/layered_mesh.wgsl")),
         _ => None,
     }
 }
@@ -215,7 +212,7 @@ pub fn preprocess(file: &str, source: &str, flags: &[(&str, bool)]) -> Result<St
 }
 
 #[cfg(test)]
-mod tests {
+mod preprocessor_tests {
     use super::*;
 
     const FLAGS: [(&str, bool); 2] = [("ON", true), ("OFF", false)];
@@ -262,3 +259,6 @@ mod tests {
         assert!(!run("//#if OFF\n//#insert sh_eval\n//#endif\n").expect("skipped").contains("sh_irradiance"));
     }
 }
+
+#[cfg(test)]
+mod tests;

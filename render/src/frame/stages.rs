@@ -1,0 +1,348 @@
+//! The stages of [`super::FramePlan::new`], in the frame's order: each adds its passes (with
+//! what they read and write) or says why it adds none.
+
+use super::{Access, PlannedPass, Resource, Skipped, Step};
+use crate::aa::EdgeAa;
+use crate::cube_atlas::GlobalTerm;
+use crate::error::{RenderError, Result};
+use crate::local_thickness::ThicknessSource;
+use crate::passes::cube_atlas::AtlasStep;
+use crate::passes::dipole::DipoleStep;
+use crate::passes::edge_overdraw::EdgeStep;
+use crate::passes::shadow::ShadowStep;
+use crate::passes::sss::{Direction, SssStep};
+use crate::passes::thickness::ThicknessUniform;
+use crate::passes::{composite, gbuffer, lighting, skin_gather, thickness};
+use crate::scene::{LightKind, Scene, SubsurfaceModel};
+use crate::shader::{ThicknessVariant, Variant};
+use crate::sss::SeparableKernel;
+use crate::targets::Target;
+
+/// The plan as it is built.
+#[derive(Debug, Default)]
+pub(super) struct Planner {
+    pub passes: Vec<PlannedPass>,
+    pub skipped: Vec<Skipped>,
+}
+
+/// The skin's subsurface model as the frame runs it: at most one of these is set.
+#[derive(Debug, Default)]
+pub(super) struct Models {
+    /// The thickness translucency: its source and uniform.
+    pub thickness: Option<(ThicknessVariant, ThicknessUniform)>,
+    /// The dipole passes.
+    pub dipole: Option<DipoleStep>,
+    /// The cube atlas.
+    pub atlas: Option<AtlasStep>,
+}
+
+impl Models {
+    /// The variant's thickness flag.
+    pub fn thickness_variant(&self) -> ThicknessVariant {
+        self.thickness.map_or(ThicknessVariant::Off, |(v, _)| v)
+    }
+}
+
+fn targets(t: &[Target]) -> Vec<Resource> {
+    t.iter().map(|&t| Resource::Target(t)).collect()
+}
+
+impl Planner {
+    fn push(&mut self, step: Step, reads: Vec<Resource>, writes: Vec<(Resource, Access)>) {
+        self.passes.push(PlannedPass { step, reads, writes });
+    }
+
+    fn skip(&mut self, what: impl Into<String>, why: impl Into<String>) {
+        self.skipped.push(Skipped { what: what.into(), why: why.into() });
+    }
+
+    /// One shadow map per shadowing light, in scene order; returns how many.
+    pub fn shadows(&mut self, scene: &Scene) -> u32 {
+        let mut layer = 0;
+        for (light, l) in scene.lights.iter().enumerate() {
+            let kind = light_kind(l.kind);
+            if l.shadows {
+                self.push(
+                    Step::Shadow(ShadowStep { light, layer }),
+                    vec![Resource::Mesh, Resource::Light { index: light, kind }],
+                    vec![(Resource::ShadowMap(layer), Access::Replace)],
+                );
+                layer += 1;
+            } else {
+                self.skip(format!("shadow pass for light {light} ({kind})"), "the light casts no shadow");
+            }
+        }
+        layer
+    }
+
+    /// The subsurface model's settings, checked, and what it needs that the scene lacks.
+    pub fn subsurface_models(&mut self, scene: &Scene, uploaded: super::Uploaded, shadow_maps: u32) -> Result<Models> {
+        Ok(Models {
+            thickness: self.thickness_model(scene, uploaded.local_thickness_map, shadow_maps)?,
+            dipole: self.dipole_model(scene)?,
+            atlas: self.atlas_model(scene)?,
+        })
+    }
+
+    /// The G-buffer: normals, albedo, the layers' thickness, the local thickness, depth.
+    pub fn gbuffer(&mut self, variant: Variant) {
+        let mut reads = vec![Resource::Mesh];
+        if variant.layers > 0 {
+            reads.push(Resource::ThicknessMaps(variant.layers));
+        }
+        if variant.albedo_map {
+            reads.push(Resource::AlbedoMap);
+        }
+        if variant.normal_map {
+            reads.push(Resource::NormalMap);
+        }
+        if variant.thickness == ThicknessVariant::Baked {
+            reads.push(Resource::LocalThicknessMap);
+        }
+        let mut writes = targets(&gbuffer::outputs(variant));
+        writes.push(Resource::Target(Target::Depth));
+        self.push(Step::Gbuffer(()), reads, writes.into_iter().map(|r| (r, Access::Replace)).collect());
+        if variant.layers == 0 {
+            self.skip("thickness targets, layer tables and layer lobes", "the look is bare");
+        } else if variant.layers <= 4 {
+            self.skip("thickness 4-7 target", format!("the look has {} layers", variant.layers));
+        }
+    }
+
+    /// Lighting through the cosmetic stack.
+    pub fn lighting(&mut self, variant: Variant) {
+        let mut reads = targets(&lighting::inputs(variant));
+        if variant.layers > 0 {
+            reads.push(Resource::LayerTables);
+        }
+        if variant.shadows {
+            reads.push(Resource::ShadowMaps);
+        }
+        if variant.env {
+            reads.push(Resource::Environment);
+        } else {
+            self.skip("environment (SH) term", "the scene has no environment");
+        }
+        let writes = lighting::outputs(variant).into_iter().map(|t| (Resource::Target(t), Access::Replace)).collect();
+        self.push(Step::Lighting(()), reads, writes);
+    }
+
+    /// The passes of the thickness, dipole or cube-atlas model, added to the diffuse radiance.
+    pub fn subsurface_passes(&mut self, variant: Variant, models: Models) {
+        let added = vec![(Resource::Target(Target::Diffuse), Access::Add)];
+        if let Some((source, uniform)) = models.thickness {
+            let mut reads = targets(&thickness::inputs());
+            if source == ThicknessVariant::ShadowMap {
+                reads.push(Resource::ShadowMaps);
+            }
+            self.push(Step::Thickness(uniform), reads, added.clone());
+        }
+        // What a gather into the skin's pixels reads of the frame.
+        let mut gather = targets(&skin_gather::inputs());
+        if variant.layers > 0 {
+            gather.push(Resource::Target(Target::ExitT));
+        }
+        if let Some(step) = models.dipole {
+            let s = step.settings;
+            let (slots, directions) = (step.slots(), s.directions);
+            let light_gbuffer = Resource::LightGbuffer { slots, px: s.light_map_px };
+            let maps = Resource::RadianceMaps {
+                directions,
+                px: s.map_px,
+                samples: s.samples,
+                kind: step.kind.name(),
+                progressive: s.progressive,
+            };
+            let reads = vec![Resource::Mesh, Resource::DirectionalLights(slots)];
+            self.push(Step::DipoleLight(step), reads, vec![(light_gbuffer, Access::Replace)]);
+            let reads = vec![Resource::Mesh, light_gbuffer];
+            self.push(Step::DipoleRadiance(directions), reads, vec![(maps, Access::Replace)]);
+            let reads = [gather.as_slice(), &[maps]].concat();
+            self.push(Step::DipoleCombine(()), reads, added.clone());
+        }
+        if let Some(step) = models.atlas {
+            let atlas = Resource::CubeAtlas(step.settings.atlas_px);
+            let mut reads = vec![Resource::PosedMesh];
+            if variant.shadows {
+                reads.push(Resource::ShadowMaps);
+            }
+            if variant.env {
+                reads.push(Resource::Environment);
+            }
+            self.push(Step::AtlasIrradiance(step), reads, vec![(atlas, Access::Replace)]);
+            let reads = [gather.as_slice(), &[atlas]].concat();
+            self.push(Step::AtlasGather(()), reads, added);
+        }
+    }
+
+    /// The screen-space blur when the skin's model is screen-space and the width is not 0; its
+    /// kernel, or why it does not run.
+    pub fn screen_space(&mut self, scene: &Scene) -> Result<Option<SeparableKernel>> {
+        let SubsurfaceModel::ScreenSpace { profile } = &scene.skin.subsurface else {
+            self.skip("SSS passes", format!("the skin's subsurface model is {}", scene.skin.subsurface.name()));
+            return Ok(None);
+        };
+        let sss = &scene.sss;
+        let kernel = SeparableKernel::new(profile, sss.samples, sss.range_sigmas as f64)?;
+        if sss.width == 0.0 && !sss.run_at_zero_width {
+            self.skip("SSS passes", "the SSS width is 0");
+            return Ok(None);
+        }
+        for direction in [Direction::Horizontal, Direction::Vertical] {
+            let (src, dst) = direction.targets();
+            let step = SssStep::new(direction, &kernel, sss.width, sss.follow_mm, sss.samples);
+            self.push(Step::Sss(step), targets(&[src, Target::Depth]), vec![(Resource::Target(dst), Access::Replace)]);
+        }
+        Ok(Some(kernel))
+    }
+
+    /// Composition of the skin radiance (scattered when the blur ran) with the surface radiance.
+    pub fn composite(&mut self, variant: Variant, scattered: bool) {
+        let skin = if scattered { Target::Scattered } else { Target::Diffuse };
+        let mut reads = vec![skin, Target::Surface, Target::Normal];
+        if variant.layers > 0 {
+            reads.push(Target::ExitT);
+        }
+        let out = Resource::Target(composite::output(variant));
+        self.push(Step::Composite(skin), targets(&reads), vec![(out, Access::Replace)]);
+    }
+
+    /// The edge overdraw after composition, when the frame asks for it and has a display image
+    /// to blend into (the linear output is Rgba32Float, which cannot be blended without an
+    /// extension).
+    pub fn edge_overdraw(&mut self, aa: EdgeAa, display: bool) {
+        let (sorted, coverage) = match aa {
+            EdgeAa::Off => return self.skip("edge overdraw", "edge antialiasing is off"),
+            EdgeAa::Unsorted(c) => (false, c),
+            EdgeAa::Sorted(c) => (true, c),
+        };
+        if !display {
+            return self.skip("edge overdraw", "a linear frame has no display image to blend the edges into");
+        }
+        let reads = vec![Resource::MeshEdges { sorted }, Resource::DisplayCopy];
+        self.push(
+            Step::EdgeOverdraw(EdgeStep { sorted, coverage }),
+            reads,
+            vec![(Resource::Target(Target::Display), Access::Blend)],
+        );
+    }
+
+    /// The render targets the passes read or write, sorted.
+    pub fn targets(&self) -> Vec<Target> {
+        let mut out: Vec<Target> = self
+            .passes
+            .iter()
+            .flat_map(|p| p.reads.iter().chain(p.writes.iter().map(|(r, _)| r)))
+            .filter_map(|r| match r {
+                Resource::Target(t) => Some(*t),
+                _ => None,
+            })
+            .collect();
+        out.sort();
+        out.dedup();
+        out
+    }
+
+    /// The thickness translucency when the skin's model is `thickness`: off unless the scene has
+    /// a light; the baked source needs its map uploaded; the shadow-map source needs a light with
+    /// a shadow map (lights without one get no term, and the pass is skipped when none has one).
+    fn thickness_model(
+        &mut self,
+        scene: &Scene,
+        local_thickness_map: bool,
+        shadow_maps: u32,
+    ) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
+        let SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface else {
+            self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
+            return Ok(None);
+        };
+        params.check()?;
+        if scene.lights.is_empty() {
+            self.skip("thickness pass and local-thickness target", "the scene has no light");
+            return Ok(None);
+        }
+        let variant = match source {
+            ThicknessSource::Baked(_) if !local_thickness_map => {
+                return Err(RenderError::Invalid(
+                    "the thickness model's baked source needs a local-thickness map: bake one and upload it with \
+                     Renderer::set_local_thickness (rouge render does both)"
+                        .into(),
+                ));
+            }
+            ThicknessSource::Baked(_) => ThicknessVariant::Baked,
+            ThicknessSource::ShadowMap { .. } => {
+                for (i, l) in scene.lights.iter().enumerate() {
+                    if !l.shadows {
+                        self.skip(
+                            format!("thickness translucency of light {i}"),
+                            "the shadow-map source reads the light's shadow map, and the light casts no shadow",
+                        );
+                    }
+                }
+                if shadow_maps == 0 {
+                    self.skip("thickness pass and local-thickness target", "no light has a shadow map");
+                    return Ok(None);
+                }
+                ThicknessVariant::ShadowMap
+            }
+        };
+        let (falloff, cutoff_mm) = source.falloff();
+        Ok(Some((variant, ThicknessUniform::new(*params, falloff, cutoff_mm))))
+    }
+
+    /// The dipole passes when the skin's model is a dipole: one light view per directional light
+    /// (point lights get no subsurface light from them, and the plan says so).
+    fn dipole_model(&mut self, scene: &Scene) -> Result<Option<DipoleStep>> {
+        let SubsurfaceModel::Dipole { kind, settings } = &scene.skin.subsurface else {
+            self.skip("dipole passes", "no material uses a dipole model");
+            return Ok(None);
+        };
+        settings.check()?;
+        let medium = scene.skin.medium.as_ref().ok_or_else(|| {
+            RenderError::Invalid(format!(
+                "the {} model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)",
+                kind.name()
+            ))
+        })?;
+        for (i, l) in scene.lights.iter().enumerate() {
+            if matches!(l.kind, LightKind::Point { .. }) {
+                self.skip(
+                    format!("dipole light G-buffer of light {i} (point)"),
+                    "the dipole passes take directional lights",
+                );
+            }
+        }
+        let step = DipoleStep::new(*kind, medium, *settings, scene);
+        if step.lights.is_empty() {
+            self.skip("dipole passes", "the scene has no directional light");
+            return Ok(None);
+        }
+        Ok(Some(step))
+    }
+
+    /// The cube atlas when the skin's model is `cube-atlas` (settings checked).
+    fn atlas_model(&mut self, scene: &Scene) -> Result<Option<AtlasStep>> {
+        let SubsurfaceModel::CubeAtlas { settings } = &scene.skin.subsurface else {
+            self.skip("cube-atlas passes and atlas", "no material uses the cube-atlas model");
+            return Ok(None);
+        };
+        settings.check()?;
+        let medium = scene.skin.medium.as_ref().ok_or_else(|| {
+            RenderError::Invalid(
+                "the cube-atlas model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
+            )
+        })?;
+        if settings.global == GlobalTerm::Off {
+            self.skip("cube-atlas global term", "switched off");
+        }
+        Ok(Some(AtlasStep { settings: *settings, medium: medium.clone() }))
+    }
+}
+
+/// A light's kind in words.
+fn light_kind(kind: LightKind) -> &'static str {
+    match kind {
+        LightKind::Directional { .. } => "directional",
+        LightKind::Point { .. } => "point",
+    }
+}
