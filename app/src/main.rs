@@ -3,26 +3,15 @@
 //! Every subcommand prints machine-readable JSON on stdout (numbers in the shortest form that
 //! reads back bit-for-bit) except `import`, `demo` and `analyze`, which print a report for people
 //! (`--json` for a machine). Errors: a message on stderr and exit status 2.
+//!
+//! Where things are: `cli/` has a module per subcommand (its options, its run, its output;
+//! `cli/render/` with the render options shared by export and the translucency bench), `bench/`
+//! the speed-against-error studies of `rouge bench`, and the library (`lib.rs`: `gui/` and the
+//! egui-free editor core) the painting app.
 
-mod analyze_plot;
-mod atlas_args;
-mod bench_aa;
-mod bench_atlas;
-mod bench_deform;
-mod bench_translucency;
-mod cmd_analyze;
-mod cmd_bench;
-mod cmd_color;
-mod cmd_export;
-mod cmd_import;
-mod cmd_km;
-mod cmd_render;
-mod cmd_skin;
-mod dipole_args;
-mod fit_thickness;
+mod bench;
+mod cli;
 mod plot_png;
-mod scene_args;
-mod thickness_args;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -60,38 +49,38 @@ enum Command {
     /// FILE may be a Rouge CSV, a CGATS / X-Rite / i1Profiler / ArgyllCMS .ti3 text file, or a
     /// CS-2000 radiance export (the format is recognised from the content). Three ArgyllCMS .sp
     /// files can be given with --r-inf, --r and --rg instead.
-    Import(cmd_import::ImportArgs),
+    Import(cli::import::ImportArgs),
     /// Import the embedded sample measurement (Foundation 02 Ivory, synthetic) and print its report.
-    Demo(cmd_import::DemoArgs),
+    Demo(cli::import::DemoArgs),
     /// Kubelka-Munk calculations on single values.
     #[command(subcommand)]
-    Km(cmd_km::KmCommand),
+    Km(cli::km::KmCommand),
     /// Colour of spectra: XYZ, CIELAB, linear and encoded sRGB as a JSON array.
     ///
     /// FILE is a CSV with a `wavelength_nm` (or `wavelength`, as colour-science writes) column and
     /// one column per sample, or transposed: one sample per row with the wavelengths in the header
     /// (reflectance as fractions or percent), on any grid covering 380-780 nm (resampled with
     /// Sprague).
-    Color(cmd_color::ColorArgs),
+    Color(cli::color::ColorArgs),
     /// Render the face with makeup: one frame to a PNG (tone-mapped) or an EXR (linear).
     ///
     /// Defaults: the embedded head, foundation + blush + lipstick, a studio light rig, 1280×720.
     /// Runs on any wgpu adapter, Mesa's lavapipe included when there is no GPU.
-    Render(cmd_render::RenderArgs),
+    Render(cli::render::RenderArgs),
     /// Export a scene for another renderer (Mitsuba 3, the ground truth for translucency).
     #[command(subcommand)]
-    Export(cmd_export::ExportCommand),
+    Export(cli::export::ExportCommand),
     /// Speed-against-error studies (figures for docs/BENCHMARKS.md).
     #[command(subcommand)]
-    Bench(cmd_bench::BenchCommand),
+    Bench(bench::BenchCommand),
     /// What formulators ask of S and K: coverage, shade matching over skins, mixing bases
     /// (tables for people, --json and --plot; docs/FORMULATION.md).
     #[command(subcommand)]
-    Analyze(cmd_analyze::AnalyzeCommand),
+    Analyze(cli::analyze::AnalyzeCommand),
     /// The spectral skin model: fit measured skin spectra (melanin, blood, scattering), the
     /// forward model, and the named skin tones (docs/SKIN.md).
     #[command(subcommand)]
-    Skin(cmd_skin::SkinCommand),
+    Skin(cli::skin::SkinCommand),
 }
 
 /// Writes `text` and a newline to stdout. A closed pipe (`rouge ... | head`) ends the program
@@ -129,15 +118,15 @@ fn main() -> ExitCode {
         };
     };
     let result = match command {
-        Command::Import(args) => cmd_import::run(&args),
-        Command::Demo(args) => cmd_import::demo(&args),
-        Command::Km(cmd) => cmd_km::run(&cmd),
-        Command::Color(args) => cmd_color::run(&args),
-        Command::Render(args) => cmd_render::run(&args),
-        Command::Export(cmd) => cmd_export::run(&cmd),
-        Command::Bench(cmd) => cmd_bench::run(&cmd),
-        Command::Analyze(cmd) => cmd_analyze::run(&cmd),
-        Command::Skin(cmd) => cmd_skin::run(&cmd),
+        Command::Import(args) => cli::import::run(&args),
+        Command::Demo(args) => cli::import::demo(&args),
+        Command::Km(cmd) => cli::km::run(&cmd),
+        Command::Color(args) => cli::color::run(&args),
+        Command::Render(args) => cli::render::run(&args),
+        Command::Export(cmd) => cli::export::run(&cmd),
+        Command::Bench(cmd) => bench::run(&cmd),
+        Command::Analyze(cmd) => cli::analyze::run(&cmd),
+        Command::Skin(cmd) => cli::skin::run(&cmd),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -180,7 +180,7 @@ pub fn run(args: &AtlasBenchArgs) -> Result<()> {
             gpu(r.frame_gpu_ms),
         ]
     });
-    let table = crate::cmd_bench::markdown_table(&caption, &header, 1, cells);
-    crate::cmd_bench::emit_with_json(&table, &rows, args.json.as_deref())?;
+    let table = crate::bench::report::markdown_table(&caption, &header, 1, cells);
+    crate::bench::report::emit_with_json(&table, &rows, args.json.as_deref())?;
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! The analyses live in `rouge_measure::analysis`; this module reads the inputs, prints the
 //! tables for people, writes `--json` for machines and `--plot` PNGs (`analyze_plot.rs`).
 
-use crate::cmd_color::{parse_illuminant, parse_observer};
+use crate::cli::color::{parse_illuminant, parse_observer};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, Subcommand};
 use rouge_measure::analysis::coverage::{self, ContrastChart, HIDING_CONTRAST_RATIO};
@@ -135,7 +135,7 @@ fn parse_lab(text: &str) -> Result<[f64; 3], String> {
     }
 }
 
-const SKIN_CSV: &str = include_str!("../../data/skin/colorchecker_skin.csv");
+const SKIN_CSV: &str = include_str!("../../../data/skin/colorchecker_skin.csv");
 
 /// The ColorChecker's two skin patches (N. Ohta's measurements, `data/skin/colorchecker_skin.csv`),
 /// the default skins of the analyses and of `rouge bench compositing`.
@@ -263,8 +263,8 @@ fn run_coverage(args: &CoverageArgs) -> Result<()> {
     });
     write_json(&args.common.json, &value)?;
     if let Some(p) = &args.plot {
-        let curve = coverage::coverage_table(&layer, &crate::analyze_plot::curve_mm(&xs), chart, &skins, c)?;
-        write_png(p, &crate::analyze_plot::coverage(&preset.name, &curve, hiding, &skins, c)?)?;
+        let curve = coverage::coverage_table(&layer, &crate::cli::analyze_plot::curve_mm(&xs), chart, &skins, c)?;
+        write_png(p, &crate::cli::analyze_plot::coverage(&preset.name, &curve, hiding, &skins, c)?)?;
     }
     Ok(())
 }
@@ -339,7 +339,7 @@ fn run_match(args: &MatchArgs) -> Result<()> {
     });
     write_json(&args.common.json, &value)?;
     if let Some(p) = &args.plot {
-        write_png(p, &crate::analyze_plot::shade_map(&shades, &skins, &cover, args.gap_de, &target_text, c)?)?;
+        write_png(p, &crate::cli::analyze_plot::shade_map(&shades, &skins, &cover, args.gap_de, &target_text, c)?)?;
     }
     Ok(())
 }

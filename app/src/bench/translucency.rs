@@ -2,7 +2,8 @@
 //! per frame against the error to the Mitsuba 3 reference (docs/TRANSLUCENCY.md). Rows follow
 //! ../shared/DESIGN.md's benchmark table.
 
-use crate::scene_args::{Profile, SceneArgs};
+use crate::bench::fit_thickness::{Fit, Scene};
+use crate::cli::render::scene_args::{Profile, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser};
 use rouge_model::medium::Medium;
@@ -61,18 +62,6 @@ pub struct TranslucencyBenchArgs {
     /// radiance) and print the fits (docs/BENCHMARKS.md; the media files carry them).
     #[arg(long)]
     pub fit_thickness: bool,
-}
-
-/// One reference scene loaded and uploaded, as a configuration sees it.
-pub struct Scene<'a> {
-    /// The scene's name (its sidecar's).
-    pub name: &'a str,
-    /// Its medium.
-    pub medium: &'a Medium,
-    /// Rouge's frame of it.
-    pub prepared: &'a mut Prepared,
-    /// The reference.
-    pub reference: &'a ReferenceImage,
 }
 
 /// Which local-thickness map a configuration needs uploaded.
@@ -154,7 +143,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         bail!("--samples {n}: each count must be odd, 3-33");
     }
     let mut rows = Vec::new();
-    let mut fit = crate::fit_thickness::Fit::default();
+    let mut fit = Fit::default();
     for (name, sidecar) in sidecars(&args.references, &args.only)? {
         let sidecar_path = args.references.join(format!("{name}.json"));
         let options: Vec<String> = serde_json::from_value(sidecar["rouge_options"].clone())

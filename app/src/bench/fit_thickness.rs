@@ -8,13 +8,27 @@
 //! each cell (s, a) ≥ 0 is the exact minimiser of ‖I₀ + s·B₁ + a·B₂ − R‖² over every scene of
 //! the medium (2×2 normal equations, the constraint by checking the faces of the quadrant).
 
-use crate::bench_translucency::Scene;
 use anyhow::Result;
+use rouge_model::medium::Medium;
 use rouge_render::SubsurfaceModel;
+use rouge_render::job::Prepared;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::translucency::ReferenceImage;
 use rouge_render::translucency::compared_pixels;
 use serde::Serialize;
 use std::collections::BTreeMap;
+
+/// One reference scene loaded and uploaded, as a configuration sees it.
+pub struct Scene<'a> {
+    /// The scene's name (its sidecar's).
+    pub name: &'a str,
+    /// Its medium.
+    pub medium: &'a Medium,
+    /// Rouge's frame of it.
+    pub prepared: &'a mut Prepared,
+    /// The reference.
+    pub reference: &'a ReferenceImage,
+}
 
 /// Distortions δ searched.
 pub const DISTORTIONS: [f32; 7] = [0.0, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0];

@@ -94,7 +94,7 @@ fn parse_kind(s: &str) -> Result<Kind, String> {
 
 /// The embedded sample measurement used by `rouge demo`.
 const DEMO_NAME: &str = "foundation_02_ivory.csv";
-const DEMO_CSV: &str = include_str!("../../data/measurements/foundation_02_ivory.csv");
+const DEMO_CSV: &str = include_str!("../../../data/measurements/foundation_02_ivory.csv");
 
 pub fn run(args: &ImportArgs) -> Result<()> {
     let options = options(&args.common)?;

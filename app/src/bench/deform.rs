@@ -147,7 +147,7 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
             format!("{:.1} ms", r.frame_ms),
         ]
     });
-    let table = crate::cmd_bench::markdown_table(&caption, &header, 0, cells);
-    crate::cmd_bench::emit_with_json(&table, &rows, args.json.as_deref())?;
+    let table = crate::bench::report::markdown_table(&caption, &header, 0, cells);
+    crate::bench::report::emit_with_json(&table, &rows, args.json.as_deref())?;
     Ok(())
 }

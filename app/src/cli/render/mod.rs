@@ -1,9 +1,14 @@
 //! `rouge render`: one frame of the renderer to a PNG (tone-mapped) or an EXR (linear radiance).
 
-use crate::atlas_args::AtlasArgs;
-use crate::dipole_args::DipoleArgs;
-use crate::scene_args::SceneArgs;
-use crate::thickness_args::{BakePose, ThicknessArgs};
+pub mod atlas_args;
+pub mod dipole_args;
+pub mod scene_args;
+pub mod thickness_args;
+
+use crate::cli::render::atlas_args::AtlasArgs;
+use crate::cli::render::dipole_args::DipoleArgs;
+use crate::cli::render::scene_args::SceneArgs;
+use crate::cli::render::thickness_args::{BakePose, ThicknessArgs};
 use anyhow::{Result, bail};
 use clap::Args;
 use rouge_model::thickness::CacheUse;

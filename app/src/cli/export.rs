@@ -1,7 +1,7 @@
 //! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (the ground truth
 //! of docs/TRANSLUCENCY.md).
 
-use crate::scene_args::SceneArgs;
+use crate::cli::render::scene_args::SceneArgs;
 use anyhow::Result;
 use clap::{Args, Subcommand};
 use rouge_render::mitsuba::{ExportInput, Interior, export};

@@ -1,4 +1,13 @@
-//! `rouge bench ...`: speed-against-error studies whose figures go in docs/BENCHMARKS.md.
+//! `rouge bench ...`: speed-against-error studies whose figures go in docs/BENCHMARKS.md. The
+//! compositing and render studies are here; the others have a module each, and `report` prints
+//! their tables.
+
+pub mod aa;
+pub mod atlas;
+pub mod deform;
+pub mod fit_thickness;
+pub mod report;
+pub mod translucency;
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
@@ -23,23 +32,23 @@ pub enum BenchCommand {
     /// references of the same scenes (data/reference/translucency): GPU ms per frame, RMSE of
     /// linear radiance and ΔE2000 (mean, 95th percentile) of the tone-mapped images over the
     /// object's pixels; `--plot F.png` draws speed against error per scene.
-    Translucency(crate::bench_translucency::TranslucencyBenchArgs),
+    Translucency(crate::bench::translucency::TranslucencyBenchArgs),
     /// Painting: brush dab to updated frame at 1280×720 with 2048² maps (apply the dab on the
     /// CPU, upload the changed rectangle, render, wait), on the default head.
     Paint(PaintBenchArgs),
     /// Deforming the default head per frame (expression sliders, the app's animation): apply
     /// the targets, subdivide (planned topology against afresh), re-upload, render; ms per frame
     /// at subdivision levels 0, 1 and 2.
-    Deform(crate::bench_deform::DeformBenchArgs),
+    Deform(crate::bench::deform::DeformBenchArgs),
     /// Edge antialiasing ([Sander2001] edge overdraw, unsorted and sorted, the paper's line and
     /// two-sided coverage) against supersampling on turning meshes (head, cube, wedge): RMSE and
     /// ΔE2000 near discontinuities and the crawl between frames against a k×k supersampled
     /// reference, ms per frame, the paper's table 1 edge counts; `--plot F.png`.
-    Aa(crate::bench_aa::AaBenchArgs),
+    Aa(crate::bench::aa::AaBenchArgs),
     /// Cube-atlas translucency ([Benmounah2009] Table 2): frames per second with and without
     /// deformation (the mesh morphed toward its bounding sphere each frame) against triangle
     /// count: the hm08 hand and head at subdivision levels 0-3 and the built-in sphere.
-    CubeAtlas(crate::bench_atlas::AtlasBenchArgs),
+    CubeAtlas(crate::bench::atlas::AtlasBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -101,41 +110,11 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Compositing(args) => compositing(args),
         BenchCommand::Render(args) => render(args),
         BenchCommand::Paint(args) => paint(args),
-        BenchCommand::Translucency(args) => crate::bench_translucency::run(args),
-        BenchCommand::Deform(args) => crate::bench_deform::run(args),
-        BenchCommand::Aa(args) => crate::bench_aa::run(args),
-        BenchCommand::CubeAtlas(args) => crate::bench_atlas::run(args),
+        BenchCommand::Translucency(args) => crate::bench::translucency::run(args),
+        BenchCommand::Deform(args) => crate::bench::deform::run(args),
+        BenchCommand::Aa(args) => crate::bench::aa::run(args),
+        BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
     }
-}
-
-/// A Markdown table: `caption` on its own line, the header, the alignment row (the first `left`
-/// columns left-aligned, the others right), then `rows`.
-pub fn markdown_table(
-    caption: &str,
-    header: &[&str],
-    left: usize,
-    rows: impl IntoIterator<Item = Vec<String>>,
-) -> String {
-    let align: Vec<&str> = (0..header.len()).map(|i| if i < left { "---" } else { "---:" }).collect();
-    let mut out = format!("{caption}\n| {} |\n|{}|\n", header.join(" | "), align.join("|"));
-    for row in rows {
-        out += &format!("| {} |\n", row.join(" | "));
-    }
-    out
-}
-
-/// Prints `table` and, with `json`, writes `rows` there as pretty JSON (atomically).
-///
-/// # Errors
-/// A closed output or an unwritable file, named.
-pub fn emit_with_json<T: serde::Serialize>(table: &str, rows: &T, json: Option<&Path>) -> Result<()> {
-    crate::emit(table.trim_end())?;
-    if let Some(path) = json {
-        let text = serde_json::to_string_pretty(rows)?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    Ok(())
 }
 
 fn load_presets(dir: &Path) -> Result<Vec<Preset>> {
@@ -175,7 +154,7 @@ fn ns_per_pixel(channels: usize) -> f64 {
 
 fn compositing(args: &CompositingArgs) -> Result<()> {
     let presets = load_presets(&args.presets)?;
-    let skins = crate::cmd_analyze::embedded_skins()?;
+    let skins = crate::cli::analyze::embedded_skins()?;
     if let Some(bad) = args.thicknesses_mm.iter().find(|x| !(**x >= 0.0 && x.is_finite())) {
         bail!("thickness {bad} mm must be finite and ≥ 0");
     }

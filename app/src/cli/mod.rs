@@ -1,0 +1,10 @@
+//! The subcommands of `rouge`, a module each: its options (clap), its run, its output.
+
+pub mod analyze;
+pub mod analyze_plot;
+pub mod color;
+pub mod export;
+pub mod import;
+pub mod km;
+pub mod render;
+pub mod skin;
