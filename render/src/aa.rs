@@ -2,7 +2,7 @@
 //! measures them: supersampling by a box filter (the reference, and the `ssaaN` modes), the
 //! pixels near discontinuities, and the spatial and temporal errors of `rouge bench aa`.
 //!
-//! Edge overdraw ([Sander2001]) is a pass of the frame ([`crate::passes::edge_overdraw`]);
+//! Edge overdraw (\[Sander2001\]) is a pass of the frame (`passes::edge_overdraw`);
 //! supersampling renders k× larger and averages k×k pixels in linear light.
 
 use crate::error::{RenderError, Result};

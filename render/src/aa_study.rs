@@ -2,7 +2,7 @@
 //! compared with a supersampled reference (k×k box filter, the same frame code at k× the size)
 //! on the pixels within two pixels of a discontinuity edge: RMSE and ΔE2000 per frame, and the
 //! crawl between consecutive frames ([`crate::aa::crawl`]); cost per frame; and the edge counts
-//! of [Sander2001] table 1.
+//! of \[Sander2001\] table 1.
 
 use crate::Renderer;
 use crate::aa::{self, AaMode, EdgeAa, EdgeCoverage};
@@ -50,7 +50,7 @@ pub struct AaRow {
     pub frame_ms: f64,
 }
 
-/// The edge counts of one mesh averaged over viewpoints ([Sander2001] table 1).
+/// The edge counts of one mesh averaged over viewpoints (\[Sander2001\] table 1).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct EdgeTable {
     /// Preprocess counts.

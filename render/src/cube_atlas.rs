@@ -1,4 +1,4 @@
-//! Translucency through an on-the-fly cube-map atlas ([Benmounah2009], paper 000): the geometry
+//! Translucency through an on-the-fly cube-map atlas (\[Benmounah2009\], paper 000): the geometry
 //! of the atlas and the CPU twins of the choices its shaders make (shaders/atlas_irradiance.wgsl,
 //! shaders/atlas_gather.wgsl), its settings, and the atlas read back ([`AtlasImage`]).
 //!
@@ -11,7 +11,7 @@
 //! scattering, section 4.4). Nothing is precomputed, so the mesh may deform freely.
 //!
 //! # The formulas, derived (and where the paper's print differs)
-//! - **Table 1** is [Jensen2001]'s dipole. Two slips: `z_v = z_r(1 + 4AD)` mixes a length with a
+//! - **Table 1** is \[Jensen2001\]'s dipole. Two slips: `z_v = z_r(1 + 4AD)` mixes a length with a
 //!   number (D is in mm); Jensen's height of the virtual source is `z_v = z_r + 4AD = z_r(1 + 4A/3)`
 //!   since D = z_r/3. And `x_v = x_i − z_v N_i` puts the virtual source on the real one's side; the
 //!   boundary condition puts it above the surface, `x_v = x_i + z_v N_i` (on a plane both give the
@@ -90,7 +90,7 @@ pub const MAX_NORMAL_ANGLE_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 pub enum OcclusionTest {
     /// No test: the face most aligned with the normal.
     Off,
-    /// [Benmounah2009] section 4.3.1: the stored n·p against the fragment's.
+    /// \[Benmounah2009\] section 4.3.1: the stored n·p against the fragment's.
     PlaneOffset,
     /// The stored point against the fragment's tangent plane.
     TangentPlane,
@@ -198,7 +198,7 @@ impl AtlasSettings {
 pub enum GlobalTerm {
     /// No global term.
     Off,
-    /// [Benmounah2009] eq. 9: the real source alone, integrated over the lit surface behind.
+    /// \[Benmounah2009\] eq. 9: the real source alone, integrated over the lit surface behind.
     RealSource,
     /// The diffusion transmittance of a slab of the local thickness, both faces' boundary
     /// conditions ([`crate::diffusion::ChannelProfile::slab_transmittance`]).
@@ -237,7 +237,7 @@ impl GlobalTerm {
 pub enum Reach {
     /// The diffusion profile's support: three decay lengths 1/σ_tr, at most 40 mean free paths.
     Support,
-    /// This many mean free paths 1/σ′_t ([Benmounah2009] section 4.3.2 uses 1).
+    /// This many mean free paths 1/σ′_t (\[Benmounah2009\] section 4.3.2 uses 1).
     MeanFreePaths(f32),
 }
 
@@ -343,7 +343,7 @@ impl AtlasFrame {
     }
 
     /// The faces that may hold point `x` with normal `n`: a corner of the face above the tangent
-    /// plane and sp = n·a > 0, greatest sp first ([Benmounah2009] section 4.2, figure 3).
+    /// plane and sp = n·a > 0, greatest sp first (\[Benmounah2009\] section 4.2, figure 3).
     pub fn chosen_faces(&self, x: Vec3, n: Vec3) -> Vec<(usize, f32)> {
         let mut out: Vec<(usize, f32)> = (0..6)
             .filter_map(|f| {

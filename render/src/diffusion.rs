@@ -2,7 +2,7 @@
 //! reflectance R(r) (per mm², for unit power entering at the origin) and its total
 //! Rd = ∫ R(r) 2πr dr, from three models, in double precision:
 //!
-//! - **Classic dipole** ([Jensen2001] eq. 4-5; [Benmounah2009] Table 1 prints the same): a real
+//! - **Classic dipole** (\[Jensen2001\] eq. 4-5; \[Benmounah2009\] Table 1 prints the same): a real
 //!   source at z_r = 1/σt′ and a positive virtual source at z_v = z_r(1 + 4A/3), A = (1 + F_dr)/
 //!   (1 − F_dr), F_dr from Egan and Hilgeman's polynomial, σ_tr = √(3σaσt′), and
 //!   R(r) = α′/4π [z_r(1 + σ_tr d_r)e^{−σ_tr d_r}/d_r³ + z_v(1 + σ_tr d_v)e^{−σ_tr d_v}/d_v³].
@@ -11,15 +11,15 @@
 //!   both terms positive because the virtual source lies *above* the surface at height z_v; the
 //!   printed "z_v = z_r + 4AD" is that height. The total integrates in closed form
 //!   (∫₀^∞ z(1+σd)e^{−σd}/d³ 2πr dr = 2π e^{−σz}): Rd = α′/2 (e^{−σ_tr z_r} + e^{−σ_tr z_v}),
-//!   which is [Jensen2001] eq. 5's α′/2 (1 + e^{−(4/3)A√(3(1−α′))}) e^{−√(3(1−α′))}.
-//! - **Better dipole** ([dEon2012]; the point source of pbrt-v3's photon beam diffusion): Grosjean's
+//!   which is \[Jensen2001\] eq. 5's α′/2 (1 + e^{−(4/3)A√(3(1−α′))}) e^{−√(3(1−α′))}.
+//! - **Better dipole** (\[dEon2012\]; the point source of pbrt-v3's photon beam diffusion): Grosjean's
 //!   D = (2σa + σs′)/(3σt′²), σ_tr = √(σa/D), the extrapolated boundary z_b = 2AD with
 //!   A = (1 + 3C₂)/(1 − 2C₁), the virtual source at −z_r − 2z_b, and the exitance
 //!   R = C_φ φ(r) + C_E E(r), C_φ = ¼(1 − 2C₁), C_E = ½(1 − 3C₂). C₁, C₂ are the exact Fresnel
 //!   moments of light inside the medium meeting the boundary ([`fresnel_moment`] at 1/η). Totals in
 //!   closed form: ∫φ = α′/(2D)·(e^{−σz_r} − e^{−σ|z_v|})/σ (→ α′/(2D)(|z_v| − z_r) as σa → 0),
 //!   ∫E = α′/2 (e^{−σz_r} + e^{−σ|z_v|}); at σa = 0 the total is exactly 1 for every η.
-//! - **Burley's normalized diffusion** ([Christensen2015]): R(r) = A s (e^{−sr} + e^{−sr/3})/(8πr),
+//! - **Burley's normalized diffusion** (\[Christensen2015\]): R(r) = A s (e^{−sr} + e^{−sr/3})/(8πr),
 //!   whose total is A exactly. A is the better dipole's total and s = σt′·(1.85 − A + 7|A − 0.8|³),
 //!   their fit for the searchlight configuration with the mean free path 1/σt′.
 //!
@@ -71,7 +71,7 @@ pub fn fresnel_moment(eta: f64, i: i32) -> f64 {
 }
 
 /// Egan and Hilgeman's polynomial fit of the diffuse internal reflectance of a boundary of
-/// relative index η ([Jensen2001] eq. 5 text): F_dr = −1.440/η² + 0.710/η + 0.668 + 0.0636η.
+/// relative index η (\[Jensen2001\] eq. 5 text): F_dr = −1.440/η² + 0.710/η + 0.668 + 0.0636η.
 /// It approximates `2·fresnel_moment(1/η, 1)` (light inside meeting the boundary) to ~1% for
 /// 1 ≤ η ≤ 1.5.
 pub fn f_dr_polynomial(eta: f64) -> f64 {
@@ -81,11 +81,11 @@ pub fn f_dr_polynomial(eta: f64) -> f64 {
 /// Which diffusion model a profile comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ProfileModel {
-    /// [Jensen2001]'s dipole.
+    /// \[Jensen2001\]'s dipole.
     ClassicDipole,
-    /// [dEon2012]'s better dipole.
+    /// \[dEon2012\]'s better dipole.
     BetterDipole,
-    /// [Christensen2015]'s normalized diffusion with the searchlight fit.
+    /// \[Christensen2015\]'s normalized diffusion with the searchlight fit.
     Burley,
 }
 
@@ -200,7 +200,7 @@ impl ChannelProfile {
         }
     }
 
-    /// The classic dipole between surface points, [Benmounah2009] Table 1 with its two slips
+    /// The classic dipole between surface points, \[Benmounah2009\] Table 1 with its two slips
     /// corrected (module doc of [`crate::cube_atlas`]): the real source at `x_i − z_r·n_i`, the
     /// virtual one at `x_i + z_v·n_i` (the table prints `x_i − z_v·n_i`), and
     /// R = α′/4π Σ z(1 + σ_tr S)e^{−σ_tr S}/S³ over both, per mm², for light entering at `x_i`
@@ -230,7 +230,7 @@ impl ChannelProfile {
         0.5 * self.alpha_prime * (part(self.z_r) + part(self.z_v))
     }
 
-    /// [Benmounah2009] eq. 9 (the real source alone) integrated over a plane of sources at
+    /// \[Benmounah2009\] eq. 9 (the real source alone) integrated over a plane of sources at
     /// perpendicular distance `z_mm` from the exit point: α′/2 · e^{−σ_tr z} (the integral in the
     /// module doc with z the distance). The radiosity of the global term per unit irradiance of
     /// a locally uniform lit surface behind. Finite for every z ≥ 0 (α′/2 at z = 0).
@@ -248,7 +248,7 @@ impl ChannelProfile {
     /// T(d) = α′ sinh(σ(z₀ + z_b)) cosh(σz_b) / sinh(σ(d + 2z_b)).
     /// Limits: α′(z₀ + z_b)/(d + 2z_b) as σ → 0 (pure scattering: 1/d), and the semi-infinite
     /// medium's e^{−σd} decay for thick slabs. The cube atlas's global term uses it in place of
-    /// [Benmounah2009] eq. 9's lone real source ([`ChannelProfile::real_source_plane`]), which
+    /// \[Benmounah2009\] eq. 9's lone real source ([`ChannelProfile::real_source_plane`]), which
     /// ignores both faces. Diffusion needs d beyond a mean free path; thinner slabs clamp z₀ = d.
     pub fn slab_transmittance(&self, d_mm: f64) -> f64 {
         let d = d_mm.max(0.0);

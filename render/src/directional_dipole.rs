@@ -1,5 +1,5 @@
-//! The directional dipole BSSRDF of Frisvad, Hachisuka and Kjeldsen ([Frisvad2014]) and, for
-//! comparison in the same pipeline, Jensen's standard dipole BSSRDF ([Jensen2001] eq. 6), in
+//! The directional dipole BSSRDF of Frisvad, Hachisuka and Kjeldsen (\[Frisvad2014\]) and, for
+//! comparison in the same pipeline, Jensen's standard dipole BSSRDF (\[Jensen2001\] eq. 6), in
 //! double precision. The WGSL twins are in shaders/dipole_radiance.wgsl. [`DipoleKind`] and
 //! [`DipoleSettings`] choose the BSSRDF and the sampling of the dipole passes that gather it.
 //!
@@ -14,7 +14,7 @@
 //! ```
 //!
 //! (∇φ₀ = −(1 + σ_tr r)/r² · φ₀ · x). The light leaving through a boundary of normal n_o is the
-//! better dipole's combination of fluence and flux ([dEon2012]), C_φ φ + C_E E·n_o with
+//! better dipole's combination of fluence and flux (\[dEon2012\]), C_φ φ + C_E E·n_o with
 //! E = −D∇φ; differentiating φ (the test `s_infinite_is_the_fluence_and_flux_of_a_ray_source`
 //! checks it against finite differences):
 //!
@@ -56,7 +56,7 @@ use glam::{DVec3, Vec3};
 use rouge_model::medium::Medium;
 use std::f64::consts::PI;
 
-/// d_e = DE_FACTOR · D/√α′: the extrapolation distance of [Frisvad2014] (after Davison).
+/// d_e = DE_FACTOR · D/√α′: the extrapolation distance of \[Frisvad2014\] (after Davison).
 pub const DE_FACTOR: f64 = 2.131;
 
 /// One channel's constants of the directional dipole.
@@ -230,14 +230,14 @@ impl DirectionalDipole {
         self.channels.map(|ch| t * self.exit_norm * ch.s_d(g, w12))
     }
 
-    /// The reciprocal form ½(S(i → o) + S(o → i)) ([Frisvad2014] section 5).
+    /// The reciprocal form ½(S(i → o) + S(o → i)) (\[Frisvad2014\] section 5).
     pub fn bssrdf_symmetric(&self, g: &Geometry) -> [f64; 3] {
         let (a, b) = (self.bssrdf(g), self.bssrdf(&g.swapped()));
         std::array::from_fn(|c| 0.5 * (a[c] + b[c]))
     }
 }
 
-/// Jensen's standard dipole BSSRDF ([Jensen2001] eq. 6 with the diffusion term of eq. 4):
+/// Jensen's standard dipole BSSRDF (\[Jensen2001\] eq. 6 with the diffusion term of eq. 4):
 /// S = T₁₂(ω_i) R_d(|x_o − x_i|) T₂₁(ω_o)/π per channel, with the classic dipole profile of
 /// [`crate::diffusion`]. Ignores the directions but for the Fresnel terms and the tangent planes.
 pub fn standard_dipole_bssrdf(profiles: &[ChannelProfile; 3], eta: f64, g: &Geometry) -> [f64; 3] {
@@ -261,9 +261,9 @@ pub const MAX_DIRECTIONS: usize = 32;
 /// Which BSSRDF the dipole passes gather.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DipoleKind {
-    /// [Frisvad2014]'s directional dipole.
+    /// \[Frisvad2014\]'s directional dipole.
     Directional,
-    /// [Jensen2001]'s standard (classic) dipole.
+    /// \[Jensen2001\]'s standard (classic) dipole.
     Standard,
 }
 
@@ -277,7 +277,7 @@ impl DipoleKind {
     }
 }
 
-/// The settings of the dipole passes ([DirDipoleThesis] sections 4.2 and 4.4).
+/// The settings of the dipole passes (\[DirDipoleThesis\] sections 4.2 and 4.4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DipoleSettings {
     /// Disk samples N per radiance-map texel and light (1 to 256).

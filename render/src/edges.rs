@@ -1,4 +1,4 @@
-//! Discontinuity edges of a mesh for edge-overdraw antialiasing ([Sander2001], "Discontinuity
+//! Discontinuity edges of a mesh for edge-overdraw antialiasing (\[Sander2001\], "Discontinuity
 //! Edge Overdraw"): the preprocess of section 3.2 (sharp edges, boundary edges, silhouette
 //! candidates without the concave and sharp ones), the orientation of section 3.3 / figure 4,
 //! and the per-frame classification of section 3.5 (the CPU twin of `classify` in
@@ -83,7 +83,7 @@ impl Edge {
     }
 }
 
-/// Counts of the preprocess (the first rows of [Sander2001] table 1).
+/// Counts of the preprocess (the first rows of \[Sander2001\] table 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct EdgeCounts {
     /// Triangles.
@@ -126,7 +126,7 @@ struct Sides {
 }
 
 impl EdgeSet {
-    /// Preprocesses `mesh` ([Sander2001] section 3.2 and 3.3): welds vertices by position, finds
+    /// Preprocesses `mesh` (\[Sander2001\] section 3.2 and 3.3): welds vertices by position, finds
     /// sharp and boundary edges, orients the sharp edges into consistent chains, and keeps as
     /// silhouette candidates the smooth edges, without the concave ones on a closed mesh.
     /// Degenerate triangles (zero area) are left out.
@@ -278,7 +278,7 @@ impl EdgeSet {
 /// Orients sharp edges so that along every chain (a path through vertices where exactly two
 /// sharp edges meet) each edge starts where the previous one ends; then the left faces lie on
 /// one side of the whole chain, and the left-face shading of section 3.5 does not switch sides
-/// from edge to edge ([Sander2001] section 3.3, figure 4). Flipping an edge swaps its faces.
+/// from edge to edge (\[Sander2001\] section 3.3, figure 4). Flipping an edge swaps its faces.
 pub fn orient_chains(edges: &mut [Edge]) {
     let key = |p: Vec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
     let mut at: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
@@ -324,7 +324,7 @@ fn flipped(e: Edge) -> Edge {
 }
 
 /// A cube of side `side_mm` centred on the origin with flat normals and each face's UVs over
-/// 0..1 (the textured cube of [Sander2001] figure 6): 12 sharp edges, closed. A test object of
+/// 0..1 (the textured cube of \[Sander2001\] figure 6): 12 sharp edges, closed. A test object of
 /// edge antialiasing (`rouge bench aa`).
 pub fn cube(side_mm: f32) -> rouge_model::mesh::Mesh {
     use rouge_model::mesh::{Corner, Face, Group, Mesh};

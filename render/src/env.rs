@@ -1,8 +1,8 @@
 //! Environment lighting: HDR equirectangular maps and their spherical-harmonics irradiance.
 //!
-//! [Benmounah2009] section 4.1.2 (eq. 4-8) with the closed form of [Ramamoorthi2001], "An
+//! \[Benmounah2009\] section 4.1.2 (eq. 4-8) with the closed form of \[Ramamoorthi2001\], "An
 //! efficient representation for irradiance environment maps" (sections 2-3). Irradiance on a
-//! surface with normal `n` lit by distant radiance `L(ω)` ([Benmounah2009] eq. 4 without the
+//! surface with normal `n` lit by distant radiance `L(ω)` (\[Benmounah2009\] eq. 4 without the
 //! Fresnel factor) is
 //!
 //! ```text
@@ -15,7 +15,7 @@
 //! which bounds the error for any smooth environment to a few percent (measured in
 //! `tests/env.rs`). [`ShIrradiance`] stores `c_i = Â_l L_lm`, so evaluation is `E(n) = Σ c_i Y_i(n)`.
 //!
-//! **Corrections to [Benmounah2009].** Eq. 8 multiplies the coefficients of L, Ft and the cosine G
+//! **Corrections to \[Benmounah2009\].** Eq. 8 multiplies the coefficients of L, Ft and the cosine G
 //! index by index. The SH coefficients of a product are not the products of the coefficients;
 //! the form is right only when Ft and G are zonal (functions of `n·ω`), and then the kernel to use
 //! is the Legendre expansion of the product `Ft(μ)·μ`, not `F_l G_l`. We fold only the clamped
@@ -379,7 +379,7 @@ impl ShIrradiance {
 
     /// The environment's irradiance as it enters a dielectric of relative index `eta`:
     /// `E_t(n) = ∫ L(ω) T(n·ω) max(0, n·ω) dω` with T = 1 − F the Fresnel transmittance
-    /// ([Benmounah2009] eq. 4, done right: see the module doc). The kernel T(μ)μ is zonal, so by
+    /// (\[Benmounah2009\] eq. 4, done right: see the module doc). The kernel T(μ)μ is zonal, so by
     /// Funk-Hecke each band l is scaled by `Â_l^T / Â_l` with `Â_l^T = 2π ∫₀¹ T(μ) μ P_l(μ) dμ`
     /// ([`fresnel_band_kernels`]).
     pub fn fresnel_transmitted(&self, eta: f64) -> Self {

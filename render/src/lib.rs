@@ -1,4 +1,4 @@
-//! Rouge renderer: real-time skin with layered cosmetics ([Huang2013] section 3, figure 1) on wgpu.
+//! Rouge renderer: real-time skin with layered cosmetics (\[Huang2013\] section 3, figure 1) on wgpu.
 //!
 //! It uploads what `rouge-model` gives it (meshes, looks, thickness maps) and knows no UI.
 //! Headless first: [`Gpu`] opens a device without a window (Mesa lavapipe where there is no
@@ -8,8 +8,8 @@
 //! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
 //! - [`job`]: headless renders to PNG/EXR, the `rouge render` path.
 //! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
-//!   [`diffusion`], [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`]
-//!   (environment maps and their spherical-harmonics irradiance, [Benmounah2009] section 4.1.2),
+//!   [`diffusion`], [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
+//!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
 //!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
 //! - Studies and references: [`study`], [`translucency`], [`aa_study`], [`mitsuba`],
 //!   [`profile_fit`].

@@ -1,4 +1,4 @@
-//! Fast thickness translucency ([BarreBrisebois2011]): the subsurface model `thickness`. Light
+//! Fast thickness translucency (\[BarreBrisebois2011\]): the subsurface model `thickness`. Light
 //! that enters on the far side of a thin part of the mesh leaves toward the viewer, scaled by a
 //! precomputed *local thickness* (white = thin) and a view-dependent lobe around the light's
 //! direction seen through the object:
@@ -23,15 +23,15 @@
 //! The local thickness comes from one of two sources ([`ThicknessSource`]): the talk's bake
 //! (ambient occlusion with inverted normals, [`rouge_model::thickness`]), or, for meshes that
 //! deform, an on-the-fly estimate from each light's shadow map (the distance the light travelled
-//! inside the mesh, as in translucent shadow maps [Dachsbacher2003] and the depth-based thickness
-//! of [Oat2008]), mapped through the same falloff as the bake.
+//! inside the mesh, as in translucent shadow maps \[Dachsbacher2003\] and the depth-based thickness
+//! of \[Oat2008\]), mapped through the same falloff as the bake.
 
 use crate::error::{RenderError, Result};
 use glam::Vec3;
 use rouge_model::medium::Medium;
 use rouge_model::thickness::{BakeSettings, Falloff};
 
-/// The per-material parameters of [BarreBrisebois2011] (slides "fLTAmbient", "iLTPower",
+/// The per-material parameters of \[BarreBrisebois2011\] (slides "fLTAmbient", "iLTPower",
 /// "fLTDistortion", "fLTScale"). The scale is per light in the talk; Rouge keeps a material scale
 /// (what the fit to the path tracer sets) and multiplies it by each light's
 /// [`crate::Light::translucency_scale`].
@@ -127,7 +127,7 @@ impl ThicknessSource {
     }
 
     /// The source for a material: the coloured falloff exp(−σ_tr·d) of its medium (σ_tr the
-    /// diffusion's effective transport coefficient, [Jensen2001]) when it has one, else the grey
+    /// diffusion's effective transport coefficient, \[Jensen2001\]) when it has one, else the grey
     /// linear falloff; `cutoff_mm` as given.
     pub fn for_medium(baked: bool, medium: Option<&Medium>, rays: u32, cutoff_mm: f32) -> ThicknessSource {
         let falloff = match medium {
@@ -151,7 +151,7 @@ impl ThicknessSource {
 }
 
 /// σ_tr = √(3 σa (σa + σs′)) per channel, mm⁻¹: the diffusion approximation's effective
-/// transport coefficient ([Jensen2001] eq. 5 context; the decay rate of the fluence far from a
+/// transport coefficient (\[Jensen2001\] eq. 5 context; the decay rate of the fluence far from a
 /// source). Valid where scattering dominates (σs′ ≫ σa); elsewhere it still decreases with depth
 /// as a rate should.
 pub fn sigma_tr_per_mm(m: &Medium) -> [f64; 3] {

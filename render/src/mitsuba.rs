@@ -1,4 +1,4 @@
-//! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene ([Mitsuba3]),
+//! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (\[Mitsuba3\]),
 //! the ground truth the subsurface models are measured against (docs/TRANSLUCENCY.md).
 //!
 //! What is written (`DIR/scene.xml`, loadable by `mi.load_file`, with its files beside it):

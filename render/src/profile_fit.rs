@@ -1,6 +1,6 @@
 //! A screen-space kernel from a physical medium: the medium's diffusion profile (any
 //! [`ProfileModel`]) fitted by a sum of Gaussians, the form the separable kernel of
-//! [`crate::sss`] integrates exactly. This is [dEon2007]'s method (they fitted the multipole):
+//! [`crate::sss`] integrates exactly. This is \[dEon2007\]'s method (they fitted the multipole):
 //! Gaussians of fixed variances in a geometric series spanning the profile's scales, and
 //! non-negative weights per channel by least squares on the radial energy density 2πr·R(r).
 //! The weights are then divided by the profile's total, so the fitted profile integrates to 1

@@ -1,6 +1,6 @@
 //! The renderer: what is uploaded (mesh, look, skin maps), the passes, the frame's targets, and
 //! the frame itself, which plans ([`FramePlan`]) and then records the planned passes in order.
-//! The frame of [Huang2013] figure 1 on wgpu: shadow maps → G-buffer → lighting (cosmetic stack,
+//! The frame of \[Huang2013\] figure 1 on wgpu: shadow maps → G-buffer → lighting (cosmetic stack,
 //! irradiance through it, specular lobes) → the skin's subsurface model → composition.
 
 use crate::error::{RenderError, Result};

@@ -99,7 +99,7 @@ pub struct Light {
     /// Whether the light casts shadows (one shadow map each).
     pub shadows: bool,
     /// This light's multiplier of the thickness translucency's back lobe (the talk's per-light
-    /// `fLTScale`, [BarreBrisebois2011]; the material's fitted scale times this). 1 by default.
+    /// `fLTScale`, \[BarreBrisebois2011\]; the material's fitted scale times this). 1 by default.
     pub translucency_scale: f32,
 }
 
@@ -127,12 +127,12 @@ pub struct Skin {
 pub enum SubsurfaceModel {
     /// No scattering: the skin's diffuse radiance is used where it enters.
     None,
-    /// The separable screen-space kernel ([Jimenez2015]) of a diffusion profile (two passes).
+    /// The separable screen-space kernel (\[Jimenez2015\]) of a diffusion profile (two passes).
     ScreenSpace {
         /// The diffusion profile the kernel is built from.
         profile: DiffusionProfile,
     },
-    /// Fast thickness translucency ([BarreBrisebois2011], [`crate::local_thickness`]): light
+    /// Fast thickness translucency (\[BarreBrisebois2011\], [`crate::local_thickness`]): light
     /// through thin parts from behind, one full-screen pass and a local-thickness G-buffer target.
     Thickness {
         /// Distortion, power, scale, ambient.
@@ -140,9 +140,9 @@ pub enum SubsurfaceModel {
         /// Where the local thickness comes from.
         source: ThicknessSource,
     },
-    /// The directional dipole ([Frisvad2014]) or the standard dipole ([Jensen2001]) of the
+    /// The directional dipole (\[Frisvad2014\]) or the standard dipole (\[Jensen2001\]) of the
     /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
-    /// ([DirDipoleThesis], the dipole passes). Takes over the skin's direct light; needs
+    /// (\[DirDipoleThesis\], the dipole passes). Takes over the skin's direct light; needs
     /// `Skin::medium`.
     Dipole {
         /// Which BSSRDF.
@@ -150,7 +150,7 @@ pub enum SubsurfaceModel {
         /// Samples, directions, map sizes, the artifact fixes, progressive accumulation.
         settings: DipoleSettings,
     },
-    /// Jensen's dipole gathered in an on-the-fly cube-map atlas ([Benmounah2009],
+    /// Jensen's dipole gathered in an on-the-fly cube-map atlas (\[Benmounah2009\],
     /// [`crate::cube_atlas`]): the mesh drawn onto the six faces of its bounding cube every
     /// frame, so it may deform. Takes over the skin's direct and environment light; needs
     /// `Skin::medium`.
@@ -161,7 +161,7 @@ pub enum SubsurfaceModel {
 }
 
 impl SubsurfaceModel {
-    /// The screen-space kernel of d'Eon's six-Gaussian skin profile ([dEon2007]), today's default.
+    /// The screen-space kernel of d'Eon's six-Gaussian skin profile (\[dEon2007\]), today's default.
     pub fn skin_screen_space() -> SubsurfaceModel {
         SubsurfaceModel::ScreenSpace { profile: DiffusionProfile::skin() }
     }
@@ -194,7 +194,7 @@ const COLORCHECKER_SKIN: &str = include_str!("../../data/skin/colorchecker_skin.
 
 impl Skin {
     /// Skin whose albedo is the linear sRGB (D65, CIE 1931) of a reflectance spectrum; d'Eon's
-    /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke ([dEon2007]).
+    /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke (\[dEon2007\]).
     pub fn from_spectrum(reflectance: &Spectrum) -> Skin {
         let c = Colorimeter::get(Viewing::D65_1931);
         let rgb = c.srgb_linear(&c.xyz(reflectance));
@@ -306,7 +306,7 @@ pub enum LightRig {
 /// Everything about a frame but the mesh and the look.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// Up to [`crate::renderer::MAX_LIGHTS`] lights.
+    /// Up to [`crate::MAX_LIGHTS`] lights.
     pub lights: Vec<Light>,
     /// Environment irradiance, if any (no environment term without one).
     pub environment: Option<ShIrradiance>,

@@ -1,4 +1,4 @@
-//! Which discontinuity edges a frame draws, in which order ([Sander2001] sections 3.2, 3.4, 3.5):
+//! Which discontinuity edges a frame draws, in which order (\[Sander2001\] sections 3.2, 3.4, 3.5):
 //! the per-edge classification (the CPU twin of `classify` in shaders/edge_overdraw.wgsl), the
 //! silhouette search (brute force over every candidate, or a search that skips clusters of
 //! edges that cannot hold a silhouette), and the back-to-front sort by midpoint distance.
@@ -27,7 +27,7 @@ pub enum EdgeClass {
     },
 }
 
-/// Classifies `edge` seen from `eye` ([Sander2001] section 3.5 with the corrections listed in
+/// Classifies `edge` seen from `eye` (\[Sander2001\] section 3.5 with the corrections listed in
 /// [`crate::edges`]): d = n · (eye − midpoint) > 0 means the face is toward the eye.
 pub fn classify(edge: &Edge, eye: Vec3, closed: bool) -> EdgeClass {
     let v = eye - edge.midpoint();
@@ -102,7 +102,7 @@ impl From<&Edge> for EdgeInstance {
     }
 }
 
-/// Edge counts of one frame (the middle rows of [Sander2001] table 1).
+/// Edge counts of one frame (the middle rows of \[Sander2001\] table 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct FrameEdgeStats {
     /// Silhouettes found among the smooth candidates (not counting sharp or boundary edges).
@@ -183,7 +183,7 @@ impl EdgeFrames {
     }
 
     /// The same silhouettes, skipping every cluster whose faces all face the eye or all face
-    /// away (the idea of [Sander2000]'s hierarchy, one level deep): for a face of the cluster
+    /// away (the idea of \[Sander2000\]'s hierarchy, one level deep): for a face of the cluster
     /// with normal n and a point p within `radius` of the centre c, n · (eye − p) ≥ |eye − c|
     /// cos(θ + α) − r, where θ is the angle between the cone axis and eye − c and α the cone's
     /// half-angle; all face the eye when that bound is positive, and symmetrically all face away

@@ -1,7 +1,7 @@
 //! The CPU twin, in double precision, of the specular lobes of shaders/lighting.wgsl: one
-//! Kelemen/Szirmay-Kalos lobe for the skin and one per cosmetic layer ([Huang2013] eq. 5,
-//! [Kelemen2001]), with a Beckmann distribution [Beckmann1963] and Schlick's Fresnel
-//! [Schlick1994]. Tests check it (energy, Fresnel at grazing angles, the order in which layers
+//! Kelemen/Szirmay-Kalos lobe for the skin and one per cosmetic layer (\[Huang2013\] eq. 5,
+//! \[Kelemen2001\]), with a Beckmann distribution \[Beckmann1963\] and Schlick's Fresnel
+//! \[Schlick1994\]. Tests check it (energy, Fresnel at grazing angles, the order in which layers
 //! attenuate the lobes below them), and render/tests/specular_gpu.rs checks the shader against it.
 //!
 //! **The lobe.** Kelemen and Szirmay-Kalos replace the Cook-Torrance geometry and
@@ -15,8 +15,8 @@
 //!
 //! **Layers.** Bottom to top: lobes = lobes · T_i² + coverage_i · f_r(layer i), starting from the
 //! skin's lobe. Light reaching a lower interface crosses layer i twice (in and out), hence T²
-//! where [Huang2013] writes T. A layer's own lobe fades in over its first
-//! [`crate::gpu_look::LAYER_FULL_COVERAGE_MM`], so a layer of zero thickness adds nothing.
+//! where \[Huang2013\] writes T. A layer's own lobe fades in over its first
+//! `LAYER_FULL_COVERAGE_MM` (the renderer's look upload), so a layer of zero thickness adds nothing.
 
 use glam::DVec3;
 

@@ -1,28 +1,28 @@
 //! Skin subsurface scattering: the diffusion profile, the separable screen-space kernel of
-//! [Jimenez2015] ("Separable Subsurface Scattering"), and the brute-force reference the
+//! \[Jimenez2015\] ("Separable Subsurface Scattering"), and the brute-force reference the
 //! kernel is measured against.
 //!
 //! # Profile
 //! The diffusion profile R(r) of skin is the sum-of-Gaussians fit of d'Eon, Luebke and Enderton
-//! [dEon2007]: six Gaussians G(v, r) = exp(−r²/2v) / (2πv) with variances 0.0064 … 7.41 mm² and one
+//! \[dEon2007\]: six Gaussians G(v, r) = exp(−r²/2v) / (2πv) with variances 0.0064 … 7.41 mm² and one
 //! weight per RGB channel. The weights of each channel sum to 1, so the profile integrates to 1
 //! over the plane: scattering moves light, it neither makes nor absorbs it (the skin's albedo is
 //! applied before the blur).
 //!
 //! # Separable kernel
-//! A 2D radial profile is not separable, but each Gaussian is, and [Jimenez2015] shows that the
+//! A 2D radial profile is not separable, but each Gaussian is, and \[Jimenez2015\] shows that the
 //! rank-1 product of the profile's 1D marginal A(x) = ∫ R(√(x²+y²)) dy with itself,
 //! A(x)·A(y), is close to R for skin. For a sum of Gaussians the marginal is exact and cheap:
 //! A(x) = Σ w·exp(−x²/2v)/√(2πv). The kernel places N (odd) samples at x_j = ρ·t_j·|t_j|,
 //! t_j evenly spaced in [−1, 1] (samples dense near the centre where the profile is peaked, as
-//! in [Jimenez2015]), with ρ = `range_sigmas` × the widest Gaussian's σ. Each sample's weight is the
+//! in \[Jimenez2015\]), with ρ = `range_sigmas` × the widest Gaussian's σ. Each sample's weight is the
 //! exact integral of A over its bin (erf), with the outermost bins running to ±∞, so the weights
 //! of every channel sum to 1 and the blur conserves energy at any sample count.
 //!
 //! # Screen space
 //! The blur runs twice (horizontal, then vertical) over the skin radiance. A sample at kernel
 //! offset x mm lies x·`width`·f/z pixels away, f the focal length in pixels and z the centre's
-//! view depth in mm. Depth awareness follows [Jimenez2015]: a sample whose depth differs from the
+//! view depth in mm. Depth awareness follows \[Jimenez2015\]: a sample whose depth differs from the
 //! centre's by Δz is replaced by the centre value in proportion t = clamp(|Δz| / `follow_mm`, 0, 1),
 //! so light does not bleed across silhouettes; samples off the skin (background, eyes) are replaced
 //! by the centre value entirely.
@@ -61,7 +61,7 @@ pub const MIN_SAMPLES: u32 = 3;
 pub const MAX_SAMPLES: u32 = 33;
 
 impl DiffusionProfile {
-    /// Human skin: [dEon2007] (d'Eon, Luebke and Enderton, "Efficient rendering of human skin"), the
+    /// Human skin: \[dEon2007\] (d'Eon, Luebke and Enderton, "Efficient rendering of human skin"), the
     /// six-Gaussian fit of the three-layer skin model (variances in mm²).
     pub fn skin() -> Self {
         let g = |v: f64, r: f64, gr: f64, b: f64| Gaussian { variance_mm2: v, weight: [r, gr, b] };

@@ -15,7 +15,7 @@ use rouge_measure::preset::{Preset, layer_spectra};
 use serde::Serialize;
 use std::time::Instant;
 
-/// Khronos PBR Neutral tone mapping ([KhronosNeutral]), the composite shader's, on the CPU.
+/// Khronos PBR Neutral tone mapping (\[KhronosNeutral\]), the composite shader's, on the CPU.
 pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
     let (start, desat) = (0.76f32, 0.15f32);
     let x = c[0].min(c[1]).min(c[2]);

@@ -18,7 +18,7 @@ pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Format of the local-thickness target: 10 bits per colour channel for the thickness, the
 /// 2-bit alpha for the translucency material id (0: none), so that the G-buffer stays within
-/// WebGPU's 32 bytes per sample with eight layers ([BarreBrisebois2011] packs it the same way).
+/// WebGPU's 32 bytes per sample with eight layers (\[BarreBrisebois2011\] packs it the same way).
 pub const LOCAL_THICKNESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgb10a2Unorm;
 /// Format of radiance and thickness targets.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -43,7 +43,7 @@ pub struct Formats {
     /// [`array_layers`], which also steers GL clear of cube maps.
     pub min_array_layers: u32,
     /// Whether depth textures can be copied to buffers (`DEPTH_TEXTURE_AND_BUFFER_COPIES`, not
-    /// on GL); where not, depth is read back through [`crate::passes::depth_copy`].
+    /// on GL); where not, depth is read back through the depth copy pass.
     pub copy_depth: bool,
 }
 

@@ -11,7 +11,7 @@
 //! without an environment. Shaders are specialised per [`Variant`] accordingly.
 //!
 //! [`FramePlan::new`] reads like the frame: validation, then one stage per part of it
-//! ([`stages`]): shadows, the subsurface model's settings, the variant, the G-buffer, lighting,
+//! (`stages.rs`): shadows, the subsurface model's settings, the variant, the G-buffer, lighting,
 //! the subsurface model's passes, composition, edge overdraw. The render targets are the ones
 //! the passes read or write.
 
@@ -57,7 +57,7 @@ pub struct FrameSettings {
     pub display: bool,
     /// The largest texture side the device takes.
     pub max_side: u32,
-    /// Discontinuity edge overdraw ([Sander2001]).
+    /// Discontinuity edge overdraw (\[Sander2001\]).
     pub aa: EdgeAa,
 }
 

@@ -1,4 +1,4 @@
-//! Composition (shaders/composite.wgsl, [Huang2013] figure 1 step 6): the skin radiance (scattered
+//! Composition (shaders/composite.wgsl, \[Huang2013\] figure 1 step 6): the skin radiance (scattered
 //! or not) leaving through the stack (× T), plus the surface radiance, over the background; then
 //! linear radiance (EXR) or exposure, Khronos PBR Neutral and sRGB encoding (PNG, the app).
 

@@ -1,4 +1,4 @@
-//! Discontinuity edge overdraw ([Sander2001], shaders/edge_overdraw.wgsl) after composition:
+//! Discontinuity edge overdraw (\[Sander2001\], shaders/edge_overdraw.wgsl) after composition:
 //! the display image is copied, and each discontinuity edge is drawn over it as a screen-space
 //! quad with the analytic box-filter coverage of its face's side, shaded with that face's lit
 //! colour read from the copy one pixel into the face's side, "over" blended, depth tested

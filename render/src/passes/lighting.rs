@@ -1,7 +1,7 @@
 //! Lighting pass (shaders/lighting.wgsl): per pixel, the cosmetic stack's reflectance and
 //! transmittance from the layer tables, the irradiance of each light (with its shadow) and of
 //! the environment through the stack, and the specular lobes of skin and layers
-//! ([Huang2013] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
+//! (\[Huang2013\] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
 //! radiance leaving at the surface, and, with layers, the stack's exit transmittance.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};

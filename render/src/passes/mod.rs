@@ -1,4 +1,4 @@
-//! One module per pass of the frame ([Huang2013] figure 1). Each pass module declares, in one
+//! One module per pass of the frame (\[Huang2013\] figure 1). Each pass module declares, in one
 //! place, its shader ([`PassShader`]: WGSL file and variant reduction), what the plan gives each
 //! of its steps ([`FramePass::Step`]), its name in timings and `--explain`, the targets it reads
 //! and writes, and one `record` from those to its outputs; it owns its bind-group layout,
@@ -121,7 +121,7 @@ frame_passes! {
     Sss => sss: sss::SssPass,
     /// Composition of the skin radiance (diffuse or scattered) with the surface radiance.
     Composite => composite: composite::CompositePass,
-    /// Discontinuity edges drawn over the display image ([Sander2001]).
+    /// Discontinuity edges drawn over the display image (\[Sander2001\]).
     EdgeOverdraw => edge_overdraw: edge_overdraw::EdgeOverdrawPass,
 }
 

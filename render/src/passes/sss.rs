@@ -1,5 +1,5 @@
 //! Screen-space subsurface scattering (shaders/sss.wgsl): the separable, depth-aware blur of
-//! [Jimenez2015] with the kernel of [`crate::sss::SeparableKernel`], horizontal then vertical.
+//! \[Jimenez2015\] with the kernel of [`crate::sss::SeparableKernel`], horizontal then vertical.
 //! It runs for materials whose subsurface model is
 //! [`crate::scene::SubsurfaceModel::ScreenSpace`].
 

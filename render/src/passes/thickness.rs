@@ -1,5 +1,5 @@
 //! Thickness translucency pass (shaders/thickness.wgsl): the light that crossed thin parts of
-//! the mesh from behind, [BarreBrisebois2011]'s term ([`crate::local_thickness`]) for every
+//! the mesh from behind, \[BarreBrisebois2011\]'s term ([`crate::local_thickness`]) for every
 //! light, added to the skin's diffuse radiance before composition. It runs for materials whose
 //! subsurface model is [`crate::scene::SubsurfaceModel::Thickness`]; the G-buffer then carries
 //! the local thickness and the material id ([`Target::LocalThickness`]), and the per-material

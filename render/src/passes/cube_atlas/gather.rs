@@ -1,6 +1,6 @@
 //! Cube-atlas gather pass (shaders/atlas_gather.wgsl): per skin pixel, face selection with the
 //! self-occlusion test, the local dipole gather and the global term, added to the skin's diffuse
-//! radiance ([Benmounah2009] sections 4.2-4.4).
+//! radiance (\[Benmounah2009\] sections 4.2-4.4).
 
 use super::super::skin_gather::SkinGather;
 use super::super::{FramePass, Recording, Shared};

@@ -1,5 +1,5 @@
 //! Cube-atlas irradiance pass (shaders/atlas_irradiance.wgsl): the mesh onto the six faces of its
-//! bounding cube, one orthographic view each ([Benmounah2009] sections 4.1-4.2). As the first of
+//! bounding cube, one orthographic view each (\[Benmounah2009\] sections 4.1-4.2). As the first of
 //! the atlas passes of a frame, it also sizes the atlas and writes its uniform ([`AtlasStep`]).
 
 use super::super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};

@@ -1,4 +1,4 @@
-//! The cube-atlas subsurface model's passes ([Benmounah2009], geometry and derivations in
+//! The cube-atlas subsurface model's passes (\[Benmounah2009\], geometry and derivations in
 //! [`crate::cube_atlas`]): `irradiance` draws the mesh onto the six faces of its bounding cube
 //! every frame (irradiance entering the medium, n·p, normal, depth), `gather` adds, per skin
 //! pixel, the local dipole gather on the face that sees the point and the global term through

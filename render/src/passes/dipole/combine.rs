@@ -1,6 +1,6 @@
 //! Dipole combination pass (shaders/dipole_combine.wgsl): per skin pixel, the radiance maps of
 //! the directions that see the point, averaged, times the exit Fresnel transmittance, added to
-//! the skin's diffuse radiance ([DirDipoleThesis] step 3).
+//! the skin's diffuse radiance (\[DirDipoleThesis\] step 3).
 
 use super::super::skin_gather::SkinGather;
 use super::super::{FramePass, Recording, Shared};

@@ -1,5 +1,5 @@
 //! Dipole light G-buffer pass (shaders/dipole_light.wgsl): the mesh from each directional light,
-//! orthographically, into a layer of the light normals and depths ([DirDipoleThesis] step 1).
+//! orthographically, into a layer of the light normals and depths (\[DirDipoleThesis\] step 1).
 //! As the first of the dipole passes of a frame, it also sizes their maps and writes their
 //! uniform ([`DipoleStep`]), starting the radiance maps afresh when what they depend on changed.
 

@@ -1,4 +1,4 @@
-//! The dipole subsurface models' passes ([DirDipoleThesis] section 4.2, after [Frisvad2014]):
+//! The dipole subsurface models' passes (\[DirDipoleThesis\] section 4.2, after \[Frisvad2014\]):
 //! `light` renders a light G-buffer per directional light (normals; positions from depth),
 //! `radiance` renders K orthographic radiance maps in which each texel gathers the BSSRDF over a
 //! disk of the light G-buffer, and `combine` averages, per pixel, the maps of the directions that

@@ -1,6 +1,6 @@
 //! Dipole radiance-map pass (shaders/dipole_radiance.wgsl): the mesh from each of K directions,
 //! orthographically, each texel gathering the BSSRDF over a disk of the light G-buffer
-//! ([DirDipoleThesis] step 2); after n frames of one state each texel holds the mean of its n
+//! (\[DirDipoleThesis\] step 2); after n frames of one state each texel holds the mean of its n
 //! frames (the shader mixes in the previous frame's map of the ping-pong pair).
 
 use super::super::{FramePass, Pipelines, Recording, Shared};
