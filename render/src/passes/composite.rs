@@ -4,7 +4,7 @@
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant};
+use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::Target;
 use crate::wgpu_util::{color, float_tex, layout, tex};
 
@@ -23,12 +23,11 @@ pub fn output(variant: Variant) -> Target {
 impl FramePass for CompositePass {
     /// The skin radiance composed: the diffuse or the scattered one.
     type Step = Target;
-    const SHADER: PassShader = PassShader {
-        owner: "CompositePass",
-        file: "shaders/composite.wgsl",
-        source: include_str!("../shaders/composite.wgsl"),
-        reduce: |v| Variant { layers: v.layers.min(1), display: v.display, ..Variant::BARE },
-    };
+    const SHADER: PassShader = pass_shader!(CompositePass, "composite.wgsl", |v| Variant {
+        layers: v.layers.min(1),
+        display: v.display,
+        ..Variant::BARE
+    });
 
     fn new(shared: &Shared) -> CompositePass {
         let layout = layout(

@@ -5,19 +5,14 @@
 
 use super::{FrameEncoder, PipelineSpec, Pipelines, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant, bare};
+use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::wgpu_util::{color, float_tex, layout, tex};
 
 /// Format of the copy: the depth's f32 bits in four unorm bytes (exact: k/255 rounds back to k).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// The depth copy's shader.
-pub const SHADER: PassShader = PassShader {
-    owner: "DepthCopyPass",
-    file: "shaders/depth_copy.wgsl",
-    source: include_str!("../shaders/depth_copy.wgsl"),
-    reduce: bare,
-};
+pub const SHADER: PassShader = pass_shader!(DepthCopyPass, "depth_copy.wgsl", bare);
 
 /// The depth copy pass.
 #[derive(Debug)]

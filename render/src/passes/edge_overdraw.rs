@@ -13,7 +13,7 @@
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::aa::EdgeCoverage;
 use crate::error::{RenderError, Result};
-use crate::shader::{PassShader, bare};
+use crate::shader::{PassShader, bare, pass_shader};
 use crate::silhouettes::{EdgeFrames, EdgeInstance};
 use crate::targets::Target;
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, texture, uniform_entry, view};
@@ -122,12 +122,7 @@ pub struct EdgeStep {
 
 impl FramePass for EdgeOverdrawPass {
     type Step = EdgeStep;
-    const SHADER: PassShader = PassShader {
-        owner: "EdgeOverdrawPass",
-        file: "shaders/edge_overdraw.wgsl",
-        source: include_str!("../shaders/edge_overdraw.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(EdgeOverdrawPass, "edge_overdraw.wgsl", bare);
 
     fn new(shared: &Shared) -> EdgeOverdrawPass {
         let device = &shared.device;

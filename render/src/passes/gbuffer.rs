@@ -7,7 +7,7 @@
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, ThicknessVariant, Variant};
+use crate::shader::{PassShader, ThicknessVariant, Variant, pass_shader};
 use crate::targets::Target;
 use crate::wgpu_util::{color, depth_clear, float_tex, layout, sampler, sampler_entry, tex, tex_entry};
 
@@ -40,18 +40,13 @@ pub fn outputs(variant: Variant) -> Vec<Target> {
 
 impl FramePass for GbufferPass {
     type Step = ();
-    const SHADER: PassShader = PassShader {
-        owner: "GbufferPass",
-        file: "shaders/gbuffer.wgsl",
-        source: include_str!("../shaders/gbuffer.wgsl"),
-        reduce: |v| Variant {
-            layers: v.layers,
-            albedo_map: v.albedo_map,
-            normal_map: v.normal_map,
-            thickness: v.thickness,
-            ..Variant::BARE
-        },
-    };
+    const SHADER: PassShader = pass_shader!(GbufferPass, "gbuffer.wgsl", |v| Variant {
+        layers: v.layers,
+        albedo_map: v.albedo_map,
+        normal_map: v.normal_map,
+        thickness: v.thickness,
+        ..Variant::BARE
+    });
 
     fn new(shared: &Shared) -> GbufferPass {
         let layout = layout(

@@ -6,7 +6,7 @@
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant};
+use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{color, float_tex, layout, sampler, sampler_entry, storage_entry, tex, tex_entry};
 
@@ -40,19 +40,14 @@ pub fn outputs(variant: Variant) -> Vec<Target> {
 
 impl FramePass for LightingPass {
     type Step = ();
-    const SHADER: PassShader = PassShader {
-        owner: "LightingPass",
-        file: "shaders/lighting.wgsl",
-        source: include_str!("../shaders/lighting.wgsl"),
-        reduce: |v| Variant {
-            layers: v.layers,
-            shadows: v.shadows,
-            env: v.env,
-            dipole: v.dipole,
-            atlas: v.atlas,
-            ..Variant::BARE
-        },
-    };
+    const SHADER: PassShader = pass_shader!(LightingPass, "lighting.wgsl", |v| Variant {
+        layers: v.layers,
+        shadows: v.shadows,
+        env: v.env,
+        dipole: v.dipole,
+        atlas: v.atlas,
+        ..Variant::BARE
+    });
 
     fn new(shared: &Shared) -> LightingPass {
         let layout = layout(

@@ -4,7 +4,7 @@
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant, bare};
+use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::targets::DEPTH_FORMAT;
 use crate::uniforms::{MAX_LIGHTS, SHADOW_MAP_SIZE};
 use crate::wgpu_util::{buf, buffer_init, depth_clear, layout, texture, uniform_entry};
@@ -30,12 +30,7 @@ pub struct ShadowStep {
 
 impl FramePass for ShadowPass {
     type Step = ShadowStep;
-    const SHADER: PassShader = PassShader {
-        owner: "ShadowPass",
-        file: "shaders/shadow.wgsl",
-        source: include_str!("../shaders/shadow.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(ShadowPass, "shadow.wgsl", bare);
 
     /// The pass on `shared`'s device, with a 1×1 stand-in map until a shadowing light comes.
     fn new(shared: &Shared) -> ShadowPass {

@@ -5,7 +5,7 @@
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant, bare};
+use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::sss::{MAX_SAMPLES, SeparableKernel};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color, float_tex, layout, sampler, sampler_entry, tex, uniform_buffer, uniform_entry};
@@ -88,12 +88,7 @@ impl SssStep {
 
 impl FramePass for SssPass {
     type Step = SssStep;
-    const SHADER: PassShader = PassShader {
-        owner: "SssPass",
-        file: "shaders/sss.wgsl",
-        source: include_str!("../shaders/sss.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(SssPass, "sss.wgsl", bare);
 
     /// The passes on `shared`'s device.
     fn new(shared: &Shared) -> SssPass {

@@ -8,7 +8,7 @@
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
 use crate::local_thickness::TranslucencyParams;
-use crate::shader::{PassShader, Variant};
+use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, tex_entry, uniform_buffer, uniform_entry};
 use bytemuck::{Pod, Zeroable};
@@ -61,12 +61,8 @@ pub fn inputs() -> [Target; 4] {
 impl FramePass for ThicknessPass {
     /// The uniform: the skin's parameters and the local thickness's falloff.
     type Step = ThicknessUniform;
-    const SHADER: PassShader = PassShader {
-        owner: "ThicknessPass",
-        file: "shaders/thickness.wgsl",
-        source: include_str!("../shaders/thickness.wgsl"),
-        reduce: |v| Variant { thickness: v.thickness, ..Variant::BARE },
-    };
+    const SHADER: PassShader =
+        pass_shader!(ThicknessPass, "thickness.wgsl", |v| Variant { thickness: v.thickness, ..Variant::BARE });
 
     fn new(shared: &Shared) -> ThicknessPass {
         let device = &shared.device;

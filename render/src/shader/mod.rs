@@ -115,6 +115,20 @@ pub struct PassShader {
     pub reduce: fn(Variant) -> Variant,
 }
 
+/// A pass's [`PassShader`]: `pass_shader!(GbufferPass, "gbuffer.wgsl", reduce)` for the file
+/// render/src/shaders/gbuffer.wgsl, compiled in.
+macro_rules! pass_shader {
+    ($owner:ident, $file:literal, $reduce:expr) => {
+        $crate::shader::PassShader {
+            owner: stringify!($owner),
+            file: concat!("shaders/", $file),
+            source: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/shaders/", $file)),
+            reduce: $reduce,
+        }
+    };
+}
+pub(crate) use pass_shader;
+
 /// The reduction of passes that depend on no flag of the variant.
 pub fn bare(_: Variant) -> Variant {
     Variant::BARE

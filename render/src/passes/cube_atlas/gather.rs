@@ -5,7 +5,7 @@
 use super::super::skin_gather::SkinGather;
 use super::super::{FramePass, Recording, Shared};
 use crate::error::Result;
-use crate::shader::{PassShader, bare};
+use crate::shader::{PassShader, bare, pass_shader};
 use crate::wgpu_util::array_view;
 
 /// The gather pass.
@@ -14,12 +14,7 @@ pub struct AtlasGatherPass(SkinGather);
 
 impl FramePass for AtlasGatherPass {
     type Step = ();
-    const SHADER: PassShader = PassShader {
-        owner: "AtlasGatherPass",
-        file: "shaders/atlas_gather.wgsl",
-        source: include_str!("../../shaders/atlas_gather.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(AtlasGatherPass, "atlas_gather.wgsl", bare);
 
     fn new(shared: &Shared) -> AtlasGatherPass {
         AtlasGatherPass(SkinGather::new(&shared.device, &Self::SHADER, "fs_atlas_gather", 3))

@@ -5,7 +5,7 @@
 use super::super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use super::AtlasStep;
 use crate::error::Result;
-use crate::shader::{PassShader, Variant};
+use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::HDR_FORMAT;
 use crate::wgpu_util::{buf, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
 
@@ -18,12 +18,11 @@ pub struct AtlasIrradiancePass {
 
 impl FramePass for AtlasIrradiancePass {
     type Step = AtlasStep;
-    const SHADER: PassShader = PassShader {
-        owner: "AtlasIrradiancePass",
-        file: "shaders/atlas_irradiance.wgsl",
-        source: include_str!("../../shaders/atlas_irradiance.wgsl"),
-        reduce: |v| Variant { shadows: v.shadows, env: v.env, ..Variant::BARE },
-    };
+    const SHADER: PassShader = pass_shader!(AtlasIrradiancePass, "atlas_irradiance.wgsl", |v| Variant {
+        shadows: v.shadows,
+        env: v.env,
+        ..Variant::BARE
+    });
 
     fn new(shared: &Shared) -> AtlasIrradiancePass {
         let layout = layout(

@@ -5,7 +5,7 @@
 use super::super::skin_gather::SkinGather;
 use super::super::{FramePass, Recording, Shared};
 use crate::error::Result;
-use crate::shader::{PassShader, bare};
+use crate::shader::{PassShader, bare, pass_shader};
 use crate::wgpu_util::array_view;
 
 /// The combination pass.
@@ -14,12 +14,7 @@ pub struct DipoleCombinePass(SkinGather);
 
 impl FramePass for DipoleCombinePass {
     type Step = ();
-    const SHADER: PassShader = PassShader {
-        owner: "DipoleCombinePass",
-        file: "shaders/dipole_combine.wgsl",
-        source: include_str!("../../shaders/dipole_combine.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(DipoleCombinePass, "dipole_combine.wgsl", bare);
 
     fn new(shared: &Shared) -> DipoleCombinePass {
         DipoleCombinePass(SkinGather::new(&shared.device, &Self::SHADER, "fs_dipole_combine", 2))

@@ -6,7 +6,7 @@
 use super::super::{FramePass, Pipelines, Recording, Shared};
 use super::{DipoleStep, DipoleUniform, mesh_pipeline_spec};
 use crate::error::Result;
-use crate::shader::{PassShader, Variant, bare};
+use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::wgpu_util::{buf, layout, uniform_entry};
 
 /// The light G-buffer pass.
@@ -18,12 +18,7 @@ pub struct DipoleLightPass {
 
 impl FramePass for DipoleLightPass {
     type Step = DipoleStep;
-    const SHADER: PassShader = PassShader {
-        owner: "DipoleLightPass",
-        file: "shaders/dipole_light.wgsl",
-        source: include_str!("../../shaders/dipole_light.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(DipoleLightPass, "dipole_light.wgsl", bare);
 
     fn new(shared: &Shared) -> DipoleLightPass {
         let layout =

@@ -6,7 +6,7 @@
 use super::super::{FramePass, Pipelines, Recording, Shared};
 use super::mesh_pipeline_spec;
 use crate::error::Result;
-use crate::shader::{PassShader, Variant, bare};
+use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::wgpu_util::{array_view, buf, layout, tex, tex_entry, uniform_entry};
 
 /// The radiance-map pass.
@@ -19,12 +19,7 @@ pub struct DipoleRadiancePass {
 impl FramePass for DipoleRadiancePass {
     /// The radiance-map directions K.
     type Step = u32;
-    const SHADER: PassShader = PassShader {
-        owner: "DipoleRadiancePass",
-        file: "shaders/dipole_radiance.wgsl",
-        source: include_str!("../../shaders/dipole_radiance.wgsl"),
-        reduce: bare,
-    };
+    const SHADER: PassShader = pass_shader!(DipoleRadiancePass, "dipole_radiance.wgsl", bare);
 
     fn new(shared: &Shared) -> DipoleRadiancePass {
         let device = &shared.device;
