@@ -1,11 +1,14 @@
 //! The spectral skin model: one spectrum of the forward model on the working grid (81 lookups of
 //! the tabulated adding-doubling), one two-layer transport lookup, and one fit of a measured-like
-//! spectrum (Xiao's 380-740 nm / 10 nm grid). Figures in docs/SKIN.md and docs/BENCHMARKS.md.
+//! spectrum (Xiao's 380-740 nm / 10 nm grid); the skin colour table: building it for a tone and
+//! one lookup, against the exact colour of one texel. Figures in docs/SKIN.md and
+//! docs/BENCHMARKS.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use rouge_measure::colorimetry::{Colorimeter, Viewing};
 use rouge_measure::skin::fit::SkinFitter;
 use rouge_measure::skin::transport::two_layer_reflectance;
-use rouge_measure::skin::{FitOptions, SkinParams, skin_tone};
+use rouge_measure::skin::{FitOptions, SkinColorTable, SkinParams, skin_tone};
 use rouge_measure::spectrum::Extrapolation;
 use std::hint::black_box;
 
@@ -32,6 +35,18 @@ fn bench(c: &mut Criterion) {
             .collect();
         g.bench_function(format!("fit_{name}"), |b| b.iter(|| black_box(fitter.fit(&wl, black_box(&measured)))));
     }
+    let colorimeter = Colorimeter::get(Viewing::D65_1931);
+    let texel = SkinParams { melanin_fraction: 0.031, blood_fraction: 0.021, ..p };
+    g.bench_function("texel_colour_exact", |b| {
+        b.iter(|| {
+            let r = black_box(&texel).reflectance().expect("in range");
+            black_box(colorimeter.srgb_linear(&colorimeter.xyz(&r)))
+        })
+    });
+    let table = SkinColorTable::new(&p).expect("the light tone is in range");
+    g.bench_function("texel_colour_table", |b| b.iter(|| black_box(table.linear_srgb(black_box(&texel)))));
+    g.sample_size(10);
+    g.bench_function("colour_table_build", |b| b.iter(|| black_box(SkinColorTable::new(black_box(&p)))));
     g.finish();
 }
 

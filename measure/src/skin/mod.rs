@@ -20,11 +20,13 @@
 //! and μs′d ≤ 3 at every wavelength (the table's reach); outside it is an error that says which.
 
 pub mod chromophores;
+pub mod color_table;
 pub mod fit;
 pub mod optics;
 pub mod tones;
 pub mod transport;
 
+pub use color_table::SkinColorTable;
 pub use fit::{FitOptions, SkinFit, SkinFitter, Specular, fit_reflectance};
 pub use optics::{LayerOptics, SkinOptics};
 pub use tones::{SkinTone, ita_deg, skin_tone, skin_tones};
