@@ -7,6 +7,7 @@
 //! out of range is an error naming the field (and the wavelength, for spectra).
 
 use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
+use crate::error::LocatedError;
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
@@ -123,18 +124,10 @@ pub enum PresetError {
         /// cause
         source: std::io::Error,
     },
-    /// Not valid JSON for the schema.
-    #[error("{path}:{line}:{column}: {message}")]
-    Json {
-        /// file
-        path: String,
-        /// 1-based line
-        line: usize,
-        /// 1-based column
-        column: usize,
-        /// what serde says
-        message: String,
-    },
+    /// Not valid JSON for the schema: the file, serde's 1-based line and column, and what serde
+    /// says.
+    #[error(transparent)]
+    Json(LocatedError),
     /// A field with a bad value.
     #[error("{path}: {message}")]
     Invalid {
@@ -459,11 +452,8 @@ impl Preset {
                 }
             }
         }
-        let preset: Preset = serde_json::from_str(text).map_err(|e| PresetError::Json {
-            path: path.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message: e.to_string(),
+        let preset: Preset = serde_json::from_str(text).map_err(|e| {
+            PresetError::Json(LocatedError::at(Path::new(path), e.line(), Some(e.column()), e.to_string()))
         })?;
         preset.validate(path)?;
         Ok(preset)

@@ -196,7 +196,7 @@ type SpectraTable<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>, 
 #[pyfunction]
 pub fn read_spectra<'py>(py: Python<'py>, path: PathBuf) -> PyResult<SpectraTable<'py>> {
     let text = std::fs::read_to_string(&path)
-        .map_err(|e| import_error(py, import::ImportError::file(&path, format!("cannot read: {e}"))))?;
+        .map_err(|e| import_error(py, rouge_measure::LocatedError::file(&path, format!("cannot read: {e}"))))?;
     let (spectra, _) = import::rouge_csv::parse_spectra_table(&path, &text).map_err(|e| import_error(py, e))?;
     let wl = spectra.first().map_or(&[][..], |(_, s)| s.wavelengths_nm());
     let rows: Vec<Vec<f64>> = spectra.iter().map(|(_, s)| s.values().to_vec()).collect();

@@ -11,7 +11,7 @@
 //! measurement named in the `Data Name` column (`WHITE_BASO4`, `SAMPLE_RINF`, `SAMPLE_R`,
 //! `BACKGROUND_RG`), spectral columns named `380nm`, `381nm`, ….
 
-use super::{Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_wavelengths, parse_number};
+use super::{Cell, Kind, LocatedError, Measurement, SampleNames, Scale, check_wavelengths, parse_number};
 use crate::spectrum::{SampledSpectrum, linear_interpolate};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -66,13 +66,13 @@ pub fn parse(
     text: &str,
     names: &SampleNames,
     white_reflectance: Option<&SampledSpectrum>,
-) -> Result<Measurement, ImportError> {
+) -> Result<Measurement, LocatedError> {
     let lines: Vec<(usize, Vec<String>)> =
         text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()).map(|(i, l)| (i + 1, split_quoted(l))).collect();
     let header_at = lines
         .iter()
         .position(|(_, c)| is_table_header(c))
-        .ok_or_else(|| ImportError::file(path, "no table header (a line starting with `No.`)"))?;
+        .ok_or_else(|| LocatedError::file(path, "no table header (a line starting with `No.`)"))?;
     let mut metadata = BTreeMap::new();
     for (_, c) in &lines[..header_at] {
         if let Some((key, rest)) = c.split_first() {
@@ -83,18 +83,18 @@ pub fn parse(
     let name_col = header
         .iter()
         .position(|h| h.eq_ignore_ascii_case("Data Name"))
-        .ok_or_else(|| ImportError::at(path, *header_line, None, "the table header has no `Data Name` column"))?;
+        .ok_or_else(|| LocatedError::at(path, *header_line, None, "the table header has no `Data Name` column"))?;
     let spectral: Vec<(usize, f64)> =
         header.iter().enumerate().filter_map(|(i, h)| spectral_column_nm(h).map(|nm| (i, nm))).collect();
     if spectral.len() < 2 {
-        return Err(ImportError::at(path, *header_line, None, "no spectral columns (`380nm`, `381nm`, ...)"));
+        return Err(LocatedError::at(path, *header_line, None, "no spectral columns (`380nm`, `381nm`, ...)"));
     }
     let wl: Vec<Cell> = spectral.iter().map(|&(i, nm)| Cell { value: nm, line: *header_line, column: i + 1 }).collect();
     check_wavelengths(path, &wl)?;
     let mut rows: Vec<(String, usize, Vec<Cell>)> = Vec::new();
     for (line, c) in &lines[header_at + 1..] {
         if c.len() != header.len() {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 *line,
                 Some(c.len().min(header.len()) + 1),
@@ -105,7 +105,7 @@ pub fn parse(
         for &(i, nm) in &spectral {
             let value = parse_number(path, &c[i], *line, i + 1, &format!("the radiance at {nm} nm"))?;
             if value < 0.0 {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     *line,
                     Some(i + 1),
@@ -116,14 +116,14 @@ pub fn parse(
         }
         rows.push((c[name_col].clone(), *line, cells));
     }
-    let find = |user: &str, aliases: &[&str], role: &str| -> Result<&Vec<Cell>, ImportError> {
+    let find = |user: &str, aliases: &[&str], role: &str| -> Result<&Vec<Cell>, LocatedError> {
         let hits: Vec<&(String, usize, Vec<Cell>)> = rows
             .iter()
             .filter(|(n, _, _)| n.eq_ignore_ascii_case(user) || aliases.iter().any(|a| n.eq_ignore_ascii_case(a)))
             .collect();
         match hits.as_slice() {
             [one] => Ok(&one.2),
-            [] => Err(ImportError::file(
+            [] => Err(LocatedError::file(
                 path,
                 format!(
                     "no {role} measurement (a `Data Name` of {}); rows: {}",
@@ -132,7 +132,7 @@ pub fn parse(
                 ),
             )),
             [a, b, ..] => {
-                Err(ImportError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1)))
+                Err(LocatedError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1)))
             }
         }
     };
@@ -154,16 +154,16 @@ pub fn parse(
                 None => BASO4_REFLECTANCE,
             };
             if !(rho > 0.0 && rho <= 1.0) {
-                return Err(ImportError::file(path, format!("white-standard reflectance {rho} must be in (0, 1]")));
+                return Err(LocatedError::file(path, format!("white-standard reflectance {rho} must be in (0, 1]")));
             }
             vec![rho; wavelengths.len()]
         }
     };
-    let reflectance = |cells: &[Cell], what: &str| -> Result<SampledSpectrum, ImportError> {
+    let reflectance = |cells: &[Cell], what: &str| -> Result<SampledSpectrum, LocatedError> {
         let mut v = Vec::with_capacity(cells.len());
         for ((s, w), r) in cells.iter().zip(white).zip(&rho) {
             if w.value <= 0.0 {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     w.line,
                     Some(w.column),
@@ -172,7 +172,7 @@ pub fn parse(
             }
             let refl = s.value / w.value * r;
             if refl > super::MAX_REFLECTANCE {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     s.line,
                     Some(s.column),
@@ -181,7 +181,7 @@ pub fn parse(
             }
             v.push(refl);
         }
-        SampledSpectrum::new(wavelengths.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))
+        SampledSpectrum::new(wavelengths.clone(), v).map_err(|e| LocatedError::file(path, e.to_string()))
     };
     let r_inf = reflectance(find(&names.r_inf, &R_INF_NAMES, "R∞ (opaque layer)")?, "r_inf")?;
     let r = reflectance(find(&names.r, &R_NAMES, "R (thin layer over background)")?, "r")?;
