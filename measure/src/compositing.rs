@@ -17,7 +17,8 @@
 
 use crate::colorimetry::{Colorimeter, Viewing, XYZ_TO_SRGB, delta_e_2000_raw, mat_inv};
 use crate::km::{self, LayerRt};
-use crate::preset::{Preset, layer_spectra};
+use crate::layer_table::layer_spectra;
+use crate::preset::Preset;
 use crate::spectrum::{Spectrum, WORKING_LEN};
 
 /// A compositing method.

@@ -10,6 +10,7 @@ use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
 use crate::error::LocatedError;
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
+use crate::layer_table::{TableLayer, layer_rgb_at};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -172,29 +173,21 @@ pub fn invert_measurement(
     Ok((Spectrum(s), Spectrum(k)))
 }
 
-/// Spectral R0 and T of a layer of thickness `x_mm`.
-pub fn layer_spectra(s: &Spectrum, k: &Spectrum, x_mm: f64) -> (Spectrum, Spectrum) {
-    let mut r = [0.0; WORKING_LEN];
-    let mut t = [0.0; WORKING_LEN];
-    for i in 0..WORKING_LEN {
-        let LayerRt { r: ri, t: ti } = km::layer_r_t_unchecked(s.0[i], k.0[i], x_mm);
-        r[i] = ri;
-        t[i] = ti;
-    }
-    (Spectrum(r), Spectrum(t))
-}
-
 fn hex(rgb_linear: [f64; 3]) -> String {
     let [r, g, b] = rgb_linear.map(|v| (srgb_encode(v).clamp(0.0, 1.0) * 255.0).round() as u8);
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
+/// Spectral R0 and T of a layer of thickness `x_mm`; it lives in [`crate::layer_table`], with the
+/// tables made from it, and is named here too for the callers that know it as a preset's.
+pub use crate::layer_table::layer_spectra;
+
 /// Computes the interchange tables of preset JSON v1 from S and K (the colour conversion lives
-/// in [`crate::layer_table::layer_rgb_at`], shared with the render table).
+/// in [`layer_rgb_at`], shared with the render table).
 pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
     let c = Colorimeter::get(Viewing::D65_1931);
     let thickness_mm = table_thicknesses_mm();
-    let (r0, t) = crate::layer_table::layer_rgb_at(s, k, &thickness_mm);
+    let (r0, t) = layer_rgb_at(s, k, &thickness_mm);
     let r_inf = Spectrum(std::array::from_fn(|i| km::r_inf_from_s_k(s.0[i], k.0[i])));
     let r_inf_linear_srgb = c.srgb_linear(&c.xyz(&r_inf));
     Derived {
@@ -204,6 +197,17 @@ pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
         t_linear_srgb: t,
         r_inf_linear_srgb,
         r_inf_srgb_hex: hex(r_inf_linear_srgb),
+    }
+}
+
+/// A preset's render table ([`crate::layer_table::render_table`]) ends at the R∞ its JSON stores.
+impl TableLayer for Preset {
+    fn s_k(&self) -> (Spectrum, Spectrum) {
+        (self.s(), self.k())
+    }
+
+    fn r_inf_linear_srgb(&self) -> [f64; 3] {
+        self.derived.r_inf_linear_srgb
     }
 }
 
