@@ -1,26 +1,19 @@
 //! Skin reflectance spectra from the user's files, in the formats `rouge import` and `rouge
 //! color` read: a spectra table (Rouge CSV with a `wavelength_nm` column and one column per
 //! skin) or a CGATS file (X-Rite, i1Profiler, ArgyllCMS `.ti3`/`.sp`; one sample per skin),
-//! chosen by content. Rouge ships no real skin data: measured skins, such as the Xiao et al.
-//! database ([Xiao2016]) read by `python/skin_gamut.py`, come in as such files.
+//! chosen by content, through the one entry for spectral inputs ([`read_spectra`]). Rouge ships
+//! no real skin data: measured skins, such as the Xiao et al. database (\[Xiao2016\]) read by
+//! `python/skin_gamut.py`, come in as such files.
 
 use crate::error::LocatedError;
-use crate::import::{cgats, rouge_csv};
+use crate::import::read_spectra;
 use crate::spectrum::{Extrapolation, SampledSpectrum, Spectrum, working_wavelength_nm};
 use std::path::Path;
 
 /// Reads every skin of `path` as measured, on its own wavelengths (the skin model's fit works
 /// there). Errors name the file and the line and column of a bad cell.
 pub fn read_sampled_skins(path: &Path) -> Result<Vec<(String, SampledSpectrum)>, LocatedError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LocatedError::file(path, format!("cannot read: {e}")))?;
-    if text.trim().is_empty() {
-        return Err(LocatedError::file(path, "the file is empty"));
-    }
-    if cgats::looks_like_cgats(&text) {
-        Ok(cgats::parse(path, &text)?.samples.into_iter().map(|s| (s.name, s.spectrum)).collect())
-    } else {
-        Ok(rouge_csv::parse_spectra_table(path, &text)?.0)
-    }
+    Ok(read_spectra(path)?.samples)
 }
 
 /// Reads every skin of `path` onto the working grid. Errors name the file and the line and

@@ -1,6 +1,10 @@
 //! Import of cosmetic measurements: R∞ (opaque layer), R (thin layer of known thickness over a
-//! background) and Rg (the background), from the formats instruments and people produce.
+//! background) and Rg (the background), from the formats instruments and people produce, and of
+//! any other spectra (skins, white standards, colour tables).
 //!
+//! * [`input`]: the one entry, [`SpectralInput`]: reads a file (or compiled-in data) once,
+//!   recognises its format from its content and gives a [`Measurement`] or named [`Spectra`];
+//!   the embedded ColorChecker skins ([`colorchecker_skin`]) are parsed there.
 //! * [`rouge_csv`]: Rouge CSV (`wavelength_nm,r_inf,r,rg` with `# key: value` comments).
 //! * [`cgats`]: CGATS.17 text as written by X-Rite and i1Profiler (`nm380`, `SPECTRAL_NM380`)
 //!   and ArgyllCMS (`.ti3` with `SPEC_380` in percent, `.sp` single spectra).
@@ -11,15 +15,17 @@
 //! unless the whole file is valid. Formats are specified in `docs/FORMATS.md`.
 
 pub mod cgats;
+pub mod input;
 pub mod radiance;
 pub mod rouge_csv;
 
+pub use input::{InputFormat, Spectra, SpectralInput, colorchecker_skin, read_spectra};
+
+use crate::error::LocatedError;
 use crate::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum, Spectrum, SpectrumError};
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
-
-use crate::error::LocatedError;
 
 /// Largest reflectance accepted (fluorescent or glossy samples can exceed 1 a little).
 pub const MAX_REFLECTANCE: f64 = 1.5;
@@ -258,47 +264,17 @@ pub struct ImportOptions {
 
 /// Reads a measurement file of any supported format, chosen from its content (not its name):
 /// a CGATS-family file has a `BEGIN_DATA_FORMAT` line; a radiance export has a `No.` table with
-/// `NNNnm` columns; anything else is read as Rouge CSV.
+/// `NNNnm` columns; anything else is read as Rouge CSV. The same as
+/// `SpectralInput::read(path)?.measurement(options)` ([`SpectralInput::measurement`]).
 pub fn read_measurement(path: &Path, options: &ImportOptions) -> Result<Measurement, LocatedError> {
-    let text = read_text(path)?;
-    if cgats::looks_like_cgats(&text) {
-        let file = cgats::parse(path, &text)?;
-        return file.measurement(&options.samples);
-    }
-    if radiance::looks_like_radiance(&text) {
-        return radiance::parse(path, &text, &options.samples, options.white_reflectance.as_ref());
-    }
-    rouge_csv::parse(path, &text)
-}
-
-fn read_text(path: &Path) -> Result<String, LocatedError> {
-    let bytes = std::fs::read(path).map_err(|e| LocatedError::file(path, format!("cannot read: {e}")))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| LocatedError::file(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
-    if text.trim().is_empty() {
-        return Err(LocatedError::file(path, "the file is empty"));
-    }
-    Ok(text)
+    SpectralInput::read(path)?.measurement(options)
 }
 
 /// Reads one spectrum from a single-spectrum CGATS file (an ArgyllCMS `.sp`, or any CGATS file
-/// with one sample), returning it with the file's `ROUGE_ROLE` keyword if present.
+/// with one sample), returning it with the file's `ROUGE_ROLE` keyword if present
+/// ([`SpectralInput::single_spectrum`]).
 pub fn read_single_spectrum(path: &Path) -> Result<(SampledSpectrum, Option<String>, Scale), LocatedError> {
-    let text = read_text(path)?;
-    if !cgats::looks_like_cgats(&text) {
-        return Err(LocatedError::file(path, "not a CGATS / ArgyllCMS .sp file (no BEGIN_DATA_FORMAT)"));
-    }
-    let file = cgats::parse(path, &text)?;
-    match file.samples.as_slice() {
-        [one] => Ok((one.spectrum.clone(), file.keywords.get("ROUGE_ROLE").cloned(), file.scale)),
-        many => Err(LocatedError::file(
-            path,
-            format!(
-                "{} spectra in a file given as a single spectrum; name the samples with --samples instead",
-                many.len()
-            ),
-        )),
-    }
+    SpectralInput::read(path)?.single_spectrum()
 }
 
 /// Builds a measurement from three single-spectrum files (R∞, R, Rg), such as ArgyllCMS `.sp`

@@ -54,6 +54,25 @@ pub fn looks_like_radiance(text: &str) -> bool {
     text.lines().map(split_quoted).any(|c| is_table_header(&c) && c.iter().any(|h| spectral_column_nm(h).is_some()))
 }
 
+/// The white standard's reflectance spectrum (from its calibration certificate, say) for
+/// [`ImportOptions::white_reflectance`](super::ImportOptions): a spectral input holding exactly
+/// one spectrum (a table with one column besides the wavelengths, or a one-sample CGATS file),
+/// every value in (0, 1]. Errors name the file, and the wavelength of a value out of range.
+pub fn read_white_standard(path: &Path) -> Result<SampledSpectrum, LocatedError> {
+    let mut spectra = super::read_spectra(path)?.samples;
+    if spectra.len() != 1 {
+        return Err(LocatedError::file(
+            path,
+            format!("expected one reflectance column besides wavelength_nm, found {}", spectra.len()),
+        ));
+    }
+    let (_, white) = spectra.remove(0);
+    if let Some((nm, v)) = white.wavelengths_nm().iter().zip(white.values()).find(|(_, v)| !(**v > 0.0 && **v <= 1.0)) {
+        return Err(LocatedError::file(path, format!("white reflectance {v} at {nm} nm must be in (0, 1]")));
+    }
+    Ok(white)
+}
+
 /// Names each role may carry in the `Data Name` column (case-insensitive), beyond the user's.
 const WHITE_NAMES: [&str; 4] = ["WHITE_BASO4", "WHITE", "WHITE_STANDARD", "BASO4"];
 const R_INF_NAMES: [&str; 2] = ["SAMPLE_RINF", "R_INF"];
