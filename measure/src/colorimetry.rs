@@ -8,14 +8,14 @@
 //! colour-science to 1e-6 for every illuminant and observer.
 //!
 //! # Conventions
-//! * **XYZ** ([CIE15] §7.1, summation): `X = k Σ x̄(λ) S(λ) R(λ)` with
+//! * **XYZ** (\[CIE15\] §7.1, summation): `X = k Σ x̄(λ) S(λ) R(λ)` with
 //!   `k = 100 / Σ ȳ(λ) S(λ)`, so the perfect reflector has `Y = 100`. The 5 nm interval cancels.
-//! * **CIELAB** ([CIE15] §8.2.1) relative to the white of the same illuminant and observer,
+//! * **CIELAB** (\[CIE15\] §8.2.1) relative to the white of the same illuminant and observer,
 //!   computed from the same tables (the perfect reflector's XYZ), so a non-selective grey has
 //!   exactly `a* = b* = 0`.
-//! * **sRGB** ([IEC61966], IEC 61966-2-1:1999): its published XYZ→RGB matrix applied to `XYZ/100`. For D65 no
+//! * **sRGB** (\[IEC61966\], IEC 61966-2-1:1999): its published XYZ→RGB matrix applied to `XYZ/100`. For D65 no
 //!   adaptation is applied (the XYZ are already relative to D65). For any other illuminant the
-//!   XYZ are first adapted with the **Bradford** transform ([Lam1985], von Kries scaling in the
+//!   XYZ are first adapted with the **Bradford** transform (\[Lam1985\], von Kries scaling in the
 //!   Bradford cone space) from the computed white to the sRGB white point (x, y) = (0.3127,
 //!   0.3290): the colour the sample would have if the eye were adapted to the illuminant, shown on a
 //!   D65 display. With the 1964 10° observer the same matrix is used, an approximation (sRGB is
@@ -222,7 +222,7 @@ pub const XYZ_TO_SRGB: Mat3 = [[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0
 /// sRGB reference white chromaticity (D65 as IEC 61966-2-1 rounds it).
 pub const SRGB_WHITE_XY: [f64; 2] = [0.3127, 0.3290];
 
-/// Bradford cone-response matrix ([Lam1985]).
+/// Bradford cone-response matrix (\[Lam1985\]).
 pub const BRADFORD: Mat3 = [[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]];
 
 fn mat_vec(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
@@ -397,7 +397,7 @@ fn xyz_many_avx512<S: Borrow<[f64; WORKING_LEN]>>(w: &[[f64; WORKING_LEN]; 3], s
     xyz_many_loop(w, spectra, out)
 }
 
-/// CIELAB of tristimulus values `xyz` relative to the white `white` ([CIE15] eq. 8.1-8.3,
+/// CIELAB of tristimulus values `xyz` relative to the white `white` (\[CIE15\] eq. 8.1-8.3,
 /// with the linear segment below (24/116)³).
 pub fn xyz_to_lab_raw(xyz: [f64; 3], white: [f64; 3]) -> [f64; 3] {
     let f = |t: f64| {
@@ -431,7 +431,7 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     if encoded <= 0.040_45 { encoded / 12.92 } else { ((encoded + 0.055) / 1.055).powf(2.4) }
 }
 
-/// CIEDE2000 colour difference ([CIE142]; implementation notes of [Sharma2005]:
+/// CIEDE2000 colour difference (\[CIE142\]; implementation notes of \[Sharma2005\]:
 /// hue angles in degrees in [0, 360), the mean hue taken on the shorter arc, `h' = 0` for a
 /// neutral colour). Both colours must share a [`Viewing`].
 pub fn delta_e_2000(lab1: &Lab, lab2: &Lab) -> Result<f64, ColorError> {
@@ -587,7 +587,7 @@ mod tests {
         }
     }
 
-    /// Pairs from [Sharma2005] Table 1 (their test data for CIEDE2000).
+    /// Pairs from \[Sharma2005\] Table 1 (their test data for CIEDE2000).
     #[test]
     fn delta_e_2000_sharma_pairs() {
         let pairs = [

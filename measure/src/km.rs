@@ -2,9 +2,9 @@
 //! transmittance of a layer, and composition of layers. Scalar reference implementations, accurate
 //! over the whole domain; [`crate::km_batch`] holds the data-parallel fast paths.
 //!
-//! Reference: [Huang2013] eq. 1-4 (layer and composition) and eq. 6-7 (inversion), which restate
-//! the hyperbolic solution of [Kubelka1948] and the layer composition of [Kubelka1954]; the
-//! two-flux model is [Kubelka1931]. Keys: docs/REFERENCES.md.
+//! Reference: \[Huang2013\] eq. 1-4 (layer and composition) and eq. 6-7 (inversion), which restate
+//! the hyperbolic solution of \[Kubelka1948\] and the layer composition of \[Kubelka1954\]; the
+//! two-flux model is \[Kubelka1931\]. Keys: docs/REFERENCES.md.
 //!
 //! # Derivations and the printed equations
 //!
@@ -27,7 +27,7 @@
 //!   numerator and denominator of eq. 1-2 by `cosh` removes the overflow of `sinh`/`cosh` at large
 //!   `SX`, and `q` removes the `0/0` at `K = 0` (`R0 = SX/(1+SX)`, `T = 1/(1+SX)`) and at `S = 0`
 //!   (`R0 = 0`, `T = e^{−KX}`).
-//! * **Composition (eq. 3-4).** [Huang2013] prints `R₁,₂ = R₁ + T₁R₁T₁/(1 − R₁R₂)`; summing the
+//! * **Composition (eq. 3-4).** \[Huang2013\] prints `R₁,₂ = R₁ + T₁R₁T₁/(1 − R₁R₂)`; summing the
 //!   inter-reflection series gives `R₁,₂ = R₁ + T₁² R₂/(1 − R₁R₂)` (the light that reaches layer 2
 //!   is reflected by `R₂`, not `R₁`). `T₁,₂ = T₁T₂/(1 − R₁R₂)` is printed correctly. KM layers are
 //!   symmetric (same `R` from both sides), so a stack is folded from the bottom up.
@@ -162,7 +162,7 @@ pub(crate) fn ln1p_over_x(z: f64) -> f64 {
 
 /// Inverts Kubelka-Munk S and K (per mm) from the reflectance `r_inf` of an opaque layer, the
 /// reflectance `r` of a layer of thickness `thickness_mm` over a background, and the background's
-/// reflectance `rg` ([Huang2013] eq. 6-7, rewritten as derived in the module documentation).
+/// reflectance `rg` (\[Huang2013\] eq. 6-7, rewritten as derived in the module documentation).
 ///
 /// Domain: `0 < R∞ ≤ 1`; `R, Rg ∈ [0, 1]` on the same side of `R∞` with `R` between `Rg` and
 /// `R∞` (background darker *or lighter* than the layer); `D > 0`. `R = Rg ≠ R∞` gives
@@ -228,7 +228,7 @@ fn sech(y: f64) -> f64 {
 }
 
 /// Reflectance R0 (over black) and transmittance T of a layer with scattering `s_per_mm`,
-/// absorption `k_per_mm` and thickness `thickness_mm` ([Huang2013] eq. 1-2, rewritten as derived in
+/// absorption `k_per_mm` and thickness `thickness_mm` (\[Huang2013\] eq. 1-2, rewritten as derived in
 /// the module documentation).
 ///
 /// Domain: S, K finite and ≥ 0; X ≥ 0, `X = ∞` allowed (an opaque layer: `T = 0`, `R0 = R∞`).
@@ -291,7 +291,7 @@ pub fn r_inf_from_s_k(s_per_mm: f64, k_per_mm: f64) -> f64 {
     if den == 0.0 { 0.0 } else { s_per_mm / den }
 }
 
-/// Puts layer `top` over `bottom` ([Huang2013] eq. 3-4, corrected: see the module documentation).
+/// Puts layer `top` over `bottom` (\[Huang2013\] eq. 3-4, corrected: see the module documentation).
 ///
 /// `top` must be a symmetric layer (a single KM layer: same R from above and below); `bottom`
 /// may be anything seen from above, including an opaque background ([`LayerRt::opaque`]).
@@ -329,7 +329,7 @@ pub fn reflectance_over_background(s_per_mm: f64, k_per_mm: f64, thickness_mm: f
     Ok(compose(layer, LayerRt::opaque(rg)).r)
 }
 
-/// Duncan's mixing rule ([Duncan1940]): the S and K of a mixture are the concentration-weighted
+/// Duncan's mixing rule (\[Duncan1940\]): the S and K of a mixture are the concentration-weighted
 /// sums of its components' S and K, `S = Σ cᵢ Sᵢ`, `K = Σ cᵢ Kᵢ`, with `cᵢ` the volume fraction
 /// of component `i` and `Sᵢ`, `Kᵢ` its coefficients at concentration 1 (the two-constant form).
 ///
@@ -351,7 +351,7 @@ pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -
     Ok(mix)
 }
 
-/// [Saunderson1942] correction between the reflectance an instrument measures and the internal
+/// \[Saunderson1942\] correction between the reflectance an instrument measures and the internal
 /// reflectance that Kubelka-Munk describes.
 ///
 /// Light meets the air/binder interface twice: a fraction `K1` of the incident light is
@@ -365,7 +365,7 @@ pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -
 /// whose refractive index differs from air, when S and K must transfer between thicknesses and
 /// backgrounds: the correction makes R∞ and R consistent with KM's assumption of no interface.
 /// Without it, S and K absorb the interface's effect and remain fine for re-rendering the same
-/// kind of measurement (which is what [Huang2013] does). **What it changes:** internal
+/// kind of measurement (which is what \[Huang2013\] does). **What it changes:** internal
 /// reflectances are lower than measured ones at low reflectance (the surface reflection is
 /// removed) and higher at high reflectance (internal re-reflection is added back), so K/S rises
 /// for dark colours and S rises for most layers. Typical values: `K1 = ((n−1)/(n+1))²` = 0.04

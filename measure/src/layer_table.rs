@@ -59,8 +59,8 @@ pub fn layer_spectra(s: &Spectrum, k: &Spectrum, x_mm: f64) -> (Spectrum, Spectr
 }
 
 /// R0 and T of a layer with scattering `s` and absorption `k` (per mm) at each thickness of
-/// `thickness_mm`, as linear sRGB (D65, CIE 1931): [Huang2013] eq. 1 (R0, over black) and eq. 2
-/// (T) per wavelength, then XYZ by summation ([CIE15]) and the [IEC61966] matrix. Domain:
+/// `thickness_mm`, as linear sRGB (D65, CIE 1931): \[Huang2013\] eq. 1 (R0, over black) and eq. 2
+/// (T) per wavelength, then XYZ by summation (\[CIE15\]) and the \[IEC61966\] matrix. Domain:
 /// S, K ≥ 0 and thickness ≥ 0 mm (0 gives R0 = 0, T = 1); colours are not clipped.
 pub fn layer_rgb_at(s: &Spectrum, k: &Spectrum, thickness_mm: &[f64]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
     let c = Colorimeter::get(Viewing::D65_1931);

@@ -4,7 +4,7 @@
 //! numerically stable Kubelka-Munk inversion and forward model, CIE colorimetry that matches
 //! colour-science, and material presets. No GPU, no UI.
 //!
-//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* ([Huang2013] in
+//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* (\[Huang2013\] in
 //! docs/REFERENCES.md), sections 3.1 and 4; every function documents its equation, the corrections
 //! made to the printed forms, and its domain.
 

@@ -26,7 +26,7 @@ pub fn table_thicknesses_mm() -> Vec<f64> {
     (0..=40).map(|i| i as f64 * 0.005).collect()
 }
 
-/// Specular parameters of a layer's Kelemen/Szirmay-Kalos lobe ([Huang2013] eq. 5).
+/// Specular parameters of a layer's Kelemen/Szirmay-Kalos lobe (\[Huang2013\] eq. 5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Specular {
@@ -153,7 +153,7 @@ fn invalid(path: &str, message: String) -> PresetError {
     PresetError::Invalid { path: path.to_string(), message }
 }
 
-/// Per-wavelength S and K inverted from a measurement on the working grid ([Huang2013] eq. 6-7).
+/// Per-wavelength S and K inverted from a measurement on the working grid (\[Huang2013\] eq. 6-7).
 /// An error names the first wavelength without a solution.
 pub fn invert_measurement(
     m: &WorkingMeasurement,

@@ -9,7 +9,7 @@
 //! * [`cgats`]: CGATS.17 text as written by X-Rite and i1Profiler (`nm380`, `SPECTRAL_NM380`)
 //!   and ArgyllCMS (`.ti3` with `SPEC_380` in percent, `.sp` single spectra).
 //! * [`radiance`]: spectroradiometer radiance (a Konica Minolta CS-2000 export): reflectance from
-//!   the sample's and the white standard's radiance ([Huang2013] eq. 8).
+//!   the sample's and the white standard's radiance (\[Huang2013\] eq. 8).
 //!
 //! Every error names the file, and the line and column where there is one. Nothing is returned
 //! unless the whole file is valid. Formats are specified in `docs/FORMATS.md`.

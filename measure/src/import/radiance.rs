@@ -1,6 +1,6 @@
 //! Spectroradiometer radiance exports (Konica Minolta CS-2000, CS-S10w-style CSV): the radiance
 //! of a white standard, the opaque layer, the thin layer over its background, and the background,
-//! all under the same lamp and geometry. Reflectance follows [Huang2013] eq. 8,
+//! all under the same lamp and geometry. Reflectance follows \[Huang2013\] eq. 8,
 //! `R(λ) = E_m(λ) / E_L(λ)`: the lamp's radiance `E_L` is measured on the white standard and
 //! corrected by the standard's own reflectance, `R = L_sample / L_white · ρ_white`
 //! (`ρ_white`: the `White Standard` line of the file, else flat 0.99 for pressed BaSO4, unless
@@ -16,7 +16,7 @@ use crate::spectrum::{SampledSpectrum, linear_interpolate};
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// Default reflectance of the white standard (pressed BaSO4, 99 % pure), as in [Huang2013] section 4.
+/// Default reflectance of the white standard (pressed BaSO4, 99 % pure), as in \[Huang2013\] section 4.
 pub const BASO4_REFLECTANCE: f64 = 0.99;
 
 /// Splits one CSV line into cells, honouring RFC 4180 double quotes.
