@@ -162,17 +162,18 @@ impl Spectra {
 /// use rouge_measure::import::read_spectra;
 ///
 /// let dir = std::env::temp_dir().join(format!("rouge-doc-{}", std::process::id()));
-/// std::fs::create_dir_all(&dir).unwrap();
+/// std::fs::create_dir_all(&dir)?;
 /// let path = dir.join("skins.csv");
-/// std::fs::write(&path, "wavelength_nm,a,b\n380,30,50\n780,40,60\n").unwrap();
-/// let spectra = read_spectra(&path).unwrap();
+/// std::fs::write(&path, "wavelength_nm,a,b\n380,30,50\n780,40,60\n")?;
+/// let spectra = read_spectra(&path)?;
 /// // Percent, detected (the median value is above 1.5), read as fractions.
 /// assert_eq!(spectra.samples[1].0, "b");
 /// assert_eq!(spectra.samples[1].1.values(), &[0.5, 0.6]);
-/// std::fs::write(&path, "wavelength_nm,a\n380,0.3\n390,x\n").unwrap();
+/// std::fs::write(&path, "wavelength_nm,a\n380,0.3\n390,x\n")?;
 /// let e = read_spectra(&path).unwrap_err();
-/// assert_eq!((e.line, e.column), (Some(3), Some(2)));
-/// # std::fs::remove_dir_all(&dir).unwrap();
+/// assert_eq!(e.to_string(), format!("{}:3:2: a `x` is not a number", path.display()));
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_spectra(path: &Path) -> Result<Spectra, LocatedError> {
     SpectralInput::read(path)?.spectra()
@@ -187,7 +188,7 @@ pub fn read_spectra(path: &Path) -> Result<Spectra, LocatedError> {
 /// use rouge_measure::import::colorchecker_skin;
 /// use rouge_measure::{Colorimeter, Viewing};
 ///
-/// let skins = colorchecker_skin().unwrap();
+/// let skins = colorchecker_skin()?;
 /// assert_eq!(skins.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["dark_skin", "light_skin"]);
 /// // colour-science 0.4.7 (`sd_to_XYZ` by integration on 380-780/5 nm, D65, CIE 1931, Lab
 /// // against the perfect reflector) gives light skin L*a*b* = 66.2002, 14.4668, 17.7397.
@@ -196,6 +197,7 @@ pub fn read_spectra(path: &Path) -> Result<Spectra, LocatedError> {
 /// for (got, want) in lab.iter().zip([66.200_19, 14.466_85, 17.739_68]) {
 ///     assert!((got - want).abs() < 1e-4, "{lab:?}");
 /// }
+/// # Ok::<(), rouge_measure::LocatedError>(())
 /// ```
 pub fn colorchecker_skin() -> Result<Vec<(String, Spectrum)>, LocatedError> {
     SpectralInput::colorchecker_skin().spectra()?.to_working_grid(Extrapolation::Refuse)

@@ -266,6 +266,27 @@ pub struct ImportOptions {
 /// a CGATS-family file has a `BEGIN_DATA_FORMAT` line; a radiance export has a `No.` table with
 /// `NNNnm` columns; anything else is read as Rouge CSV. The same as
 /// `SpectralInput::read(path)?.measurement(options)` ([`SpectralInput::measurement`]).
+///
+/// # Examples
+///
+/// The same product as Rouge CSV and as an X-Rite CGATS export (`data/measurements/`): the
+/// format comes from the content, and both give R∞ = 0.398988 at 550 nm.
+///
+/// ```
+/// use rouge_measure::import::{ImportOptions, Kind, read_measurement};
+/// use std::path::Path;
+///
+/// let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements");
+/// let csv = read_measurement(&dir.join("foundation_02_ivory.csv"), &ImportOptions::default())?;
+/// assert_eq!((csv.format.as_str(), csv.kind, csv.thickness_mm), ("Rouge CSV", Some(Kind::Foundation), Some(0.02)));
+/// let xrite = read_measurement(&dir.join("formats/foundation_02_ivory_xrite.txt"), &ImportOptions::default())?;
+/// assert_eq!(xrite.format, "CGATS text (CGATS.17)");
+/// let at_550 = |m: &rouge_measure::Measurement| {
+///     m.r_inf.wavelengths_nm().iter().zip(m.r_inf.values()).find(|(nm, _)| **nm == 550.0).map(|(_, v)| *v)
+/// };
+/// assert_eq!((at_550(&csv), at_550(&xrite)), (Some(0.398988), Some(0.398988)));
+/// # Ok::<(), rouge_measure::LocatedError>(())
+/// ```
 pub fn read_measurement(path: &Path, options: &ImportOptions) -> Result<Measurement, LocatedError> {
     SpectralInput::read(path)?.measurement(options)
 }
