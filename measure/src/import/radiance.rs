@@ -253,4 +253,21 @@ No.,Data Name,Date,380nm,381nm,382nm\r\n1,WHITE_BASO4,d,2.0,2.0,4.0\r\n2,SAMPLE_
         let e = parse(Path::new("cs.csv"), &missing, &SampleNames::default(), None).unwrap_err();
         assert!(e.to_string().contains("no Rg (background) measurement"), "{e}");
     }
+
+    #[test]
+    fn white_standard_files_hold_one_spectrum_in_range() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("white.csv");
+        std::fs::write(&p, "wavelength_nm,baso4\n380,0.97\n780,0.98\n").unwrap();
+        assert_eq!(read_white_standard(&p).unwrap().values(), &[0.97, 0.98]);
+        std::fs::write(&p, "CGATS.17\nBEGIN_DATA_FORMAT\nSAMPLE_NAME nm380 nm780\nEND_DATA_FORMAT\nBEGIN_DATA\nW 0.97 0.98\nEND_DATA\n")
+            .unwrap();
+        assert_eq!(read_white_standard(&p).unwrap().values(), &[0.97, 0.98]);
+        std::fs::write(&p, "wavelength_nm,a,b\n380,0.97,0.9\n780,0.98,0.9\n").unwrap();
+        let e = read_white_standard(&p).unwrap_err().to_string();
+        assert!(e.ends_with(": expected one reflectance column besides wavelength_nm, found 2"), "{e}");
+        std::fs::write(&p, "wavelength_nm,baso4\n380,0.97\n780,1.2\n").unwrap();
+        let e = read_white_standard(&p).unwrap_err().to_string();
+        assert!(e.ends_with(": white reflectance 1.2 at 780 nm must be in (0, 1]"), "{e}");
+    }
 }
