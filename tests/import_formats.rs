@@ -11,7 +11,8 @@
 //!
 //! Run with `--nocapture` to see the error tables.
 
-use rouge_measure::import::{self, ImportError, ImportOptions, Kind, Measurement, WorkingMeasurement};
+use rouge_measure::LocatedError;
+use rouge_measure::import::{self, ImportOptions, Kind, Measurement, WorkingMeasurement};
 use rouge_measure::preset::{Preset, PresetError};
 use rouge_measure::spectrum::{Extrapolation, working_wavelength_nm};
 use rouge_tests::{Table, data_path, median};
@@ -309,7 +310,7 @@ fn bad_file_comments_are_read_as_intended() {
 }
 
 /// Reads a bad file and its comment; the import must fail.
-fn import_error(name: &str) -> (PathBuf, BadFileComment, ImportError) {
+fn import_error(name: &str) -> (PathBuf, BadFileComment, LocatedError) {
     let path = bad_dir().join(name);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let comment = parse_bad_file_comment(&text).unwrap_or_else(|| panic!("{name}: no `# BAD FILE:` comment"));

@@ -7,7 +7,10 @@
 #      pytest) in .venv/;
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
-#      the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
+#      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
+#      error (citations are written \[Key\], not intra-doc links), and the doc tests of
+#      rouge-measure on their own (its public functions carry examples that must run and pass),
+#      then the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
 #   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure) into .venv;
 #   5. runs the Python cross-checks against colour-science and 50-digit mpmath references,
 #      driving the real `rouge` binary and the `rouge` package.
@@ -46,6 +49,10 @@ cargo clippy --workspace --all-targets --locked -- -D warnings
 
 step "cargo test (workspace)"
 cargo test --workspace --locked
+
+step "Documentation: cargo doc with rustdoc warnings as errors, rouge-measure's doc tests"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
+cargo test --doc -p rouge-measure --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures

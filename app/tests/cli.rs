@@ -132,6 +132,31 @@ fn import_json_report_and_color_output() {
 }
 
 #[test]
+fn color_reads_cgats_as_import_does() {
+    // The X-Rite export (10 nm) and the Rouge CSV (5 nm) of one product: the same samples by
+    // name, the same colours up to the resampling of the coarser grid.
+    let colours = |file: &str| {
+        let o = rouge(&["color", file]);
+        assert!(o.status.success(), "{file}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("json");
+        v.as_array()
+            .expect("array")
+            .iter()
+            .map(|c| {
+                let lab: Vec<f64> = c["lab"].as_array().expect("lab").iter().filter_map(|x| x.as_f64()).collect();
+                (c["name"].as_str().expect("name").to_ascii_lowercase(), lab)
+            })
+            .collect::<Vec<_>>()
+    };
+    let cgats = colours("data/measurements/formats/foundation_02_ivory_xrite.txt");
+    let csv = colours("data/measurements/foundation_02_ivory.csv");
+    assert_eq!(cgats.iter().map(|c| c.0.as_str()).collect::<Vec<_>>(), ["r_inf", "r", "rg"]);
+    for ((name, a), (_, b)) in cgats.iter().zip(&csv) {
+        assert!(a.iter().zip(b).all(|(x, y)| (x - y).abs() < 0.1), "{name}: {a:?} vs {b:?}");
+    }
+}
+
+#[test]
 fn help_names_every_subcommand() {
     let o = rouge(&["--help"]);
     assert!(o.status.success());

@@ -1,6 +1,6 @@
 //! How much colour a renderer loses by compositing cosmetic layers in fewer channels than the
 //! spectrum: linear RGB (what a real-time renderer does) or a few spectral bands, against the
-//! reference of composing every layer at every wavelength ([Huang2013] eq. 1-4).
+//! reference of composing every layer at every wavelength (\[Huang2013\] eq. 1-4).
 //!
 //! For every ordered pair of presets (top over bottom), every pair of thicknesses and every skin,
 //! the stack `top / bottom / skin` is composed:
@@ -17,7 +17,8 @@
 
 use crate::colorimetry::{Colorimeter, Viewing, XYZ_TO_SRGB, delta_e_2000_raw, mat_inv};
 use crate::km::{self, LayerRt};
-use crate::preset::{Preset, layer_spectra};
+use crate::layer_table::layer_spectra;
+use crate::preset::Preset;
 use crate::spectrum::{Spectrum, WORKING_LEN};
 
 /// A compositing method.

@@ -2,9 +2,9 @@
 //! transmittance of a layer, and composition of layers. Scalar reference implementations, accurate
 //! over the whole domain; [`crate::km_batch`] holds the data-parallel fast paths.
 //!
-//! Reference: [Huang2013] eq. 1-4 (layer and composition) and eq. 6-7 (inversion), which restate
-//! the hyperbolic solution of [Kubelka1948] and the layer composition of [Kubelka1954]; the
-//! two-flux model is [Kubelka1931]. Keys: docs/REFERENCES.md.
+//! Reference: \[Huang2013\] eq. 1-4 (layer and composition) and eq. 6-7 (inversion), which restate
+//! the hyperbolic solution of \[Kubelka1948\] and the layer composition of \[Kubelka1954\]; the
+//! two-flux model is \[Kubelka1931\]. Keys: docs/REFERENCES.md.
 //!
 //! # Derivations and the printed equations
 //!
@@ -27,7 +27,7 @@
 //!   numerator and denominator of eq. 1-2 by `cosh` removes the overflow of `sinh`/`cosh` at large
 //!   `SX`, and `q` removes the `0/0` at `K = 0` (`R0 = SX/(1+SX)`, `T = 1/(1+SX)`) and at `S = 0`
 //!   (`R0 = 0`, `T = e^{−KX}`).
-//! * **Composition (eq. 3-4).** [Huang2013] prints `R₁,₂ = R₁ + T₁R₁T₁/(1 − R₁R₂)`; summing the
+//! * **Composition (eq. 3-4).** \[Huang2013\] prints `R₁,₂ = R₁ + T₁R₁T₁/(1 − R₁R₂)`; summing the
 //!   inter-reflection series gives `R₁,₂ = R₁ + T₁² R₂/(1 − R₁R₂)` (the light that reaches layer 2
 //!   is reflected by `R₂`, not `R₁`). `T₁,₂ = T₁T₂/(1 − R₁R₂)` is printed correctly. KM layers are
 //!   symmetric (same `R` from both sides), so a stack is folded from the bottom up.
@@ -162,13 +162,29 @@ pub(crate) fn ln1p_over_x(z: f64) -> f64 {
 
 /// Inverts Kubelka-Munk S and K (per mm) from the reflectance `r_inf` of an opaque layer, the
 /// reflectance `r` of a layer of thickness `thickness_mm` over a background, and the background's
-/// reflectance `rg` ([Huang2013] eq. 6-7, rewritten as derived in the module documentation).
+/// reflectance `rg` (\[Huang2013\] eq. 6-7, rewritten as derived in the module documentation).
 ///
 /// Domain: `0 < R∞ ≤ 1`; `R, Rg ∈ [0, 1]` on the same side of `R∞` with `R` between `Rg` and
 /// `R∞` (background darker *or lighter* than the layer); `D > 0`. `R = Rg ≠ R∞` gives
 /// `S = K = 0` (no layer). Accurate to a few ulps of the exact result for the given inputs across
 /// the domain, including `R∞ = 1` (`K = 0`), `R ≈ Rg` (very thin) and `R ≈ R∞` (very thick).
 /// Outside the domain: an error saying why. Never NaN.
+///
+/// # Examples
+///
+/// R∞ = 0.2, and R = 0.132 for 50 µm over a black card of Rg = 0.03: S = 3.73148 /mm,
+/// K = 5.97036 /mm by 50-digit mpmath (`data/reference/km_invert.csv`, `ordinary_rinf0.2_black03`).
+///
+/// ```
+/// use rouge_measure::km::invert_s_k;
+///
+/// let sk = invert_s_k(0.2, 0.132, 0.03, 0.05)?;
+/// assert!((sk.s_per_mm / 3.731_475_278_712_077 - 1.0).abs() < 1e-13, "{sk}");
+/// assert!((sk.k_per_mm / 5.970_360_445_939_322 - 1.0).abs() < 1e-13, "{sk}");
+/// // R beyond R∞, seen from a darker background, has no solution: an error, not NaN.
+/// assert!(invert_s_k(0.2, 0.25, 0.03, 0.05).is_err());
+/// # Ok::<(), rouge_measure::KmError>(())
+/// ```
 pub fn invert_s_k(r_inf: f64, r: f64, rg: f64, thickness_mm: f64) -> Result<KmCoefficients, KmError> {
     if !(r_inf > 0.0 && r_inf <= 1.0) {
         return Err(KmError::RInfOutOfRange(r_inf));
@@ -228,12 +244,28 @@ fn sech(y: f64) -> f64 {
 }
 
 /// Reflectance R0 (over black) and transmittance T of a layer with scattering `s_per_mm`,
-/// absorption `k_per_mm` and thickness `thickness_mm` ([Huang2013] eq. 1-2, rewritten as derived in
+/// absorption `k_per_mm` and thickness `thickness_mm` (\[Huang2013\] eq. 1-2, rewritten as derived in
 /// the module documentation).
 ///
 /// Domain: S, K finite and ≥ 0; X ≥ 0, `X = ∞` allowed (an opaque layer: `T = 0`, `R0 = R∞`).
 /// Stable for `K = 0`, `S = 0`, `S = K = 0` (a clear layer), tiny `SX` and huge `SX` (no
 /// overflow: `R0 → R∞`, `T → 0`, underflowing gracefully).
+///
+/// # Examples
+///
+/// S = 10 /mm, K = 1 /mm, 50 µm: R0 = 0.318992, T = 0.632435 by 50-digit mpmath
+/// (`data/reference/km_forward.csv`, `ordinary0_black`); infinitely thick, R0 = R∞ and T = 0.
+///
+/// ```
+/// use rouge_measure::km::{layer_r_t, r_inf_from_s_k};
+///
+/// let film = layer_r_t(10.0, 1.0, 0.05)?;
+/// assert!((film.r - 0.318_991_668_936_967_9).abs() < 1e-15, "{film:?}");
+/// assert!((film.t - 0.632_434_987_322_699_3).abs() < 1e-15, "{film:?}");
+/// let opaque = layer_r_t(10.0, 1.0, f64::INFINITY)?;
+/// assert!((opaque.r - r_inf_from_s_k(10.0, 1.0)).abs() < 1e-15 && opaque.t == 0.0, "{opaque:?}");
+/// # Ok::<(), rouge_measure::KmError>(())
+/// ```
 pub fn layer_r_t(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64) -> Result<LayerRt, KmError> {
     check_coefficient("S", s_per_mm)?;
     check_coefficient("K", k_per_mm)?;
@@ -286,16 +318,44 @@ pub(crate) fn layer_r_t_unchecked(s: f64, k: f64, x: f64) -> LayerRt {
 /// Reflectance of an opaque layer, `R∞ = 1 + K/S − √((K/S)² + 2K/S) = S/(S + K + √(K(K+2S)))`
 /// (the second form has no cancellation). `S = K = 0` gives 0 (a clear layer reflects nothing
 /// however thick). Domain: S, K finite and ≥ 0.
+/// (\[Kubelka1948\]; the `a − b` of \[Huang2013\] eq. 1-2 with `a = 1 + K/S`, `b = √(a² − 1)`.)
+///
+/// # Examples
+///
+/// S = 10 /mm, K = 1 /mm: `a = 1.1`, `R∞ = 1.1 − √0.21 = 0.641742…`; no scattering, no
+/// reflectance.
+///
+/// ```
+/// use rouge_measure::km::r_inf_from_s_k;
+///
+/// assert!((r_inf_from_s_k(10.0, 1.0) - (1.1 - 0.21f64.sqrt())).abs() < 1e-15);
+/// assert_eq!(r_inf_from_s_k(0.0, 3.0), 0.0);
+/// assert_eq!(r_inf_from_s_k(5.0, 0.0), 1.0);
+/// ```
 pub fn r_inf_from_s_k(s_per_mm: f64, k_per_mm: f64) -> f64 {
     let den = s_per_mm + k_per_mm + k_per_mm.sqrt() * (k_per_mm + 2.0 * s_per_mm).sqrt();
     if den == 0.0 { 0.0 } else { s_per_mm / den }
 }
 
-/// Puts layer `top` over `bottom` ([Huang2013] eq. 3-4, corrected: see the module documentation).
+/// Puts layer `top` over `bottom` (\[Huang2013\] eq. 3-4, corrected: see the module documentation).
 ///
 /// `top` must be a symmetric layer (a single KM layer: same R from above and below); `bottom`
 /// may be anything seen from above, including an opaque background ([`LayerRt::opaque`]).
 /// If `R₁R₂ = 1` (two perfect reflectors) the result is `R = 1, T = 0`.
+///
+/// # Examples
+///
+/// R₁ = 0.3, T₁ = 0.5 over R₂ = 0.4, T₂ = 0.4: R = 0.3 + 0.25·0.4/0.88 = 0.413636, T =
+/// 0.2/0.88 = 0.227273 (`data/reference/km_stack.csv`, `ordinary_a`); the printed numerator
+/// T₁R₁T₁ would give 0.385227.
+///
+/// ```
+/// use rouge_measure::km::{LayerRt, compose};
+///
+/// let both = compose(LayerRt { r: 0.3, t: 0.5 }, LayerRt { r: 0.4, t: 0.4 });
+/// assert!((both.r - 0.413_636_363_636_363_6).abs() < 1e-15, "{both:?}");
+/// assert!((both.t - 0.227_272_727_272_727_3).abs() < 1e-15, "{both:?}");
+/// ```
 #[inline]
 pub fn compose(top: LayerRt, bottom: LayerRt) -> LayerRt {
     let den = (-top.r).mul_add(bottom.r, 1.0);
@@ -307,6 +367,23 @@ pub fn compose(top: LayerRt, bottom: LayerRt) -> LayerRt {
 
 /// Composite R and T of a stack of KM layers listed **top first**, folded from the bottom up so
 /// each step puts one symmetric layer over what lies below. An empty stack is clear.
+///
+/// # Examples
+///
+/// A sheer film (R = 0.05, T = 0.9) over another (R = 0.6, T = 0.2) is
+/// `compose(top, bottom)`: R = 0.551031, T = 0.185567 (`data/reference/km_stack.csv`,
+/// `ordinary_b`); over an opaque skin the stack transmits nothing.
+///
+/// ```
+/// use rouge_measure::km::{LayerRt, stack};
+///
+/// let (top, bottom) = (LayerRt { r: 0.05, t: 0.9 }, LayerRt { r: 0.6, t: 0.2 });
+/// let two = stack(&[top, bottom]);
+/// assert!((two.r - 0.551_030_927_835_051_6).abs() < 1e-15, "{two:?}");
+/// assert!((two.t - 0.185_567_010_309_278_4).abs() < 1e-15, "{two:?}");
+/// assert_eq!(stack(&[top, bottom, LayerRt::opaque(0.35)]).t, 0.0);
+/// assert_eq!(stack(&[]), LayerRt::CLEAR);
+/// ```
 pub fn stack(layers_top_first: &[LayerRt]) -> LayerRt {
     layers_top_first.iter().rev().fold(LayerRt::CLEAR, |below, &layer| compose(layer, below))
 }
@@ -323,19 +400,48 @@ pub fn check_layer(layer: LayerRt) -> Result<LayerRt, KmError> {
 
 /// Reflectance of a KM layer (S, K per mm, thickness mm) over an opaque background of
 /// reflectance `rg`: `R = R0 + T² Rg/(1 − R0 Rg)`.
+/// (\[Huang2013\] eq. 1-3: the layer of [`layer_r_t`] composed with the background.)
+///
+/// # Examples
+///
+/// S = 10 /mm, K = 1 /mm, 50 µm over a white card (Rg = 0.85): R = 0.785445 by 50-digit
+/// mpmath (`data/reference/km_forward.csv`, `ordinary0_white`).
+///
+/// ```
+/// use rouge_measure::km::reflectance_over_background;
+///
+/// let r = reflectance_over_background(10.0, 1.0, 0.05, 0.85)?;
+/// assert!((r - 0.785_445_134_075_400_6).abs() < 1e-15, "{r}");
+/// # Ok::<(), rouge_measure::KmError>(())
+/// ```
 pub fn reflectance_over_background(s_per_mm: f64, k_per_mm: f64, thickness_mm: f64, rg: f64) -> Result<f64, KmError> {
     check_unit("Rg", rg)?;
     let layer = layer_r_t(s_per_mm, k_per_mm, thickness_mm)?;
     Ok(compose(layer, LayerRt::opaque(rg)).r)
 }
 
-/// Duncan's mixing rule ([Duncan1940]): the S and K of a mixture are the concentration-weighted
+/// Duncan's mixing rule (\[Duncan1940\]): the S and K of a mixture are the concentration-weighted
 /// sums of its components' S and K, `S = Σ cᵢ Sᵢ`, `K = Σ cᵢ Kᵢ`, with `cᵢ` the volume fraction
 /// of component `i` and `Sᵢ`, `Kᵢ` its coefficients at concentration 1 (the two-constant form).
 ///
 /// Domain: every `cᵢ`, `Sᵢ`, `Kᵢ` finite and ≥ 0; the fractions need not add up to 1 (a binder
 /// with `S = K = 0` takes the rest). Valid while the components scatter independently (low
 /// pigment volume fractions; crowding of TiO₂ above ~10 vol% lowers S below the sum).
+///
+/// # Examples
+///
+/// A quarter of a white (S = 40, K = 1 /mm) with three quarters of a dark pigment (S = 2,
+/// K = 8 /mm): S = 11.5 /mm, K = 6.25 /mm.
+///
+/// ```
+/// use rouge_measure::km::{KmCoefficients, duncan_mix};
+///
+/// let white = KmCoefficients { s_per_mm: 40.0, k_per_mm: 1.0 };
+/// let dark = KmCoefficients { s_per_mm: 2.0, k_per_mm: 8.0 };
+/// let mix = duncan_mix([(0.25, white), (0.75, dark)])?;
+/// assert_eq!((mix.s_per_mm, mix.k_per_mm), (11.5, 6.25));
+/// # Ok::<(), rouge_measure::KmError>(())
+/// ```
 pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -> Result<KmCoefficients, KmError> {
     let mut mix = KmCoefficients { s_per_mm: 0.0, k_per_mm: 0.0 };
     for (c, KmCoefficients { s_per_mm, k_per_mm }) in components {
@@ -351,7 +457,7 @@ pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -
     Ok(mix)
 }
 
-/// [Saunderson1942] correction between the reflectance an instrument measures and the internal
+/// \[Saunderson1942\] correction between the reflectance an instrument measures and the internal
 /// reflectance that Kubelka-Munk describes.
 ///
 /// Light meets the air/binder interface twice: a fraction `K1` of the incident light is
@@ -365,11 +471,27 @@ pub fn duncan_mix(components: impl IntoIterator<Item = (f64, KmCoefficients)>) -
 /// whose refractive index differs from air, when S and K must transfer between thicknesses and
 /// backgrounds: the correction makes R∞ and R consistent with KM's assumption of no interface.
 /// Without it, S and K absorb the interface's effect and remain fine for re-rendering the same
-/// kind of measurement (which is what [Huang2013] does). **What it changes:** internal
+/// kind of measurement (which is what \[Huang2013\] does). **What it changes:** internal
 /// reflectances are lower than measured ones at low reflectance (the surface reflection is
 /// removed) and higher at high reflectance (internal re-reflection is added back), so K/S rises
 /// for dark colours and S rises for most layers. Typical values: `K1 = ((n−1)/(n+1))²` = 0.04
 /// for n = 1.5; `K2` ≈ 0.4-0.6 (0.6 is the classic value for diffuse light inside n = 1.5).
+///
+/// # Examples
+///
+/// n = 1.5 (K1 = 0.04), K2 = 0.6, specular included: an internal 0.5 is measured as
+/// 0.04 + 0.96·0.4·0.5/0.7 = 0.314286, and the correction takes it back.
+///
+/// ```
+/// use rouge_measure::Saunderson;
+///
+/// let c = Saunderson::from_refractive_index(1.5, 0.6, true)?;
+/// assert!((c.k1 - 0.04).abs() < 1e-15);
+/// let measured = c.to_measured(0.5);
+/// assert!((measured - (0.04 + 0.96 * 0.4 * 0.5 / 0.7)).abs() < 1e-15, "{measured}");
+/// assert!((c.to_internal(measured) - 0.5).abs() < 1e-15);
+/// # Ok::<(), rouge_measure::KmError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Saunderson {
     /// External (Fresnel) reflectance at normal incidence.
@@ -415,96 +537,5 @@ impl Saunderson {
 impl fmt::Display for KmCoefficients {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "S = {} /mm, K = {} /mm", self.s_per_mm, self.k_per_mm)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-
-    #[test]
-    fn duncan_mix_weights_and_refuses_bad_components() {
-        let a = KmCoefficients { s_per_mm: 10.0, k_per_mm: 1.0 };
-        let b = KmCoefficients { s_per_mm: 2.0, k_per_mm: 8.0 };
-        let m = duncan_mix([(0.25, a), (0.5, b)]).unwrap();
-        assert_eq!(m, KmCoefficients { s_per_mm: 3.5, k_per_mm: 4.25 });
-        assert_eq!(duncan_mix([]).unwrap(), KmCoefficients { s_per_mm: 0.0, k_per_mm: 0.0 });
-        let e = duncan_mix([(0.5, a), (-0.1, b)]).unwrap_err();
-        assert_eq!(e, KmError::BadCoefficient { name: "concentration", value: -0.1 });
-        let nan = KmCoefficients { s_per_mm: f64::NAN, k_per_mm: 1.0 };
-        assert!(matches!(duncan_mix([(0.5, nan)]), Err(KmError::BadCoefficient { name: "S", .. })));
-        let huge = KmCoefficients { s_per_mm: f64::MAX, k_per_mm: 0.0 };
-        assert!(duncan_mix([(1.0, huge), (1.0, huge)]).is_err());
-    }
-    use super::*;
-
-    #[test]
-    fn invert_round_trips_ordinary_case() {
-        let (s, k, x) = (20.0, 2.0, 0.03);
-        let r_inf = r_inf_from_s_k(s, k);
-        for rg in [0.04, 0.9] {
-            let r = reflectance_over_background(s, k, x, rg).unwrap();
-            let c = invert_s_k(r_inf, r, rg, x).unwrap();
-            assert!((c.s_per_mm / s - 1.0).abs() < 1e-9, "{c:?} rg {rg}");
-            assert!((c.k_per_mm / k - 1.0).abs() < 1e-9, "{c:?} rg {rg}");
-        }
-    }
-
-    #[test]
-    fn k_zero_limit() {
-        let c = invert_s_k(1.0, 0.5, 0.2, 0.1).unwrap();
-        let expect = (0.5 - 0.2) / ((1.0 - 0.5) * (1.0 - 0.2)) / 0.1;
-        assert!((c.s_per_mm / expect - 1.0).abs() < 1e-15);
-        assert_eq!(c.k_per_mm, 0.0);
-    }
-
-    #[test]
-    fn invalid_inputs_are_errors() {
-        assert!(matches!(invert_s_k(1.2, 0.5, 0.1, 1.0), Err(KmError::RInfOutOfRange(_))));
-        assert!(matches!(invert_s_k(0.0, 0.5, 0.1, 1.0), Err(KmError::RInfOutOfRange(_))));
-        assert!(matches!(invert_s_k(f64::NAN, 0.5, 0.1, 1.0), Err(KmError::RInfOutOfRange(_))));
-        assert!(matches!(invert_s_k(0.5, 0.6, 0.1, 1.0), Err(KmError::OppositeSides { .. })));
-        assert!(matches!(invert_s_k(0.5, 0.05, 0.1, 1.0), Err(KmError::BeyondBackground { .. })));
-        assert!(matches!(invert_s_k(0.5, 0.5, 0.1, 1.0), Err(KmError::InfinitelyThick { .. })));
-        assert!(matches!(invert_s_k(0.5, 0.3, 0.5, 1.0), Err(KmError::BackgroundEqualsRInf { .. })));
-        assert!(matches!(invert_s_k(0.5, 0.3, 0.1, 0.0), Err(KmError::BadThickness(_))));
-        assert!(matches!(invert_s_k(0.5, 0.3, 0.1, -1.0), Err(KmError::BadThickness(_))));
-        assert!(matches!(invert_s_k(0.5, f64::NAN, 0.1, 1.0), Err(KmError::ReflectanceOutOfRange { .. })));
-        assert!(layer_r_t(-1.0, 0.0, 1.0).is_err());
-        assert!(layer_r_t(1.0, f64::INFINITY, 1.0).is_err());
-        assert!(layer_r_t(1.0, 1.0, f64::NAN).is_err());
-    }
-
-    #[test]
-    fn forward_edge_cases() {
-        assert_eq!(layer_r_t(0.0, 0.0, 1.0).unwrap(), LayerRt::CLEAR);
-        assert_eq!(layer_r_t(5.0, 5.0, 0.0).unwrap(), LayerRt::CLEAR);
-        let l = layer_r_t(2.0, 0.0, 0.5).unwrap();
-        assert!((l.r - 0.5).abs() < 1e-16 && (l.t - 0.5).abs() < 1e-16);
-        let l = layer_r_t(0.0, 3.0, 0.5).unwrap();
-        assert_eq!(l.r, 0.0);
-        assert!((l.t / (-1.5f64).exp() - 1.0).abs() < 1e-15);
-        let l = layer_r_t(1e300, 1e300, 1e300).unwrap();
-        assert!((l.r - r_inf_from_s_k(1.0, 1.0)).abs() < 1e-15 && l.t == 0.0);
-        let l = layer_r_t(1.0, 0.0, f64::INFINITY).unwrap();
-        assert_eq!((l.r, l.t), (1.0, 0.0));
-        let l = layer_r_t(3.0, 1.0, f64::INFINITY).unwrap();
-        assert!((l.r - r_inf_from_s_k(3.0, 1.0)).abs() < 1e-16 && l.t == 0.0);
-    }
-
-    #[test]
-    fn saunderson_round_trips() {
-        let c = Saunderson::from_refractive_index(1.5, 0.6, true).unwrap();
-        assert!((c.k1 - 0.04).abs() < 1e-15);
-        for r in [0.0, 0.1, 0.5, 0.9, 1.0] {
-            assert!((c.to_internal(c.to_measured(r)) - r).abs() < 1e-14);
-        }
-    }
-
-    #[test]
-    fn compose_with_clear_is_identity_and_perfect_mirrors_are_finite() {
-        let l = LayerRt { r: 0.3, t: 0.5 };
-        assert_eq!(compose(l, LayerRt::CLEAR), l);
-        assert_eq!(stack(&[LayerRt::CLEAR, l]), l);
-        assert_eq!(compose(LayerRt { r: 1.0, t: 0.0 }, LayerRt::opaque(1.0)), LayerRt { r: 1.0, t: 0.0 });
     }
 }

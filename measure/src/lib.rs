@@ -4,7 +4,7 @@
 //! numerically stable Kubelka-Munk inversion and forward model, CIE colorimetry that matches
 //! colour-science, and material presets. No GPU, no UI.
 //!
-//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* ([Huang2013] in
+//! The physics follows Huang et al., *Physically-based Cosmetic Rendering* (\[Huang2013\] in
 //! docs/REFERENCES.md), sections 3.1 and 4; every function documents its equation, the corrections
 //! made to the printed forms, and its domain.
 
@@ -14,6 +14,7 @@ pub mod simd;
 pub mod analysis;
 pub mod colorimetry;
 pub mod compositing;
+pub mod error;
 pub mod import;
 pub mod km;
 pub mod km_batch;
@@ -23,7 +24,8 @@ pub mod skin;
 pub mod spectrum;
 
 pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};
-pub use import::{ImportError, ImportOptions, Kind, Measurement, read_measurement};
+pub use error::LocatedError;
+pub use import::{ImportOptions, Kind, Measurement, read_measurement};
 pub use km::{KmCoefficients, KmError, LayerRt, Saunderson};
 pub use preset::{Preset, PresetError};
 pub use spectrum::{Extrapolation, SampledSpectrum, Spectrum};

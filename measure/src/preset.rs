@@ -7,8 +7,10 @@
 //! out of range is an error naming the field (and the wavelength, for spectra).
 
 use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
+use crate::error::LocatedError;
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
+use crate::layer_table::{TableLayer, layer_rgb_at};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -24,7 +26,7 @@ pub fn table_thicknesses_mm() -> Vec<f64> {
     (0..=40).map(|i| i as f64 * 0.005).collect()
 }
 
-/// Specular parameters of a layer's Kelemen/Szirmay-Kalos lobe ([Huang2013] eq. 5).
+/// Specular parameters of a layer's Kelemen/Szirmay-Kalos lobe (\[Huang2013\] eq. 5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Specular {
@@ -123,18 +125,10 @@ pub enum PresetError {
         /// cause
         source: std::io::Error,
     },
-    /// Not valid JSON for the schema.
-    #[error("{path}:{line}:{column}: {message}")]
-    Json {
-        /// file
-        path: String,
-        /// 1-based line
-        line: usize,
-        /// 1-based column
-        column: usize,
-        /// what serde says
-        message: String,
-    },
+    /// Not valid JSON for the schema: the file, serde's 1-based line and column, and what serde
+    /// says.
+    #[error(transparent)]
+    Json(LocatedError),
     /// A field with a bad value.
     #[error("{path}: {message}")]
     Invalid {
@@ -159,7 +153,7 @@ fn invalid(path: &str, message: String) -> PresetError {
     PresetError::Invalid { path: path.to_string(), message }
 }
 
-/// Per-wavelength S and K inverted from a measurement on the working grid ([Huang2013] eq. 6-7).
+/// Per-wavelength S and K inverted from a measurement on the working grid (\[Huang2013\] eq. 6-7).
 /// An error names the first wavelength without a solution.
 pub fn invert_measurement(
     m: &WorkingMeasurement,
@@ -179,29 +173,21 @@ pub fn invert_measurement(
     Ok((Spectrum(s), Spectrum(k)))
 }
 
-/// Spectral R0 and T of a layer of thickness `x_mm`.
-pub fn layer_spectra(s: &Spectrum, k: &Spectrum, x_mm: f64) -> (Spectrum, Spectrum) {
-    let mut r = [0.0; WORKING_LEN];
-    let mut t = [0.0; WORKING_LEN];
-    for i in 0..WORKING_LEN {
-        let LayerRt { r: ri, t: ti } = km::layer_r_t_unchecked(s.0[i], k.0[i], x_mm);
-        r[i] = ri;
-        t[i] = ti;
-    }
-    (Spectrum(r), Spectrum(t))
-}
-
 fn hex(rgb_linear: [f64; 3]) -> String {
     let [r, g, b] = rgb_linear.map(|v| (srgb_encode(v).clamp(0.0, 1.0) * 255.0).round() as u8);
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
+/// Spectral R0 and T of a layer of thickness `x_mm`; it lives in [`crate::layer_table`], with the
+/// tables made from it, and is named here too for the callers that know it as a preset's.
+pub use crate::layer_table::layer_spectra;
+
 /// Computes the interchange tables of preset JSON v1 from S and K (the colour conversion lives
-/// in [`crate::layer_table::layer_rgb_at`], shared with the render table).
+/// in [`layer_rgb_at`], shared with the render table).
 pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
     let c = Colorimeter::get(Viewing::D65_1931);
     let thickness_mm = table_thicknesses_mm();
-    let (r0, t) = crate::layer_table::layer_rgb_at(s, k, &thickness_mm);
+    let (r0, t) = layer_rgb_at(s, k, &thickness_mm);
     let r_inf = Spectrum(std::array::from_fn(|i| km::r_inf_from_s_k(s.0[i], k.0[i])));
     let r_inf_linear_srgb = c.srgb_linear(&c.xyz(&r_inf));
     Derived {
@@ -211,6 +197,17 @@ pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {
         t_linear_srgb: t,
         r_inf_linear_srgb,
         r_inf_srgb_hex: hex(r_inf_linear_srgb),
+    }
+}
+
+/// A preset's render table ([`crate::layer_table::render_table`]) ends at the R∞ its JSON stores.
+impl TableLayer for Preset {
+    fn s_k(&self) -> (Spectrum, Spectrum) {
+        (self.s(), self.k())
+    }
+
+    fn r_inf_linear_srgb(&self) -> [f64; 3] {
+        self.derived.r_inf_linear_srgb
     }
 }
 
@@ -268,7 +265,31 @@ impl Preset {
     /// Inverts a measurement into a preset and reports how well S and K reproduce it.
     ///
     /// `saunderson`, if given, converts the measured reflectances to internal ones before the
-    /// inversion (see [`Saunderson`]); the report then compares internal reflectances.
+    /// inversion (see [`Saunderson`]); the report then compares internal reflectances. S and K
+    /// come from \[Huang2013\] eq. 6-7 ([`km::invert_s_k`]) at every wavelength.
+    ///
+    /// # Examples
+    ///
+    /// Foundation 02 Ivory (`data/measurements/foundation_02_ivory.csv`, 20 µm over a black
+    /// card): S and K give back the measured R and R∞ (ΔE2000 below 1e-6), and R over the card
+    /// computed forward from them (\[Huang2013\] eq. 1-3) is the measured R at 550 nm.
+    ///
+    /// ```
+    /// use rouge_measure::import::{ImportOptions, Kind, read_measurement};
+    /// use rouge_measure::km::reflectance_over_background;
+    /// use rouge_measure::{Extrapolation, Preset};
+    /// use std::path::Path;
+    ///
+    /// let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements/foundation_02_ivory.csv");
+    /// let m = read_measurement(&path, &ImportOptions::default())?;
+    /// let w = m.to_working_grid(Extrapolation::Refuse)?;
+    /// let (preset, report) = Preset::from_measurement(&m, &w, "Ivory", Kind::Foundation, 0.02, None)?;
+    /// assert!(report.delta_e_2000_r < 1e-6 && report.delta_e_2000_r_inf < 1e-6, "{report:?}");
+    /// let i = (550 - 380) / 5;
+    /// let r = reflectance_over_background(preset.s_per_mm[i], preset.k_per_mm[i], 0.02, w.rg.0[i])?;
+    /// assert!((r - w.r.0[i]).abs() < 1e-12, "{r} vs {}", w.r.0[i]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_measurement(
         measurement: &Measurement,
         working: &WorkingMeasurement,
@@ -444,6 +465,23 @@ impl Preset {
     }
 
     /// Parses and validates preset JSON; `path` names the source in messages.
+    ///
+    /// # Examples
+    ///
+    /// JSON round-trips exactly (`serde_json`'s `float_roundtrip`); a malformed file is refused
+    /// with its line and column.
+    ///
+    /// ```
+    /// use rouge_measure::import::Kind;
+    /// use rouge_measure::{Preset, Spectrum};
+    ///
+    /// let (s, k) = (Spectrum::from_fn(|nm| 30.0 - nm / 100.0), Spectrum::constant(4.0));
+    /// let p = Preset::from_s_k("sheer red", Kind::Lipstick, 0.02, &s, &k);
+    /// assert_eq!(Preset::from_json(&p.to_json(), "red.json")?, p);
+    /// let e = Preset::from_json("{\n  \"schema\": 3\n}", "bad.json").unwrap_err();
+    /// assert!(e.to_string().starts_with("bad.json:2:"), "{e}");
+    /// # Ok::<(), rouge_measure::PresetError>(())
+    /// ```
     pub fn from_json(text: &str, path: &str) -> Result<Preset, PresetError> {
         // Check the version before the shape, so a future version gets the right message.
         if let Ok(v) = serde_json::from_str::<serde_json::Value>(text)
@@ -459,11 +497,8 @@ impl Preset {
                 }
             }
         }
-        let preset: Preset = serde_json::from_str(text).map_err(|e| PresetError::Json {
-            path: path.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message: e.to_string(),
+        let preset: Preset = serde_json::from_str(text).map_err(|e| {
+            PresetError::Json(LocatedError::at(Path::new(path), e.line(), Some(e.column()), e.to_string()))
         })?;
         preset.validate(path)?;
         Ok(preset)
@@ -498,66 +533,4 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn sample() -> Preset {
-        let s = Spectrum::from_fn(|nm| 30.0 - nm / 100.0);
-        let k = Spectrum::from_fn(|nm| if nm < 550.0 { 8.0 } else { 0.5 });
-        Preset::from_s_k("Test red", Kind::Lipstick, 0.02, &s, &k)
-    }
-
-    #[test]
-    fn json_round_trip_is_exact() {
-        let p = sample();
-        let back = Preset::from_json(&p.to_json(), "t.json").unwrap();
-        assert_eq!(p, back);
-    }
-
-    #[test]
-    fn zero_thickness_row_is_clear() {
-        let p = sample();
-        assert_eq!(p.derived.r0_linear_srgb[0], [0.0; 3]);
-        for v in p.derived.t_linear_srgb[0] {
-            assert!((v - 1.0).abs() < 2e-3);
-        }
-    }
-
-    #[test]
-    fn bad_presets_are_refused_with_the_field() {
-        let p = sample();
-        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
-        v["version"] = 2.into();
-        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
-        assert!(e.contains("version 2 is not supported"), "{e}");
-        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
-        v["k_per_mm"][4] = (-1.0).into();
-        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
-        assert!(e.contains("`k_per_mm` at 400 nm"), "{e}");
-        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
-        v["kind"] = "mascara".into();
-        let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
-        assert!(e.starts_with("p.json:"), "{e}");
-        let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
-        v["specular"]["ior"] = 7.0.into();
-        assert!(Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string().contains("specular.ior"));
-    }
-
-    #[test]
-    fn failed_save_keeps_the_old_file() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("p.json");
-        sample().save(&path).unwrap();
-        let before = std::fs::read(&path).unwrap();
-        // A directory in the way of the temporary file makes the save fail.
-        let blocker = dir.path().join(format!(".p.json.tmp-{}", std::process::id()));
-        std::fs::create_dir(&blocker).unwrap();
-        let mut other = sample();
-        other.name = "changed".into();
-        assert!(other.save(&path).is_err());
-        assert_eq!(std::fs::read(&path).unwrap(), before);
-    }
 }

@@ -5,8 +5,8 @@
 //! (1 nm from a spectroradiometer, 10 nm from an i1Pro, 400-700 nm from older instruments);
 //! [`SampledSpectrum::to_working_grid`] brings them onto it:
 //!
-//! * **Uniform input grids** are interpolated with the [Sprague1880] fifth-order polynomial, as
-//!   [CIE167] recommends for uniformly spaced spectral data. It passes through the measured
+//! * **Uniform input grids** are interpolated with the \[Sprague1880\] fifth-order polynomial, as
+//!   \[CIE167\] recommends for uniformly spaced spectral data. It passes through the measured
 //!   values, so a 1 nm measurement resampled to 5 nm keeps its values at 380, 385, ... nm exactly
 //!   (no band-pass averaging, as colour-science does).
 //! * **Non-uniform grids** are interpolated linearly (Sprague needs equal spacing).
@@ -112,7 +112,7 @@ pub enum Extrapolation {
 pub enum ResampleMethod {
     /// The input was already on the working grid: values copied unchanged.
     Identity,
-    /// [Sprague1880] interpolation of a uniform grid ([CIE167]).
+    /// \[Sprague1880\] interpolation of a uniform grid (\[CIE167\]).
     Sprague,
     /// Linear interpolation of a non-uniform grid.
     Linear,
@@ -299,11 +299,11 @@ pub(crate) fn linear_interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     ys[i - 1] + t * (ys[i] - ys[i - 1])
 }
 
-/// [Sprague1880] interpolation of uniformly spaced data, with the [CIE167] end extension.
+/// \[Sprague1880\] interpolation of uniformly spaced data, with the \[CIE167\] end extension.
 ///
 /// Two points are added at each end by the fixed Sprague extrapolation coefficients, then each
 /// interval [r_i, r_{i+1}] is a quintic through r_{i-2} .. r_{i+3}. Coefficients as published in
-/// [CIE167] (and used by colour-science's `SpragueInterpolator`).
+/// \[CIE167\] (and used by colour-science's `SpragueInterpolator`).
 struct Sprague {
     first_nm: f64,
     step_nm: f64,

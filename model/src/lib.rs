@@ -10,7 +10,7 @@
 //! - [`paint`]: the brush: the surface map, dabs, strokes.
 //! - [`medium`]: physical participating media (σa, σs′, g, η), the built-in measured ones.
 //! - [`rect`]: the one texel-rectangle type.
-//! - [`thickness`]: local thickness baked per vertex by inward rays ([BarreBrisebois2011]), its
+//! - [`thickness`]: local thickness baked per vertex by inward rays (\[BarreBrisebois2011\]), its
 //!   UV map and on-disk cache.
 
 pub mod document;

@@ -2,7 +2,7 @@
 //! and the diffusion models share. A [`Medium`] is σa and σs′ per linear RGB channel in mm⁻¹,
 //! the phase function's mean cosine g and the boundary's relative index of refraction η.
 //!
-//! The built-in media are the measurements of Jensen et al. ([Jensen2001], the table of measured
+//! The built-in media are the measurements of Jensen et al. (\[Jensen2001\], the table of measured
 //! parameters) in `data/media/*.json` (`rouge-medium` v1, docs/FORMATS.md), embedded. The table
 //! gives the reduced scattering σs′ = σs(1 − g) only, so the files carry g = 0 and σs = σs′ (the
 //! similarity relation): a diffusion model sees exactly the measured medium, and a path tracer
@@ -44,12 +44,12 @@ pub struct Medium {
     #[serde(default)]
     pub notes: String,
     /// The thickness-translucency parameters fitted to the path tracer for this medium, one per
-    /// local-thickness source ([BarreBrisebois2011]; `rouge bench translucency --fit-thickness`).
+    /// local-thickness source (\[BarreBrisebois2011\]; `rouge bench translucency --fit-thickness`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub translucency: Vec<FittedTranslucency>,
 }
 
-/// Parameters of the fast thickness translucency ([BarreBrisebois2011]) fitted by least squares
+/// Parameters of the fast thickness translucency (\[BarreBrisebois2011\]) fitted by least squares
 /// to Mitsuba 3 references of a medium (docs/BENCHMARKS.md), with what they were fitted on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -77,7 +77,7 @@ fn short(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
 }
 
-/// The names of the built-in media, in the order of [Jensen2001]'s table.
+/// The names of the built-in media, in the order of \[Jensen2001\]'s table.
 pub const BUILTIN_MEDIA: [&str; 11] = [
     "apple",
     "chicken1",

@@ -7,7 +7,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use rouge_measure::{ImportError, KmError, PresetError as RustPresetError};
+use rouge_measure::{KmError, LocatedError, PresetError as RustPresetError};
 
 create_exception!(rouge, RougeError, PyValueError, "Base class of Rouge's errors (a ValueError).");
 create_exception!(
@@ -78,7 +78,7 @@ fn fmt_index(index: &[usize]) -> String {
 }
 
 /// An import error, message as `rouge import` prints it (`file:line:column: why`).
-pub fn import_error(py: Python<'_>, e: ImportError) -> PyErr {
+pub fn import_error(py: Python<'_>, e: LocatedError) -> PyErr {
     let attrs = [
         ("path", opt(py, Some(e.path.display().to_string()))),
         ("line", opt(py, e.line)),
@@ -91,7 +91,7 @@ pub fn import_error(py: Python<'_>, e: ImportError) -> PyErr {
 pub fn preset_error(py: Python<'_>, e: RustPresetError) -> PyErr {
     let (path, nm, line, column) = match &e {
         RustPresetError::Io { path, .. } | RustPresetError::Invalid { path, .. } => (path.clone(), None, None, None),
-        RustPresetError::Json { path, line, column, .. } => (path.clone(), None, Some(*line), Some(*column)),
+        RustPresetError::Json(e) => (e.path.display().to_string(), None, e.line, e.column),
         RustPresetError::Inversion { path, wavelength_nm, .. } => (path.clone(), Some(*wavelength_nm), None, None),
     };
     let attrs = [

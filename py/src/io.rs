@@ -189,15 +189,14 @@ pub fn read_measurement_files(py: Python<'_>, R_inf: PathBuf, R: PathBuf, R_g: P
 /// Wavelengths, values (samples × wavelengths) and sample names.
 type SpectraTable<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>, Vec<String>);
 
-/// A table of spectra (what `rouge color` reads), either layout colour-science uses: a
-/// `wavelength_nm` or `wavelength` column and one column per sample, or one spectrum per row
-/// with the wavelengths in the header (`wavelength,380,385,...`); commas or tabs. Returns
+/// A table of spectra or a CGATS file (what `rouge color` reads): a table in either layout
+/// colour-science uses, a `wavelength_nm` or `wavelength` column and one column per sample, or
+/// one spectrum per row with the wavelengths in the header (`wavelength,380,385,...`), commas
+/// or tabs; or CGATS text (X-Rite, i1Profiler, ArgyllCMS), one spectrum per sample. Returns
 /// `(wavelengths, values, names)` with `values` of shape `(samples, wavelengths)` as fractions.
 #[pyfunction]
 pub fn read_spectra<'py>(py: Python<'py>, path: PathBuf) -> PyResult<SpectraTable<'py>> {
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| import_error(py, import::ImportError::file(&path, format!("cannot read: {e}"))))?;
-    let (spectra, _) = import::rouge_csv::parse_spectra_table(&path, &text).map_err(|e| import_error(py, e))?;
+    let spectra = py.detach(|| import::read_spectra(&path)).map_err(|e| import_error(py, e))?.samples;
     let wl = spectra.first().map_or(&[][..], |(_, s)| s.wavelengths_nm());
     let rows: Vec<Vec<f64>> = spectra.iter().map(|(_, s)| s.values().to_vec()).collect();
     let values = PyArray2::from_vec2(py, &rows).map_err(|e| PyValueError::new_err(e.to_string()))?;

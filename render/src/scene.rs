@@ -10,11 +10,10 @@ use crate::local_thickness::{ThicknessSource, TranslucencyParams};
 use crate::profile_fit::FittedProfile;
 use crate::sss::DiffusionProfile;
 use glam::{Mat4, Vec3};
+use rouge_measure::Spectrum;
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
-use rouge_measure::{Extrapolation, Spectrum};
 use rouge_model::medium::Medium;
 use rouge_model::mesh::Bounds;
-use std::path::Path;
 
 /// An orbit camera around the mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -189,9 +188,6 @@ impl SubsurfaceModel {
     }
 }
 
-/// Light skin of the ColorChecker (N. Ohta's measurement), embedded.
-const COLORCHECKER_SKIN: &str = include_str!("../../data/skin/colorchecker_skin.csv");
-
 impl Skin {
     /// Skin whose albedo is the linear sRGB (D65, CIE 1931) of a reflectance spectrum; d'Eon's
     /// skin profile; roughness 0.35 and IOR 1.4 (F0 ≈ 0.028), the values of d'Eon and Luebke (\[dEon2007\]).
@@ -227,18 +223,12 @@ impl Skin {
     /// # Errors
     /// [`RenderError::Invalid`] for another patch name.
     pub fn colorchecker(patch: &str) -> Result<Skin> {
-        let path = Path::new("<embedded data/skin/colorchecker_skin.csv>");
-        let (columns, _) = rouge_measure::import::rouge_csv::parse_spectra_table(path, COLORCHECKER_SKIN)
-            .map_err(|e| RenderError::Invalid(e.to_string()))?;
-        let (_, sampled) = columns
+        let patches = rouge_measure::import::colorchecker_skin().map_err(|e| RenderError::Invalid(e.to_string()))?;
+        let (_, spectrum) = patches
             .iter()
             .find(|(name, _)| name == patch)
             .ok_or_else(|| RenderError::Invalid(format!("no skin patch {patch:?}: use light_skin or dark_skin")))?;
-        let spectrum = sampled
-            .to_working_grid(Extrapolation::Refuse)
-            .map_err(|e| RenderError::Invalid(format!("{}: {e}", path.display())))?
-            .spectrum;
-        Ok(Skin::from_spectrum(&spectrum))
+        Ok(Skin::from_spectrum(spectrum))
     }
 
     /// Schlick's F0 for the skin's IOR.

@@ -1,4 +1,4 @@
-//! `rouge bench aa`: edge antialiasing ([Sander2001]) against supersampling on turning meshes:
+//! `rouge bench aa`: edge antialiasing (\[Sander2001\]) against supersampling on turning meshes:
 //! the error near discontinuities and the crawl against a k×k supersampled reference, ms per
 //! frame, and the edge counts of the paper's table 1 over 100 viewpoints
 //! (`rouge_render::aa_study`).

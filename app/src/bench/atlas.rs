@@ -1,4 +1,4 @@
-//! `rouge bench cube-atlas`: [Benmounah2009]'s Table 2 for Rouge's cube-atlas model: frame time
+//! `rouge bench cube-atlas`: \[Benmounah2009\]'s Table 2 for Rouge's cube-atlas model: frame time
 //! with and without deformation against triangle count (the hm08 hand and head at several
 //! subdivision levels, the built-in sphere). Deformation is the paper's: the mesh morphed toward
 //! its bounding sphere, a new t each frame, re-uploaded, the atlas redrawn from it.

@@ -1,5 +1,5 @@
 //! `rouge bench translucency --fit-thickness`: the thickness translucency's parameters
-//! ([BarreBrisebois2011]) fitted per medium and local-thickness source to the Mitsuba 3
+//! (\[BarreBrisebois2011\]) fitted per medium and local-thickness source to the Mitsuba 3
 //! references, by least squares on linear radiance over the compared pixels.
 //!
 //! The frame is linear in the scale s and the ambient a for a fixed distortion δ and power p:

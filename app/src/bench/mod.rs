@@ -18,6 +18,8 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
     /// Compositing cosmetic layers in linear RGB or a few bands against spectral compositing:

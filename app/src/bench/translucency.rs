@@ -18,6 +18,8 @@ use serde::Serialize;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Args)]
 pub struct TranslucencyBenchArgs {
     /// Folder of references (NAME.exr + NAME.json sidecars from python/render_reference.py).

@@ -11,7 +11,7 @@ use rouge_measure::analysis::mixing::{self, MixTarget};
 use rouge_measure::analysis::skin::read_skins;
 use rouge_measure::analysis::{Layer, lab_of};
 use rouge_measure::colorimetry::{Colorimeter, Illuminant, Observer, Viewing};
-use rouge_measure::import::rouge_csv::parse_spectra_table;
+use rouge_measure::import::colorchecker_skin;
 use rouge_measure::spectrum::{Extrapolation, Spectrum};
 use rouge_measure::{Preset, delta_e_2000};
 use serde_json::json;
@@ -135,13 +135,11 @@ fn parse_lab(text: &str) -> Result<[f64; 3], String> {
     }
 }
 
-const SKIN_CSV: &str = include_str!("../../../data/skin/colorchecker_skin.csv");
-
-/// The ColorChecker's two skin patches (N. Ohta's measurements, `data/skin/colorchecker_skin.csv`),
-/// the default skins of the analyses and of `rouge bench compositing`.
+/// The ColorChecker's two skin patches (N. Ohta's measurements, `data/skin/colorchecker_skin.csv`,
+/// parsed by [`colorchecker_skin`]), the default skins of the analyses and of `rouge bench
+/// compositing`.
 pub fn embedded_skins() -> Result<Vec<(String, Spectrum)>> {
-    let (skins, _) = parse_spectra_table(Path::new("<embedded>/data/skin/colorchecker_skin.csv"), SKIN_CSV)?;
-    skins.into_iter().map(|(n, s)| Ok((n, s.to_working_grid(Extrapolation::Refuse)?.spectrum))).collect()
+    Ok(colorchecker_skin()?)
 }
 
 pub fn run(cmd: &AnalyzeCommand) -> Result<()> {

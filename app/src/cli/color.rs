@@ -1,16 +1,17 @@
-//! `rouge color FILE.csv`: colorimetry of a table of spectra.
+//! `rouge color FILE`: colorimetry of a table of spectra or a CGATS file.
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::Result;
 use clap::Args;
 use rouge_measure::colorimetry::{Colorimeter, Illuminant, Observer, Viewing};
-use rouge_measure::import::rouge_csv::parse_spectra_table;
+use rouge_measure::import::read_spectra;
 use rouge_measure::spectrum::Extrapolation;
 use serde_json::json;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub struct ColorArgs {
-    /// CSV with `wavelength_nm` and one column per sample.
+    /// Spectra: a CSV with `wavelength_nm` and one column per sample (or one sample per row), or
+    /// a CGATS file (X-Rite, i1Profiler, ArgyllCMS), read as `rouge import` reads them.
     pub file: PathBuf,
     /// Illuminant: D65, D55, D50, A or E.
     #[arg(long, default_value = "D65", value_parser = parse_illuminant)]
@@ -32,16 +33,13 @@ pub fn parse_observer(s: &str) -> Result<Observer, String> {
 }
 
 pub fn run(args: &ColorArgs) -> Result<()> {
-    let text = std::fs::read_to_string(&args.file).with_context(|| format!("cannot read {}", args.file.display()))?;
-    let (spectra, _scale) = parse_spectra_table(&args.file, &text)?;
+    let extrapolation = if args.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
+    let spectra = read_spectra(&args.file)?.to_working_grid(extrapolation)?;
     let viewing = Viewing { illuminant: args.illuminant, observer: args.observer };
     let c = Colorimeter::get(viewing);
-    let extrapolation = if args.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
     let mut out = Vec::with_capacity(spectra.len());
     for (name, s) in &spectra {
-        let w =
-            s.to_working_grid(extrapolation).map_err(|e| anyhow!("{}: sample `{name}`: {e}", args.file.display()))?;
-        let xyz = c.xyz(&w.spectrum);
+        let xyz = c.xyz(s);
         out.push(json!({
             "name": name,
             "xyz": xyz.xyz,

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames};
+use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames, SpectralInput};
 use rouge_measure::km::{self, Saunderson};
 use rouge_measure::preset::{ImportReport, Preset};
 use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum};
@@ -59,7 +59,8 @@ pub struct CommonArgs {
     #[arg(long = "white-reflectance", conflicts_with = "white_spectrum")]
     pub white_reflectance: Option<f64>,
     /// Reflectance spectrum of the white standard for radiance files: a CSV with
-    /// `wavelength_nm` and one reflectance column (e.g. from its calibration certificate).
+    /// `wavelength_nm` and one reflectance column, or a one-sample CGATS file (e.g. from its
+    /// calibration certificate).
     #[arg(long = "white-spectrum")]
     pub white_spectrum: Option<PathBuf>,
     /// Apply the Saunderson surface correction with this refractive index (K1 = ((n-1)/(n+1))²).
@@ -107,8 +108,8 @@ pub fn run(args: &ImportArgs) -> Result<()> {
 }
 
 pub fn demo(args: &DemoArgs) -> Result<()> {
-    let path = Path::new("<embedded>").join(DEMO_NAME);
-    let m = import::rouge_csv::parse(&path, DEMO_CSV)?;
+    let input = SpectralInput::embedded(Path::new("<embedded>").join(DEMO_NAME), DEMO_CSV);
+    let m = input.measurement(&ImportOptions::default())?;
     convert(&m, &args.common, args.out.as_deref())
 }
 
@@ -121,22 +122,7 @@ fn options(common: &CommonArgs) -> Result<ImportOptions> {
         },
     };
     let white_reflectance = match (common.white_reflectance, &common.white_spectrum) {
-        (_, Some(path)) => {
-            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-            let (mut spectra, _) = import::rouge_csv::parse_spectra_table(path, &text)?;
-            if spectra.len() != 1 {
-                bail!(
-                    "{}: expected one reflectance column besides wavelength_nm, found {}",
-                    path.display(),
-                    spectra.len()
-                );
-            }
-            let (_, s) = spectra.remove(0);
-            if let Some((nm, v)) = s.wavelengths_nm().iter().zip(s.values()).find(|(_, v)| !(**v > 0.0 && **v <= 1.0)) {
-                bail!("{}: white reflectance {v} at {nm} nm must be in (0, 1]", path.display());
-            }
-            Some(s)
-        }
+        (_, Some(path)) => Some(import::radiance::read_white_standard(path)?),
         (None, None) => None,
         (Some(rho), None) if rho > 0.0 && rho <= 1.0 => {
             Some(SampledSpectrum::new(vec![380.0, 780.0], vec![rho, rho]).context("white reflectance")?)

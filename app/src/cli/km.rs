@@ -5,6 +5,8 @@ use clap::Subcommand;
 use rouge_measure::km::{self, LayerRt, Saunderson};
 use serde_json::json;
 
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Subcommand)]
 pub enum KmCommand {
     /// S and K (per mm) from R∞, R over a background Rg, and the layer thickness ([Huang2013] eq. 6-7).

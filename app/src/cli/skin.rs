@@ -369,7 +369,7 @@ fn spectrum(a: &SpectrumArgs) -> Result<()> {
 
 /// How far light travels under the lightest, a middle and the deepest tone: 2πr·R(r), the
 /// density of the distance between entry and exit, of each tone's RGB medium ([`rgb_medium`]) by
-/// the better dipole ([dEon2012]; `rouge_render::diffusion`).
+/// the better dipole (\[dEon2012\]; `rouge_render::diffusion`).
 fn profile_chart(tones: &[rouge_measure::skin::SkinTone]) -> Result<Chart> {
     use rouge_render::diffusion::{ChannelProfile, ProfileModel};
     let picks = [0, tones.len() / 2, tones.len() - 1];

@@ -1,13 +1,13 @@
 //! The Subsurface panel: which subsurface model the skin uses in the viewport: the screen-space
-//! kernel (the default), the fast thickness translucency ([BarreBrisebois2011]) with a baked
+//! kernel (the default), the fast thickness translucency (\[BarreBrisebois2011\]) with a baked
 //! local thickness or one read per light from its shadow map, the directional dipole, the
-//! cube-map atlas dipole ([Benmounah2009], with the paper's deformation test: the head morphed
+//! cube-map atlas dipole (\[Benmounah2009\], with the paper's deformation test: the head morphed
 //! toward its bounding sphere, by hand or animated), or none. The bake runs on a
 //! background thread (cached on disk by mesh: instant the second time); until it lands the
 //! viewport keeps the screen-space kernel and says so.
 //!
 //! The app's skin is not a measured medium, so the translucency takes skin1's coefficients
-//! ([Jensen2001]: its σ_tr falloff) and the parameters fitted to the path tracer for skin1.
+//! (\[Jensen2001\]: its σ_tr falloff) and the parameters fitted to the path tracer for skin1.
 
 use super::*;
 use rouge_model::medium::Medium;
@@ -25,9 +25,9 @@ pub enum SubsurfaceChoice {
     ThicknessBaked,
     /// Thickness translucency with the per-light shadow-map thickness (follows deformation).
     ThicknessPerLight,
-    /// The directional dipole of skin1 ([Frisvad2014]), accumulated over frames while still.
+    /// The directional dipole of skin1 (\[Frisvad2014\]), accumulated over frames while still.
     DirectionalDipole,
-    /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame ([Benmounah2009]).
+    /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame (\[Benmounah2009\]).
     CubeAtlas,
     /// No subsurface scattering.
     None,

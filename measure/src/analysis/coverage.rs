@@ -1,7 +1,7 @@
 //! How much a layer covers: the contrast ratio of paint standards against thickness, the hiding
 //! thickness, and the colour difference a layer makes on a given skin.
 //!
-//! **Contrast ratio** ([ISO6504-3], [ASTMD2805]): `CR = Y_b / Y_w`, the luminance factor Y of the
+//! **Contrast ratio** (\[ISO6504-3\], \[ASTMD2805\]): `CR = Y_b / Y_w`, the luminance factor Y of the
 //! film over the black part of a contrast chart divided by Y over the white part, both computed
 //! here from the spectral KM reflectance over flat backgrounds of reflectance `Rb`, `Rw`
 //! (parameters; ISO 6504-3's chart has Y_w = 80 ± 2 and a black of a few percent at most).
@@ -14,7 +14,7 @@ use super::{AnalysisError, Layer, check_reflectance, check_thickness, invalid, l
 use crate::colorimetry::{Colorimeter, delta_e_2000_raw};
 use crate::spectrum::Spectrum;
 
-/// The contrast ratio at which a film counts as hiding ([ISO6504-3]).
+/// The contrast ratio at which a film counts as hiding (\[ISO6504-3\]).
 pub const HIDING_CONTRAST_RATIO: f64 = 0.98;
 
 /// A contrast chart: spectrally flat black and white backgrounds (reflectances, 0-1).
@@ -59,7 +59,7 @@ pub struct Contrast {
 }
 
 /// The contrast of `layer` at `thickness_mm` (∞ allowed) on `chart` under the colorimeter's
-/// viewing (Y by summation, [CIE15] §7.1).
+/// viewing (Y by summation, \[CIE15\] §7.1).
 pub fn contrast(
     layer: &Layer,
     thickness_mm: f64,

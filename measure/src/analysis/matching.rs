@@ -2,7 +2,7 @@
 //! (the bare skin itself for a "your shade" match, or any colour); and for a range of skins,
 //! which shades of a product line cover them and where the gaps are.
 //!
-//! The criterion is CIEDE2000 ([CIE142]) between the covered skin (KM layer over the skin as an
+//! The criterion is CIEDE2000 (\[CIE142\]) between the covered skin (KM layer over the skin as an
 //! opaque background, see the module [`super`]) and the target, under one viewing. For a
 //! "your shade" match the thickness is the one the product is worn at (a range collapses to its
 //! thinnest end: with the bare skin as the target, less product is always closer), so a shade

@@ -1,8 +1,8 @@
 //! Mixing bases: Duncan's rule for the S and K of a mixture, and the concentrations of two to
 //! four bases that reach a target colour.
 //!
-//! **Duncan's rule** ([Duncan1940]; the two-constant mixing law of colour matching,
-//! [Allen1980]): a mixture of components at concentrations `c_i` has
+//! **Duncan's rule** (\[Duncan1940\]; the two-constant mixing law of colour matching,
+//! \[Allen1980\]): a mixture of components at concentrations `c_i` has
 //! `S = Σ c_i S_i` and `K = Σ c_i K_i` per wavelength. Valid while the components scatter
 //! independently (no crowding: pigment volume fractions well below ~10-20 % for TiO2) and the
 //! film stays homogeneous; with whole products as bases, `c_i` are the fractions of each in the
@@ -16,7 +16,7 @@ use crate::km::{self, KmCoefficients};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm};
 
 /// S and K of a mixture per wavelength by Duncan's rule, [`km::duncan_mix`] (`S = Σ c_i S_i`,
-/// `K = Σ c_i K_i`, [Duncan1940]). One concentration per base, finite and ≥ 0; they need not sum
+/// `K = Σ c_i K_i`, \[Duncan1940\]). One concentration per base, finite and ≥ 0; they need not sum
 /// to 1 (a pigment library's coefficients are per unit volume fraction, the binder adding
 /// nothing).
 pub fn duncan_mix(name: &str, bases: &[Layer], concentrations: &[f64]) -> Result<Layer, AnalysisError> {

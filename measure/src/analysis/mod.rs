@@ -5,7 +5,7 @@
 //! there too (`python/km_adding_doubling.py`).
 //!
 //! Every analysis sees skin (or a contrast chart) as an opaque, diffusely reflecting background
-//! under a KM layer ([Huang2013] eq. 3 with an opaque second layer): light carried sideways in
+//! under a KM layer (\[Huang2013\] eq. 3 with an opaque second layer): light carried sideways in
 //! the skin and the skin's own surface reflection are outside the model.
 
 pub mod coverage;
@@ -82,7 +82,7 @@ impl Layer {
     }
 
     /// Reflectance of the layer at `thickness_mm` over an opaque diffuse background, per
-    /// wavelength: `R = R0 + T² Rb / (1 − R0 Rb)` ([Huang2013] eq. 3 corrected, see `km.rs`) with
+    /// wavelength: `R = R0 + T² Rb / (1 − R0 Rb)` (\[Huang2013\] eq. 3 corrected, see `km.rs`) with
     /// R0, T from [`km::layer_r_t`]. `thickness_mm = ∞` is the opaque layer (R∞); 0 is the bare
     /// background. The caller checks the thickness ([`check_thickness`]) and the background
     /// ([`check_reflectance`]).

@@ -3,7 +3,7 @@
 //! No derivatives: CIEDE2000 has kinks (hue angles, the rotation term), so both only compare
 //! values.
 
-/// Minimises `f` on `[lo, hi]` by golden-section search ([Kiefer1953]) until the bracket is
+/// Minimises `f` on `[lo, hi]` by golden-section search (\[Kiefer1953\]) until the bracket is
 /// narrower than `tol` (absolute). Finds the minimum of a unimodal `f`; for any other it finds
 /// a local minimum inside the bracket. Returns `(x, f(x))`, the best point evaluated.
 pub fn golden_section(mut f: impl FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64, f64) {
@@ -40,7 +40,7 @@ pub fn golden_section(mut f: impl FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64)
 
 /// Minimises `f(c)` over the simplex `c_i ≥ 0, Σ c_i = 1` by a pattern search along the edge
 /// directions `e_i − e_j` (a positive spanning set of the simplex's plane, so the search stops
-/// only at a point no such move improves: [Lewis2000]'s generalised pattern search with linear
+/// only at a point no such move improves: \[Lewis2000\]'s generalised pattern search with linear
 /// constraints). Starts from the best point of the lattice of step 1/`lattice` (every vertex,
 /// edge and face point included), halves the step when no move helps, stops below `tol`.
 /// Returns `(c, f(c))`. `n ≥ 1`.

@@ -1,40 +1,34 @@
 //! Skin reflectance spectra from the user's files, in the formats `rouge import` and `rouge
 //! color` read: a spectra table (Rouge CSV with a `wavelength_nm` column and one column per
 //! skin) or a CGATS file (X-Rite, i1Profiler, ArgyllCMS `.ti3`/`.sp`; one sample per skin),
-//! chosen by content. Rouge ships no real skin data: measured skins, such as the Xiao et al.
-//! database ([Xiao2016]) read by `python/skin_gamut.py`, come in as such files.
+//! chosen by content, through the one entry for spectral inputs ([`read_spectra`]). Rouge ships
+//! no real skin data: measured skins, such as the Xiao et al. database (\[Xiao2016\]) read by
+//! `python/skin_gamut.py`, come in as such files.
 
-use crate::import::{ImportError, cgats, rouge_csv};
+use crate::error::LocatedError;
+use crate::import::read_spectra;
 use crate::spectrum::{Extrapolation, SampledSpectrum, Spectrum, working_wavelength_nm};
 use std::path::Path;
 
 /// Reads every skin of `path` as measured, on its own wavelengths (the skin model's fit works
 /// there). Errors name the file and the line and column of a bad cell.
-pub fn read_sampled_skins(path: &Path) -> Result<Vec<(String, SampledSpectrum)>, ImportError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ImportError::file(path, format!("cannot read: {e}")))?;
-    if text.trim().is_empty() {
-        return Err(ImportError::file(path, "the file is empty"));
-    }
-    if cgats::looks_like_cgats(&text) {
-        Ok(cgats::parse(path, &text)?.samples.into_iter().map(|s| (s.name, s.spectrum)).collect())
-    } else {
-        Ok(rouge_csv::parse_spectra_table(path, &text)?.0)
-    }
+pub fn read_sampled_skins(path: &Path) -> Result<Vec<(String, SampledSpectrum)>, LocatedError> {
+    Ok(read_spectra(path)?.samples)
 }
 
 /// Reads every skin of `path` onto the working grid. Errors name the file and the line and
 /// column (a bad cell), or the sample and wavelength (a grid that does not cover 380-780 nm
 /// without `Extrapolation::Constant`, a reflectance outside [0, 1] after resampling).
-pub fn read_skins(path: &Path, extrapolation: Extrapolation) -> Result<Vec<(String, Spectrum)>, ImportError> {
+pub fn read_skins(path: &Path, extrapolation: Extrapolation) -> Result<Vec<(String, Spectrum)>, LocatedError> {
     let sampled = read_sampled_skins(path)?;
     sampled
         .into_iter()
         .map(|(name, s)| {
             let w = s.to_working_grid(extrapolation).map_err(|e| {
-                ImportError::file(path, format!("skin `{name}`: {e} (--extrapolate holds the end values)"))
+                LocatedError::file(path, format!("skin `{name}`: {e} (--extrapolate holds the end values)"))
             })?;
             if let Some(i) = w.spectrum.0.iter().position(|v| !(0.0..=1.0).contains(v)) {
-                return Err(ImportError::file(
+                return Err(LocatedError::file(
                     path,
                     format!(
                         "skin `{name}`: reflectance {} at {} nm is outside [0, 1]",

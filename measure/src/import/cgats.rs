@@ -11,8 +11,8 @@
 //! (`R_INF`, `R` or `RG`) in single-spectrum files.
 
 use super::{
-    Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_reflectance_range, check_wavelengths, detect_scale,
-    parse_number,
+    Cell, Kind, LocatedError, Measurement, SampleNames, Scale, check_reflectance_range, check_wavelengths,
+    detect_scale, parse_number,
 };
 use crate::spectrum::SampledSpectrum;
 use std::collections::BTreeMap;
@@ -94,10 +94,10 @@ fn spectral_field_nm(name: &str) -> Option<f64> {
 }
 
 /// Parses a CGATS file's structure and spectra.
-pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
+pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, LocatedError> {
     let mut lines =
         text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (_, first) = lines.next().ok_or_else(|| ImportError::file(path, "the file is empty"))?;
+    let (_, first) = lines.next().ok_or_else(|| LocatedError::file(path, "the file is empty"))?;
     let identifier = tokens(first).into_iter().next().unwrap_or_default();
     let mut keywords = BTreeMap::new();
     let mut fields: Vec<String> = Vec::new();
@@ -138,19 +138,19 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
         }
     }
     match state {
-        Header => return Err(ImportError::file(path, "no BEGIN_DATA_FORMAT section")),
+        Header => return Err(LocatedError::file(path, "no BEGIN_DATA_FORMAT section")),
         Format => {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 format_line,
                 None,
                 "BEGIN_DATA_FORMAT is never closed by END_DATA_FORMAT",
             ));
         }
-        AfterFormat => return Err(ImportError::file(path, "no BEGIN_DATA section")),
+        AfterFormat => return Err(LocatedError::file(path, "no BEGIN_DATA section")),
         Data => {
             let end = text.lines().count() + 1;
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 end,
                 Some(1),
@@ -163,7 +163,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
         && n.trim().parse::<usize>().ok() != Some(fields.len())
     {
         {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 format_line,
                 None,
@@ -175,7 +175,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
         && n.trim().parse::<usize>().ok() != Some(rows.len())
     {
         {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 data_line,
                 None,
@@ -186,7 +186,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
     let spectral: Vec<(usize, f64)> =
         fields.iter().enumerate().filter_map(|(i, f)| spectral_field_nm(f).map(|nm| (i, nm))).collect();
     if spectral.len() < 2 {
-        return Err(ImportError::at(
+        return Err(LocatedError::at(
             path,
             format_line,
             None,
@@ -202,7 +202,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
     let mut values: Vec<Vec<Cell>> = Vec::with_capacity(rows.len());
     for (line, row) in &rows {
         if row.len() != fields.len() {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 *line,
                 Some(row.len().min(fields.len()) + 1),
@@ -222,7 +222,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
             Ok(n) if (n - 100.0).abs() < 1e-9 => Scale::Percent { declared: true },
             Ok(n) if (n - 1.0).abs() < 1e-9 => Scale::Fraction { declared: true },
             _ => {
-                return Err(ImportError::file(path, format!("SPECTRAL_NORM {norm} is neither 1 nor 100")));
+                return Err(LocatedError::file(path, format!("SPECTRAL_NORM {norm} is neither 1 nor 100")));
             }
         },
         None => detect_scale(&all),
@@ -234,7 +234,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
         let name = name_field.map_or_else(|| (k + 1).to_string(), |i| row[i].clone());
         let spectrum =
             SampledSpectrum::new(wavelengths.clone(), cells.iter().map(|c| c.value * scale.factor()).collect())
-                .map_err(|e| ImportError::at(path, *line, None, e.to_string()))?;
+                .map_err(|e| LocatedError::at(path, *line, None, e.to_string()))?;
         samples.push(NamedSpectrum { name, line: *line, spectrum });
     }
     Ok(CgatsFile { path: path.to_path_buf(), identifier, keywords, scale, samples })
@@ -242,18 +242,18 @@ pub fn parse(path: &Path, text: &str) -> Result<CgatsFile, ImportError> {
 
 impl CgatsFile {
     /// The sample called `name` (case-insensitive).
-    pub fn sample(&self, name: &str) -> Result<&NamedSpectrum, ImportError> {
+    pub fn sample(&self, name: &str) -> Result<&NamedSpectrum, LocatedError> {
         let found: Vec<&NamedSpectrum> = self.samples.iter().filter(|s| s.name.eq_ignore_ascii_case(name)).collect();
         match found.as_slice() {
             [one] => Ok(one),
-            [] => Err(ImportError::file(
+            [] => Err(LocatedError::file(
                 &self.path,
                 format!(
                     "no sample named `{name}` (samples: {}); choose them with --samples R_INF,R,RG",
                     self.samples.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", ")
                 ),
             )),
-            [a, b, ..] => Err(ImportError::at(
+            [a, b, ..] => Err(LocatedError::at(
                 &self.path,
                 b.line,
                 None,
@@ -263,9 +263,9 @@ impl CgatsFile {
     }
 
     /// Builds a measurement from the three named samples.
-    pub fn measurement(&self, names: &SampleNames) -> Result<Measurement, ImportError> {
+    pub fn measurement(&self, names: &SampleNames) -> Result<Measurement, LocatedError> {
         if self.samples.len() == 1 {
-            return Err(ImportError::file(
+            return Err(LocatedError::file(
                 &self.path,
                 "this file holds a single spectrum (e.g. an ArgyllCMS .sp): give R∞, R and Rg as three files \
                  (rouge import --r-inf A.sp --r B.sp --rg C.sp)",
@@ -275,13 +275,13 @@ impl CgatsFile {
         let thickness_mm = match kw("ROUGE_THICKNESS_MM").or_else(|| kw("THICKNESS_MM")) {
             None => None,
             Some(t) => Some(t.trim().parse::<f64>().ok().filter(|v| *v > 0.0 && v.is_finite()).ok_or_else(|| {
-                ImportError::file(&self.path, format!("THICKNESS_MM `{t}` is not a positive number"))
+                LocatedError::file(&self.path, format!("THICKNESS_MM `{t}` is not a positive number"))
             })?),
         };
         let kind = match kw("ROUGE_KIND").or_else(|| kw("KIND")) {
             None => None,
             Some(k) => {
-                Some(Kind::parse(&k).ok_or_else(|| ImportError::file(&self.path, format!("unknown KIND `{k}`")))?)
+                Some(Kind::parse(&k).ok_or_else(|| LocatedError::file(&self.path, format!("unknown KIND `{k}`")))?)
             }
         };
         Ok(Measurement {

@@ -1,19 +1,27 @@
 //! Import of cosmetic measurements: R∞ (opaque layer), R (thin layer of known thickness over a
-//! background) and Rg (the background), from the formats instruments and people produce.
+//! background) and Rg (the background), from the formats instruments and people produce, and of
+//! any other spectra (skins, white standards, colour tables).
 //!
+//! * [`input`]: the one entry, [`SpectralInput`]: reads a file (or compiled-in data) once,
+//!   recognises its format from its content and gives a [`Measurement`] or named [`Spectra`];
+//!   the embedded ColorChecker skins ([`colorchecker_skin`]) are parsed there.
 //! * [`rouge_csv`]: Rouge CSV (`wavelength_nm,r_inf,r,rg` with `# key: value` comments).
 //! * [`cgats`]: CGATS.17 text as written by X-Rite and i1Profiler (`nm380`, `SPECTRAL_NM380`)
 //!   and ArgyllCMS (`.ti3` with `SPEC_380` in percent, `.sp` single spectra).
 //! * [`radiance`]: spectroradiometer radiance (a Konica Minolta CS-2000 export): reflectance from
-//!   the sample's and the white standard's radiance ([Huang2013] eq. 8).
+//!   the sample's and the white standard's radiance (\[Huang2013\] eq. 8).
 //!
 //! Every error names the file, and the line and column where there is one. Nothing is returned
 //! unless the whole file is valid. Formats are specified in `docs/FORMATS.md`.
 
 pub mod cgats;
+pub mod input;
 pub mod radiance;
 pub mod rouge_csv;
 
+pub use input::{InputFormat, Spectra, SpectralInput, colorchecker_skin, read_spectra};
+
+use crate::error::LocatedError;
 use crate::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum, Spectrum, SpectrumError};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -21,44 +29,6 @@ use std::path::{Path, PathBuf};
 
 /// Largest reflectance accepted (fluorescent or glossy samples can exceed 1 a little).
 pub const MAX_REFLECTANCE: f64 = 1.5;
-
-/// An import error: where, and why.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub struct ImportError {
-    /// The file.
-    pub path: PathBuf,
-    /// 1-based line, when the error has one.
-    pub line: Option<usize>,
-    /// 1-based column (field number), when the error has one.
-    pub column: Option<usize>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for ImportError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.path.display())?;
-        if let Some(line) = self.line {
-            write!(f, ":{line}")?;
-            if let Some(column) = self.column {
-                write!(f, ":{column}")?;
-            }
-        }
-        write!(f, ": {}", self.message)
-    }
-}
-
-impl ImportError {
-    /// An error about the whole file.
-    pub fn file(path: &Path, message: impl Into<String>) -> Self {
-        ImportError { path: path.to_path_buf(), line: None, column: None, message: message.into() }
-    }
-
-    /// An error at a line (and optionally a column).
-    pub fn at(path: &Path, line: usize, column: Option<usize>, message: impl Into<String>) -> Self {
-        ImportError { path: path.to_path_buf(), line: Some(line), column, message: message.into() }
-    }
-}
 
 /// Whether the numbers in a file are fractions (0-1) or percent (0-100), and how that was decided.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -121,11 +91,11 @@ pub(crate) fn detect_scale(cells: &[Cell]) -> Scale {
 }
 
 /// Checks reflectances (already scaled to fractions) lie in [0, 1.5].
-pub(crate) fn check_reflectance_range(path: &Path, cells: &[Cell], factor: f64) -> Result<(), ImportError> {
+pub(crate) fn check_reflectance_range(path: &Path, cells: &[Cell], factor: f64) -> Result<(), LocatedError> {
     for c in cells {
         let v = c.value * factor;
         if !(0.0..=MAX_REFLECTANCE).contains(&v) {
-            return Err(ImportError::at(path, c.line, Some(c.column), format!("reflectance {v} is outside [0, 1.5]")));
+            return Err(LocatedError::at(path, c.line, Some(c.column), format!("reflectance {v} is outside [0, 1.5]")));
         }
     }
     Ok(())
@@ -138,22 +108,22 @@ pub(crate) fn parse_number(
     line: usize,
     column: usize,
     what: &str,
-) -> Result<f64, ImportError> {
+) -> Result<f64, LocatedError> {
     let t = text.trim();
     match t.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(v) => Err(ImportError::at(path, line, Some(column), format!("{what} is {v}: not a finite number"))),
-        Err(_) if t.is_empty() => Err(ImportError::at(path, line, Some(column), format!("{what} is empty"))),
-        Err(_) => Err(ImportError::at(path, line, Some(column), format!("{what} `{t}` is not a number"))),
+        Ok(v) => Err(LocatedError::at(path, line, Some(column), format!("{what} is {v}: not a finite number"))),
+        Err(_) if t.is_empty() => Err(LocatedError::at(path, line, Some(column), format!("{what} is empty"))),
+        Err(_) => Err(LocatedError::at(path, line, Some(column), format!("{what} `{t}` is not a number"))),
     }
 }
 
 /// Checks a wavelength column: strictly increasing, no duplicates, each with its line.
-pub(crate) fn check_wavelengths(path: &Path, cells: &[Cell]) -> Result<(), ImportError> {
+pub(crate) fn check_wavelengths(path: &Path, cells: &[Cell]) -> Result<(), LocatedError> {
     for pair in cells.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         if b.value == a.value {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 b.line,
                 Some(b.column),
@@ -161,7 +131,7 @@ pub(crate) fn check_wavelengths(path: &Path, cells: &[Cell]) -> Result<(), Impor
             ));
         }
         if b.value < a.value {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 b.line,
                 Some(b.column),
@@ -253,10 +223,10 @@ pub struct WorkingMeasurement {
 
 impl Measurement {
     /// Resamples the three spectra onto the working grid.
-    pub fn to_working_grid(&self, extrapolation: Extrapolation) -> Result<WorkingMeasurement, ImportError> {
+    pub fn to_working_grid(&self, extrapolation: Extrapolation) -> Result<WorkingMeasurement, LocatedError> {
         let conv = |s: &SampledSpectrum, what: &str| {
             s.to_working_grid(extrapolation)
-                .map_err(|e: SpectrumError| ImportError::file(&self.source, format!("{what}: {e}")))
+                .map_err(|e: SpectrumError| LocatedError::file(&self.source, format!("{what}: {e}")))
         };
         let a = conv(&self.r_inf, "r_inf")?;
         let b = conv(&self.r, "r")?;
@@ -294,52 +264,43 @@ pub struct ImportOptions {
 
 /// Reads a measurement file of any supported format, chosen from its content (not its name):
 /// a CGATS-family file has a `BEGIN_DATA_FORMAT` line; a radiance export has a `No.` table with
-/// `NNNnm` columns; anything else is read as Rouge CSV.
-pub fn read_measurement(path: &Path, options: &ImportOptions) -> Result<Measurement, ImportError> {
-    let text = read_text(path)?;
-    if cgats::looks_like_cgats(&text) {
-        let file = cgats::parse(path, &text)?;
-        return file.measurement(&options.samples);
-    }
-    if radiance::looks_like_radiance(&text) {
-        return radiance::parse(path, &text, &options.samples, options.white_reflectance.as_ref());
-    }
-    rouge_csv::parse(path, &text)
-}
-
-fn read_text(path: &Path) -> Result<String, ImportError> {
-    let bytes = std::fs::read(path).map_err(|e| ImportError::file(path, format!("cannot read: {e}")))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| ImportError::file(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))?;
-    if text.trim().is_empty() {
-        return Err(ImportError::file(path, "the file is empty"));
-    }
-    Ok(text)
+/// `NNNnm` columns; anything else is read as Rouge CSV. The same as
+/// `SpectralInput::read(path)?.measurement(options)` ([`SpectralInput::measurement`]).
+///
+/// # Examples
+///
+/// The same product as Rouge CSV and as an X-Rite CGATS export (`data/measurements/`): the
+/// format comes from the content, and both give R∞ = 0.398988 at 550 nm.
+///
+/// ```
+/// use rouge_measure::import::{ImportOptions, Kind, read_measurement};
+/// use std::path::Path;
+///
+/// let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements");
+/// let csv = read_measurement(&dir.join("foundation_02_ivory.csv"), &ImportOptions::default())?;
+/// assert_eq!((csv.format.as_str(), csv.kind, csv.thickness_mm), ("Rouge CSV", Some(Kind::Foundation), Some(0.02)));
+/// let xrite = read_measurement(&dir.join("formats/foundation_02_ivory_xrite.txt"), &ImportOptions::default())?;
+/// assert_eq!(xrite.format, "CGATS text (CGATS.17)");
+/// let at_550 = |m: &rouge_measure::Measurement| {
+///     m.r_inf.wavelengths_nm().iter().zip(m.r_inf.values()).find(|(nm, _)| **nm == 550.0).map(|(_, v)| *v)
+/// };
+/// assert_eq!((at_550(&csv), at_550(&xrite)), (Some(0.398988), Some(0.398988)));
+/// # Ok::<(), rouge_measure::LocatedError>(())
+/// ```
+pub fn read_measurement(path: &Path, options: &ImportOptions) -> Result<Measurement, LocatedError> {
+    SpectralInput::read(path)?.measurement(options)
 }
 
 /// Reads one spectrum from a single-spectrum CGATS file (an ArgyllCMS `.sp`, or any CGATS file
-/// with one sample), returning it with the file's `ROUGE_ROLE` keyword if present.
-pub fn read_single_spectrum(path: &Path) -> Result<(SampledSpectrum, Option<String>, Scale), ImportError> {
-    let text = read_text(path)?;
-    if !cgats::looks_like_cgats(&text) {
-        return Err(ImportError::file(path, "not a CGATS / ArgyllCMS .sp file (no BEGIN_DATA_FORMAT)"));
-    }
-    let file = cgats::parse(path, &text)?;
-    match file.samples.as_slice() {
-        [one] => Ok((one.spectrum.clone(), file.keywords.get("ROUGE_ROLE").cloned(), file.scale)),
-        many => Err(ImportError::file(
-            path,
-            format!(
-                "{} spectra in a file given as a single spectrum; name the samples with --samples instead",
-                many.len()
-            ),
-        )),
-    }
+/// with one sample), returning it with the file's `ROUGE_ROLE` keyword if present
+/// ([`SpectralInput::single_spectrum`]).
+pub fn read_single_spectrum(path: &Path) -> Result<(SampledSpectrum, Option<String>, Scale), LocatedError> {
+    SpectralInput::read(path)?.single_spectrum()
 }
 
 /// Builds a measurement from three single-spectrum files (R∞, R, Rg), such as ArgyllCMS `.sp`
 /// files. A file whose `ROUGE_ROLE` keyword contradicts the role it is given is refused.
-pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measurement, ImportError> {
+pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measurement, LocatedError> {
     let mut spectra = Vec::with_capacity(3);
     for (path, role) in [(r_inf, "R_INF"), (r, "R"), (rg, "RG")] {
         let (spectrum, declared, scale) = read_single_spectrum(path)?;
@@ -347,7 +308,7 @@ pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measu
             && !d.eq_ignore_ascii_case(role)
         {
             {
-                return Err(ImportError::file(
+                return Err(LocatedError::file(
                     path,
                     format!("this file says ROUGE_ROLE {d}, but it was given as {role}"),
                 ));
@@ -357,10 +318,10 @@ pub fn read_measurement_files(r_inf: &Path, r: &Path, rg: &Path) -> Result<Measu
     }
     let grids: Vec<&[f64]> = spectra.iter().map(|(s, _)| s.wavelengths_nm()).collect();
     if grids[1] != grids[0] || grids[2] != grids[0] {
-        return Err(ImportError::file(r, "R∞, R and Rg must share one wavelength grid"));
+        return Err(LocatedError::file(r, "R∞, R and Rg must share one wavelength grid"));
     }
     let [a, b, c]: [(SampledSpectrum, Scale); 3] =
-        spectra.try_into().map_err(|_| ImportError::file(r_inf, "internal: three spectra expected"))?;
+        spectra.try_into().map_err(|_| LocatedError::file(r_inf, "internal: three spectra expected"))?;
     Ok(Measurement {
         source: r_inf.to_path_buf(),
         format: "three single-spectrum CGATS files (R∞, R, Rg)".into(),

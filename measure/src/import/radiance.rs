@@ -1,6 +1,6 @@
 //! Spectroradiometer radiance exports (Konica Minolta CS-2000, CS-S10w-style CSV): the radiance
 //! of a white standard, the opaque layer, the thin layer over its background, and the background,
-//! all under the same lamp and geometry. Reflectance follows [Huang2013] eq. 8,
+//! all under the same lamp and geometry. Reflectance follows \[Huang2013\] eq. 8,
 //! `R(λ) = E_m(λ) / E_L(λ)`: the lamp's radiance `E_L` is measured on the white standard and
 //! corrected by the standard's own reflectance, `R = L_sample / L_white · ρ_white`
 //! (`ρ_white`: the `White Standard` line of the file, else flat 0.99 for pressed BaSO4, unless
@@ -11,12 +11,12 @@
 //! measurement named in the `Data Name` column (`WHITE_BASO4`, `SAMPLE_RINF`, `SAMPLE_R`,
 //! `BACKGROUND_RG`), spectral columns named `380nm`, `381nm`, ….
 
-use super::{Cell, ImportError, Kind, Measurement, SampleNames, Scale, check_wavelengths, parse_number};
+use super::{Cell, Kind, LocatedError, Measurement, SampleNames, Scale, check_wavelengths, parse_number};
 use crate::spectrum::{SampledSpectrum, linear_interpolate};
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// Default reflectance of the white standard (pressed BaSO4, 99 % pure), as in [Huang2013] section 4.
+/// Default reflectance of the white standard (pressed BaSO4, 99 % pure), as in \[Huang2013\] section 4.
 pub const BASO4_REFLECTANCE: f64 = 0.99;
 
 /// Splits one CSV line into cells, honouring RFC 4180 double quotes.
@@ -54,6 +54,25 @@ pub fn looks_like_radiance(text: &str) -> bool {
     text.lines().map(split_quoted).any(|c| is_table_header(&c) && c.iter().any(|h| spectral_column_nm(h).is_some()))
 }
 
+/// The white standard's reflectance spectrum (from its calibration certificate, say) for
+/// [`ImportOptions::white_reflectance`](super::ImportOptions): a spectral input holding exactly
+/// one spectrum (a table with one column besides the wavelengths, or a one-sample CGATS file),
+/// every value in (0, 1]. Errors name the file, and the wavelength of a value out of range.
+pub fn read_white_standard(path: &Path) -> Result<SampledSpectrum, LocatedError> {
+    let mut spectra = super::read_spectra(path)?.samples;
+    if spectra.len() != 1 {
+        return Err(LocatedError::file(
+            path,
+            format!("expected one reflectance column besides wavelength_nm, found {}", spectra.len()),
+        ));
+    }
+    let (_, white) = spectra.remove(0);
+    if let Some((nm, v)) = white.wavelengths_nm().iter().zip(white.values()).find(|(_, v)| !(**v > 0.0 && **v <= 1.0)) {
+        return Err(LocatedError::file(path, format!("white reflectance {v} at {nm} nm must be in (0, 1]")));
+    }
+    Ok(white)
+}
+
 /// Names each role may carry in the `Data Name` column (case-insensitive), beyond the user's.
 const WHITE_NAMES: [&str; 4] = ["WHITE_BASO4", "WHITE", "WHITE_STANDARD", "BASO4"];
 const R_INF_NAMES: [&str; 2] = ["SAMPLE_RINF", "R_INF"];
@@ -66,13 +85,13 @@ pub fn parse(
     text: &str,
     names: &SampleNames,
     white_reflectance: Option<&SampledSpectrum>,
-) -> Result<Measurement, ImportError> {
+) -> Result<Measurement, LocatedError> {
     let lines: Vec<(usize, Vec<String>)> =
         text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()).map(|(i, l)| (i + 1, split_quoted(l))).collect();
     let header_at = lines
         .iter()
         .position(|(_, c)| is_table_header(c))
-        .ok_or_else(|| ImportError::file(path, "no table header (a line starting with `No.`)"))?;
+        .ok_or_else(|| LocatedError::file(path, "no table header (a line starting with `No.`)"))?;
     let mut metadata = BTreeMap::new();
     for (_, c) in &lines[..header_at] {
         if let Some((key, rest)) = c.split_first() {
@@ -83,18 +102,18 @@ pub fn parse(
     let name_col = header
         .iter()
         .position(|h| h.eq_ignore_ascii_case("Data Name"))
-        .ok_or_else(|| ImportError::at(path, *header_line, None, "the table header has no `Data Name` column"))?;
+        .ok_or_else(|| LocatedError::at(path, *header_line, None, "the table header has no `Data Name` column"))?;
     let spectral: Vec<(usize, f64)> =
         header.iter().enumerate().filter_map(|(i, h)| spectral_column_nm(h).map(|nm| (i, nm))).collect();
     if spectral.len() < 2 {
-        return Err(ImportError::at(path, *header_line, None, "no spectral columns (`380nm`, `381nm`, ...)"));
+        return Err(LocatedError::at(path, *header_line, None, "no spectral columns (`380nm`, `381nm`, ...)"));
     }
     let wl: Vec<Cell> = spectral.iter().map(|&(i, nm)| Cell { value: nm, line: *header_line, column: i + 1 }).collect();
     check_wavelengths(path, &wl)?;
     let mut rows: Vec<(String, usize, Vec<Cell>)> = Vec::new();
     for (line, c) in &lines[header_at + 1..] {
         if c.len() != header.len() {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 *line,
                 Some(c.len().min(header.len()) + 1),
@@ -105,7 +124,7 @@ pub fn parse(
         for &(i, nm) in &spectral {
             let value = parse_number(path, &c[i], *line, i + 1, &format!("the radiance at {nm} nm"))?;
             if value < 0.0 {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     *line,
                     Some(i + 1),
@@ -116,14 +135,14 @@ pub fn parse(
         }
         rows.push((c[name_col].clone(), *line, cells));
     }
-    let find = |user: &str, aliases: &[&str], role: &str| -> Result<&Vec<Cell>, ImportError> {
+    let find = |user: &str, aliases: &[&str], role: &str| -> Result<&Vec<Cell>, LocatedError> {
         let hits: Vec<&(String, usize, Vec<Cell>)> = rows
             .iter()
             .filter(|(n, _, _)| n.eq_ignore_ascii_case(user) || aliases.iter().any(|a| n.eq_ignore_ascii_case(a)))
             .collect();
         match hits.as_slice() {
             [one] => Ok(&one.2),
-            [] => Err(ImportError::file(
+            [] => Err(LocatedError::file(
                 path,
                 format!(
                     "no {role} measurement (a `Data Name` of {}); rows: {}",
@@ -132,7 +151,7 @@ pub fn parse(
                 ),
             )),
             [a, b, ..] => {
-                Err(ImportError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1)))
+                Err(LocatedError::at(path, b.1, None, format!("a second {role} measurement (first on line {})", a.1)))
             }
         }
     };
@@ -154,16 +173,16 @@ pub fn parse(
                 None => BASO4_REFLECTANCE,
             };
             if !(rho > 0.0 && rho <= 1.0) {
-                return Err(ImportError::file(path, format!("white-standard reflectance {rho} must be in (0, 1]")));
+                return Err(LocatedError::file(path, format!("white-standard reflectance {rho} must be in (0, 1]")));
             }
             vec![rho; wavelengths.len()]
         }
     };
-    let reflectance = |cells: &[Cell], what: &str| -> Result<SampledSpectrum, ImportError> {
+    let reflectance = |cells: &[Cell], what: &str| -> Result<SampledSpectrum, LocatedError> {
         let mut v = Vec::with_capacity(cells.len());
         for ((s, w), r) in cells.iter().zip(white).zip(&rho) {
             if w.value <= 0.0 {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     w.line,
                     Some(w.column),
@@ -172,7 +191,7 @@ pub fn parse(
             }
             let refl = s.value / w.value * r;
             if refl > super::MAX_REFLECTANCE {
-                return Err(ImportError::at(
+                return Err(LocatedError::at(
                     path,
                     s.line,
                     Some(s.column),
@@ -181,7 +200,7 @@ pub fn parse(
             }
             v.push(refl);
         }
-        SampledSpectrum::new(wavelengths.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))
+        SampledSpectrum::new(wavelengths.clone(), v).map_err(|e| LocatedError::file(path, e.to_string()))
     };
     let r_inf = reflectance(find(&names.r_inf, &R_INF_NAMES, "R∞ (opaque layer)")?, "r_inf")?;
     let r = reflectance(find(&names.r, &R_NAMES, "R (thin layer over background)")?, "r")?;
@@ -233,5 +252,22 @@ No.,Data Name,Date,380nm,381nm,382nm\r\n1,WHITE_BASO4,d,2.0,2.0,4.0\r\n2,SAMPLE_
         let missing = FILE.replace("4,BACKGROUND_RG,d,0.1,0.1,0.2\r\n", "");
         let e = parse(Path::new("cs.csv"), &missing, &SampleNames::default(), None).unwrap_err();
         assert!(e.to_string().contains("no Rg (background) measurement"), "{e}");
+    }
+
+    #[test]
+    fn white_standard_files_hold_one_spectrum_in_range() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("white.csv");
+        std::fs::write(&p, "wavelength_nm,baso4\n380,0.97\n780,0.98\n").unwrap();
+        assert_eq!(read_white_standard(&p).unwrap().values(), &[0.97, 0.98]);
+        std::fs::write(&p, "CGATS.17\nBEGIN_DATA_FORMAT\nSAMPLE_NAME nm380 nm780\nEND_DATA_FORMAT\nBEGIN_DATA\nW 0.97 0.98\nEND_DATA\n")
+            .unwrap();
+        assert_eq!(read_white_standard(&p).unwrap().values(), &[0.97, 0.98]);
+        std::fs::write(&p, "wavelength_nm,a,b\n380,0.97,0.9\n780,0.98,0.9\n").unwrap();
+        let e = read_white_standard(&p).unwrap_err().to_string();
+        assert!(e.ends_with(": expected one reflectance column besides wavelength_nm, found 2"), "{e}");
+        std::fs::write(&p, "wavelength_nm,baso4\n380,0.97\n780,1.2\n").unwrap();
+        let e = read_white_standard(&p).unwrap_err().to_string();
+        assert!(e.ends_with(": white reflectance 1.2 at 780 nm must be in (0, 1]"), "{e}");
     }
 }

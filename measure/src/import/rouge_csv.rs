@@ -4,7 +4,8 @@
 //! `scale` (`fraction` or `percent`; `unit` is accepted too); all keys are kept in the metadata.
 
 use super::{
-    Cell, ImportError, Kind, Measurement, Scale, check_reflectance_range, check_wavelengths, detect_scale, parse_number,
+    Cell, Kind, LocatedError, Measurement, Scale, check_reflectance_range, check_wavelengths, detect_scale,
+    parse_number,
 };
 use crate::spectrum::SampledSpectrum;
 use std::collections::BTreeMap;
@@ -66,11 +67,11 @@ fn read_numeric_table(
     path: &Path,
     text: &str,
     labelled: bool,
-    check_header: impl FnOnce(&NumericTable) -> Result<(), ImportError>,
-) -> Result<NumericTable, ImportError> {
+    check_header: impl FnOnce(&NumericTable) -> Result<(), LocatedError>,
+) -> Result<NumericTable, LocatedError> {
     let mut rows =
         text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = rows.next().ok_or_else(|| ImportError::file(path, "no header line"))?;
+    let (header_line, header) = rows.next().ok_or_else(|| LocatedError::file(path, "no header line"))?;
     let delimiter = delimiter(header);
     let names: Vec<String> = cells(header, delimiter).iter().map(|c| c.to_string()).collect();
     let mut table = NumericTable {
@@ -86,7 +87,7 @@ fn read_numeric_table(
     for (line, row) in rows {
         let c = cells(row, delimiter);
         if c.len() != names.len() {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 line,
                 Some(c.len().min(names.len()) + 1),
@@ -105,7 +106,7 @@ fn read_numeric_table(
     let data_rows = if labelled { table.labels.len() } else { table.columns.first().map_or(0, Vec::len) };
     let least = if labelled { 1 } else { 2 };
     if data_rows < least {
-        return Err(ImportError::at(
+        return Err(LocatedError::at(
             path,
             header_line,
             None,
@@ -116,26 +117,26 @@ fn read_numeric_table(
 }
 
 /// Fraction or percent: the `# scale:` comment (or `# unit:`) if present, else detected.
-fn resolve_scale(path: &Path, metadata: &BTreeMap<String, String>, cells: &[Cell]) -> Result<Scale, ImportError> {
+fn resolve_scale(path: &Path, metadata: &BTreeMap<String, String>, cells: &[Cell]) -> Result<Scale, LocatedError> {
     match metadata.get("scale").or_else(|| metadata.get("unit")).map(|u| u.to_ascii_lowercase()) {
         None => Ok(detect_scale(cells)),
         Some(u) if u == "percent" || u == "%" => Ok(Scale::Percent { declared: true }),
         Some(u) if u == "fraction" => Ok(Scale::Fraction { declared: true }),
-        Some(u) => Err(ImportError::file(path, format!("unknown `# scale: {u}` (use `fraction` or `percent`)"))),
+        Some(u) => Err(LocatedError::file(path, format!("unknown `# scale: {u}` (use `fraction` or `percent`)"))),
     }
 }
 
 /// Parses a Rouge CSV measurement.
-pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
+pub fn parse(path: &Path, text: &str) -> Result<Measurement, LocatedError> {
     let metadata = comment_metadata(text);
     if text.lines().all(|l| l.trim().is_empty() || l.trim().starts_with('#')) {
-        return Err(ImportError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"));
+        return Err(LocatedError::file(path, "no header line (expected `wavelength_nm,r_inf,r,rg`)"));
     }
-    let header_index = |t: &NumericTable| -> Result<[usize; 4], ImportError> {
+    let header_index = |t: &NumericTable| -> Result<[usize; 4], LocatedError> {
         let mut index = [0usize; 4];
         for (slot, want) in index.iter_mut().zip(COLUMNS) {
             *slot = t.column(want).ok_or_else(|| {
-                ImportError::at(
+                LocatedError::at(
                     path,
                     t.header_line,
                     None,
@@ -149,7 +150,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
         if let Some((col, extra)) =
             t.names.iter().enumerate().find(|(_, n)| !COLUMNS.contains(&n.to_ascii_lowercase().as_str()))
         {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 t.header_line,
                 Some(col + 1),
@@ -170,7 +171,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
     let kind = match metadata.get("kind") {
         None => None,
         Some(k) => Some(Kind::parse(k).ok_or_else(|| {
-            ImportError::file(path, format!("unknown `# kind: {k}` (foundation, blush, eyeshadow, lipstick or other)"))
+            LocatedError::file(path, format!("unknown `# kind: {k}` (foundation, blush, eyeshadow, lipstick or other)"))
         })?),
     };
     let thickness_mm = match metadata.get("thickness_mm") {
@@ -182,7 +183,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
                 .map_or(1, |i| i + 1);
             let v = parse_number(path, t, line, 1, "thickness_mm")?;
             if v <= 0.0 {
-                return Err(ImportError::at(path, line, None, format!("thickness_mm = {v} must be positive")));
+                return Err(LocatedError::at(path, line, None, format!("thickness_mm = {v} must be positive")));
             }
             Some(v)
         }
@@ -190,7 +191,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Measurement, ImportError> {
     let wavelengths: Vec<f64> = columns[0].iter().map(|c| c.value).collect();
     let spectrum = |k: usize| {
         let values = columns[k].iter().map(|c| c.value * factor).collect();
-        SampledSpectrum::new(wavelengths.clone(), values).map_err(|e| ImportError::file(path, e.to_string()))
+        SampledSpectrum::new(wavelengths.clone(), values).map_err(|e| LocatedError::file(path, e.to_string()))
     };
     Ok(Measurement {
         source: path.to_path_buf(),
@@ -224,7 +225,7 @@ const WAVELENGTH_COLUMNS: [&str; 2] = ["wavelength_nm", "wavelength"];
 /// The layout is read from the header: every cell after the first a number means rows. Cells are
 /// separated by commas, or by tabs when the header has tabs and no comma. Fractions or percent by
 /// the same rule as measurements; `#` comment lines are skipped; errors name line and column.
-pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), ImportError> {
+pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, SampledSpectrum)>, Scale), LocatedError> {
     let metadata = comment_metadata(text);
     let transposed = is_transposed(text);
     let (names, wl, values) = if transposed { spectra_in_rows(path, text)? } else { spectra_in_columns(path, text)? };
@@ -236,7 +237,7 @@ pub fn parse_spectra_table(path: &Path, text: &str) -> Result<(Vec<(String, Samp
     let mut out = Vec::with_capacity(names.len());
     for (name, cells) in names.into_iter().zip(values) {
         let v = cells.iter().map(|c| c.value * scale.factor()).collect();
-        let s = SampledSpectrum::new(grid.clone(), v).map_err(|e| ImportError::file(path, e.to_string()))?;
+        let s = SampledSpectrum::new(grid.clone(), v).map_err(|e| LocatedError::file(path, e.to_string()))?;
         out.push((name, s));
     }
     Ok((out, scale))
@@ -258,11 +259,11 @@ fn is_transposed(text: &str) -> bool {
 /// Sample names, the wavelength cells, and each sample's value cells.
 type SpectraCells = (Vec<String>, Vec<Cell>, Vec<Vec<Cell>>);
 
-fn spectra_in_columns(path: &Path, text: &str) -> Result<SpectraCells, ImportError> {
+fn spectra_in_columns(path: &Path, text: &str) -> Result<SpectraCells, LocatedError> {
     let wavelength_column = |t: &NumericTable| WAVELENGTH_COLUMNS.iter().find_map(|w| t.column(w));
-    let check = |t: &NumericTable| -> Result<(), ImportError> {
+    let check = |t: &NumericTable| -> Result<(), LocatedError> {
         if wavelength_column(t).is_none() {
-            return Err(ImportError::at(
+            return Err(LocatedError::at(
                 path,
                 t.header_line,
                 None,
@@ -274,10 +275,10 @@ fn spectra_in_columns(path: &Path, text: &str) -> Result<SpectraCells, ImportErr
             ));
         }
         if t.names.len() < 2 {
-            return Err(ImportError::at(path, t.header_line, None, "no sample columns besides the wavelengths"));
+            return Err(LocatedError::at(path, t.header_line, None, "no sample columns besides the wavelengths"));
         }
         if let Some(i) = t.names.iter().position(String::is_empty) {
-            return Err(ImportError::at(path, t.header_line, Some(i + 1), "a column has no name"));
+            return Err(LocatedError::at(path, t.header_line, Some(i + 1), "a column has no name"));
         }
         Ok(())
     };
@@ -290,7 +291,7 @@ fn spectra_in_columns(path: &Path, text: &str) -> Result<SpectraCells, ImportErr
     Ok((names, wl, values))
 }
 
-fn spectra_in_rows(path: &Path, text: &str) -> Result<SpectraCells, ImportError> {
+fn spectra_in_rows(path: &Path, text: &str) -> Result<SpectraCells, LocatedError> {
     let mut table = read_numeric_table(path, text, true, |_| Ok(()))?;
     let wl = table.names[1..]
         .iter()
@@ -299,10 +300,10 @@ fn spectra_in_rows(path: &Path, text: &str) -> Result<SpectraCells, ImportError>
             let value = parse_number(path, n, table.header_line, i + 2, "wavelength")?;
             Ok(Cell { value, line: table.header_line, column: i + 2 })
         })
-        .collect::<Result<Vec<Cell>, ImportError>>()?;
+        .collect::<Result<Vec<Cell>, LocatedError>>()?;
     if let Some((i, _)) = table.labels.iter().enumerate().find(|(_, l)| l.is_empty()) {
         let line = table.columns[1][i].line;
-        return Err(ImportError::at(path, line, Some(1), "a spectrum has no name"));
+        return Err(LocatedError::at(path, line, Some(1), "a spectrum has no name"));
     }
     // Row r's values: the r-th cell of every wavelength column.
     let values = (0..table.labels.len()).map(|r| table.columns[1..].iter_mut().map(|col| col[r]).collect()).collect();

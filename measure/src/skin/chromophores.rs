@@ -3,14 +3,14 @@
 //! Each function is one published spectrum, named by its source (full citations in
 //! docs/REFERENCES.md; the data's origin in data/SOURCES.md):
 //!
-//! * haemoglobin: [Prahl1999], the molar extinction coefficients of HbO₂ and Hb compiled from
+//! * haemoglobin: \[Prahl1999\], the molar extinction coefficients of HbO₂ and Hb compiled from
 //!   Gratzer and Kollias, tabulated every 2 nm (`data/skin/hemoglobin_prahl.csv`, embedded),
 //!   interpolated linearly;
-//! * eu- and pheomelanin: the power laws of [Jacques1998] as used by [Donner2006] (eq. in its
+//! * eu- and pheomelanin: the power laws of \[Jacques1998\] as used by \[Donner2006\] (eq. in its
 //!   section 3.1), fitted to melanosome absorption measured by laser ablation thresholds and
 //!   in-vivo spectra; valid through the visible;
-//! * the baseline absorption of bloodless, melanin-free tissue: [Jacques1998];
-//! * reduced scattering: the power law μs′ = a (λ/500 nm)^−b of [Jacques2013] (its eq. 2, Table 2:
+//! * the baseline absorption of bloodless, melanin-free tissue: \[Jacques1998\];
+//! * reduced scattering: the power law μs′ = a (λ/500 nm)^−b of \[Jacques2013\] (its eq. 2, Table 2:
 //!   skin a = 4.6 /mm, b = 1.42), with a and b parameters of the model.
 
 use std::sync::OnceLock;
@@ -20,9 +20,9 @@ pub const MIN_WAVELENGTH_NM: f64 = 380.0;
 /// Longest wavelength the skin spectra cover, nm (the haemoglobin table's last row).
 pub const MAX_WAVELENGTH_NM: f64 = 780.0;
 
-/// Haemoglobin concentration of whole blood, g/L ([Prahl1999]'s example, [Jacques2013]).
+/// Haemoglobin concentration of whole blood, g/L (\[Prahl1999\]'s example, \[Jacques2013\]).
 pub const HAEMOGLOBIN_G_PER_L: f64 = 150.0;
-/// Gram molecular weight of haemoglobin, g/mol ([Prahl1999]).
+/// Gram molecular weight of haemoglobin, g/mol (\[Prahl1999\]).
 pub const HAEMOGLOBIN_G_PER_MOL: f64 = 64_500.0;
 
 const HAEMOGLOBIN_CSV: &str = include_str!("../../../data/skin/hemoglobin_prahl.csv");
@@ -58,7 +58,7 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 }
 
 /// μa of whole blood (150 g/L haemoglobin) at oxygen saturation 1 and 0, per mm, at `wavelength_nm`
-/// in 380-780 nm: μa = ln(10) ε c / M ([Prahl1999]; ε decadic, per cm, so /10 per mm).
+/// in 380-780 nm: μa = ln(10) ε c / M (\[Prahl1999\]; ε decadic, per cm, so /10 per mm).
 pub fn blood_mu_a_per_mm(wavelength_nm: f64) -> (f64, f64) {
     let t = haemoglobin_table();
     let per_mm = std::f64::consts::LN_10 * HAEMOGLOBIN_G_PER_L / HAEMOGLOBIN_G_PER_MOL / 10.0;
@@ -68,25 +68,25 @@ pub fn blood_mu_a_per_mm(wavelength_nm: f64) -> (f64, f64) {
     )
 }
 
-/// μa of eumelanin inside melanosomes, per mm: 6.6·10¹⁰ λ^−3.33 (λ in nm; [Jacques1998],
-/// [Donner2006] section 3.1). About 68 /mm at 500 nm.
+/// μa of eumelanin inside melanosomes, per mm: 6.6·10¹⁰ λ^−3.33 (λ in nm; \[Jacques1998\],
+/// \[Donner2006\] section 3.1). About 68 /mm at 500 nm.
 pub fn eumelanin_mu_a_per_mm(wavelength_nm: f64) -> f64 {
     6.6e10 * wavelength_nm.powf(-3.33)
 }
 
-/// μa of pheomelanin inside melanosomes, per mm: 2.9·10¹⁴ λ^−4.75 (λ in nm; [Jacques1998],
-/// [Donner2006] section 3.1). About 44 /mm at 500 nm, falling faster into the red than eumelanin.
+/// μa of pheomelanin inside melanosomes, per mm: 2.9·10¹⁴ λ^−4.75 (λ in nm; \[Jacques1998\],
+/// \[Donner2006\] section 3.1). About 44 /mm at 500 nm, falling faster into the red than eumelanin.
 pub fn pheomelanin_mu_a_per_mm(wavelength_nm: f64) -> f64 {
     2.9e14 * wavelength_nm.powf(-4.75)
 }
 
 /// Baseline μa of skin without blood or melanin, per mm: 0.0244 + 8.53 exp(−(λ − 154)/66.2)
-/// ([Jacques1998], given there per cm as 0.244 + 85.3 exp(...)).
+/// (\[Jacques1998\], given there per cm as 0.244 + 85.3 exp(...)).
 pub fn baseline_mu_a_per_mm(wavelength_nm: f64) -> f64 {
     0.0244 + 8.53 * (-(wavelength_nm - 154.0) / 66.2).exp()
 }
 
-/// Reduced scattering coefficient μs′ = a (λ/500 nm)^−b, per mm ([Jacques2013] eq. 2), for
+/// Reduced scattering coefficient μs′ = a (λ/500 nm)^−b, per mm (\[Jacques2013\] eq. 2), for
 /// `at_500nm_per_mm` = a and `power` = b.
 pub fn reduced_scattering_per_mm(wavelength_nm: f64, at_500nm_per_mm: f64, power: f64) -> f64 {
     reduced_scattering_from_ln_ratio((wavelength_nm / 500.0).ln(), at_500nm_per_mm, power)

@@ -1,7 +1,7 @@
 //! Inversion of the skin model: the parameters of a measured reflectance spectrum.
 //!
 //! **Method.** Bounded nonlinear least squares (Levenberg-Marquardt with Marquardt's diagonal
-//! scaling, steps projected onto the parameters' physiological box, [Marquardt1963]) over six
+//! scaling, steps projected onto the parameters' physiological box, \[Marquardt1963\]) over six
 //! free parameters (melanin, its pheomelanin share, blood, oxygen saturation, scattering at
 //! 500 nm and its power; the epidermis' thickness is held at [`FitOptions::epidermis_thickness_mm`]).
 //! The residuals are the spectral differences on the working grid inside the measured range,

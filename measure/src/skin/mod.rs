@@ -2,7 +2,7 @@
 //! its inversion from measured spectra, the optical properties the renderer takes, and named
 //! skin tones. No GPU.
 //!
-//! **The model** (after [Donner2006] and [Jacques1998]; every spectrum in [`chromophores`]):
+//! **The model** (after \[Donner2006\] and \[Jacques1998\]; every spectrum in [`chromophores`]):
 //!
 //! * an **epidermis** of thickness d (default 0.1 mm) whose absorption is melanin in a volume
 //!   fraction f_mel, a share β of it pheomelanin, and the baseline tissue elsewhere:
@@ -71,7 +71,7 @@ pub struct ParamRange {
 }
 
 impl SkinParams {
-    /// The epidermis' thickness when none is given, mm (a typical facial epidermis, [Jacques1998]).
+    /// The epidermis' thickness when none is given, mm (a typical facial epidermis, \[Jacques1998\]).
     pub const DEFAULT_EPIDERMIS_MM: f64 = 0.1;
 
     /// The ranges, in the order of [`SkinParams::to_array`].

@@ -1,5 +1,5 @@
 //! Named skin tones from very light to very deep: the skin model's parameters fitted to real
-//! spectra of the Xiao et al. 2016 database ([Xiao2016]) where it has them, and extended past its
+//! spectra of the Xiao et al. 2016 database (\[Xiao2016\]) where it has them, and extended past its
 //! deepest skins by melanin. The tones are data (`data/skin/tones.json`, embedded; made by
 //! `python/gen_skin_tones.py`, which names for each tone the spectra it came from).
 
@@ -54,7 +54,7 @@ pub fn skin_tone(name: &str) -> Result<&'static SkinTone, SkinError> {
     })
 }
 
-/// Individual Typology Angle, degrees: atan2(L* − 50, b*) ([Chardon1991]; D65, CIE 1931 in Rouge).
+/// Individual Typology Angle, degrees: atan2(L* − 50, b*) (\[Chardon1991\]; D65, CIE 1931 in Rouge).
 /// > 55° very light, 41-55 light, 28-41 intermediate, 10-28 tan, −30-10 brown, < −30 dark.
 pub fn ita_deg(lab: &Lab) -> f64 {
     (lab.lab[0] - 50.0).atan2(lab.lab[2]).to_degrees()

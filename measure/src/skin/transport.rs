@@ -8,7 +8,7 @@
 //! scatters back out.
 //!
 //! That reflectance is solved exactly (up to 16 quadrature angles) by Prahl's adding-doubling
-//! ([Prahl1993]; `iadpython`), which `python/gen_skin_transport.py` ran over a grid of the three
+//! (\[Prahl1993\]; `iadpython`), which `python/gen_skin_transport.py` ran over a grid of the three
 //! numbers it depends on for fixed g and n:
 //!
 //! * τa = μa,epi d, the epidermis' absorption optical thickness,

@@ -1,4 +1,4 @@
-//! 3D painting of cosmetic thickness maps ([Huang2013] future work: "paint the film on the face").
+//! 3D painting of cosmetic thickness maps (\[Huang2013\] future work: "paint the film on the face").
 //!
 //! A designer paints thickness in millimetres directly on the head. The brush's radius is
 //! millimetres on the surface, so a stroke carries on across UV seams and every UV island is

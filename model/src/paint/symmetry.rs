@@ -56,7 +56,7 @@ impl MirrorPlane {
 
     /// The plane normal to `axis` about which the surface is most nearly symmetric: the offset
     /// minimising the mean distance from mirrored surface points (every n-th covered texel) to
-    /// the surface, by golden-section search ([Kiefer1953]) within a fifth of the bounds' extent either side of
+    /// the surface, by golden-section search (\[Kiefer1953\]) within a fifth of the bounds' extent either side of
     /// the bounds' centre. For a scan whose shoulders or hair make the bounds lopsided this finds
     /// the face's own midplane. Falls back to [`MirrorPlane::fitted`] on an empty surface.
     pub fn fit(axis: Axis, surface: &SurfaceMap) -> MirrorPlane {

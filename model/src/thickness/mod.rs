@@ -1,5 +1,5 @@
 //! Local thickness baked per vertex, for the renderer's thickness-based translucency
-//! ([BarreBrisebois2011], "Computing Local Thickness": ambient occlusion computed with inverted
+//! (\[BarreBrisebois2011\], "Computing Local Thickness": ambient occlusion computed with inverted
 //! normals, then inverted so that white means thin; optionally coloured).
 //!
 //! From every vertex, `rays` cosine-weighted directions about the *inward* normal −n are traced
@@ -58,7 +58,7 @@ const EPSILON_PER_DIAGONAL: f32 = 1.0e-4;
 const MIN_EPSILON_MM: f32 = 1.0e-6;
 
 /// How the hit distance t (mm) of an inward ray weighs into the local-thickness value
-/// ([BarreBrisebois2011]: the grey map is inverted ambient occlusion, the coloured one a tint per
+/// (\[BarreBrisebois2011\]: the grey map is inverted ambient occlusion, the coloured one a tint per
 /// channel). A ray that hits nothing within the cutoff weighs 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Falloff {
@@ -68,7 +68,7 @@ pub enum Falloff {
         /// Exponent of the falloff, > 0.
         exponent: f32,
     },
-    /// Coloured (the talk's coloured local thickness): w_c(t) = exp(−per_mm[c]·t) for
+    /// Coloured (the talk's coloured local thickness): w_c(t) = exp(−per_mm\[c\]·t) for
     /// t < cutoff, 0 beyond (rates ≥ 0, finite). Rouge passes the medium's σ_tr here, so each
     /// channel is the Beer-Lambert transmittance along the chord, averaged over the cosine lobe.
     Exponential {
@@ -190,7 +190,7 @@ pub struct LocalThickness {
     pub bake_seconds: f64,
 }
 
-/// Bakes the local thickness of every vertex of `mesh` ([BarreBrisebois2011], "Computing Local
+/// Bakes the local thickness of every vertex of `mesh` (\[BarreBrisebois2011\], "Computing Local
 /// Thickness": ambient occlusion with inverted normals, inverted). See the module documentation
 /// for the sampling, its error bound and the domain of validity (closed meshes, mm, outward
 /// normals).

@@ -50,7 +50,7 @@ impl Tracer<'_> {
     }
 }
 
-/// A ray prepared for the watertight ray-triangle test of [Woop2013] (section 3, with its
+/// A ray prepared for the watertight ray-triangle test of \[Woop2013\] (section 3, with its
 /// double-precision fallback on edges): the ray is sheared onto +z so that the three edge
 /// tests are exact on shared edges (a ray through an edge or a vertex hits one of the triangles
 /// there; with obvhs's Möller-Trumbore test some rays slipped between the built-in sphere's

@@ -1,4 +1,4 @@
-//! The options of the cube-atlas subsurface model (`--subsurface cube-atlas`, [Benmounah2009]):
+//! The options of the cube-atlas subsurface model (`--subsurface cube-atlas`, \[Benmounah2009\]):
 //! atlas size, largest kernel, adaptive kernel, self-occlusion test and global term.
 
 use anyhow::Result;

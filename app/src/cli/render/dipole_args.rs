@@ -1,5 +1,5 @@
 //! The options of the dipole subsurface models (`--subsurface directional-dipole|standard-dipole`,
-//! [Frisvad2014] through the passes of [DirDipoleThesis]): samples, directions, map sizes, the
+//! \[Frisvad2014\] through the passes of \[DirDipoleThesis\]): samples, directions, map sizes, the
 //! three artifact fixes, and how many frames to accumulate before the image is written.
 
 use anyhow::{Result, bail};

@@ -18,6 +18,8 @@ use rouge_render::job::render_to_file;
 use std::path::PathBuf;
 use std::time::Instant;
 
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     #[command(flatten)]
@@ -67,6 +69,8 @@ pub struct RenderArgs {
 }
 
 /// `--subsurface` values (more join with the translucency models).
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Subsurface {
     /// No subsurface scattering.

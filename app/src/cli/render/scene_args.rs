@@ -14,6 +14,8 @@ use rouge_render::profile_fit::FittedProfile;
 use rouge_render::{LightRig, Scene, Skin};
 use std::path::PathBuf;
 
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Debug, Clone, Args)]
 pub struct SceneArgs {
     /// Mesh to render (.obj, .gltf, .glb), or builtin:head, builtin:sphere (25 mm radius),
@@ -129,6 +131,8 @@ pub enum Lights {
 }
 
 /// `--profile` values.
+// clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
+#[allow(rustdoc::broken_intra_doc_links)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Profile {
     /// Classic dipole ([Jensen2001]).

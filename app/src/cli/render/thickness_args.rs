@@ -1,4 +1,4 @@
-//! The options of the thickness translucency (`--subsurface thickness`, [BarreBrisebois2011]):
+//! The options of the thickness translucency (`--subsurface thickness`, \[BarreBrisebois2011\]):
 //! where the local thickness comes from, the bake's rays and cutoff, and the term's parameters.
 //! `rouge render` and `rouge bench translucency` share them.
 
