@@ -22,7 +22,7 @@ use crate::colorimetry::{Colorimeter, Viewing};
 pub const NODES: [usize; 5] = [25, 5, 25, 5, 7];
 
 /// The thinnest epidermis the table holds, mm: thinner reads as this (facial epidermis is
-/// 0.04-0.1 mm; [Jacques1998]).
+/// 0.04-0.1 mm; \[Jacques1998\]).
 pub const MIN_EPIDERMIS_MM: f64 = 0.02;
 
 /// Smallest linear sRGB value stored (the logarithm's floor; no skin comes near it).
