@@ -142,7 +142,7 @@ pub fn wgsl_constants() -> String {
 mod tests {
     use super::*;
 
-    /// A film whose R∞ is computed from S and K as a preset's is (\[Huang2013\] eq. 6's R∞).
+    /// A film whose R∞ comes from its S and K, as a preset's does (`km::r_inf_from_s_k`).
     struct Film {
         s: Spectrum,
         k: Spectrum,
@@ -159,7 +159,7 @@ mod tests {
         }
     }
 
-    fn preset() -> Film {
+    fn film() -> Film {
         let s = Spectrum(std::array::from_fn(|i| 30.0 + i as f64 * 0.2));
         let k = Spectrum(std::array::from_fn(|i| 1.0 + (i % 7) as f64));
         Film { s, k }
@@ -167,7 +167,7 @@ mod tests {
 
     #[test]
     fn ends_are_exact_and_transmittance_falls() {
-        let p = preset();
+        let p = film();
         let t = render_table(&p);
         assert_eq!((t.r0.len(), t.t.len()), (TABLE_ENTRIES, TABLE_ENTRIES));
         assert_eq!((t.r0[0], t.t[0]), ([0.0; 3], [1.0; 3]));
@@ -182,7 +182,7 @@ mod tests {
 
     #[test]
     fn lookup_is_exact_at_nodes_and_close_between() {
-        let p = preset();
+        let p = film();
         let t = render_table(&p);
         for i in [0, 1, 10, 31, 62] {
             let x = entry_thickness_mm(i) as f32;

@@ -170,7 +170,7 @@ fn white(w: &Bound<'_, PyAny>) -> PyResult<SampledSpectrum> {
         };
         (vec(&a, "wavelengths")?, vec(&b, "values")?)
     };
-    if let Some((nm, x)) = wl.iter().zip(&v).find(|(_, x)| !(**x > 0.0 && **x <= 1.0)) {
+    if let Some((nm, x)) = import::radiance::white_out_of_range(&wl, &v) {
         return Err(bad(format!("{x} at {nm} nm must be in (0, 1]")));
     }
     SampledSpectrum::new(wl, v).map_err(|e| bad(e.to_string()))

@@ -67,10 +67,16 @@ pub fn read_white_standard(path: &Path) -> Result<SampledSpectrum, LocatedError>
         ));
     }
     let (_, white) = spectra.remove(0);
-    if let Some((nm, v)) = white.wavelengths_nm().iter().zip(white.values()).find(|(_, v)| !(**v > 0.0 && **v <= 1.0)) {
+    if let Some((nm, v)) = white_out_of_range(white.wavelengths_nm(), white.values()) {
         return Err(LocatedError::file(path, format!("white reflectance {v} at {nm} nm must be in (0, 1]")));
     }
     Ok(white)
+}
+
+/// The first wavelength (nm) and value of a white standard's reflectance outside (0, 1], if
+/// any: a white standard reflects some light and creates none.
+pub fn white_out_of_range(wavelengths_nm: &[f64], values: &[f64]) -> Option<(f64, f64)> {
+    wavelengths_nm.iter().zip(values).map(|(&nm, &v)| (nm, v)).find(|(_, v)| !(*v > 0.0 && *v <= 1.0))
 }
 
 /// Names each role may carry in the `Data Name` column (case-insensitive), beyond the user's.
