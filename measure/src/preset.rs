@@ -178,10 +178,6 @@ fn hex(rgb_linear: [f64; 3]) -> String {
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
-/// Spectral R0 and T of a layer of thickness `x_mm`; it lives in [`crate::layer_table`], with the
-/// tables made from it, and is named here too for the callers that know it as a preset's.
-pub use crate::layer_table::layer_spectra;
-
 /// Computes the interchange tables of preset JSON v1 from S and K (the colour conversion lives
 /// in [`layer_rgb_at`], shared with the render table).
 pub fn derive_tables(s: &Spectrum, k: &Spectrum) -> Derived {

@@ -187,7 +187,7 @@ fn write(dir: &tempfile::TempDir, name: &str, text: &str) -> PathBuf {
 
 fn parse_err(e: MeshError) -> (usize, usize, String) {
     match e {
-        MeshError::Parse { line, column, message, .. } => (line, column, message),
+        MeshError::Parse(e) => (e.line.unwrap_or(0), e.column.unwrap_or(0), e.message),
         other => panic!("expected parse error, got {other}"),
     }
 }

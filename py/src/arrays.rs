@@ -159,7 +159,7 @@ pub fn map_broadcast<const O: usize>(
     };
     if let Err((flat, error)) = result {
         let wl = wavelengths_vec(wavelengths)?;
-        return Err(crate::errors::km_error(py, error, flat, &b.shape, wl.as_deref()));
+        return Err(crate::errors::km_error(py, error, &unravel(flat, &b.shape), wl.as_deref()));
     }
     outs.into_iter()
         .map(finish)

@@ -1,7 +1,6 @@
 //! Python exceptions: every one a `ValueError` subclass carrying the Rust error's message, with
 //! the wavelength, index, file, line and column as attributes where the error has them.
 
-use crate::arrays::unravel;
 use pyo3::IntoPyObjectExt;
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
@@ -49,17 +48,17 @@ fn opt<'py, T: IntoPyObjectExt<'py>>(py: Python<'py>, v: Option<T>) -> Py<PyAny>
     }
 }
 
-/// A Kubelka-Munk error at flat position `flat` of arrays of `shape`; `wavelengths` (if given)
-/// label the last axis, so the message names the wavelength as `rouge import` does.
-pub fn km_error(py: Python<'_>, error: KmError, flat: usize, shape: &[usize], wavelengths: Option<&[f64]>) -> PyErr {
-    let index = unravel(flat, shape);
+/// A Kubelka-Munk error at `index` of the arrays (empty for scalars; [`crate::arrays::unravel`]
+/// makes it from a flat position); `wavelengths` (if given) label the last axis, so the message
+/// names the wavelength as `rouge import` does.
+pub fn km_error(py: Python<'_>, error: KmError, index: &[usize], wavelengths: Option<&[f64]>) -> PyErr {
     let nm = wavelengths.and_then(|w| index.last().and_then(|&i| w.get(i).copied()));
     let at = match (nm, index.is_empty()) {
-        (Some(nm), _) => format!("at {nm} nm (index {}): ", fmt_index(&index)),
-        (None, false) => format!("at index {}: ", fmt_index(&index)),
+        (Some(nm), _) => format!("at {nm} nm (index {}): ", fmt_index(index)),
+        (None, false) => format!("at index {}: ", fmt_index(index)),
         (None, true) => String::new(),
     };
-    let index_py = match PyTuple::new(py, &index) {
+    let index_py = match PyTuple::new(py, index) {
         Ok(t) if !index.is_empty() => t.into_any().unbind(),
         _ => py.None(),
     };

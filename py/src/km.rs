@@ -164,7 +164,7 @@ pub fn rt_stack(
         if let Some(j) = rg.iter().position(|v| !(0.0..=1.0).contains(v)) {
             let error = KmError::ReflectanceOutOfRange { name: "Rg", value: rg[j] };
             let wl = wavelengths_vec(wavelengths)?;
-            return Err(crate::errors::km_error(py, error, j, &rest, wl.as_deref()));
+            return Err(crate::errors::km_error(py, error, &crate::arrays::unravel(j, &rest), wl.as_deref()));
         }
     }
     let [r, t] = map_broadcast(py, &b, &rest, wavelengths, |i, o| {

@@ -10,8 +10,9 @@ use crate::job::Prepared;
 use crate::renderer::FrameCapture;
 use crate::sss::{SkinImage, reference_blur};
 use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, linear_srgb_to_lab};
+use rouge_measure::layer_table::layer_spectra;
 use rouge_measure::layer_table::{TABLE_ENTRIES, TABLE_X0_MM, lookup, render_table};
-use rouge_measure::preset::{Preset, layer_spectra};
+use rouge_measure::preset::Preset;
 use serde::Serialize;
 use std::time::Instant;
 

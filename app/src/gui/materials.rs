@@ -4,7 +4,8 @@
 use crate::material_plots::Panel;
 use egui_plot::{Line, Plot};
 use rouge_measure::import::{self, ImportOptions};
-use rouge_measure::preset::{ImportReport, Preset, layer_spectra};
+use rouge_measure::layer_table::layer_spectra;
+use rouge_measure::preset::{ImportReport, Preset};
 use rouge_measure::{Extrapolation, Kind};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;

@@ -48,17 +48,8 @@ pub enum MeshError {
         source: std::io::Error,
     },
     /// A syntax or index error in an OBJ file, with its 1-based line and column.
-    #[error("{path}:{line}:{column}: {message}")]
-    Parse {
-        /// File being parsed.
-        path: PathBuf,
-        /// 1-based line number.
-        line: usize,
-        /// 1-based column (in characters) of the offending token.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
+    #[error(transparent)]
+    Parse(#[from] rouge_measure::LocatedError),
     /// A glTF file that could not be read or interpreted.
     #[error("{path}: glTF: {message}")]
     Gltf {

@@ -1,10 +1,11 @@
 //! Wavefront OBJ reader (positions, texture coordinates, normals, polygon faces, groups).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
 use super::{Corner, Face, Group, Mesh, MeshError, check_scale};
+use rouge_measure::LocatedError;
 
 /// Loads a Wavefront OBJ file as a polygon [`Mesh`], multiplying positions by `scale_to_mm`.
 ///
@@ -31,7 +32,7 @@ struct Parser<'a> {
 
 impl Parser<'_> {
     fn err(&self, column: usize, message: impl Into<String>) -> MeshError {
-        MeshError::Parse { path: PathBuf::from(self.path), line: self.line, column, message: message.into() }
+        MeshError::Parse(LocatedError::at(self.path, self.line, Some(column), message))
     }
 
     fn float(&self, tok: Option<(usize, &str)>, end_col: usize, what: &str) -> Result<f32, MeshError> {

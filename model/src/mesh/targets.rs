@@ -6,7 +6,7 @@
 //! Data: data/heads/hm08_targets.txt (python/gen_head_targets.py; CC0, data/SOURCES.md).
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::OnceLock;
 
 use glam::Vec3;
@@ -22,17 +22,8 @@ pub const TARGET_UNIT_MM: f32 = 0.1;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TargetError {
     /// A syntax or index error in a targets file, with its 1-based line and column.
-    #[error("{path}:{line}:{column}: {message}")]
-    Parse {
-        /// File being parsed.
-        path: PathBuf,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column of the offending token.
-        column: usize,
-        /// What is wrong.
-        message: String,
-    },
+    #[error(transparent)]
+    Parse(#[from] rouge_measure::LocatedError),
     /// A weight list that is not `NAME=W,...`.
     #[error("{option} {spec:?}: {message}")]
     Syntax {
@@ -272,11 +263,8 @@ impl TargetSet {
     pub fn parse(text: &str, path: &Path) -> Result<TargetSet, TargetError> {
         let mut set = TargetSet::default();
         let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
-        let err = |line: usize, column: usize, message: String| TargetError::Parse {
-            path: path.to_owned(),
-            line: line + 1,
-            column,
-            message,
+        let err = |line: usize, column: usize, message: String| {
+            TargetError::Parse(rouge_measure::LocatedError::at(path, line + 1, Some(column), message))
         };
         // Column (1-based) of the k-th whitespace-separated token of a line.
         let column = |line: &str, k: usize| -> usize {

@@ -91,7 +91,8 @@ def sd_to_sRGB(
 def read_spectra(path: Any, *, as_msds: bool = False) -> Any:
     """A table of spectra, as ``rouge color`` reads it: a ``wavelength_nm`` or ``wavelength``
     column and one column per sample, or one spectrum per row with the wavelengths in the header
-    (colour-science's transposed layout); commas or tabs.
+    (colour-science's transposed layout); commas or tabs; or a CGATS file (X-Rite, i1Profiler,
+    ArgyllCMS .ti3) with its spectral fields, recognised from the content.
 
     Returns ``(wavelengths, values, names)``, ``values`` of shape ``(samples, wavelengths)`` as
     fractions, or with ``as_msds`` a colour-science ``MultiSpectralDistributions``. Raises
