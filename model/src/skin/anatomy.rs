@@ -73,9 +73,9 @@ pub const EPIDERMIS_NOSE: f64 = 0.19 / 0.20;
 /// thinnest, the upper lip's 62.6 µm its thickest (\[Chopra2015\], 39 sites); over the middle of
 /// that range, 46.1 µm (the assumption: the face's usual skin lies mid-range), 0.64.
 pub const EPIDERMIS_EAR: f64 = 29.6 / ((29.6 + 62.6) / 2.0);
-/// *Choice*: the vermilion's keratinised layer is a few cell layers thin against the facial
-/// skin's, and its surface barrier far weaker (\[Kobayashi2004\]); how much thinner the model's
-/// melanin-bearing layer should be is not measured there: half.
+/// *Choice*: the vermilion's keratinised surface is thinner than the facial skin's, with a far
+/// weaker barrier (\[Kobayashi2004\]); how much thinner the model's melanin-bearing layer
+/// should be is not measured there: half.
 pub const EPIDERMIS_LIPS: f64 = 0.5;
 
 // ------------------------------------------------------------------------------------------
@@ -206,8 +206,8 @@ impl Factors {
     pub const NONE: Factors = Factors { melanin: 1.0, blood: 1.0, oxygen: 1.0, epidermis: 1.0 };
 }
 
-/// The vermilion: the face's most vascular surface, its red the blood in the papillae right under
-/// a thin, little-keratinised epithelium (\[Kobayashi2004\]). Blood × [`BLOOD_SPREAD`] (*database*:
+/// The vermilion: the face's reddest surface, its blood seen through a thin, poorly keratinised
+/// surface layer (\[Kobayashi2004\]). Blood × [`BLOOD_SPREAD`] (*database*:
 /// the lips as red as the reddest measured skin), melanin × [`MELANIN_LOW`] (*choice*: lighter
 /// than the skin around them where melanin sets the colour; no measured melanin content of the
 /// vermilion was found), epidermis × [`EPIDERMIS_LIPS`].

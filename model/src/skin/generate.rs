@@ -42,8 +42,9 @@ struct Spots {
     count: f64,
 }
 
-/// Ephelides: on the sun-exposed cheeks, nose and forehead, small macules, mostly 1-2 mm across
-/// (\[Praetorius2014\]): radius 0.5-1.5 mm. *Choice*: 300 on the face at amount 1, soft-edged.
+/// Ephelides: small light-brown macules on sun-exposed skin, on the face the cheeks and nose
+/// (\[Praetorius2014\]); the forehead is as exposed. *Choice*: 1-3 mm across (radius 0.5-1.5
+/// mm), soft-edged, 300 on the face at amount 1.
 const FRECKLES: Spots = Spots {
     regions: &[AnatomyRegion::Cheeks, AnatomyRegion::Nose, AnatomyRegion::Forehead],
     radius_mm: (0.5, 1.5),
@@ -69,8 +70,8 @@ const MOLES: Spots = Spots {
 };
 
 /// Inflammatory papules: acne affects the face in almost every case, the forehead, cheeks and
-/// chin (\[Williams2012\]); papules are small (under the 5 mm of a nodule): radius 1-2.5 mm with a
-/// soft inflamed rim. *Choice*: 40 at amount 1.
+/// chin (\[Williams2012\]); papules are the small inflamed lesions, nodules the large ones.
+/// *Choice*: 2-5 mm across (radius 1-2.5 mm) with a soft inflamed rim, 40 at amount 1.
 const ACNE: Spots = Spots {
     regions: &[AnatomyRegion::Forehead, AnatomyRegion::Cheeks, AnatomyRegion::Chin, AnatomyRegion::Nose],
     radius_mm: (1.0, 2.5),
@@ -79,7 +80,7 @@ const ACNE: Spots = Spots {
 };
 
 /// Post-inflammatory hyperpigmentation: brown macules where the inflammation (acne) was
-/// (\[Davis2010\]), a little larger than the papules: radius 1.5-3 mm. *Choice*: 30 at amount 1.
+/// (\[Davis2010\]). *Choice*: a little larger than the papules (radius 1.5-3 mm), 30 at amount 1.
 const HYPERPIGMENTATION: Spots = Spots { radius_mm: (1.5, 3.0), hardness: 0.2, count: 30.0, ..ACNE };
 
 /// Visible veins on the temples and around the eyes (\[Roh2009\]: the lower lid's thin skin
