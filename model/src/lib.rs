@@ -10,6 +10,8 @@
 //! - [`paint`]: the brush: the surface map, dabs, strokes.
 //! - [`medium`]: physical participating media (σa, σs′, g, η), the built-in measured ones.
 //! - [`rect`]: the one texel-rectangle type.
+//! - [`skin`]: skin maps: the spectral skin model's parameters per texel, generated from a tone,
+//!   the default head's anatomy and skin conditions, saved in projects.
 //! - [`thickness`]: local thickness baked per vertex by inward rays (\[BarreBrisebois2011\]), its
 //!   UV map and on-disk cache.
 
@@ -20,6 +22,7 @@ pub mod medium;
 pub mod mesh;
 pub mod paint;
 pub mod rect;
+pub mod skin;
 pub mod thickness;
 
 pub use error::{ModelError, Result};

@@ -196,11 +196,16 @@ impl Document {
     }
 
     /// Whether the document differs from the last save or open (a stroke in progress that
-    /// reported a dirty rect counts, and so does a changed face).
+    /// reported a dirty rect counts, and so do a changed face and other skin maps).
     pub fn is_modified(&self) -> bool {
+        let same_skin = match (&self.skin, &self.saved_skin) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
         self.history.saved_id != Some(self.history.state_id())
             || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
             || self.face != self.saved_face
+            || !same_skin
     }
 }
 

@@ -11,8 +11,8 @@
 //! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
 //!
 //! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
-//! `maps/` (one OpenEXR map per layer, raw painted millimetres) and `presets/` (the presets that
-//! are not built in). docs/FORMATS.md ("Project folders") describes them. Map and preset file
+//! `maps/` (one OpenEXR map per layer, raw painted millimetres, and the skin maps' EXR),
+//! `presets/` (the presets that are not built in), `face.json` and, with skin maps, `skin.json`. docs/FORMATS.md ("Project folders") describes them. Map and preset file
 //! names carry a hash of their contents, so a save never overwrites a file the previous
 //! `look.json` refers to: until the new `look.json` replaces the old one (an atomic rename) the
 //! previous project is intact, and a map that did not change is not written again.
@@ -21,6 +21,8 @@ mod history;
 mod project;
 
 use crate::mesh::targets::FacePose;
+use crate::skin::ProjectSkin;
+pub(crate) use project::{floats_hash, read_versioned};
 use project::{layer_files, look_layer};
 
 use crate::error::{ModelError, Result};
@@ -199,6 +201,13 @@ pub struct Document {
     pub face: FacePose,
     /// The face as last saved (or opened), for [`Document::is_modified`].
     saved_face: FacePose,
+    /// The skin maps and their recipe (saved in the project's `skin.json` and `maps/`; `None`:
+    /// the tone's flat skin, as projects saved before skin maps). Not part of the undo history;
+    /// putting another `Arc` here makes the document modified (compared by pointer, not by
+    /// value: the maps are large).
+    pub skin: Option<Arc<ProjectSkin>>,
+    /// The skin as last saved (or opened), for [`Document::is_modified`].
+    saved_skin: Option<Arc<ProjectSkin>>,
     history: History,
     stroke: Option<OpenStroke>,
 }
@@ -227,6 +236,8 @@ impl Document {
             layers: paint_layers(look),
             face: FacePose::default(),
             saved_face: FacePose::default(),
+            skin: None,
+            saved_skin: None,
             history: History::new(),
             stroke: None,
         }

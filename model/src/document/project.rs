@@ -3,6 +3,8 @@
 
 use super::*;
 use crate::mesh::targets::TargetSet;
+use crate::skin::SKIN_FILE;
+use crate::skin::file::{is_maps_file_name, read_project_skin, write_project_skin};
 
 impl Document {
     // --------------------------------------------------------------------------------------
@@ -19,18 +21,23 @@ impl Document {
         write_project(self, dir)?;
         self.history.saved_id = Some(self.history.state_id());
         self.saved_face = self.face.clone();
+        self.saved_skin = self.skin.clone();
         Ok(())
     }
 
     /// Opens a project folder: `dir/look.json` by [`Look::load`], then [`Document::from_look`],
     /// with the painted maps read back unscaled (bit for bit) and each layer's multiplier from
-    /// its `scale_mm`. Errors name the file at fault.
+    /// its `scale_mm`, the face from `face.json` and the skin maps from `skin.json` and their EXR
+    /// (bit for bit; none without `skin.json`, as in projects saved before skin maps). Errors
+    /// name the file at fault.
     pub fn open_project(dir: &Path) -> Result<Document> {
         let look_path = dir.join(LOOK_FILE);
         let look = Look::load(&look_path)?;
         let mut doc = Document::from_look(&look);
         doc.face = read_face(&dir.join(FACE_FILE))?;
         doc.saved_face = doc.face.clone();
+        doc.skin = read_project_skin(dir, &dir.join(SKIN_FILE))?.map(Arc::new);
+        doc.saved_skin = doc.skin.clone();
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
@@ -105,8 +112,9 @@ impl Document {
     }
 
     /// Deletes the autosave in `dir`: `look.json` first (so that a partial clear is no longer
-    /// offered for recovery), then the project's map and preset files, then their folders if
-    /// empty, and the face file. Nothing to delete is not an error.
+    /// offered for recovery), then the project's map and preset files (the skin maps' EXR
+    /// included), then their folders if empty, and the face and skin files. Nothing to delete is
+    /// not an error.
     pub fn clear_recovery(dir: &Path) -> Result<()> {
         let look = dir.join(LOOK_FILE);
         match std::fs::remove_file(&look) {
@@ -116,6 +124,7 @@ impl Document {
         }
         remove_unreferenced(dir, &HashSet::new())?;
         let _ = std::fs::remove_file(dir.join(FACE_FILE));
+        let _ = std::fs::remove_file(dir.join(SKIN_FILE));
         for sub in [MAPS_DIR, PRESETS_DIR] {
             // Only if empty: files that are not Rouge's stay, and so does their folder.
             let _ = std::fs::remove_dir(dir.join(sub));
@@ -144,13 +153,21 @@ pub(super) fn slug(name: &str) -> String {
 }
 
 /// 64-bit hash of a map's size and values (bit patterns): names its file in a project.
-/// Multiply-rotate mixing with a SplitMix64 finaliser; not cryptographic, only to tell maps apart.
 pub(super) fn map_hash(map: &ThicknessMap) -> u64 {
-    let mut h = 0x9E37_79B9_7F4A_7C15u64 ^ (u64::from(map.width) << 32 | u64::from(map.height));
-    for v in &map.mm {
+    floats_hash(u64::from(map.width) << 32 | u64::from(map.height), map.mm.iter().copied())
+}
+
+/// 64-bit hash of `header` (a size) and `values` (bit patterns), what names a map's file in a
+/// project ([`map_hash`], the skin maps). Multiply-rotate mixing with a SplitMix64 finaliser;
+/// not cryptographic, only to tell maps apart.
+pub(crate) fn floats_hash(header: u64, values: impl Iterator<Item = f32>) -> u64 {
+    let mut h = 0x9E37_79B9_7F4A_7C15u64 ^ header;
+    let mut n = 0u64;
+    for v in values {
         h = (h.rotate_left(23) ^ u64::from(v.to_bits())).wrapping_mul(0xD6E8_FEB8_6659_FD93);
+        n += 1;
     }
-    splitmix64(h ^ map.mm.len() as u64)
+    splitmix64(h ^ n)
 }
 
 pub(super) fn bytes_hash(bytes: &[u8]) -> u64 {
@@ -278,8 +295,9 @@ pub(super) fn check_layers(doc: &Document, look_path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Writes `doc` as a project into `dir`: maps, presets, `look.json`, then deletes files of
-/// earlier saves that it no longer refers to.
+/// Writes `doc` as a project into `dir`: maps, presets, `face.json`, the skin maps and
+/// `skin.json`, `look.json`, then deletes files of earlier saves that it no longer refers to
+/// (`skin.json` too when the document has no skin maps).
 pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
     let look_path = dir.join(LOOK_FILE);
     check_layers(doc, &look_path)?;
@@ -308,11 +326,19 @@ pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
         }
     }
     write_face(&doc.face, &dir.join(FACE_FILE))?;
+    let skin_path = dir.join(SKIN_FILE);
+    if let Some(skin) = &doc.skin {
+        let name = write_project_skin(skin, &maps_dir, MAPS_DIR, &skin_path)?;
+        keep.insert(PathBuf::from(MAPS_DIR).join(name));
+    }
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
     let look = Look { name: doc.name.clone(), layers };
     look.save(&look_path)?;
     // The project is saved; a file that cannot be deleted now is deleted by a later save.
+    if doc.skin.is_none() {
+        let _ = std::fs::remove_file(&skin_path);
+    }
     let _ = remove_unreferenced(dir, &keep);
     Ok(())
 }
@@ -339,26 +365,42 @@ fn write_face(face: &FacePose, path: &Path) -> Result<()> {
 /// Reads a project's face: neutral when the file is absent (projects saved before faces);
 /// errors name the file, line and column, or the unknown target (with near names).
 pub(super) fn read_face(path: &Path) -> Result<FacePose> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(FacePose::default()),
-        Err(e) => return Err(ModelError::file(path, e)),
+    let Some(file) = read_versioned::<FaceFile>(path, FACE_FORMAT, |f| (&f.format, f.version))? else {
+        return Ok(FacePose::default());
     };
-    let file: FaceFile = serde_json::from_str(&text)
-        .map_err(|e| ModelError::file(path, format!("line {}, column {}: {e}", e.line(), e.column())))?;
-    if file.format != FACE_FORMAT || file.version != 1 {
-        return Err(ModelError::file(
-            path,
-            format!("format {:?} version {}: expected {FACE_FORMAT:?} version 1", file.format, file.version),
-        ));
-    }
     let targets = TargetSet::default_head().map_err(|e| ModelError::file(path, e))?;
     targets.resolve(&file.face).map_err(|e| ModelError::file(path, e))?;
     Ok(file.face)
 }
 
-/// Deletes the map and preset files of the project in `dir` (named as Rouge names them) that
-/// are not in `keep` (paths relative to `dir`). Returns the first error, after trying all.
+/// Reads a project's versioned JSON file, `{"format": FORMAT, "version": 1, ...}` (`header`
+/// gives a parsed file's format and version): `None` when the file is absent; errors name the
+/// file and the line and column, or the format and version it holds.
+pub(crate) fn read_versioned<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    format: &str,
+    header: impl Fn(&T) -> (&str, u32),
+) -> Result<Option<T>> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(ModelError::file(path, e)),
+    };
+    let file: T = serde_json::from_str(&text)
+        .map_err(|e| ModelError::file(path, format!("line {}, column {}: {e}", e.line(), e.column())))?;
+    let (found, version) = header(&file);
+    if found != format || version != 1 {
+        return Err(ModelError::file(
+            path,
+            format!("format {found:?} version {version}: expected {format:?} version 1"),
+        ));
+    }
+    Ok(Some(file))
+}
+
+/// Deletes the map and preset files of the project in `dir` (named as Rouge names them: a
+/// layer's map or preset, or the skin maps' `skin-<hash>.exr`) that are not in `keep` (paths
+/// relative to `dir`). Returns the first error, after trying all.
 pub(super) fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result<()> {
     let mut first_error = None;
     for (sub, ext) in [(MAPS_DIR, "exr"), (PRESETS_DIR, "json")] {
@@ -366,7 +408,8 @@ pub(super) fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result
         for entry in entries.flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             let rel = PathBuf::from(sub).join(&name);
-            if !is_hashed_name(&name, ext) || keep.contains(&rel) || !entry.path().is_file() {
+            let ours = is_hashed_name(&name, ext) || (sub == MAPS_DIR && is_maps_file_name(&name));
+            if !ours || keep.contains(&rel) || !entry.path().is_file() {
                 continue;
             }
             if let Err(e) = std::fs::remove_file(entry.path()) {

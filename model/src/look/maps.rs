@@ -108,7 +108,7 @@ impl ThicknessMap {
 }
 
 /// The first channel of a PNG as values in [0, 1] (value / max for 8- and 16-bit images).
-pub(super) fn decode_png_unit(bytes: &[u8]) -> std::result::Result<ThicknessMap, String> {
+pub(crate) fn decode_png_unit(bytes: &[u8]) -> std::result::Result<ThicknessMap, String> {
     use image::DynamicImage as D;
     if !bytes.starts_with(PNG_SIGNATURE) {
         let signature = if bytes.is_empty() || bytes.starts_with(EXR_MAGIC) {
@@ -155,6 +155,36 @@ pub(super) fn describe_start(bytes: &[u8]) -> String {
 /// The thickness channel of an OpenEXR file: `Y`, else `R`, else the first channel (EXR stores
 /// channels sorted by name), of the first layer at full resolution.
 pub(super) fn decode_exr(bytes: &[u8]) -> std::result::Result<(ThicknessMap, String), String> {
+    let exr = read_exr_channels(bytes)?;
+    let list = &exr.channels;
+    let (name, mm) = list
+        .iter()
+        .find(|c| c.0 == "Y")
+        .or_else(|| list.iter().find(|c| c.0 == "R"))
+        .or_else(|| list.first())
+        .ok_or("the OpenEXR file has no channels")?;
+    let (w, h) = (exr.width, exr.height);
+    if mm.len() != w as usize * h as usize {
+        return Err(format!("channel {name:?} is subsampled ({} samples for {w}×{h} pixels)", mm.len()));
+    }
+    Ok((ThicknessMap { width: w, height: h, mm: mm.clone() }, name.clone()))
+}
+
+/// The channels of an OpenEXR file's first layer at full resolution.
+pub(crate) struct ExrChannels {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Each channel's name and values (row 0 first; fewer than `width × height` for a
+    /// subsampled channel), sorted by name as EXR stores them; 16-bit and 32-bit float and
+    /// 32-bit integer samples as f32.
+    pub channels: Vec<(String, Vec<f32>)>,
+}
+
+/// Reads every channel of an OpenEXR file's first layer at full resolution; errors say why the
+/// file is unreadable.
+pub(crate) fn read_exr_channels(bytes: &[u8]) -> std::result::Result<ExrChannels, String> {
     use exr::prelude::{ReadChannels, ReadLayers, read};
     let image = read()
         .no_deep_data()
@@ -166,24 +196,13 @@ pub(super) fn decode_exr(bytes: &[u8]) -> std::result::Result<(ThicknessMap, Str
         .map_err(|e| format!("not a readable OpenEXR file ({e})"))?;
     let layer = image.layer_data;
     let (w, h) = (layer.size.width(), layer.size.height());
-    let list = &layer.channel_data.list;
-    let channel = list
-        .iter()
-        .find(|c| c.name == *"Y")
-        .or_else(|| list.iter().find(|c| c.name == *"R"))
-        .or_else(|| list.first())
-        .ok_or("the OpenEXR file has no channels")?;
-    let name = channel.name.to_string();
-    if channel.sample_data.len() != w * h {
-        return Err(format!(
-            "channel {name:?} is subsampled ({} samples for {w}×{h} pixels)",
-            channel.sample_data.len()
-        ));
+    let mut channels = Vec::with_capacity(layer.channel_data.list.len());
+    for c in &layer.channel_data.list {
+        channels.push((c.name.to_string(), c.sample_data.values().map(|s| s.to_f32()).collect()));
     }
     let too_big = |_| format!("{w}×{h} pixels is too large");
     let (width, height) = (u32::try_from(w).map_err(too_big)?, u32::try_from(h).map_err(too_big)?);
-    let mm = channel.sample_data.values().map(|s| s.to_f32()).collect();
-    Ok((ThicknessMap { width, height, mm }, name))
+    Ok(ExrChannels { width, height, channels })
 }
 
 /// Checks that a thickness is finite, ≥ 0 and ≤ [`MAX_THICKNESS_MM`].

@@ -50,6 +50,7 @@ pub use morph::morph_to_bounding_sphere;
 pub use uv_map::{UvMap, thickness_uv_map};
 
 use trace::Tracer;
+pub(crate) use trace::splitmix64;
 
 /// Ray origins sit this fraction of the mesh's bounding-box diagonal inside the surface, and hits
 /// closer than it are ignored (self hits).

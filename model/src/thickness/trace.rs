@@ -122,7 +122,7 @@ fn cosine_direction(k: u32, rays: u32, shift: [f32; 2], frame: [Vec3; 3]) -> Vec
 }
 
 /// SplitMix64's finaliser: a well-mixed 64-bit hash of `x`.
-pub(super) fn splitmix64(x: u64) -> u64 {
+pub(crate) fn splitmix64(x: u64) -> u64 {
     let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);

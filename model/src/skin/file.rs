@@ -1,0 +1,180 @@
+//! Skin maps on disk (docs/FORMATS.md, "Skin maps in a project"): the maps as one OpenEXR with a
+//! 32-bit float channel per [`SkinChannel`] (named as the parameter, lossless), and the project's
+//! `skin.json` (`rouge-skin` v1): the [`SkinRecipe`] they were generated from and the EXR's path.
+
+use super::{SkinChannel, SkinConditions, SkinMaps};
+use crate::document::read_versioned;
+use crate::error::{ModelError, Result};
+use crate::look::read_exr_channels;
+use rouge_measure::preset::write_atomic;
+use rouge_measure::skin::{SkinParams, skin_tone};
+use std::path::Path;
+
+/// The project file that holds the skin maps' recipe and names their EXR.
+pub const SKIN_FILE: &str = "skin.json";
+/// The `format` of [`SKIN_FILE`].
+pub const SKIN_FORMAT: &str = "rouge-skin";
+
+/// How skin maps were made, enough to make them again ([`SkinRecipe::generate`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkinRecipe {
+    /// The built-in tone `base` came from (`rouge skin tones`), if it came from one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tone: Option<String>,
+    /// The skin model's parameters before the anatomy and the conditions.
+    pub base: SkinParams,
+    /// The conditions and their amounts.
+    #[serde(default)]
+    pub conditions: SkinConditions,
+    /// The seed of the conditions' random placement.
+    #[serde(default)]
+    pub seed: u64,
+    /// Width and height of the maps, texels.
+    pub size_px: u32,
+}
+
+impl SkinRecipe {
+    /// The default size of generated maps, texels a side: the painted maps' (2 texels per mm on
+    /// the default head, so a 1-2 mm freckle covers a few texels).
+    pub const DEFAULT_SIZE_PX: u32 = crate::document::MAP_SIZE;
+
+    /// A recipe from a built-in tone's name.
+    ///
+    /// # Errors
+    /// [`ModelError::Invalid`] naming the tone and the tones there are.
+    pub fn from_tone(tone: &str, conditions: SkinConditions, seed: u64, size_px: u32) -> Result<SkinRecipe> {
+        let t = skin_tone(tone).map_err(|e| ModelError::Invalid(e.to_string()))?;
+        Ok(SkinRecipe { tone: Some(t.name.clone()), base: t.params, conditions, seed, size_px })
+    }
+
+    /// The maps this recipe makes ([`SkinMaps::generate`]).
+    ///
+    /// # Errors
+    /// As [`SkinMaps::generate`].
+    pub fn generate(&self) -> Result<SkinMaps> {
+        SkinMaps::generate(&self.base, &self.conditions, self.seed, self.size_px)
+    }
+}
+
+/// A project's skin: the maps and the recipe they came from (the maps are data: they are saved
+/// and reopened as they are, whatever the recipe would give today).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProjectSkin {
+    /// How the maps were made.
+    pub recipe: SkinRecipe,
+    /// The maps.
+    pub maps: SkinMaps,
+}
+
+impl ProjectSkin {
+    /// The recipe and the maps it makes.
+    ///
+    /// # Errors
+    /// As [`SkinMaps::generate`].
+    pub fn generate(recipe: SkinRecipe) -> Result<ProjectSkin> {
+        let maps = recipe.generate()?;
+        Ok(ProjectSkin { recipe, maps })
+    }
+}
+
+/// `skin.json`'s schema.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SkinFile {
+    format: String,
+    version: u32,
+    /// The EXR, relative to the project folder.
+    maps: String,
+    recipe: SkinRecipe,
+}
+
+impl SkinMaps {
+    /// The maps as an OpenEXR file's bytes: one 32-bit float channel per [`SkinChannel`], named
+    /// as [`SkinChannel::name`], ZIP-compressed (lossless: read back bit for bit).
+    pub fn to_exr_bytes(&self) -> std::result::Result<Vec<u8>, String> {
+        use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Image, SmallVec, WritableImage};
+        let channels =
+            SkinChannel::ALL.map(|c| AnyChannel::new(c.name(), FlatSamples::F32(self.plane(c).to_vec()))).to_vec();
+        let channels = AnyChannels::sort(SmallVec::from_vec(channels));
+        let size = (self.width() as usize, self.height() as usize);
+        let image = Image::from_encoded_channels(size, Encoding::SMALL_LOSSLESS, channels);
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write().to_buffered(&mut bytes).map_err(|e| format!("OpenEXR: {e}"))?;
+        Ok(bytes.into_inner())
+    }
+
+    /// Maps from an OpenEXR file's bytes as [`SkinMaps::to_exr_bytes`] writes them, with `base`
+    /// for the parameters that do not vary; every channel must be there, full size, every value
+    /// in its range ([`SkinMaps::from_planes`]).
+    pub fn from_exr_bytes(bytes: &[u8], base: &SkinParams) -> std::result::Result<SkinMaps, String> {
+        let mut exr = read_exr_channels(bytes)?;
+        let mut planes: [Vec<f32>; 5] = Default::default();
+        for (c, plane) in SkinChannel::ALL.iter().zip(planes.iter_mut()) {
+            let Some(k) = exr.channels.iter().position(|(name, _)| name == c.name()) else {
+                let names: Vec<String> = exr.channels.iter().map(|(name, _)| format!("{name:?}")).collect();
+                return Err(format!("no channel {:?} (the file has {})", c.name(), names.join(", ")));
+            };
+            *plane = std::mem::take(&mut exr.channels[k].1);
+        }
+        SkinMaps::from_planes(exr.width, exr.height, base, planes)
+    }
+
+    /// A 64-bit hash of the size and every value (bit patterns), for the file's name in a
+    /// project.
+    pub(crate) fn content_hash(&self) -> u64 {
+        let header = u64::from(self.width()) << 32 | u64::from(self.height());
+        crate::document::floats_hash(header, SkinChannel::ALL.iter().flat_map(|&c| self.plane(c).iter().copied()))
+    }
+}
+
+/// The name of a project's skin EXR: `skin-<hash>.exr` (16 hex digits, by content).
+pub(crate) fn maps_file_name(maps: &SkinMaps) -> String {
+    format!("skin-{:016x}.exr", maps.content_hash())
+}
+
+/// Whether `file` is named as [`maps_file_name`] names files.
+pub(crate) fn is_maps_file_name(file: &str) -> bool {
+    file.strip_prefix("skin-")
+        .and_then(|s| s.strip_suffix(".exr"))
+        .is_some_and(|h| h.len() == 16 && h.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b)))
+}
+
+/// Writes `skin`'s EXR into `maps_dir` (unless a file of that name, hence those values, is
+/// there) and then `skin.json` at `json_path`, each atomically. Returns the EXR's file name.
+pub(crate) fn write_project_skin(
+    skin: &ProjectSkin,
+    maps_dir: &Path,
+    maps_rel: &str,
+    json_path: &Path,
+) -> Result<String> {
+    let name = maps_file_name(&skin.maps);
+    let path = maps_dir.join(&name);
+    if !path.is_file() {
+        let bytes = skin.maps.to_exr_bytes().map_err(|e| ModelError::file(&path, e))?;
+        write_atomic(&path, &bytes).map_err(|e| ModelError::file(&path, e))?;
+    }
+    let file = SkinFile {
+        format: SKIN_FORMAT.into(),
+        version: 1,
+        maps: format!("{maps_rel}/{name}"),
+        recipe: skin.recipe.clone(),
+    };
+    let text = serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(json_path, e))? + "\n";
+    write_atomic(json_path, text.as_bytes()).map_err(|e| ModelError::file(json_path, e))?;
+    Ok(name)
+}
+
+/// Reads a project's skin: `None` when `skin.json` is absent (projects saved before skin maps,
+/// or without them). Errors name `skin.json` (line, column, field) or the EXR (channel, texel).
+pub(crate) fn read_project_skin(dir: &Path, json_path: &Path) -> Result<Option<ProjectSkin>> {
+    let Some(file) = read_versioned::<SkinFile>(json_path, SKIN_FORMAT, |f| (&f.format, f.version))? else {
+        return Ok(None);
+    };
+    let recipe = file.recipe;
+    recipe.base.validate().map_err(|e| ModelError::file(json_path, format!("recipe.base: {e}")))?;
+    let exr = dir.join(&file.maps);
+    let bytes = std::fs::read(&exr).map_err(|e| ModelError::file(&exr, e))?;
+    let maps = SkinMaps::from_exr_bytes(&bytes, &recipe.base).map_err(|e| ModelError::file(&exr, e))?;
+    Ok(Some(ProjectSkin { recipe, maps }))
+}
