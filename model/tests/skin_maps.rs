@@ -9,7 +9,7 @@ use rouge_measure::skin::{SkinParams, skin_tone};
 use rouge_model::mesh::load_mesh;
 use rouge_model::paint::SurfaceMap;
 use rouge_model::skin::anatomy::{AnatomyRegion, LogFactors};
-use rouge_model::skin::{Condition, SkinChannel, SkinConditions, SkinMaps, clamp_params, max_epidermis_mm};
+use rouge_model::skin::{Condition, SkinChannel, SkinConditions, SkinMaps, clamp_params};
 use std::sync::OnceLock;
 
 /// Side of the maps most tests make: the masks' own resolution, about a texel per mm.
@@ -199,7 +199,7 @@ fn every_texel_is_valid_at_amounts_0_and_1_on_every_tone_and_at_the_edges() {
     };
     // The thickest epidermis this scattering allows.
     let edge = clamp_params(&top);
-    assert_eq!(edge.epidermis_thickness_mm, max_epidermis_mm(&top));
+    assert_eq!(edge.epidermis_thickness_mm, top.max_epidermis_mm());
     let zero = SkinParams {
         melanin_fraction: 0.0,
         blood_fraction: 0.0,
@@ -257,4 +257,33 @@ fn figure() {
         }
     }
     img.save(std::path::Path::new(&path)).expect("write the figure");
+}
+
+#[test]
+fn the_albedo_texture_is_the_tables_colour_encoded() {
+    use rouge_measure::colorimetry::srgb_encode;
+    use rouge_measure::skin::SkinColorTable;
+    let base = light();
+    let table = SkinColorTable::new(&base).expect("table");
+    let uniform = SkinMaps::uniform(&base);
+    let img = uniform.albedo_image(&table);
+    assert_eq!((img.width(), img.height()), (uniform.width(), uniform.height()));
+    let want = table.linear_srgb(&base).map(|c| (srgb_encode(f64::from(c)) * 255.0).round() as u8);
+    assert!(img.pixels().all(|p| p.0 == [want[0], want[1], want[2], 255]));
+    // A generated face: the lips (more blood, less melanin) are redder than the forehead.
+    let m = SkinMaps::generate(&base, &SkinConditions::default(), 1, 128).expect("generate");
+    let t = SkinColorTable::new(m.base()).expect("table");
+    let img = m.albedo_image(&t);
+    let redness = |p: &image::Rgba<u8>| f64::from(p.0[0]) - f64::from(p.0[1]);
+    let (mut lips, mut other) = ((0.0, 0), (0.0, 0));
+    for (i, p) in img.pixels().enumerate() {
+        let (u, v) = uv(i, 128);
+        if AnatomyRegion::Lips.weight_uv(u, v) > 0.9 {
+            lips = (lips.0 + redness(p), lips.1 + 1);
+        } else if AnatomyRegion::Forehead.weight_uv(u, v) > 0.9 {
+            other = (other.0 + redness(p), other.1 + 1);
+        }
+    }
+    assert!(lips.1 > 0 && other.1 > 0);
+    assert!(lips.0 / lips.1 as f64 > other.0 / other.1 as f64 + 10.0, "lips {lips:?}, forehead {other:?}");
 }

@@ -12,6 +12,7 @@ use crate::gpu::Gpu;
 use crate::local_thickness::ThicknessSource;
 use crate::renderer::Renderer;
 use crate::scene::{Camera, Scene, SubsurfaceModel};
+use rouge_measure::skin::SkinColorTable;
 use rouge_model::look::Look;
 use rouge_model::mesh::Bounds;
 use rouge_model::mesh::TriangleMesh;
@@ -20,6 +21,7 @@ use rouge_model::mesh::deform::SubdivisionPlan;
 pub use rouge_model::mesh::load_mesh;
 pub use rouge_model::mesh::targets::FacePose;
 use rouge_model::mesh::targets::{TargetError, TargetSet};
+use rouge_model::skin::SkinRecipe;
 use rouge_model::thickness::{
     BakeSettings, CacheUse, UvMap, bake_local_thickness_cached, default_cache_dir, morph_to_bounding_sphere,
     thickness_uv_map,
@@ -54,6 +56,10 @@ pub struct RenderJob {
     pub albedo_map: Option<PathBuf>,
     /// Tangent-space normal map (PNG, OpenGL convention, +Y up); tangents are generated.
     pub normal_map: Option<PathBuf>,
+    /// Skin maps to generate from a tone, the default head's anatomy and skin conditions
+    /// ([`rouge_model::skin`]); their colour through the spectral skin model becomes the skin's
+    /// albedo texture. Exclusive with `albedo_map`.
+    pub skin_maps: Option<SkinRecipe>,
     /// Image width.
     pub width: u32,
     /// Image height.
@@ -85,6 +91,7 @@ impl Default for RenderJob {
             env: None,
             albedo_map: None,
             normal_map: None,
+            skin_maps: None,
             width: 1280,
             height: 720,
             yaw_deg: 0.0,
@@ -95,6 +102,14 @@ impl Default for RenderJob {
             face: FacePose::default(),
         }
     }
+}
+
+/// The albedo texture of the skin maps `recipe` makes: the maps, the tone's colour table, the
+/// bake ([`rouge_model::skin::SkinMaps::albedo_image`]).
+fn skin_albedo(recipe: &SkinRecipe) -> Result<image::RgbaImage> {
+    let maps = recipe.generate()?;
+    let table = SkinColorTable::new(maps.base()).map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))?;
+    Ok(maps.albedo_image(&table))
 }
 
 /// Reads a PNG texture as RGBA8.
@@ -198,7 +213,16 @@ impl RenderJob {
     /// A texture that cannot be loaded (named), or no GPU.
     pub fn prepare_loaded(&self, loaded: &Loaded) -> Result<Prepared> {
         let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
-        let albedo = self.albedo_map.as_deref().map(load_texture).transpose()?;
+        let albedo = match (&self.albedo_map, &self.skin_maps) {
+            (Some(_), Some(_)) => {
+                return Err(RenderError::Invalid(
+                    "an albedo map and skin maps both set the skin's colour: give one".into(),
+                ));
+            }
+            (Some(path), None) => Some(load_texture(path)?),
+            (None, Some(recipe)) => Some(skin_albedo(recipe)?),
+            (None, None) => None,
+        };
         let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
         let gpu = Gpu::headless()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);

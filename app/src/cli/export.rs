@@ -2,7 +2,7 @@
 //! of docs/TRANSLUCENCY.md).
 
 use crate::cli::render::scene_args::SceneArgs;
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::{Args, Subcommand};
 use rouge_render::mitsuba::{ExportInput, Interior, export};
 use std::path::PathBuf;
@@ -68,6 +68,12 @@ pub fn run(cmd: &ExportCommand) -> Result<()> {
         anyhow::bail!("--light-radius-deg {}: must lie in [0, 45)", args.light_radius_deg);
     }
     let (job, _) = args.scene.job()?;
+    if job.skin_maps.is_some() {
+        bail!(
+            "--skin-maps/--skin-conditions: export mitsuba does not carry skin maps yet (export without them: \
+             the skin then has the tone's uniform colour)"
+        );
+    }
     let loaded = job.load()?;
     let interior = match args.interior {
         InteriorArg::Medium => Interior::Medium,

@@ -69,13 +69,7 @@ impl SkinColorTable {
         base.validate()?;
         let ranges = SkinParams::RANGES;
         let mut max = [ranges[0].max * ranges[6].max, ranges[1].max, ranges[2].max, ranges[3].max, ranges[6].max];
-        // The thickest epidermis the transport table reaches with this scattering (validate's rule).
-        let tau_per_mm = super::chromophores::reduced_scattering_per_mm(
-            super::chromophores::MIN_WAVELENGTH_NM,
-            base.scattering_500nm_per_mm,
-            base.scattering_power,
-        );
-        max[4] = max[4].min(super::transport::MAX_TAU_SCATTER_EPI / tau_per_mm * (1.0 - 1e-9));
+        max[4] = max[4].min(base.max_epidermis_mm());
         let count: usize = NODES.iter().product();
         let node_params = |i: usize| -> SkinParams {
             let mut rest = i;

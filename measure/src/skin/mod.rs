@@ -142,6 +142,26 @@ impl SkinParams {
         }
     }
 
+    /// The thickest epidermis this skin's scattering lets the transport table reach, mm: the
+    /// largest d with μs′(380 nm)·d ≤ 3 (the test of [`SkinParams::validate`]; infinite without
+    /// scattering). Skin maps and the colour table keep their epidermis below it.
+    pub fn max_epidermis_mm(&self) -> f64 {
+        let mu = chromophores::reduced_scattering_per_mm(
+            MIN_WAVELENGTH_NM,
+            self.scattering_500nm_per_mm,
+            self.scattering_power,
+        );
+        if !(mu > 0.0 && mu.is_finite()) {
+            return f64::INFINITY;
+        }
+        // The quotient can round up by an ulp; step down until the product passes the same test.
+        let mut d = transport::MAX_TAU_SCATTER_EPI / mu;
+        while mu * d > transport::MAX_TAU_SCATTER_EPI {
+            d = d.next_down();
+        }
+        d
+    }
+
     /// Checks every parameter against its range and the transport table's reach.
     pub fn validate(&self) -> Result<(), SkinError> {
         for (v, r) in self.to_array().iter().zip(Self::RANGES) {

@@ -16,6 +16,7 @@
 //! UV convention: as [`crate::look::ThicknessMap`]: row 0 is the top of the image (v = 1); pixel
 //! (x, y) of a w × h map has its centre at u = (x + 0.5)/w, v = 1 − (y + 0.5)/h.
 
+pub mod albedo;
 pub mod anatomy;
 pub mod conditions;
 pub mod file;
@@ -26,8 +27,6 @@ pub use conditions::{Condition, ConditionError, SkinConditions};
 pub use file::{ProjectSkin, SKIN_FILE, SkinRecipe};
 
 use rouge_measure::skin::SkinParams;
-use rouge_measure::skin::chromophores::{MIN_WAVELENGTH_NM, reduced_scattering_per_mm};
-use rouge_measure::skin::transport::MAX_TAU_SCATTER_EPI;
 
 /// One parameter of the skin model that varies over a face: a channel of [`SkinMaps`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -83,34 +82,18 @@ impl SkinChannel {
     }
 
     /// The channel's range: [`SkinParams::RANGES`], and for the epidermis at most
-    /// [`max_epidermis_mm`] of `base`'s scattering.
+    /// [`SkinParams::max_epidermis_mm`] of `base`'s scattering.
     pub fn range(self, base: &SkinParams) -> (f64, f64) {
         let r = SkinParams::RANGES[self.param_index()];
         match self {
-            SkinChannel::Epidermis => (r.min, r.max.min(max_epidermis_mm(base))),
+            SkinChannel::Epidermis => (r.min, r.max.min(base.max_epidermis_mm())),
             _ => (r.min, r.max),
         }
     }
 }
 
-/// The thickest epidermis the transport table reaches under `base`'s scattering, mm: the
-/// largest d with μs′(380 nm)·d ≤ [`MAX_TAU_SCATTER_EPI`] as [`SkinParams::validate`] computes it
-/// (μs′ is largest at the shortest wavelength). Infinite without scattering.
-pub fn max_epidermis_mm(base: &SkinParams) -> f64 {
-    let mu = reduced_scattering_per_mm(MIN_WAVELENGTH_NM, base.scattering_500nm_per_mm, base.scattering_power);
-    if !(mu > 0.0 && mu.is_finite()) {
-        return f64::INFINITY;
-    }
-    // The quotient can round up by an ulp; step down until the product passes the same test.
-    let mut d = MAX_TAU_SCATTER_EPI / mu;
-    while mu * d > MAX_TAU_SCATTER_EPI {
-        d = d.next_down();
-    }
-    d
-}
-
 /// `p` with every parameter inside [`SkinParams::RANGES`] and the epidermis inside the table's
-/// reach ([`max_epidermis_mm`]): a non-finite value becomes [`SkinParams::LIGHT`]'s, then each is
+/// reach ([`SkinParams::max_epidermis_mm`]): a non-finite value becomes [`SkinParams::LIGHT`]'s, then each is
 /// clamped, the scattering first (the epidermis' bound depends on it). The result always passes
 /// [`SkinParams::validate`].
 pub fn clamp_params(p: &SkinParams) -> SkinParams {

@@ -8,6 +8,7 @@ use rouge_measure::Extrapolation;
 use rouge_measure::analysis::skin::read_skins;
 use rouge_model::look::{Look, ThicknessSource};
 use rouge_model::medium::Medium;
+use rouge_model::skin::{SkinConditions, SkinRecipe};
 use rouge_render::diffusion::ProfileModel;
 use rouge_render::job::{FacePose, LookChoice, RenderJob};
 use rouge_render::profile_fit::FittedProfile;
@@ -98,6 +99,23 @@ pub struct SceneArgs {
     /// the skin's colour from the tone's reflectance spectrum (docs/SKIN.md).
     #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin"])]
     pub skin_tone: Option<String>,
+    /// Paint the skin from skin maps: the tone (--skin-tone; light without one) over the default
+    /// head's anatomy (more blood in the cheeks, nose, chin and ears, the lips' own colour,
+    /// thinner and darker skin around the eyes) with any --skin-conditions. The maps' colour
+    /// through the spectral skin model becomes the skin's albedo texture (docs/SKIN.md).
+    #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin", "albedo_map"])]
+    pub skin_maps: bool,
+    /// Skin conditions of the skin maps, NAME=AMOUNT,... with amounts 0 to 1: freckles, moles,
+    /// redness, acne, hyperpigmentation, under_eye, veins (implies --skin-maps).
+    #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin", "albedo_map"])]
+    pub skin_conditions: Option<SkinConditions>,
+    /// Seed of the skin conditions' placement (the same seed, the same freckles).
+    #[arg(long, default_value_t = 1)]
+    pub skin_seed: u64,
+    /// Side of the skin maps, texels (16 to 4096; the painted maps' 2048 is 2 texels a mm on the
+    /// default head).
+    #[arg(long, default_value_t = 1024)]
+    pub skin_map_px: u32,
     /// Morph the mesh toward its bounding sphere by this fraction (0 to 1): a deformation for
     /// testing what depends on the rest pose (the baked local thickness of --subsurface thickness).
     #[arg(long, default_value_t = 0.0)]
@@ -215,7 +233,17 @@ impl SceneArgs {
             };
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(spectrum) };
         }
-        if let Some(name) = &self.skin_tone {
+        let skin_maps = (self.skin_maps || self.skin_conditions.is_some())
+            .then(|| {
+                let tone = self.skin_tone.as_deref().unwrap_or("light");
+                let conditions = self.skin_conditions.clone().unwrap_or_default();
+                SkinRecipe::from_tone(tone, conditions, self.skin_seed, self.skin_map_px).context("--skin-maps")
+            })
+            .transpose()?;
+        if let Some(recipe) = &skin_maps {
+            let spectrum = recipe.base.reflectance().context("--skin-maps")?;
+            scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
+        } else if let Some(name) = &self.skin_tone {
             let tone = rouge_measure::skin::skin_tone(name).context("--skin-tone")?;
             let spectrum = tone.params.reflectance().with_context(|| format!("--skin-tone {name}"))?;
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
@@ -233,6 +261,7 @@ impl SceneArgs {
             look,
             env: self.env.clone(),
             albedo_map: self.albedo_map.clone(),
+            skin_maps,
             normal_map: self.normal_map.clone(),
             width: self.width,
             height: self.height,
@@ -259,6 +288,13 @@ impl SceneArgs {
             LookChoice::Bare => false,
             LookChoice::File(p) => Look::load(p).is_ok_and(|l| regions(&l)),
         };
+        if job.skin_maps.is_some() {
+            eprintln!(
+                "rouge: note: skin maps follow the default head's anatomy in its UVs; on {} they land wherever \
+                 its UVs put them",
+                mesh.display()
+            );
+        }
         if uses_regions {
             eprintln!(
                 "rouge: note: the look uses region masks drawn for the default head's UVs; on {} they land \

@@ -1,0 +1,100 @@
+//! Skin maps on a real device (lavapipe on CI): their colour through the spectral skin model is
+//! the skin's albedo texture ([`rouge_render::job::RenderJob::skin_maps`]). A redness condition
+//! raises the rendered a* where it is placed (cheeks, nose) and nowhere else; a darker tone
+//! lowers L* of the whole face.
+
+use glam::Vec3;
+use rouge_measure::colorimetry::{linear_srgb_to_lab, srgb_decode};
+use rouge_model::skin::{SkinConditions, SkinRecipe};
+use rouge_render::Scene;
+use rouge_render::job::{LookChoice, RenderJob};
+
+const SIZE: (u32, u32) = (200, 200);
+
+/// The display image of the bare default head lit from the front with the skin maps of `recipe`,
+/// as CIELAB per pixel (`None` on the background).
+fn render(recipe: SkinRecipe) -> Vec<Option<[f64; 3]>> {
+    let mut scene = Scene::white_light(Vec3::new(0.0, 0.0, 1.0));
+    scene.specular = false;
+    scene.background = [0.0; 3];
+    let job = RenderJob {
+        subdivision: 0,
+        look: LookChoice::Bare,
+        width: SIZE.0,
+        height: SIZE.1,
+        scene,
+        skin_maps: Some(recipe),
+        ..RenderJob::default()
+    };
+    let mut p = job.prepare().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    p.renderer.render(&p.scene, &p.camera, SIZE.0, SIZE.1, true).expect("render");
+    let bytes = p.renderer.read_display().expect("read");
+    bytes
+        .chunks_exact(4)
+        .map(|px| {
+            let rgb = [0, 1, 2].map(|c| srgb_decode(f64::from(px[c]) / 255.0));
+            (rgb.iter().sum::<f64>() > 0.0).then(|| linear_srgb_to_lab(rgb))
+        })
+        .collect()
+}
+
+fn recipe(tone: &str, conditions: &str) -> SkinRecipe {
+    let conditions: SkinConditions = conditions.parse().expect("conditions");
+    SkinRecipe::from_tone(tone, conditions, 3, 256).expect("recipe")
+}
+
+#[test]
+fn redness_raises_a_star_on_cheeks_and_nose_and_nowhere_else() {
+    let plain = render(recipe("light", "none"));
+    let red = render(recipe("light", "redness=1"));
+    let (w, h) = (SIZE.0 as usize, SIZE.1 as usize);
+    // The head's rows: from its first to its last pixel.
+    let rows: Vec<usize> = (0..h).filter(|y| (0..w).any(|x| plain[y * w + x].is_some())).collect();
+    let (top, bottom) = (rows[0], rows[rows.len() - 1]);
+    let (mut raised, mut forehead_worst) = (0usize, 0.0f64);
+    for y in 0..h {
+        for x in 0..w {
+            let (Some(a), Some(b)) = (plain[y * w + x], red[y * w + x]) else { continue };
+            let da = b[1] - a[1];
+            if da > 2.0 {
+                raised += 1;
+            }
+            // The upper third of the head (scalp and forehead) has no redness.
+            if y < top + (bottom - top) / 3 {
+                forehead_worst = forehead_worst.max(da.abs());
+            }
+            // More blood never makes skin greener (8-bit display quantisation and the blur's
+            // edges allow a little).
+            assert!(da > -1.0, "redness lowered a* by {da} at ({x}, {y})");
+        }
+    }
+    assert!(raised > 300, "only {raised} pixels got redder");
+    assert!(forehead_worst < 0.5, "the forehead's a* moved by {forehead_worst}");
+}
+
+#[test]
+fn a_darker_tone_lowers_the_lightness_of_the_whole_face() {
+    let light = render(recipe("light", "none"));
+    let brown = render(recipe("brown", "none"));
+    let (mut sum, mut n) = (0.0, 0usize);
+    for (a, b) in light.iter().zip(&brown) {
+        let (Some(a), Some(b)) = (a, b) else { continue };
+        // Eyes keep their colour; skin gets darker, never lighter.
+        assert!(b[0] <= a[0] + 0.5, "a pixel got lighter: L* {} -> {}", a[0], b[0]);
+        sum += a[0] - b[0];
+        n += 1;
+    }
+    let mean = sum / n as f64;
+    assert!(mean > 8.0, "mean L* drop {mean}");
+}
+
+#[test]
+fn skin_maps_and_an_albedo_map_are_refused_together() {
+    let job = RenderJob {
+        albedo_map: Some("albedo.png".into()),
+        skin_maps: Some(recipe("light", "none")),
+        ..RenderJob::default()
+    };
+    let e = job.prepare().err().expect("refused").to_string();
+    assert!(e.contains("albedo map and skin maps"), "{e}");
+}
