@@ -236,7 +236,7 @@ impl SceneArgs {
         let skin_maps = (self.skin_maps || self.skin_conditions.is_some())
             .then(|| {
                 let tone = self.skin_tone.as_deref().unwrap_or("light");
-                let conditions = self.skin_conditions.clone().unwrap_or_default();
+                let conditions = self.skin_conditions.unwrap_or_default();
                 SkinRecipe::from_tone(tone, conditions, self.skin_seed, self.skin_map_px).context("--skin-maps")
             })
             .transpose()?;
