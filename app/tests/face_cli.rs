@@ -102,3 +102,25 @@ fn bench_deform_writes_rows_per_level() {
     }
     assert!(rows[1]["triangles"].as_u64() > rows[0]["triangles"].as_u64());
 }
+
+#[test]
+fn bench_skin_measures_every_tone_against_the_spectral_composition() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let json = path(dir.path(), "skin.json");
+    let o = rouge(&["bench", "skin", "--thickness-um", "0,20,60", "--json", json.to_str().expect("utf-8")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
+    let rows = rows.as_array().expect("rows");
+    assert_eq!(rows.len(), 11, "ten tones and all");
+    assert_eq!(rows[10]["tone"], "all");
+    assert_eq!(rows[10]["samples"], 10 * 5 * 3);
+    for r in rows {
+        let (mean, p95, max) = (r["delta_e_mean"].as_f64(), r["delta_e_p95"].as_f64(), r["delta_e_max"].as_f64());
+        let (Some(mean), Some(p95), Some(max)) = (mean, p95, max) else { panic!("{r}") };
+        assert!(mean <= max && p95 <= max, "{r}");
+        // Today's three-channel compositing: about 0.7 mean and 1.8 at worst on one layer.
+        assert!(max < 3.0 && mean < 1.2, "{r}");
+    }
+    let bad = rouge(&["bench", "skin", "--thickness-um=-5"]);
+    assert!(!bad.status.success() && stderr(&bad).contains("--thickness-um"), "{}", stderr(&bad));
+}

@@ -7,6 +7,7 @@ pub mod atlas;
 pub mod deform;
 pub mod fit_thickness;
 pub mod report;
+pub mod skin;
 pub mod translucency;
 
 use anyhow::{Context, Result, bail};
@@ -51,6 +52,10 @@ pub enum BenchCommand {
     /// deformation (the mesh morphed toward its bounding sphere each frame) against triangle
     /// count: the hm08 hand and head at subdivision levels 0-3 and the built-in sphere.
     CubeAtlas(crate::bench::atlas::AtlasBenchArgs),
+    /// Skin under a cosmetic layer: the rendered colour of each of the ten skin tones under the
+    /// five sample foundations at 0-60 µm against the 81-wavelength composition (ΔE2000 mean,
+    /// p95, max per tone).
+    Skin(crate::bench::skin::SkinBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -116,6 +121,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Deform(args) => crate::bench::deform::run(args),
         BenchCommand::Aa(args) => crate::bench::aa::run(args),
         BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
+        BenchCommand::Skin(args) => crate::bench::skin::run(args),
     }
 }
 
