@@ -528,6 +528,11 @@ fn a_named_skin_tone_sets_the_skin_colour() {
     assert!(stderr(&o).contains("--skin-tone") && stderr(&o).contains("very-deep"), "{}", stderr(&o));
     let o = rouge(&["render", "--skin-tone", "deep", "--medium", "skin1", "--out", "never.png"]);
     assert_eq!(o.status.code(), Some(2), "--skin-tone and --medium both set the skin");
+    // An ITA between the tones: lighter than a deeper angle, and outside the span an error.
+    let (ita_30, ita_minus_30) = (albedo("30"), albedo("-30"));
+    assert!(ita_minus_30 < ita_30 && ita_30 < light, "{ita_minus_30} {ita_30} {light}");
+    let o = rouge(&["render", "--skin-tone", "75", "--out", "never.png"]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("ITA 75"), "{}", stderr(&o));
 }
 
 /// Issue 30: non-finite camera angles and mesh scales rendered an empty frame with exit 0 over the

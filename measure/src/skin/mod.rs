@@ -29,7 +29,7 @@ pub mod transport;
 pub use color_table::SkinColorTable;
 pub use fit::{FitOptions, SkinFit, SkinFitter, Specular, fit_reflectance};
 pub use optics::{LayerOptics, SkinOptics};
-pub use tones::{SkinTone, ita_deg, skin_tone, skin_tones};
+pub use tones::{SkinTone, ita_deg, skin_at_ita, skin_tone, skin_tone_or_ita, skin_tones};
 
 use crate::spectrum::{Spectrum, WORKING_LEN};
 use chromophores::{MAX_WAVELENGTH_NM, MIN_WAVELENGTH_NM};
@@ -261,6 +261,16 @@ pub enum SkinError {
         name: String,
         /// The names there are.
         known: String,
+    },
+    /// An ITA outside the built-in tones' span.
+    #[error("ITA {ita_deg}°: the tones span {deepest:.1}° (very deep) to {lightest:.1}° (very light)")]
+    ItaOutOfRange {
+        /// The angle asked for.
+        ita_deg: f64,
+        /// The deepest tone's ITA.
+        deepest: f64,
+        /// The lightest tone's ITA.
+        lightest: f64,
     },
     /// A measured spectrum the fit cannot take.
     #[error("{}{message}", wavelength_nm.map(|w| format!("at {w} nm: ")).unwrap_or_default())]

@@ -6,6 +6,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use rouge_measure::Extrapolation;
 use rouge_measure::analysis::skin::read_skins;
+use rouge_measure::skin::{SkinParams, skin_tone_or_ita};
 use rouge_model::look::{Look, ThicknessSource};
 use rouge_model::medium::Medium;
 use rouge_model::skin::{SkinConditions, SkinRecipe};
@@ -95,9 +96,10 @@ pub struct SceneArgs {
     /// Which skin of --skin.
     #[arg(long, requires = "skin")]
     pub skin_sample: Option<String>,
-    /// A named tone of the spectral skin model (`rouge skin tones`: very-light ... very-deep):
-    /// the skin's colour from the tone's reflectance spectrum (docs/SKIN.md).
-    #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin"])]
+    /// A named tone of the spectral skin model (`rouge skin tones`: very-light ... very-deep) or
+    /// an Individual Typology Angle in degrees (about 60 to -60: the skin of that ITA between the
+    /// tones): the skin's colour from its reflectance spectrum (docs/SKIN.md).
+    #[arg(long, allow_negative_numbers = true, conflicts_with_all = ["medium", "sigma_a", "skin"])]
     pub skin_tone: Option<String>,
     /// Paint the skin from skin maps: the tone (--skin-tone; light without one) over the default
     /// head's anatomy (more blood in the cheeks, nose, chin and ears, the lips' own colour,
@@ -233,19 +235,25 @@ impl SceneArgs {
             };
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(spectrum) };
         }
-        let skin_maps = (self.skin_maps || self.skin_conditions.is_some())
-            .then(|| {
-                let tone = self.skin_tone.as_deref().unwrap_or("light");
-                let conditions = self.skin_conditions.unwrap_or_default();
-                SkinRecipe::from_tone(tone, conditions, self.skin_seed, self.skin_map_px).context("--skin-maps")
-            })
-            .transpose()?;
-        if let Some(recipe) = &skin_maps {
-            let spectrum = recipe.base.reflectance().context("--skin-maps")?;
-            scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
-        } else if let Some(name) = &self.skin_tone {
-            let tone = rouge_measure::skin::skin_tone(name).context("--skin-tone")?;
-            let spectrum = tone.params.reflectance().with_context(|| format!("--skin-tone {name}"))?;
+        let tone = match &self.skin_tone {
+            Some(spec) => Some(skin_tone_or_ita(spec).with_context(|| format!("--skin-tone {spec}"))?),
+            None => None,
+        };
+        // The recipe keeps a tone's name; an ITA is kept as its parameters only.
+        let tone_name = match &self.skin_tone {
+            None => Some("light".to_string()),
+            Some(spec) if spec.trim().parse::<f64>().is_err() => Some(spec.clone()),
+            Some(_) => None,
+        };
+        let skin_maps = (self.skin_maps || self.skin_conditions.is_some()).then(|| SkinRecipe {
+            tone: tone_name,
+            base: tone.unwrap_or(SkinParams::LIGHT),
+            conditions: self.skin_conditions.unwrap_or_default(),
+            seed: self.skin_seed,
+            size_px: self.skin_map_px,
+        });
+        if let Some(params) = skin_maps.as_ref().map(|r| r.base).or(tone) {
+            let spectrum = params.reflectance().context("--skin-tone")?;
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
         }
         let mut fit = None;
