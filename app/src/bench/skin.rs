@@ -3,7 +3,7 @@
 //! foundations at 0-60 µm: a flat square rendered on the GPU (white directional light of
 //! irradiance π from the front, no specular, no environment, subsurface off, linear output), its
 //! centre pixel against Kubelka-Munk composition done per wavelength, R = R0 + T²·Rs / (1 − R0·Rs)
-//! ([Huang2013] eq. 3-4, the layer's R0 and T from its preset's S and K), both as CIELAB of their
+//! (\[Huang2013\] eq. 3-4, the layer's R0 and T from its preset's S and K), both as CIELAB of their
 //! linear sRGB (D65). The renderer composes the same formula per linear-sRGB channel with the
 //! tone's colour as the skin's albedo; the difference is what compositing in three channels
 //! costs (the accuracy target of the skin issue: ΔE2000 0.5 mean, 1.0 at the 95th percentile).
