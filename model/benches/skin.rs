@@ -11,9 +11,10 @@ use std::hint::black_box;
 fn bench_skin(c: &mut Criterion) {
     let base = SkinParams::LIGHT;
     let none = SkinConditions::default();
-    let all: SkinConditions = "freckles=0.6,moles=0.4,redness=0.5,acne=0.3,hyperpigmentation=0.3,under_eye=0.6,veins=0.6"
-        .parse()
-        .unwrap_or_default();
+    let all: SkinConditions =
+        "freckles=0.6,moles=0.4,redness=0.5,acne=0.3,hyperpigmentation=0.3,under_eye=0.6,veins=0.6"
+            .parse()
+            .unwrap_or_default();
     let mut g = c.benchmark_group("skin_maps_1024");
     g.sample_size(10);
     g.bench_function("generate_anatomy", |b| b.iter(|| black_box(SkinMaps::generate(&base, &none, 1, 1024))));

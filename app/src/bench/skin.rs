@@ -16,21 +16,12 @@ use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, linear_
 use rouge_measure::layer_table::layer_spectra;
 use rouge_measure::skin::skin_tones;
 use rouge_measure::spectrum::Spectrum;
-use rouge_model::look::{ThicknessMap, builtin_preset};
+use rouge_model::look::{ThicknessMap, builtin_preset, builtin_preset_names};
 use rouge_model::mesh::TriangleMesh;
 use rouge_render::renderer::LayerInput;
 use rouge_render::{Camera, Gpu, Renderer, Scene, Skin, SubsurfaceModel};
 use serde::Serialize;
 use std::path::PathBuf;
-
-/// The five sample foundations.
-const FOUNDATIONS: [&str; 5] = [
-    "foundation_01_porcelain",
-    "foundation_02_ivory",
-    "foundation_03_sand",
-    "foundation_04_caramel",
-    "foundation_05_espresso",
-];
 
 #[derive(Debug, Args)]
 pub struct SkinBenchArgs {
@@ -95,6 +86,9 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     scene.environment = None;
     scene.skin.subsurface = SubsurfaceModel::None;
     let size = 8;
+    // The sample foundations: the built-in presets named foundation_*.
+    let foundations: Vec<&str> =
+        builtin_preset_names().iter().copied().filter(|n| n.starts_with("foundation_")).collect();
     let mut rows = Vec::new();
     let mut all = Vec::new();
     for tone in skin_tones() {
@@ -103,7 +97,7 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
         renderer.set_mesh(&mesh, scene.skin.albedo)?;
         let camera = Camera::framing(&renderer.mesh_bounds().context("no mesh bounds")?, 0.0, 0.0);
         let mut errors = Vec::new();
-        for name in FOUNDATIONS {
+        for &name in &foundations {
             let preset = builtin_preset(name).with_context(|| format!("no built-in preset {name}"))?;
             for &um in &args.thickness_um {
                 let map = ThicknessMap::uniform((um * 1e-3) as f32);
@@ -125,7 +119,7 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     let caption = format!(
         "Skin under one foundation layer, rendered (linear sRGB compositing) against the 81-wavelength \
          composition: {} foundations × {} thicknesses per tone, {device}",
-        FOUNDATIONS.len(),
+        foundations.len(),
         args.thickness_um.len()
     );
     let header = ["tone", "method", "ΔE2000 mean", "p95", "max", "worst"];
