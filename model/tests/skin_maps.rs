@@ -287,3 +287,39 @@ fn the_albedo_texture_is_the_tables_colour_encoded() {
     assert!(lips.1 > 0 && other.1 > 0);
     assert!(lips.0 / lips.1 as f64 > other.0 / other.1 as f64 + 10.0, "lips {lips:?}, forehead {other:?}");
 }
+
+#[test]
+fn blood_follows_the_expression_by_region() {
+    use rouge_model::mesh::targets::Weights;
+    use rouge_model::skin::blood_flow::blood_factors;
+    let m = generate("", 1);
+    let units = |pairs: &[(&str, f32)]| -> Weights { pairs.iter().map(|(n, w)| (n.to_string(), *w)).collect() };
+    assert!(blood_factors(&Weights::new()).is_empty());
+    assert_eq!(m.with_blood_flow(&Weights::new()), m, "a neutral face moves no blood");
+    let smile = m.with_blood_flow(&units(&[("mouthSmileLeft", 1.0), ("mouthSmileRight", 1.0)]));
+    let press = m.with_blood_flow(&units(&[("mouthPressLeft", 1.0), ("mouthPressRight", 1.0)]));
+    let (before, smiled, pressed) =
+        (m.plane(SkinChannel::Blood), smile.plane(SkinChannel::Blood), press.plane(SkinChannel::Blood));
+    let (mut cheeks_up, mut lips_down) = (0usize, 0usize);
+    for i in 0..before.len() {
+        let (u, v) = uv(i, SIZE);
+        let (cheek, lips) = (AnatomyRegion::Cheeks.weight_uv(u, v), AnatomyRegion::Lips.weight_uv(u, v));
+        if cheek > 0.9 {
+            assert!(smiled[i] > before[i] * 1.5, "texel {i}: {} -> {}", before[i], smiled[i]);
+            cheeks_up += 1;
+        } else if cheek == 0.0 {
+            assert_eq!(smiled[i], before[i], "a smile moved blood outside the cheeks at texel {i}");
+        }
+        if lips > 0.9 {
+            assert!(pressed[i] < before[i] * 0.7, "texel {i}: {} -> {}", before[i], pressed[i]);
+            lips_down += 1;
+        } else if lips == 0.0 {
+            assert_eq!(pressed[i], before[i], "pressed lips moved blood outside the lips at texel {i}");
+        }
+    }
+    assert!(cheeks_up > 100 && lips_down > 100, "{cheeks_up} {lips_down}");
+    // Only blood moves.
+    for c in [SkinChannel::Melanin, SkinChannel::Oxygen, SkinChannel::Epidermis, SkinChannel::Pheomelanin] {
+        assert_eq!(smile.plane(c), m.plane(c));
+    }
+}

@@ -60,6 +60,10 @@ pub struct RenderJob {
     /// ([`rouge_model::skin`]); their colour through the spectral skin model becomes the skin's
     /// albedo texture. Exclusive with `albedo_map`.
     pub skin_maps: Option<SkinRecipe>,
+    /// Whether the skin maps' blood follows the face's expression
+    /// ([`rouge_model::skin::SkinMaps::with_blood_flow`]: a smile flushes the cheeks, pressed lips
+    /// blanch).
+    pub blood_flow: bool,
     /// Image width.
     pub width: u32,
     /// Image height.
@@ -92,6 +96,7 @@ impl Default for RenderJob {
             albedo_map: None,
             normal_map: None,
             skin_maps: None,
+            blood_flow: true,
             width: 1280,
             height: 720,
             yaw_deg: 0.0,
@@ -104,10 +109,16 @@ impl Default for RenderJob {
     }
 }
 
-/// The albedo texture of the skin maps `recipe` makes: the maps, the tone's colour table, the
-/// bake ([`rouge_model::skin::SkinMaps::albedo_image`]).
-fn skin_albedo(recipe: &SkinRecipe) -> Result<image::RgbaImage> {
-    let maps = recipe.generate()?;
+/// The albedo texture of the skin maps `recipe` makes, their blood moved by `face`'s expression
+/// when given: the maps, the tone's colour table, the bake
+/// ([`rouge_model::skin::SkinMaps::albedo_image`]).
+fn skin_albedo(recipe: &SkinRecipe, face: Option<&FacePose>) -> Result<image::RgbaImage> {
+    let mut maps = recipe.generate()?;
+    if let Some(face) = face.filter(|f| !f.is_neutral()) {
+        let invalid = |e: TargetError| RenderError::Invalid(e.to_string());
+        let (units, _) = TargetSet::default_head().map_err(invalid)?.resolve(face).map_err(invalid)?;
+        maps = maps.with_blood_flow(&units);
+    }
     let table = SkinColorTable::new(maps.base()).map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))?;
     Ok(maps.albedo_image(&table))
 }
@@ -220,7 +231,7 @@ impl RenderJob {
                 ));
             }
             (Some(path), None) => Some(load_texture(path)?),
-            (None, Some(recipe)) => Some(skin_albedo(recipe)?),
+            (None, Some(recipe)) => Some(skin_albedo(recipe, self.blood_flow.then_some(&self.face))?),
             (None, None) => None,
         };
         let normal = self.normal_map.as_deref().map(load_texture).transpose()?;

@@ -7,13 +7,18 @@ use glam::Vec3;
 use rouge_measure::colorimetry::{linear_srgb_to_lab, srgb_decode};
 use rouge_model::skin::{SkinConditions, SkinRecipe};
 use rouge_render::Scene;
-use rouge_render::job::{LookChoice, RenderJob};
+use rouge_render::job::{FacePose, LookChoice, RenderJob};
 
 const SIZE: (u32, u32) = (200, 200);
 
 /// The display image of the bare default head lit from the front with the skin maps of `recipe`,
 /// as CIELAB per pixel (`None` on the background).
 fn render(recipe: SkinRecipe) -> Vec<Option<[f64; 3]>> {
+    render_posed(recipe, FacePose::default(), true)
+}
+
+/// [`render`] with the default head in `face`'s pose, its blood following the expression or not.
+fn render_posed(recipe: SkinRecipe, face: FacePose, blood_flow: bool) -> Vec<Option<[f64; 3]>> {
     let mut scene = Scene::white_light(Vec3::new(0.0, 0.0, 1.0));
     scene.specular = false;
     scene.background = [0.0; 3];
@@ -24,6 +29,8 @@ fn render(recipe: SkinRecipe) -> Vec<Option<[f64; 3]>> {
         height: SIZE.1,
         scene,
         skin_maps: Some(recipe),
+        face,
+        blood_flow,
         ..RenderJob::default()
     };
     let mut p = job.prepare().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
@@ -100,4 +107,21 @@ fn skin_maps_and_an_albedo_map_are_refused_together() {
         Err(e) => e.to_string(),
     };
     assert!(e.contains("albedo map and skin maps"), "{e}");
+}
+
+#[test]
+fn blood_follows_a_smile() {
+    let smile =
+        || FacePose::parse_weights("smile", "--expression").map(|e| FacePose { expression: e, ..Default::default() });
+    let still = render_posed(recipe("light", "none"), smile().expect("smile"), false);
+    let flushed = render_posed(recipe("light", "none"), smile().expect("smile"), true);
+    // The same geometry: only the cheeks' blood differs, and it can only redden them.
+    let (mut redder, mut greener) = (0usize, 0usize);
+    for (a, b) in still.iter().zip(&flushed) {
+        let (Some(a), Some(b)) = (a, b) else { continue };
+        let da = b[1] - a[1];
+        redder += usize::from(da > 1.5);
+        greener += usize::from(da < -1.0);
+    }
+    assert!(redder > 200 && greener == 0, "{redder} pixels redder, {greener} greener");
 }

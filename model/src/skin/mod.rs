@@ -18,6 +18,7 @@
 
 pub mod albedo;
 pub mod anatomy;
+pub mod blood_flow;
 pub mod conditions;
 pub mod file;
 pub mod generate;

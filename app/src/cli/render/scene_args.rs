@@ -114,6 +114,10 @@ pub struct SceneArgs {
     /// Seed of the skin conditions' placement (the same seed, the same freckles).
     #[arg(long, default_value_t = 1)]
     pub skin_seed: u64,
+    /// Keep the skin maps' blood still whatever the --expression (by default it follows it: a
+    /// smile flushes the cheeks, pressed lips blanch; docs/SKIN.md).
+    #[arg(long)]
+    pub no_blood_flow: bool,
     /// Side of the skin maps, texels (16 to 4096; the painted maps' 2048 is 2 texels a mm on the
     /// default head).
     #[arg(long, default_value_t = 1024)]
@@ -270,6 +274,7 @@ impl SceneArgs {
             env: self.env.clone(),
             albedo_map: self.albedo_map.clone(),
             skin_maps,
+            blood_flow: !self.no_blood_flow,
             normal_map: self.normal_map.clone(),
             width: self.width,
             height: self.height,
