@@ -533,6 +533,18 @@ fn a_named_skin_tone_sets_the_skin_colour() {
     assert!(ita_minus_30 < ita_30 && ita_30 < light, "{ita_minus_30} {ita_30} {light}");
     let o = rouge(&["render", "--skin-tone", "75", "--out", "never.png"]);
     assert!(o.status.code() == Some(2) && stderr(&o).contains("ITA 75"), "{}", stderr(&o));
+    // Skin maps: the plan reads an albedo map and says where it comes from.
+    let args = ["render", "--skin-conditions", "freckles=0.5", "--skin-map-px", "64", "--explain", "--width", "32"];
+    let o = rouge(&[&args[..], &["--height", "24", "--no-blood-flow"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("albedo map on") && text.contains("skin maps: tone light, conditions freckles=0.5"),
+        "{text}"
+    );
+    assert!(text.contains("blood still"), "{text}");
+    let o = rouge(&["render", "--skin-conditions", "spots=1", "--out", "never.png"]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("spots"), "{}", stderr(&o));
 }
 
 /// Issue 30: non-finite camera angles and mesh scales rendered an empty frame with exit 0 over the

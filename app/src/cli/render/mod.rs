@@ -163,6 +163,16 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if args.explain {
         let plan = prepared.renderer.plan(&prepared.scene, args.scene.width, args.scene.height, display)?;
         crate::emit(plan.explain().trim_end())?;
+        if let Some(r) = &job.skin_maps {
+            let blood = if job.blood_flow { "blood follows the expression" } else { "blood still" };
+            crate::emit(&format!(
+                "skin maps: tone {}, conditions {}, seed {}, {}² texels -> the albedo map (skin colour table); {blood}",
+                r.tone.as_deref().unwrap_or("from an ITA"),
+                r.conditions,
+                r.seed,
+                r.size_px
+            ))?;
+        }
     }
     let Some(out) = &args.out else {
         return Ok(());
