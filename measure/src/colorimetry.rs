@@ -225,7 +225,7 @@ pub const SRGB_WHITE_XY: [f64; 2] = [0.3127, 0.3290];
 /// Bradford cone-response matrix (\[Lam1985\]).
 pub const BRADFORD: Mat3 = [[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]];
 
-fn mat_vec(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
+pub(crate) fn mat_vec(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
 }
 

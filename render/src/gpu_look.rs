@@ -1,12 +1,14 @@
 //! The look and the skin's textures on the GPU: the layers' thickness maps (one R16Float array
-//! layer each, mm), their R0/T tables (from rouge-measure's [`rouge_measure::layer_table`]) and
-//! specular parameters; the skin albedo and normal maps.
+//! layer each, mm), their R0/T tables (from rouge-measure's [`rouge_measure::layer_table`], in
+//! the [`CompositingBasis`] the lighting pass composes in) and specular parameters; the skin
+//! albedo and normal maps.
 
 use crate::error::{RenderError, Result};
 use crate::scene::fresnel_f0;
 use crate::shader::MAX_LAYERS;
 use crate::uniforms::LayerUniform;
 use crate::wgpu_util::{array_view, buffer_init, texture, view};
+use rouge_measure::compositing::CompositingBasis;
 use rouge_measure::preset::Preset;
 use rouge_model::TexelRect;
 use rouge_model::look::ThicknessMap;
@@ -127,9 +129,15 @@ impl GpuLook {
                 half_texels(&layer.map.resized(w, h).mm, layer.multiplier)
             };
             write_layer(queue, &maps, i as u32, whole, &texels);
+            // R0 and T in the compositing basis, where the lighting pass composes the stack.
             let table = rouge_measure::layer_table::render_table(layer.preset);
-            tables.extend(table.r0.iter().map(|v| [v[0], v[1], v[2], 0.0]));
-            tables.extend(table.t.iter().map(|v| [v[0], v[1], v[2], 0.0]));
+            let basis = CompositingBasis::get();
+            let in_basis = |v: &[f32; 3]| {
+                let c = basis.from_linear_srgb(v.map(f64::from));
+                [c[0] as f32, c[1] as f32, c[2] as f32, 0.0]
+            };
+            tables.extend(table.r0.iter().map(in_basis));
+            tables.extend(table.t.iter().map(in_basis));
             params[i] = LayerUniform {
                 params: [
                     layer.preset.specular.roughness as f32,

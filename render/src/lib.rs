@@ -12,7 +12,7 @@
 //!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
 //!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
 //! - Studies and references: [`study`], [`translucency`], [`aa_study`], [`mitsuba`],
-//!   [`profile_fit`].
+//!   [`profile_fit`], [`skin_study`] (skin under makeup against the spectral composition).
 //!
 //! Inside, one module per pass (`passes`, each declared once in its registry), the shader
 //! preprocessor (`shader`), the uniforms, targets and wgpu helpers serve the renderer only.
@@ -39,6 +39,7 @@ pub mod renderer;
 pub mod scene;
 pub(crate) mod shader;
 pub mod silhouettes;
+pub mod skin_study;
 pub mod specular;
 pub mod sss;
 pub mod study;

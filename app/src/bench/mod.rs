@@ -27,9 +27,9 @@ pub enum BenchCommand {
     /// ΔE2000 over all ordered pairs of presets, thicknesses 0-0.2 mm, both ColorChecker skins.
     Compositing(CompositingArgs),
     /// Renderer: per-pass GPU times of a 1280×720 frame (timestamp queries where the adapter has
-    /// them) for the bare head, the default look (3 layers) and a 4-layer look; then the SSS
-    /// sample count against a brute-force reference (RMSE, mean/p95 ΔE2000), and the error of
-    /// the layer tables.
+    /// them) for the bare head, the default look (3 layers), the default look over skin maps
+    /// and a 4-layer look; then the SSS sample count against a brute-force reference (RMSE,
+    /// mean/p95 ΔE2000), and the error of the layer tables.
     Render(RenderBenchArgs),
     /// Translucency: every subsurface model × reference scene × parameter set against Mitsuba 3
     /// references of the same scenes (data/reference/translucency): GPU ms per frame, RMSE of
@@ -169,7 +169,7 @@ fn compositing(args: &CompositingArgs) -> Result<()> {
     if let Some(bad) = args.bands.iter().find(|&&n| n == 0 || n > 81) {
         bail!("{bad} bands: use 1 to 81");
     }
-    let mut methods = vec![Method::LinearRgb];
+    let mut methods = vec![Method::LinearRgb, Method::Basis];
     methods.extend(args.bands.iter().map(|&n| Method::Bands(n)));
     let stats = compositing_error(&presets, &skins, &args.thicknesses_mm, &methods);
     let timing: Vec<f64> = stats.iter().map(|s| ns_per_pixel(s.channels)).collect();
@@ -227,13 +227,19 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     let mut json = serde_json::Map::new();
     let mut out = String::new();
     let mut frame_rows = Vec::new();
-    for (label, look) in [
-        ("bare", LookChoice::Bare),
-        ("default look (3 layers)", LookChoice::Default),
-        ("4 layers", LookChoice::File(four.clone())),
+    // The spectral skin: the default look over skin maps (every condition), whose colour is one
+    // more texture sample in the G-buffer; the maps' bake is on the CPU, once per change.
+    let conditions: rouge_model::skin::SkinConditions =
+        "freckles=0.5,moles=0.5,redness=0.5,acne=0.5,hyperpigmentation=0.5,under_eye=0.5,veins=0.5".parse()?;
+    let skin_maps = rouge_model::skin::SkinRecipe::from_tone("light-medium", conditions, 1, 1024)?;
+    for (label, look, skin_maps) in [
+        ("bare", LookChoice::Bare, None),
+        ("default look (3 layers)", LookChoice::Default, None),
+        ("default look over skin maps", LookChoice::Default, Some(skin_maps)),
+        ("4 layers", LookChoice::File(four.clone()), None),
     ] {
         eprintln!("rouge bench render: {label}");
-        let job = RenderJob { look, width: args.width, height: args.height, ..RenderJob::default() };
+        let job = RenderJob { look, width: args.width, height: args.height, skin_maps, ..RenderJob::default() };
         let mut p = job.prepare()?;
         let t = study::frame_times(&mut p, args.frames)?;
         frame_rows.push((label, t));

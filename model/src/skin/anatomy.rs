@@ -15,6 +15,7 @@
 //! give smooth transitions and overlapping regions combine without an order.
 
 use crate::look::{Region, ThicknessMap, decode_png_unit};
+use rouge_measure::skin::SkinParams;
 use std::sync::OnceLock;
 
 // ------------------------------------------------------------------------------------------
@@ -268,6 +269,17 @@ impl LogFactors {
         self.blood += w * factors.blood.ln();
         self.oxygen += w * factors.oxygen.ln();
         self.epidermis += w * factors.epidermis.ln();
+    }
+
+    /// `base` with these factors applied: each parameter × exp(Σ w ln f).
+    pub fn apply(&self, base: &SkinParams) -> SkinParams {
+        SkinParams {
+            melanin_fraction: base.melanin_fraction * self.melanin.exp(),
+            blood_fraction: base.blood_fraction * self.blood.exp(),
+            oxygen_saturation: base.oxygen_saturation * self.oxygen.exp(),
+            epidermis_thickness_mm: base.epidermis_thickness_mm * self.epidermis.exp(),
+            ..*base
+        }
     }
 
     /// The healthy anatomy at OBJ-convention UV: every region at its mask's weight.

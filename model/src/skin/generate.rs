@@ -15,7 +15,7 @@
 //! does not move another's spots.
 
 use super::anatomy::{
-    AnatomyRegion, BLOOD_SPREAD, BLOOD_STEP, LogFactors, MELANIN_RANGE, MELANIN_SPREAD, SATURATION_LOW,
+    AnatomyRegion, BLOOD_SPREAD, BLOOD_STEP, Factors, LogFactors, MELANIN_RANGE, MELANIN_SPREAD, SATURATION_LOW,
 };
 use super::{Condition, SkinConditions, SkinMaps};
 use crate::error::{ModelError, Result};
@@ -353,6 +353,40 @@ fn check(base: &SkinParams, size_px: u32) -> Result<()> {
     Ok(())
 }
 
+/// What a condition does to the skin where it is at full strength (weight 1: the centre of a spot,
+/// or the middle of its region at amount 1); weights in between scale the logarithms.
+///
+/// - Freckles and post-inflammatory hyperpigmentation: melanin × [`MELANIN_SPREAD`] (brown
+///   macules as dark as the database's 95th percentile is to its median).
+/// - Moles: melanin × [`MELANIN_RANGE`] (the darkest spots: the database's 5th to 95th percentile).
+/// - Redness and acne: blood × [`BLOOD_SPREAD`] (as red as the reddest measured skin).
+/// - Under-eye darkness: melanin first, then deoxygenated blood (\[Matsui2015\]); more melanin
+///   and more haemoglobin measured in dark circles (\[MacMary2019\]): melanin ×
+///   [`MELANIN_SPREAD`], saturation × [`SATURATION_LOW`], blood × [`BLOOD_STEP`].
+/// - Veins: blood at the reddest measured skin's fraction, at the least oxygenated measured skin's
+///   saturation (blood × [`BLOOD_SPREAD`], saturation × [`SATURATION_LOW`]); the two-layer model
+///   cannot put the vessel deep, which is what makes veins look blue (\[Kienle1996\]), so they
+///   come out dark and purplish.
+pub fn condition_factors(c: Condition) -> Factors {
+    match c {
+        Condition::Freckles | Condition::Hyperpigmentation => Factors { melanin: MELANIN_SPREAD, ..Factors::NONE },
+        Condition::Moles => Factors { melanin: MELANIN_RANGE, ..Factors::NONE },
+        Condition::Redness | Condition::Acne => Factors { blood: BLOOD_SPREAD, ..Factors::NONE },
+        Condition::UnderEye => {
+            Factors { melanin: MELANIN_SPREAD, blood: BLOOD_STEP, oxygen: SATURATION_LOW, ..Factors::NONE }
+        }
+        Condition::Veins => Factors { blood: BLOOD_SPREAD, oxygen: SATURATION_LOW, ..Factors::NONE },
+    }
+}
+
+/// `base` where condition `c` is at full strength ([`condition_factors`]), clamped into the
+/// model's ranges as the maps are: the skin of a spot's centre.
+pub fn at_full_strength(base: &SkinParams, c: Condition) -> SkinParams {
+    let mut l = LogFactors::default();
+    l.add(condition_factors(c), 1.0);
+    super::clamp_params(&l.apply(base))
+}
+
 /// The maps: per texel the anatomy's log factors plus each condition's, applied to `base`.
 fn compose(
     base: &SkinParams,
@@ -374,36 +408,19 @@ fn compose(
             let blotch = surface
                 .and_then(|s| s.position(x, y))
                 .map_or(1.0, |p| 0.5 + f64::from(value_noise(p / REDNESS_BLOTCH_MM, noise_seed)));
-            let weight = placement(REDNESS_REGIONS, u, v) * redness * blotch;
-            l.blood += weight * BLOOD_SPREAD.ln();
+            l.add(condition_factors(Condition::Redness), placement(REDNESS_REGIONS, u, v) * redness * blotch);
         }
         if under_eye > 0.0 {
-            // Periorbital darkness: melanin first, then deoxygenated blood ([Matsui2015]); more
-            // melanin and more haemoglobin measured in dark circles ([MacMary2019]).
-            let weight = AnatomyRegion::UnderEye.weight_uv(u, v) * under_eye;
-            l.melanin += weight * MELANIN_SPREAD.ln();
-            l.oxygen += weight * SATURATION_LOW.ln();
-            l.blood += weight * BLOOD_STEP.ln();
+            l.add(condition_factors(Condition::UnderEye), AnatomyRegion::UnderEye.weight_uv(u, v) * under_eye);
         }
         if let Some(p) = &painted {
-            l.melanin += at(&p.freckles, i) * MELANIN_SPREAD.ln();
-            l.melanin += at(&p.moles, i) * MELANIN_RANGE.ln();
-            l.blood += at(&p.acne, i) * BLOOD_SPREAD.ln();
-            l.melanin += at(&p.hyperpigmentation, i) * MELANIN_SPREAD.ln();
-            let vein = at(&p.veins, i);
-            // Veins: blood at the reddest measured skin's fraction, at the least oxygenated
-            // measured skin's saturation; the two-layer model cannot put the vessel deep, which
-            // is what makes veins look blue ([Kienle1996]), so they come out dark and purplish.
-            l.blood += vein * BLOOD_SPREAD.ln();
-            l.oxygen += vein * SATURATION_LOW.ln();
+            l.add(condition_factors(Condition::Freckles), at(&p.freckles, i));
+            l.add(condition_factors(Condition::Moles), at(&p.moles, i));
+            l.add(condition_factors(Condition::Acne), at(&p.acne, i));
+            l.add(condition_factors(Condition::Hyperpigmentation), at(&p.hyperpigmentation, i));
+            l.add(condition_factors(Condition::Veins), at(&p.veins, i));
         }
-        SkinParams {
-            melanin_fraction: base.melanin_fraction * l.melanin.exp(),
-            blood_fraction: base.blood_fraction * l.blood.exp(),
-            oxygen_saturation: base.oxygen_saturation * l.oxygen.exp(),
-            epidermis_thickness_mm: base.epidermis_thickness_mm * l.epidermis.exp(),
-            ..*base
-        }
+        l.apply(base)
     })
 }
 

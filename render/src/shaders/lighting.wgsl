@@ -1,7 +1,10 @@
 // Lighting pass ([Huang2013] figure 1, steps 2, 3 and 5). Per pixel:
 // - the cosmetic stack's R (from above and from below) and T, from each layer's table of R0 and
 //   T against thickness, composed bottom to top with the Kubelka-Munk layer formulas ([Huang2013]
-//   eq. 3-4, with T1²R2 in the numerator) in linear RGB;
+//   eq. 3-4, with T1²R2 in the numerator) per channel of the compositing basis
+//   (rouge_measure::compositing::CompositingBasis: a linear transform of linear sRGB whose
+//   per-channel products are closer to spectral ones; the tables are uploaded in it), and over the skin in
+//   the same basis; results go back to linear sRGB (BASIS_TO_SRGB) before they leave the pass;
 // - the irradiance of every light (shadowed where the light casts shadows) and of the
 //   environment's spherical harmonics;
 // - the skin radiance before scattering: light that crossed the stack (× T), with the
@@ -17,14 +20,15 @@
 @group(1) @binding(2) var gb_depth: texture_2d<f32>;
 @group(1) @binding(3) var gb_thickness_a: texture_2d<f32>;
 @group(1) @binding(4) var gb_thickness_b: texture_2d<f32>;
-// Per layer two rows of `frame.counts.z` entries: R0 (rgb), then T (rgb), at thickness
+// Per layer two rows of `frame.counts.z` entries: R0, then T (in the compositing basis), at thickness
 // X = X0·u/(1 − u) for u = i/(n − 1) (the last entry is the opaque limit: R∞, T = 0).
 @group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
 
 // TABLE_X0_MM (mm), the X0 of the table parameterisation, is injected from its owner,
-// rouge_measure::layer_table, by shader::shader_source.
+// rouge_measure::layer_table, and BASIS_FROM_SRGB / BASIS_TO_SRGB from
+// rouge_measure::compositing, by shader::shader_source.
 
 struct LightingOut {
     // rgb: skin radiance before scattering, a: 1 on skin
@@ -111,7 +115,8 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     let world = world_at(frag.xy, depth);
     let v = normalize(frame.camera_pos.xyz - world);
 
-    // Cosmetic stack, bottom to top: R seen from above, R seen from below (from the skin), T.
+    // Cosmetic stack, bottom to top: R seen from above, R seen from below (from the skin), T; in
+    // the compositing basis.
     var r_top = vec3<f32>(0.0);
     var r_below = vec3<f32>(0.0);
     var t = vec3<f32>(1.0);
@@ -130,13 +135,17 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     }
 //#endif
 //#if LAYERS_A
+    // Whether any layer covers the pixel: where none does, the skin keeps its albedo exactly.
+    var covered = false;
     for (var i = 0u; i < LAYERS; i++) {
+        covered = covered || thickness[i] > 0.0;
         let l = layer_rt(i, thickness[i]);
         let inter = 1.0 / (1.0 - l.r * r_top);
         r_below = r_below + t * t * l.r * inter;
         r_top = l.r + l.t * l.t * r_top * inter;
         t = l.t * t * inter;
-        layer_t[i] = l.t;
+        // The lobes below are attenuated in linear sRGB (exactly 1 where the layer is absent).
+        layer_t[i] = select(BASIS_TO_SRGB * l.t, vec3<f32>(1.0), thickness[i] <= 0.0);
     }
 //#endif
 
@@ -187,15 +196,34 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     skin_irradiance += env_e * skin_env;
 //#endif
 
+    // Light into the skin per unit irradiance, albedo·T / (1 − R_below·albedo), and what crosses the
+    // stack again on its way out, × T; without layers simply the albedo and T = 1.
+    var skin_in = albedo;
+    var exit_t = vec3<f32>(1.0);
+//#if LAYERS_A
+    // Composed in the basis, then back in linear sRGB. The way out is applied after scattering
+    // (the composite, or a diffusion model's gather) as a factor: the ratio of the two products
+    // rebuilds the basis's albedo·T² / (1 − R_below·albedo) exactly where nothing scatters.
+    if covered {
+        let a = BASIS_FROM_SRGB * albedo;
+        let once = a * t / (1.0 - r_below * a);
+        skin_in = max(BASIS_TO_SRGB * once, vec3<f32>(0.0));
+        let twice = max(BASIS_TO_SRGB * (once * t), vec3<f32>(0.0));
+        let t_srgb = clamp(BASIS_TO_SRGB * t, vec3<f32>(0.0), vec3<f32>(1.0));
+        let ratio = clamp(twice / max(skin_in, vec3<f32>(1e-6)), vec3<f32>(0.0), vec3<f32>(1.0));
+        exit_t = select(t_srgb, ratio, skin_in > vec3<f32>(1e-5));
+        r_top = BASIS_TO_SRGB * r_top;
+    }
+//#endif
     if is_skin {
-        out.diffuse = vec4<f32>(albedo * skin_irradiance * t / (1.0 - r_below * albedo) / PI, 1.0);
+        out.diffuse = vec4<f32>(skin_in * skin_irradiance / PI, 1.0);
         out.surface = vec4<f32>(r_top * irradiance / PI + specular, 1.0);
     } else {
         out.diffuse = vec4<f32>(0.0);
         out.surface = vec4<f32>(albedo * irradiance / PI + specular, 1.0);
     }
 //#if LAYERS_A
-    out.exit_t = vec4<f32>(t, 1.0);
+    out.exit_t = vec4<f32>(exit_t, 1.0);
 //#endif
     return out;
 }
