@@ -2,7 +2,8 @@
 
   docs/images/skin_maps_tones.png       the ten tones' skin maps on the bare default head
   docs/images/skin_maps_foundation.png  a face with skin conditions bare, under foundation
-                                        10, 20 and 40 um, and the default look
+                                        10, 20 and 40 um, with concealer on the spots over
+                                        10 um of foundation, and the default look
 
 Usage: python python/skin_maps_figure.py [--rouge target/release/rouge] [--out docs/images]
 (about a minute with the release binary on 2 cores, lavapipe).
@@ -34,6 +35,23 @@ def foundation_look(folder: Path, microns: int) -> Path:
             "layers": [{"name": "Foundation", "preset": "builtin:foundation_02_ivory",
                         "thickness": {"uniform_mm": microns / 1000.0}}]}
     path = folder / f"foundation_{microns}.json"
+    path.write_text(json.dumps(look))
+    return path
+
+
+def concealer_look(rouge: str, folder: Path, face: list[str]) -> Path:
+    """10 um of the ivory foundation and, over it, up to 30 um more of the same as concealer where
+    `rouge skin maps --conditions-mask` says the conditions are."""
+    tone, conditions, seed = face[1], face[3], face[5]
+    mask = folder / "conditions_mask.png"
+    subprocess.run([rouge, "skin", "maps", "--tone", tone, "--conditions", conditions, "--seed", seed,
+                    "--conditions-mask", str(mask)], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    look = {"schema": "rouge-look", "version": 1, "name": "Concealer on the spots",
+            "layers": [{"name": "Foundation", "preset": "builtin:foundation_02_ivory",
+                        "thickness": {"uniform_mm": 0.010}},
+                       {"name": "Concealer", "preset": "builtin:foundation_02_ivory",
+                        "thickness": {"map": mask.name, "scale_mm": 0.030}}]}
+    path = folder / "concealer.json"
     path.write_text(json.dumps(look))
     return path
 
@@ -71,9 +89,12 @@ def main() -> None:
             look = foundation_look(folder, microns)
             cells.append(label(render(a.rouge, folder / f"f{microns}.png", "--look", str(look), *face, *common),
                                f"ivory foundation {microns} um"))
+        look = concealer_look(a.rouge, folder, face)
+        cells.append(label(render(a.rouge, folder / "concealer.png", "--look", str(look), *face, *common),
+                           "10 um + concealer on the spots"))
         cells.append(label(render(a.rouge, folder / "default.png", "--look", "default", *face, *common),
                            "default look"))
-        grid(cells, 5).save(a.out / "skin_maps_foundation.png")
+        grid(cells, 3).save(a.out / "skin_maps_foundation.png")
 
 
 if __name__ == "__main__":

@@ -57,6 +57,12 @@ pub struct SkinPatch {
     camera: Camera,
 }
 
+impl std::fmt::Debug for SkinPatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SkinPatch").field("camera", &self.camera).finish_non_exhaustive()
+    }
+}
+
 /// Pixels per side of the rendered patch (its centre pixel is read).
 const PATCH_PX: u32 = 8;
 

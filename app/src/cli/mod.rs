@@ -8,3 +8,4 @@ pub mod import;
 pub mod km;
 pub mod render;
 pub mod skin;
+pub mod skin_maps;

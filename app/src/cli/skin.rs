@@ -29,6 +29,10 @@ pub enum SkinCommand {
     Spectrum(SpectrumArgs),
     /// The named skin tones, very light to very deep: ITA, CIELAB, sRGB swatch and parameters.
     Tones(TonesArgs),
+    /// The default head's skin maps as files (what `rouge render --skin-maps` draws): the
+    /// parameters per texel (OpenEXR), their colour (the albedo texture) and where the conditions
+    /// are (a mask for concealer).
+    Maps(crate::cli::skin_maps::MapsArgs),
 }
 
 #[derive(Debug, Args)]
@@ -140,6 +144,7 @@ pub fn run(cmd: &SkinCommand) -> Result<()> {
         SkinCommand::Fit(a) => fit(a),
         SkinCommand::Spectrum(a) => spectrum(a),
         SkinCommand::Tones(a) => tones(a),
+        SkinCommand::Maps(a) => crate::cli::skin_maps::run(a),
     }
 }
 

@@ -345,6 +345,10 @@ impl SkinMaps {
 
 fn check(base: &SkinParams, size_px: u32) -> Result<()> {
     base.validate().map_err(|e| ModelError::Invalid(format!("skin maps' base: {e}")))?;
+    check_size(size_px)
+}
+
+fn check_size(size_px: u32) -> Result<()> {
     if !(MIN_SIZE_PX..=MAX_SIZE_PX).contains(&size_px) {
         return Err(ModelError::Invalid(format!(
             "skin maps of {size_px} texels a side: the size must be in {MIN_SIZE_PX}..={MAX_SIZE_PX}"
@@ -387,6 +391,53 @@ pub fn at_full_strength(base: &SkinParams, c: Condition) -> SkinParams {
     super::clamp_params(&l.apply(base))
 }
 
+/// Where each condition is: its weight per texel (1 at the centre of a spot, or where its region is
+/// full at amount 1), painted once.
+struct ConditionField<'a> {
+    painted: Option<Painted>,
+    redness: f64,
+    under_eye: f64,
+    noise_seed: u64,
+    surface: Option<&'a SurfaceMap>,
+}
+
+impl<'a> ConditionField<'a> {
+    fn new(conditions: &SkinConditions, seed: u64, surface: Option<&'a SurfaceMap>) -> ConditionField<'a> {
+        ConditionField {
+            painted: surface.map(|s| Painted::new(conditions, seed, s)),
+            redness: conditions.get(Condition::Redness),
+            under_eye: conditions.get(Condition::UnderEye),
+            noise_seed: splitmix64(seed ^ splitmix64(Condition::Redness as u64 + 101)),
+            surface,
+        }
+    }
+
+    /// Every condition's weight at texel (x, y) of a w × h map, in [`Condition::ALL`]'s order.
+    fn weights(&self, x: u32, y: u32, w: u32, h: u32) -> [f64; 7] {
+        let (u, v) = texel_uv(x, y, w, h);
+        let i = y as usize * w as usize + x as usize;
+        let mut out = [0.0; 7];
+        if self.redness > 0.0 {
+            let blotch = self
+                .surface
+                .and_then(|s| s.position(x, y))
+                .map_or(1.0, |p| 0.5 + f64::from(value_noise(p / REDNESS_BLOTCH_MM, self.noise_seed)));
+            out[Condition::Redness as usize] = placement(REDNESS_REGIONS, u, v) * self.redness * blotch;
+        }
+        if self.under_eye > 0.0 {
+            out[Condition::UnderEye as usize] = AnatomyRegion::UnderEye.weight_uv(u, v) * self.under_eye;
+        }
+        if let Some(p) = &self.painted {
+            out[Condition::Freckles as usize] = at(&p.freckles, i);
+            out[Condition::Moles as usize] = at(&p.moles, i);
+            out[Condition::Acne as usize] = at(&p.acne, i);
+            out[Condition::Hyperpigmentation as usize] = at(&p.hyperpigmentation, i);
+            out[Condition::Veins as usize] = at(&p.veins, i);
+        }
+        out
+    }
+}
+
 /// The maps: per texel the anatomy's log factors plus each condition's, applied to `base`.
 fn compose(
     base: &SkinParams,
@@ -396,37 +447,85 @@ fn compose(
     h: u32,
     surface: Option<&SurfaceMap>,
 ) -> SkinMaps {
-    let painted = surface.map(|s| Painted::new(conditions, seed, s));
-    let redness = conditions.get(Condition::Redness);
-    let under_eye = conditions.get(Condition::UnderEye);
-    let noise_seed = splitmix64(seed ^ splitmix64(Condition::Redness as u64 + 101));
+    let field = ConditionField::new(conditions, seed, surface);
     SkinMaps::from_fn(w, h, base, |x, y| {
         let (u, v) = texel_uv(x, y, w, h);
         let mut l = LogFactors::anatomy_at(u, v);
-        let i = y as usize * w as usize + x as usize;
-        if redness > 0.0 {
-            let blotch = surface
-                .and_then(|s| s.position(x, y))
-                .map_or(1.0, |p| 0.5 + f64::from(value_noise(p / REDNESS_BLOTCH_MM, noise_seed)));
-            l.add(condition_factors(Condition::Redness), placement(REDNESS_REGIONS, u, v) * redness * blotch);
-        }
-        if under_eye > 0.0 {
-            l.add(condition_factors(Condition::UnderEye), AnatomyRegion::UnderEye.weight_uv(u, v) * under_eye);
-        }
-        if let Some(p) = &painted {
-            l.add(condition_factors(Condition::Freckles), at(&p.freckles, i));
-            l.add(condition_factors(Condition::Moles), at(&p.moles, i));
-            l.add(condition_factors(Condition::Acne), at(&p.acne, i));
-            l.add(condition_factors(Condition::Hyperpigmentation), at(&p.hyperpigmentation, i));
-            l.add(condition_factors(Condition::Veins), at(&p.veins, i));
+        for (c, weight) in Condition::ALL.into_iter().zip(field.weights(x, y, w, h)) {
+            if weight > 0.0 {
+                l.add(condition_factors(c), weight);
+            }
         }
         l.apply(base)
     })
 }
 
+/// Where `conditions` are on the default head, `size_px` × `size_px` in the maps' UV layout: per
+/// texel the largest weight of any condition (1 at a spot's centre or where a region is full at
+/// amount 1), for the seed the maps use. A concealer's thickness map: cover what the conditions
+/// drew and nothing else (`rouge skin maps --conditions-mask`).
+///
+/// # Errors
+/// A size outside [`MIN_SIZE_PX`]..=[`MAX_SIZE_PX`], or the head failing to load.
+pub fn conditions_mask(conditions: &SkinConditions, seed: u64, size_px: u32) -> Result<ThicknessMap> {
+    check_size(size_px)?;
+    let surface = if conditions.is_none() {
+        None
+    } else {
+        let mesh = crate::mesh::load_mesh(None, 1.0, 1)?;
+        Some(SurfaceMap::build(&mesh, size_px, size_px))
+    };
+    let field = ConditionField::new(conditions, seed, surface.as_ref());
+    let mut mask = ThicknessMap { width: size_px, height: size_px, mm: vec![0.0; (size_px * size_px) as usize] };
+    for y in 0..size_px {
+        for x in 0..size_px {
+            let w = field.weights(x, y, size_px, size_px).into_iter().fold(0.0, f64::max);
+            mask.mm[(y * size_px + x) as usize] = w.clamp(0.0, 1.0) as f32;
+        }
+    }
+    Ok(mask)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn condition_weights_follow_the_conditions_order() {
+        // ConditionField::weights indexes by discriminant; ALL lists them in the same order.
+        for (i, c) in Condition::ALL.into_iter().enumerate() {
+            assert_eq!(c as usize, i, "{c:?}");
+        }
+    }
+
+    #[test]
+    fn the_conditions_mask_is_where_the_maps_moved() {
+        let size = 64;
+        let conditions: SkinConditions = "moles=1,redness=0.6".parse().expect("conditions");
+        let mask = conditions_mask(&conditions, 5, size).expect("mask");
+        let base = rouge_measure::skin::skin_tone("medium").expect("tone").params;
+        let with = SkinMaps::generate(&base, &conditions, 5, size).expect("maps");
+        let without = SkinMaps::generate(&base, &SkinConditions::default(), 5, size).expect("maps");
+        let (mut inside, mut moved_outside) = (0, 0);
+        for y in 0..size {
+            for x in 0..size {
+                let w = mask.mm[(y * size + x) as usize];
+                assert!((0.0..=1.0).contains(&w), "{w}");
+                let (a, b) = (with.texel(x, y), without.texel(x, y));
+                let moved = (a.melanin_fraction / b.melanin_fraction - 1.0).abs() > 1e-6
+                    || (a.blood_fraction / b.blood_fraction - 1.0).abs() > 1e-6;
+                if w > 0.0 {
+                    inside += 1;
+                } else if moved {
+                    moved_outside += 1;
+                }
+            }
+        }
+        assert!(inside > 20, "{inside} texels in the mask");
+        assert_eq!(moved_outside, 0, "the maps moved where the mask is 0");
+        assert!(conditions_mask(&SkinConditions::default(), 5, size).expect("mask").mm.iter().all(|&w| w == 0.0));
+        assert!(conditions_mask(&conditions, 5, 4).unwrap_err().to_string().contains("size"));
+    }
 
     #[test]
     fn noise_is_continuous_bounded_and_seeded() {
