@@ -124,3 +124,37 @@ fn bench_skin_measures_every_tone_against_the_spectral_composition() {
     let bad = rouge(&["bench", "skin", "--thickness-um=-5"]);
     assert!(!bad.status.success() && stderr(&bad).contains("--thickness-um"), "{}", stderr(&bad));
 }
+
+/// `rouge skin maps`: the maps as the project's OpenEXR (read back to the same maps), their albedo
+/// and the conditions' mask (white where the spots are, black elsewhere); bad options are named
+/// and a failed write keeps the previous file.
+#[test]
+fn skin_maps_are_written_as_files() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let [exr, albedo, mask] = ["m.exr", "a.png", "mask.png"].map(|n| path(dir.path(), n));
+    let s = |p: &PathBuf| p.to_str().expect("utf-8").to_string();
+    let args = ["skin", "maps", "--tone", "tan", "--conditions", "moles=1", "--seed", "3", "--size-px", "64"];
+    let outs = ["--out", &s(&exr), "--albedo", &s(&albedo), "--conditions-mask", &s(&mask)];
+    let o = rouge(&[&args[..], &outs[..]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let base = rouge_measure::skin::skin_tone("tan").expect("tone").params;
+    let maps = rouge_model::skin::SkinMaps::from_exr_bytes(&std::fs::read(&exr).expect("exr"), &base).expect("maps");
+    let conditions = "moles=1".parse().expect("conditions");
+    let expected = rouge_model::skin::SkinMaps::generate(&base, &conditions, 3, 64).expect("maps");
+    assert!(maps == expected, "the file holds the maps render --skin-maps draws");
+    let a = image::open(&albedo).expect("albedo").to_rgba8();
+    assert_eq!(a.dimensions(), (64, 64));
+    let m = image::open(&mask).expect("mask").to_luma16();
+    let lit = m.pixels().filter(|p| p.0[0] > 0).count();
+    assert!(lit > 0 && lit < 64 * 64 / 10, "{lit} texels in the moles' mask");
+    // Nothing to write, a bad tone, an unwritable file.
+    let o = rouge(&["skin", "maps"]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("--out"), "{}", stderr(&o));
+    let o = rouge(&["skin", "maps", "--tone", "mauve", "--out", &s(&exr)]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("--tone mauve"), "{}", stderr(&o));
+    let before = std::fs::read(&exr).expect("exr");
+    let missing = dir.path().join("no/such/dir/m.exr");
+    let o = rouge(&["skin", "maps", "--out", missing.to_str().expect("utf-8")]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("cannot write"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&exr).expect("exr"), before);
+}
