@@ -107,22 +107,37 @@ fn bench_deform_writes_rows_per_level() {
 fn bench_skin_measures_every_tone_against_the_spectral_composition() {
     let dir = tempfile::tempdir().expect("tempdir");
     let json = path(dir.path(), "skin.json");
-    let o = rouge(&["bench", "skin", "--thickness-um", "0,20,60", "--json", json.to_str().expect("utf-8")]);
+    // Two tones and two thicknesses keep it short; render/tests/skin_maps.rs holds the target on a
+    // larger grid.
+    let args = ["bench", "skin", "--tones", "light,deep", "--thickness-um", "0,20"];
+    let o = rouge(&[&args[..], &["--json", json.to_str().expect("utf-8")]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
-    let rows = rows.as_array().expect("rows");
-    assert_eq!(rows.len(), 11, "ten tones and all");
-    assert_eq!(rows[10]["tone"], "all");
-    assert_eq!(rows[10]["samples"], 10 * 5 * 3);
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).expect("json")).expect("parse");
+    let rows = doc["accuracy"].as_array().expect("accuracy rows");
+    assert_eq!(rows.len(), 6, "two tones and all, from the tone's albedo and from skin maps");
+    for all in [&rows[2], &rows[5]] {
+        assert_eq!(all["tone"], "all");
+        assert_eq!(all["samples"], 2 * 5 * 2);
+        // Near the skin issue's target (0.5 mean, 1.0 at the 95th percentile over all ten tones;
+        // these two, with the espresso foundation at 20 µm on light skin, are harder).
+        assert!(all["delta_e_mean"].as_f64().is_some_and(|v| v < 0.7), "{all}");
+        assert!(all["delta_e_p95"].as_f64().is_some_and(|v| v < 1.2), "{all}");
+    }
     for r in rows {
         let (mean, p95, max) = (r["delta_e_mean"].as_f64(), r["delta_e_p95"].as_f64(), r["delta_e_max"].as_f64());
         let (Some(mean), Some(p95), Some(max)) = (mean, p95, max) else { panic!("{r}") };
-        assert!(mean <= max && p95 <= max, "{r}");
-        // Today's three-channel compositing: about 0.7 mean and 1.8 at worst on one layer.
-        assert!(max < 3.0 && mean < 1.2, "{r}");
+        assert!(mean <= max && p95 <= max && max < 1.6, "{r}");
+    }
+    let coverage = doc["coverage"].as_array().expect("coverage rows");
+    assert_eq!(coverage.len(), 6, "two tones × three spots");
+    for c in coverage {
+        assert!(c["worst_difference"].as_f64().is_some_and(|v| v < 1.0), "{c}");
+        assert_eq!(c["rows"].as_array().map(Vec::len), Some(2), "{c}");
     }
     let bad = rouge(&["bench", "skin", "--thickness-um=-5"]);
     assert!(!bad.status.success() && stderr(&bad).contains("--thickness-um"), "{}", stderr(&bad));
+    let bad = rouge(&["bench", "skin", "--tones", "mauve"]);
+    assert!(!bad.status.success() && stderr(&bad).contains("--tones mauve"), "{}", stderr(&bad));
 }
 
 /// `rouge skin maps`: the maps as the project's OpenEXR (read back to the same maps), their albedo

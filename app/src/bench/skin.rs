@@ -32,6 +32,10 @@ pub struct SkinBenchArgs {
     /// Layer thicknesses, µm.
     #[arg(long, value_delimiter = ',', default_values_t = [0.0f64, 5.0, 10.0, 20.0, 40.0, 60.0])]
     pub thickness_um: Vec<f64>,
+    /// Only these tones (default: all ten; the coverage table keeps those of its light, tan and
+    /// deep skins that are listed).
+    #[arg(long, value_delimiter = ',')]
+    pub tones: Vec<String>,
     /// Also write the rows as JSON here (both tables: {"accuracy": [...], "coverage": [...]}).
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -91,6 +95,10 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     if args.thickness_um.iter().any(|t| !(0.0..=1000.0).contains(t)) {
         bail!("--thickness-um: each thickness must be 0 to 1000 µm");
     }
+    for name in &args.tones {
+        skin_tone(name).with_context(|| format!("--tones {name}"))?;
+    }
+    let wanted = |name: &str| args.tones.is_empty() || args.tones.iter().any(|t| t == name);
     let gpu = Gpu::headless()?;
     let device = gpu.describe();
     let mut patch = SkinPatch::new(&gpu)?;
@@ -100,7 +108,7 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     let mut rows = Vec::new();
     for colour in [SkinColour::Albedo, SkinColour::Maps] {
         let mut all = Vec::new();
-        for tone in skin_tones() {
+        for tone in skin_tones().iter().filter(|t| wanted(&t.name)) {
             let skin = patch.set_skin(&tone.params, colour).with_context(|| format!("tone {}", tone.name))?;
             let mut errors = Vec::new();
             for &name in &foundations {
@@ -137,7 +145,7 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     let accuracy = markdown_table(&caption, &header, 3, cells);
 
     let mut cases = Vec::new();
-    for (tone_name, preset_name) in COVERAGE_CASES {
+    for (tone_name, preset_name) in COVERAGE_CASES.into_iter().filter(|(t, _)| wanted(t)) {
         let tone = skin_tone(tone_name)?;
         let preset = builtin_preset(preset_name).with_context(|| format!("no built-in preset {preset_name}"))?;
         for spot in SPOTS {

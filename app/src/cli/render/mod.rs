@@ -103,7 +103,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         bail!("--exposure {}: must be positive", args.exposure);
     }
     args.scene.check()?;
-    let (mut job, fit) = args.scene.job()?;
+    let (mut job, fit) = args.scene.render_job()?;
     if let Some(fit) = &fit {
         eprintln!(
             "rouge: {} profile of {}: albedo {:.4}, {:.4}, {:.4}; {} Gaussians, fit error {:.2}%, {:.2}%, {:.2}%",

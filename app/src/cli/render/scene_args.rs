@@ -104,9 +104,16 @@ pub struct SceneArgs {
     /// Paint the skin from skin maps: the tone (--skin-tone; light without one) over the default
     /// head's anatomy (more blood in the cheeks, nose, chin and ears, the lips' own colour,
     /// thinner and darker skin around the eyes) with any --skin-conditions. The maps' colour
-    /// through the spectral skin model becomes the skin's albedo texture (docs/SKIN.md).
+    /// through the spectral skin model becomes the skin's albedo texture (docs/SKIN.md). `rouge
+    /// render` does this on the default head by default (--flat-skin: one colour); this flag asks
+    /// for it on another mesh, or in `export mitsuba` (which refuses it).
     #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin", "albedo_map"])]
     pub skin_maps: bool,
+    /// One colour for the whole skin (the tone's; light without --skin-tone) instead of skin
+    /// maps, which `rouge render` draws on the default head unless the skin comes from --skin,
+    /// --medium, --sigma-a or --albedo-map.
+    #[arg(long, conflicts_with_all = ["skin_maps", "skin_conditions"])]
+    pub flat_skin: bool,
     /// Skin conditions of the skin maps, NAME=AMOUNT,... with amounts 0 to 1: freckles, moles,
     /// redness, acne, hyperpigmentation, under_eye, veins (implies --skin-maps).
     #[arg(long, conflicts_with_all = ["medium", "sigma_a", "skin", "albedo_map"])]
@@ -211,6 +218,32 @@ impl SceneArgs {
 
     /// The render job these options describe; the fitted profile when a medium is named.
     pub fn job(&self) -> Result<(RenderJob, Option<FittedProfile>)> {
+        self.job_with(false)
+    }
+
+    /// [`SceneArgs::job`] as `rouge render` takes it: skin maps on the default head by default
+    /// (unless --flat-skin, or the skin's colour comes from --skin, --medium, --sigma-a or
+    /// --albedo-map, or the mesh is not the default head).
+    ///
+    /// # Errors
+    /// As [`SceneArgs::job`].
+    pub fn render_job(&self) -> Result<(RenderJob, Option<FittedProfile>)> {
+        self.job_with(true)
+    }
+
+    /// Whether the skin gets maps without --skin-maps: `rouge render` on the default head with no
+    /// other source for the skin's colour.
+    fn maps_by_default(&self) -> bool {
+        let default_head = self.mesh.as_ref().is_none_or(|m| m.to_str() == Some("builtin:head"));
+        default_head
+            && !self.flat_skin
+            && self.skin.is_none()
+            && self.medium.is_none()
+            && self.sigma_a.is_none()
+            && self.albedo_map.is_none()
+    }
+
+    fn job_with(&self, maps_by_default: bool) -> Result<(RenderJob, Option<FittedProfile>)> {
         let look = match self.look.as_str() {
             "default" => LookChoice::Default,
             "bare" => LookChoice::Bare,
@@ -249,7 +282,9 @@ impl SceneArgs {
             Some(spec) if spec.trim().parse::<f64>().is_err() => Some(spec.clone()),
             Some(_) => None,
         };
-        let skin_maps = (self.skin_maps || self.skin_conditions.is_some()).then(|| SkinRecipe {
+        let wants_maps =
+            self.skin_maps || self.skin_conditions.is_some() || (maps_by_default && self.maps_by_default());
+        let skin_maps = wants_maps.then(|| SkinRecipe {
             tone: tone_name,
             base: tone.unwrap_or(SkinParams::LIGHT),
             conditions: self.skin_conditions.unwrap_or_default(),
