@@ -21,7 +21,7 @@ mod history;
 mod project;
 
 use crate::mesh::targets::FacePose;
-use crate::skin::ProjectSkin;
+use crate::skin::{ProjectSkin, SkinEdits};
 pub(crate) use project::{floats_hash, read_versioned};
 use project::{layer_files, look_layer};
 
@@ -132,6 +132,12 @@ pub enum Change {
         /// The changed texels.
         rect: TexelRect,
     },
+    /// The skin changed: other maps or no maps (`rect` `None`), or the skin edits inside `rect`
+    /// (texels of [`SkinEdits`], [`MAP_SIZE`]²).
+    Skin {
+        /// The edited texels, or `None` for the whole skin.
+        rect: Option<TexelRect>,
+    },
     /// Nothing changed (and no undo step was recorded).
     Nothing,
 }
@@ -142,6 +148,10 @@ enum Edit {
     Layers { before: Vec<PaintLayer>, after: Vec<PaintLayer> },
     /// A stroke: the changed rectangle of one map, row by row, before and after.
     Stroke { layer: usize, rect: TexelRect, before: Vec<f32>, after: Vec<f32> },
+    /// Other skin maps (or none): the skin before and after (shared).
+    Skin { before: Option<Arc<ProjectSkin>>, after: Option<Arc<ProjectSkin>> },
+    /// A skin brush stroke: the changed rectangle of the skin edits, both planes, before and after.
+    SkinStroke { rect: TexelRect, before: [Vec<f32>; 2], after: [Vec<f32>; 2] },
 }
 
 struct Entry {
@@ -185,6 +195,12 @@ struct OpenStroke {
     rect: Option<TexelRect>,
 }
 
+/// The open skin stroke: the edits as they were when it began and the union of the dirty rects.
+struct OpenSkinStroke {
+    start: Arc<SkinEdits>,
+    rect: Option<TexelRect>,
+}
+
 // ------------------------------------------------------------------------------------------
 // The document
 
@@ -201,15 +217,17 @@ pub struct Document {
     pub face: FacePose,
     /// The face as last saved (or opened), for [`Document::is_modified`].
     saved_face: FacePose,
-    /// The skin maps and their recipe (saved in the project's `skin.json` and `maps/`; `None`:
-    /// the tone's flat skin, as projects saved before skin maps). Not part of the undo history;
-    /// putting another `Arc` here makes the document modified (compared by pointer, not by
-    /// value: the maps are large).
+    /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
+    /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
+    /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which
+    /// record undo steps; putting another `Arc` here directly bypasses the history but still
+    /// makes the document modified (compared by pointer, not by value: the maps are large).
     pub skin: Option<Arc<ProjectSkin>>,
     /// The skin as last saved (or opened), for [`Document::is_modified`].
     saved_skin: Option<Arc<ProjectSkin>>,
     history: History,
     stroke: Option<OpenStroke>,
+    skin_stroke: Option<OpenSkinStroke>,
 }
 
 impl fmt::Debug for Document {
@@ -240,6 +258,7 @@ impl Document {
             saved_skin: None,
             history: History::new(),
             stroke: None,
+            skin_stroke: None,
         }
     }
 
