@@ -25,6 +25,9 @@ pub mod materials;
 mod materials_panel;
 mod menu;
 mod session;
+mod skin_panel;
+pub use skin_panel::DEFAULT_SKIN_PX;
+mod skin_view;
 mod translucency;
 pub use translucency::SubsurfaceChoice;
 mod viewport;
@@ -36,6 +39,7 @@ use anyhow::{Context as _, Result};
 use egui::{Color32, Key, Modifiers, Pos2, Rect, Sense, Vec2};
 use glam::Vec3;
 use materials::Library;
+use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
 use rouge_model::mesh::{Bounds, TriangleMesh};
 use rouge_model::paint::{Brush, BrushMode, SurfaceMap};
@@ -106,6 +110,10 @@ pub struct RougeApp {
     views: views::LayerViews,
     /// The looks library's thumbnails, once loaded ([`looks_panel`]).
     look_thumbnails: Vec<egui::TextureHandle>,
+    /// The skin maps on screen: bakes, blood flow ([`skin_view`]).
+    skin: skin_view::SkinView,
+    /// The Skin panel's settings ([`skin_panel`]).
+    skin_panel: skin_panel::SkinPanel,
 }
 
 /// What the panels keep between frames that is neither document nor view.
@@ -164,6 +172,8 @@ impl RougeApp {
             ui,
             views: views::LayerViews::default(),
             look_thumbnails: Vec::new(),
+            skin: Default::default(),
+            skin_panel: Default::default(),
             options,
         };
         match app.options.mesh.clone() {
@@ -277,6 +287,7 @@ impl RougeApp {
         self.options.project = Some(dir.to_owned());
         self.ui.project_path = dir.display().to_string();
         self.apply_change(change);
+        self.apply_change(Change::Skin { rect: None });
         self.pose_from_document();
         Ok(())
     }
@@ -316,10 +327,10 @@ impl RougeApp {
 
 impl eframe::App for RougeApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        if self.poll_mesh() || self.library.poll() {
+        if self.poll_mesh() | self.library.poll() | self.poll_skin() {
             ui.ctx().request_repaint();
         }
-        if self.jobs.preparing() || self.library.busy() {
+        if self.jobs.preparing() || self.library.busy() || self.skin.busy() {
             ui.ctx().request_repaint_after(Duration::from_millis(50));
         }
         self.shortcuts(ui.ctx());
@@ -357,6 +368,8 @@ impl eframe::App for RougeApp {
                 self.light_panel(ui);
                 ui.separator();
                 self.subsurface_panel(ui);
+                ui.separator();
+                self.skin_panel_ui(ui);
                 ui.separator();
                 self.expression_panel(ui);
                 self.face_panel(ui);

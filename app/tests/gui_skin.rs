@@ -1,0 +1,235 @@
+//! The painting app's skin maps under egui_kittest with the wgpu renderer (lavapipe on CI): a
+//! darker tone from the Skin panel darkens the rendered face, a skin brush dab changes the
+//! pixels under it and none far away (and not the makeup layers), undo restores the frame, the
+//! blood follows a smile until the "Blood follows expression" switch is turned off, and a saved
+//! project reopens with its skin edits and the same frame.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glam::Vec3;
+use rouge_app::gui::{Options, RougeApp};
+use rouge_model::mesh::targets::FacePose;
+use rouge_model::skin::{SkinBrush, SkinBrushKind, SkinConditions, SkinRecipe};
+use std::path::Path;
+
+fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
+    let dir = data_dir.to_owned();
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
+        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
+        RougeApp::new(cc, options).expect("the app opens")
+    });
+    h.state_mut().wait_ready();
+    h.run_steps(4);
+    h
+}
+
+/// Skin maps of `tone`, 512² (quick), without conditions.
+fn recipe(tone: &str) -> SkinRecipe {
+    SkinRecipe::from_tone(tone, SkinConditions::default(), 1, 512).expect("tone")
+}
+
+fn set_skin(h: &mut Harness<'static, RougeApp>, recipe: Option<SkinRecipe>) {
+    h.state_mut().set_skin_recipe(recipe);
+    h.state_mut().wait_skin();
+    h.run_steps(3);
+    assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
+}
+
+/// The frame as RGBA8 (the whole window; pixels per point 1).
+fn frame(h: &mut Harness<'static, RougeApp>) -> image::RgbaImage {
+    h.run_steps(2);
+    h.render().expect("render")
+}
+
+/// CIE L* of an sRGB pixel (D65).
+fn lightness(p: [u8; 4]) -> f64 {
+    let lin = |c: u8| {
+        let c = f64::from(c) / 255.0;
+        if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    };
+    let y = 0.2126 * lin(p[0]) + 0.7152 * lin(p[1]) + 0.0722 * lin(p[2]);
+    if y > 216.0 / 24389.0 { 116.0 * y.cbrt() - 16.0 } else { y * 24389.0 / 27.0 }
+}
+
+/// The screen points of the face between the mouth and the eyes: a box above the lips.
+fn face_box(h: &Harness<'static, RougeApp>) -> (i32, i32, i32, i32) {
+    let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
+    (lips.x as i32 - 60, lips.y as i32 - 110, lips.x as i32 + 60, lips.y as i32 - 15)
+}
+
+fn mean_lightness(image: &image::RgbaImage, (x0, y0, x1, y1): (i32, i32, i32, i32)) -> f64 {
+    let mut sum = 0.0;
+    let mut n = 0.0;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            sum += lightness(image.get_pixel(x as u32, y as u32).0);
+            n += 1.0;
+        }
+    }
+    sum / n
+}
+
+/// Clears every makeup layer, so the skin is seen bare.
+fn bare(h: &mut Harness<'static, RougeApp>) {
+    for i in 0..h.state().document().layers.len() {
+        h.state_mut().clear_layer(i);
+    }
+    h.run_steps(2);
+}
+
+#[test]
+fn a_darker_tone_darkens_the_face_and_no_skin_maps_brings_the_flat_skin_back() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    bare(&mut h);
+    let area = face_box(&h);
+    let flat = frame(&mut h);
+    set_skin(&mut h, Some(recipe("very-light")));
+    let light = frame(&mut h);
+    set_skin(&mut h, Some(recipe("deep")));
+    let deep = frame(&mut h);
+    let (l_flat, l_light, l_deep) =
+        (mean_lightness(&flat, area), mean_lightness(&light, area), mean_lightness(&deep, area));
+    assert!(l_deep < l_light - 15.0, "L* very light {l_light:.1}, deep {l_deep:.1}");
+    assert!((l_light - l_flat).abs() > 0.5, "the maps are drawn: L* flat {l_flat:.1}, very light {l_light:.1}");
+    let (full, rect) = h.state().skin_bake_times();
+    eprintln!("skin bake (size, blood+bake ms, table ms): {full:?}; rect: {rect:?}");
+    // The tone is one undo step; undo brings the very light skin back, then the flat one.
+    h.state_mut().undo();
+    h.state_mut().wait_skin();
+    assert!((mean_lightness(&frame(&mut h), area) - l_light).abs() < 0.2);
+    set_skin(&mut h, None);
+    assert!(h.state().document().skin.is_none());
+    assert!((mean_lightness(&frame(&mut h), area) - l_flat).abs() < 0.2);
+}
+
+/// A point on the right cheek (image left of the nose): the frontmost surface point near 35 mm
+/// beside and 15 mm below the nose tip.
+fn cheek_point(app: &RougeApp, side: f32) -> Vec3 {
+    let surface = app.surface().expect("surface map");
+    let mid = surface.mirror_x();
+    let frontmost = |keep: &dyn Fn(Vec3) -> bool| {
+        let mut best: Option<Vec3> = None;
+        for y in (0..surface.height).step_by(4) {
+            for x in (0..surface.width).step_by(4) {
+                if let Some(p) = surface.position(x, y)
+                    && keep(p)
+                    && best.is_none_or(|b| p.z > b.z)
+                {
+                    best = Some(p);
+                }
+            }
+        }
+        best.expect("a surface point")
+    };
+    let tip = frontmost(&|p| (p.x - mid).abs() < 10.0);
+    let (tx, ty) = (tip.x + side * 35.0, tip.y - 15.0);
+    frontmost(&move |p: Vec3| (p.x - tx).abs() < 4.0 && (p.y - ty).abs() < 4.0)
+}
+
+#[test]
+fn a_skin_dab_changes_the_pixels_under_it_only_and_undo_restores_the_frame() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    bare(&mut h);
+    set_skin(&mut h, Some(recipe("light")));
+    let layers: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    let before = frame(&mut h);
+    let at = h.state().screen_pos_of(cheek_point(h.state(), -1.0)).expect("on screen");
+    h.state_mut().set_skin_brush(Some(SkinBrush { kind: SkinBrushKind::Spot, factor: 4.0 }));
+    {
+        let b = h.state_mut().brush_mut();
+        (b.radius_mm, b.mirror, b.flow, b.hardness) = (6.0, false, 1.0, 0.8);
+    }
+    h.state_mut().paint_stroke_screen(&[at, at]);
+    let after = frame(&mut h);
+    let (_, rect) = h.state().skin_bake_times();
+    eprintln!("rect re-bake after the dab (texels, ms): {rect:?}");
+    assert!(rect.is_some(), "the dab re-baked its rectangle only");
+    let skin = h.state().document().skin.clone().expect("skin");
+    assert!(skin.edits.as_ref().is_some_and(|e| e.edited_texels() > 100), "the dab is a skin edit");
+    let layers_after: Vec<Vec<f32>> = h.state().document().layers.iter().map(|l| l.map.mm.clone()).collect();
+    assert!(layers_after == layers, "the makeup layers are untouched");
+    // Pixels under the dab darken and redden; none far from it changes.
+    let (mut near, mut far_changed, mut far) = (0.0f64, 0u32, 0u32);
+    let mut near_n = 0.0;
+    for y in 0..after.height() {
+        for x in 0..after.width() {
+            let (a, b) = (before.get_pixel(x, y).0, after.get_pixel(x, y).0);
+            let d = ((x as f32 - at.x).powi(2) + (y as f32 - at.y).powi(2)).sqrt();
+            if d < 5.0 {
+                near += lightness(a) - lightness(b);
+                near_n += 1.0;
+            } else if d > 80.0 {
+                far += 1;
+                far_changed += u32::from(a.iter().zip(b).any(|(p, q)| p.abs_diff(q) > 2));
+            }
+        }
+    }
+    assert!(near / near_n > 3.0, "the spot darkens the skin under it by {:.2} L*", near / near_n);
+    assert!(far_changed * 1000 < far, "{far_changed} of {far} far pixels changed");
+    // Undo takes the spot back: the frame as before.
+    h.state_mut().undo();
+    h.state_mut().wait_skin();
+    let undone = frame(&mut h);
+    let worst = before.pixels().zip(undone.pixels()).map(|(p, q)| p.0.iter().zip(q.0).map(|(a, b)| a.abs_diff(b)).max().unwrap_or(0)).max();
+    assert!(worst.unwrap_or(0) <= 1, "undo left a difference of {worst:?}");
+
+    // Save, reopen: the skin and its edits come back and draw the same frame.
+    h.state_mut().redo();
+    h.state_mut().wait_skin();
+    let painted = frame(&mut h);
+    let dir = data.path().join("project");
+    h.state_mut().save_project_to(&dir).expect("save");
+    set_skin(&mut h, None);
+    h.state_mut().open_project_from(&dir).expect("open");
+    h.state_mut().wait_skin();
+    let reopened = frame(&mut h);
+    let doc_skin = h.state().document().skin.clone().expect("the skin comes back");
+    assert!(doc_skin.edits == skin.edits, "the edits come back bit for bit");
+    let worst = painted.pixels().zip(reopened.pixels()).map(|(p, q)| p.0.iter().zip(q.0).map(|(a, b)| a.abs_diff(b)).max().unwrap_or(0)).max();
+    assert!(worst.unwrap_or(0) <= 1, "the reopened frame differs by {worst:?}");
+}
+
+/// Mean red minus green over a window of the frame around `at`.
+fn redness(image: &image::RgbaImage, at: egui::Pos2) -> f64 {
+    let (mut sum, mut n) = (0.0, 0.0);
+    for dy in -12..=12 {
+        for dx in -12..=12 {
+            let p = image.get_pixel((at.x as i32 + dx) as u32, (at.y as i32 + dy) as u32).0;
+            sum += f64::from(p[0]) - f64::from(p[1]);
+            n += 1.0;
+        }
+    }
+    sum / n
+}
+
+#[test]
+fn the_blood_follows_a_smile_until_the_switch_turns_it_off() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    bare(&mut h);
+    set_skin(&mut h, Some(recipe("light")));
+    let mut smile = FacePose::default();
+    smile.expression.insert("smile".into(), 1.0);
+    h.state_mut().set_face(smile).expect("smile");
+    h.state_mut().refresh_surface();
+    h.state_mut().wait_skin();
+    assert!(h.state().blood_follows(), "on by default");
+    let cheeks = [-1.0, 1.0].map(|s| h.state().screen_pos_of(cheek_point(h.state(), s)).expect("on screen"));
+    let flushed = frame(&mut h);
+    let (full, _) = h.state().skin_bake_times();
+    eprintln!("blood flow + bake per pose (size, ms, table ms): {full:?}");
+    // The switch, clicked in the Skin panel.
+    h.get_by_label("Blood follows expression").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_label("Blood follows expression").click();
+    h.run_steps(2);
+    assert!(!h.state().blood_follows());
+    h.state_mut().wait_skin();
+    let still = frame(&mut h);
+    for c in cheeks {
+        let (a, b) = (redness(&flushed, c), redness(&still, c));
+        assert!(a > b + 2.0, "the smiling cheek at {c:?}: red − green {a:.1} flushed, {b:.1} still");
+    }
+}
