@@ -86,7 +86,16 @@ fn a_darker_tone_darkens_the_face_and_no_skin_maps_brings_the_flat_skin_back() {
     let flat = frame(&mut h);
     set_skin(&mut h, Some(recipe("very-light")));
     let light = frame(&mut h);
-    set_skin(&mut h, Some(recipe("deep")));
+    // The deep tone chosen in the Skin panel's Tone list.
+    h.get_by_label("Blood follows expression").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::ComboBox, "Tone").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("deep (Fitzpatrick V-VI)").click_accesskit();
+    h.run_steps(2);
+    h.state_mut().wait_skin();
+    let recipe_now = h.state().document().skin.as_ref().map(|s| s.recipe.clone()).expect("skin maps");
+    assert_eq!((recipe_now.tone.as_deref(), recipe_now.size_px), (Some("deep"), 512), "the panel keeps the size");
     let deep = frame(&mut h);
     let (l_flat, l_light, l_deep) =
         (mean_lightness(&flat, area), mean_lightness(&light, area), mean_lightness(&deep, area));
