@@ -101,8 +101,7 @@ fn a_darker_tone_darkens_the_face_and_no_skin_maps_brings_the_flat_skin_back() {
         (mean_lightness(&flat, area), mean_lightness(&light, area), mean_lightness(&deep, area));
     assert!(l_deep < l_light - 15.0, "L* very light {l_light:.1}, deep {l_deep:.1}");
     assert!((l_light - l_flat).abs() > 0.5, "the maps are drawn: L* flat {l_flat:.1}, very light {l_light:.1}");
-    let (full, rect) = h.state().skin_bake_times();
-    eprintln!("skin bake (size, blood+bake ms, table ms): {full:?}; rect: {rect:?}");
+    eprintln!("skin bake: {:?}", h.state().skin_bake_times());
     // The tone is one undo step; undo brings the very light skin back, then the flat one.
     h.state_mut().undo();
     h.state_mut().wait_skin();
@@ -156,7 +155,7 @@ fn a_skin_dab_changes_the_pixels_under_it_only_and_undo_restores_the_frame() {
         before.save(format!("{dir}/before.png")).unwrap();
         after.save(format!("{dir}/after.png")).unwrap();
     }
-    let (_, rect) = h.state().skin_bake_times();
+    let rect = h.state().skin_bake_times().rect;
     eprintln!("rect re-bake after the dab (texels, ms): {rect:?}");
     assert!(rect.is_some(), "the dab re-baked its rectangle only");
     let skin = h.state().document().skin.clone().expect("skin");
@@ -247,8 +246,7 @@ fn the_blood_follows_a_smile_until_the_switch_turns_it_off() {
     assert!(h.state().blood_follows(), "on by default");
     let cheeks = [-1.0, 1.0].map(|s| h.state().screen_pos_of(cheek_point(h.state(), s)).expect("on screen"));
     let flushed = frame(&mut h);
-    let (full, _) = h.state().skin_bake_times();
-    eprintln!("blood flow + bake per pose (size, ms, table ms): {full:?}");
+    eprintln!("blood flow + bake per pose: {:?}", h.state().skin_bake_times().full);
     // The switch, clicked in the Skin panel.
     h.get_by_label("Blood follows expression").scroll_to_me();
     h.run_steps(2);

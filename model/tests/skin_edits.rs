@@ -57,12 +57,12 @@ fn a_dab_moves_only_its_channels_under_the_brush_toward_its_factor() {
         assert!(!rect.is_empty() && mirror.is_empty(), "{kind:?}");
         for c in EditChannel::ALL {
             let plane = edits.plane(c);
-            let moves = match (kind, c) {
-                (SkinBrushKind::Spot, _) => true,
-                (SkinBrushKind::MoreMelanin | SkinBrushKind::LessMelanin, EditChannel::Melanin) => true,
-                (SkinBrushKind::MoreBlood | SkinBrushKind::LessBlood, EditChannel::Blood) => true,
-                _ => false,
-            };
+            let moves = matches!(
+                (kind, c),
+                (SkinBrushKind::Spot, _)
+                    | (SkinBrushKind::MoreMelanin | SkinBrushKind::LessMelanin, EditChannel::Melanin)
+                    | (SkinBrushKind::MoreBlood | SkinBrushKind::LessBlood, EditChannel::Blood)
+            );
             let centre_value = plane[32 * 64 + 32];
             if moves {
                 let sign =

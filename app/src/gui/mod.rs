@@ -28,6 +28,7 @@ mod session;
 mod skin_panel;
 pub use skin_panel::DEFAULT_SKIN_PX;
 mod skin_view;
+pub use skin_view::{FullBake, SkinBakeTimes};
 mod translucency;
 pub use translucency::SubsurfaceChoice;
 mod viewport;

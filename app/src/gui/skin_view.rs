@@ -107,6 +107,26 @@ impl SkinView {
     }
 }
 
+/// The last full bake of the skin maps' colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FullBake {
+    /// The maps' size, texels a side.
+    pub size_px: u32,
+    /// Skin edits, blood flow and bake, ms.
+    pub bake_ms: f64,
+    /// Building the tone's colour table (0 when it was cached), ms.
+    pub table_ms: f64,
+}
+
+/// How long the last skin bakes took ([`RougeApp::skin_bake_times`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkinBakeTimes {
+    /// The last full bake.
+    pub full: Option<FullBake>,
+    /// The last rectangle re-baked after a skin dab: texels, ms.
+    pub rect: Option<(usize, f64)>,
+}
+
 /// The skin's bake: the one function the app calls (`bake_skin_albedo`, shared with the CLI).
 fn bake(maps: &SkinMaps, table: &SkinColorTable) -> image::RgbaImage {
     bake_skin_albedo(maps, table)
@@ -125,19 +145,19 @@ fn bake_full(skin: Arc<ProjectSkin>, units: Weights, follows: bool, cached: Opti
     let start = Instant::now();
     let edited = skin.edited_maps();
     let factors = if follows { blood_factors(&units) } else { Vec::new() };
-    let image = if factors.is_empty() {
-        bake(&edited, &table.1)
-    } else {
-        bake(&edited.with_blood_flow(&units), &table.1)
-    };
+    let image =
+        if factors.is_empty() { bake(&edited, &table.1) } else { bake(&edited.with_blood_flow(&units), &table.1) };
     let bake_ms = start.elapsed().as_secs_f64() * 1e3;
     Ok(Baked { skin, table, edited, factors, image, bake_ms, table_ms })
 }
 
 impl RougeApp {
-    /// The skin maps' view state (tests read the bake times).
-    pub fn skin_bake_times(&self) -> (Option<(u32, f64, f64)>, Option<(usize, f64)>) {
-        (self.skin.last_bake, self.skin.last_rect_bake)
+    /// How long the last skin bakes took (tests print them).
+    pub fn skin_bake_times(&self) -> SkinBakeTimes {
+        SkinBakeTimes {
+            full: self.skin.last_bake.map(|(size_px, bake_ms, table_ms)| FullBake { size_px, bake_ms, table_ms }),
+            rect: self.skin.last_rect_bake,
+        }
     }
 
     /// Whether the blood follows the expression.
@@ -204,7 +224,10 @@ impl RougeApp {
         let wanted = self.skin.factors();
         let usable = self.skin.bake.is_none()
             && self.skin.shown.as_ref().is_some_and(|s| {
-                s.recipe == skin.recipe && s.factors.is_empty() && wanted.is_empty() && s.edited.width() == skin.maps.width()
+                s.recipe == skin.recipe
+                    && s.factors.is_empty()
+                    && wanted.is_empty()
+                    && s.edited.width() == skin.maps.width()
             });
         let (Some((_, table)), Some(edits), true) = (table, skin.edits.as_ref(), usable) else {
             return self.request_skin_bake();
