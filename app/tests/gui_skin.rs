@@ -1,5 +1,6 @@
 //! The painting app's skin maps under egui_kittest with the wgpu renderer (lavapipe on CI): a
-//! darker tone from the Skin panel darkens the rendered face, a skin brush dab changes the
+//! darker tone from the Skin panel darkens the rendered face (and the split's "before" side and
+//! the solo view show the maps), a skin brush dab changes the
 //! pixels under it and none far away (and not the makeup layers), undo restores the frame, the
 //! blood follows a smile until the "Blood follows expression" switch is turned off, and a saved
 //! project reopens with its skin edits and the same frame.
@@ -102,6 +103,22 @@ fn a_darker_tone_darkens_the_face_and_no_skin_maps_brings_the_flat_skin_back() {
     assert!(l_deep < l_light - 15.0, "L* very light {l_light:.1}, deep {l_deep:.1}");
     assert!((l_light - l_flat).abs() > 0.5, "the maps are drawn: L* flat {l_flat:.1}, very light {l_light:.1}");
     eprintln!("skin bake: {:?}", h.state().skin_bake_times());
+    // The split's "before" side is the bare skin with its maps, and the solo view keeps them.
+    let (x0, y0, x1, y1) = area;
+    let left = (x0, y0, (x0 + x1) / 2 - 5, y1);
+    h.state_mut().set_split(true, 0.5);
+    let split = frame(&mut h);
+    let (l_split, l_deep_left, l_flat_left) =
+        (mean_lightness(&split, left), mean_lightness(&deep, left), mean_lightness(&flat, left));
+    assert!(
+        (l_split - l_deep_left).abs() < 1.0,
+        "before side L* {l_split:.1}, deep {l_deep_left:.1}, flat {l_flat_left:.1}"
+    );
+    h.state_mut().set_split(false, 0.5);
+    h.state_mut().set_solo(true);
+    let solo = frame(&mut h);
+    assert!((mean_lightness(&solo, area) - l_deep).abs() < 1.0, "the solo view keeps the skin maps");
+    h.state_mut().set_solo(false);
     // The tone is one undo step; undo brings the very light skin back, then the flat one.
     h.state_mut().undo();
     h.state_mut().wait_skin();
