@@ -281,3 +281,38 @@ fn the_blood_follows_a_smile_until_the_switch_turns_it_off() {
         assert!(a > b + 2.0, "the smiling cheek at {c:?}: red − green {a:.1} flushed, {b:.1} still");
     }
 }
+
+/// The app with the Skin panel open, the default look's blush and lipstick on freckled, reddened light-medium skin
+/// maps with a painted spot and the blood following a smile, written to `ROUGE_APP_SKIN_FIGURE`
+/// (docs/images/app_skin.png); a no-op without it.
+#[test]
+fn figure() {
+    let Ok(out) = std::env::var("ROUGE_APP_SKIN_FIGURE") else { return };
+    let data = tempfile::tempdir().expect("tempdir");
+    let dir = data.path().to_owned();
+    let mut h = Harness::builder().with_size(egui::vec2(1440.0, 900.0)).wgpu().build_eframe(move |cc| {
+        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
+        RougeApp::new(cc, options).expect("the app opens")
+    });
+    h.state_mut().wait_ready();
+    h.run_steps(4);
+    // The foundation off, so that the skin shows under the blush and lipstick.
+    h.state_mut().clear_layer(0);
+    let conditions: SkinConditions = "freckles=0.7,redness=0.4,under_eye=0.5".parse().expect("conditions");
+    set_skin(&mut h, Some(SkinRecipe::from_tone("light-medium", conditions, 3, 1024).expect("tone")));
+    let spot = h.state().screen_pos_of(cheek_point(h.state(), 1.0)).expect("on screen");
+    h.state_mut().set_skin_brush(Some(SkinBrush { kind: SkinBrushKind::Spot, factor: 2.5 }));
+    {
+        let b = h.state_mut().brush_mut();
+        (b.radius_mm, b.mirror, b.flow, b.hardness) = (2.5, false, 1.0, 0.5);
+    }
+    h.state_mut().paint_stroke_screen(&[spot]);
+    let mut smile = FacePose::default();
+    smile.expression.insert("smile".into(), 0.8);
+    h.state_mut().set_face(smile).expect("smile");
+    h.state_mut().wait_skin();
+    h.get_by_label("Blood follows expression").scroll_to_me();
+    h.run_steps(4);
+    h.state_mut().wait_skin();
+    frame(&mut h).save(&out).expect("write the figure");
+}
