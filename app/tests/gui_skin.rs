@@ -316,3 +316,28 @@ fn figure() {
     h.state_mut().wait_skin();
     frame(&mut h).save(&out).expect("write the figure");
 }
+
+#[test]
+fn a_measured_spectrum_is_fitted_into_skin_maps_and_a_bad_file_is_named() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let missing = data.path().join("no such skin.csv");
+    h.state_mut().load_skin_spectrum(&missing);
+    h.state_mut().wait_skin();
+    let (ok, text) = h.state().message().cloned().expect("a message");
+    assert!(!ok && text.contains("no such skin.csv"), "{text}");
+    assert!(h.state().document().skin.is_none() && !h.state().document().can_undo());
+
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/skin/colorchecker_skin.csv");
+    h.state_mut().load_skin_spectrum(&file);
+    h.state_mut().wait_skin();
+    assert!(
+        h.state().message().is_some_and(|(ok, m)| *ok && m.contains("colorchecker_skin.csv")),
+        "{:?}",
+        h.state().message()
+    );
+    let skin = h.state().document().skin.clone().expect("skin maps of the fitted skin");
+    assert!(skin.recipe.tone.is_none(), "a measured skin is no named tone");
+    skin.recipe.base.validate().expect("fitted parameters in range");
+    assert_eq!(skin.maps.width(), rouge_app::gui::DEFAULT_SKIN_PX);
+}
