@@ -12,7 +12,8 @@
 //!
 //! Code: edits go through the egui-free [`crate::editor::Editor`]; `edit.rs` uploads what each
 //! edit changed. One file per panel (`layers.rs`, `brush.rs`, `materials_panel.rs`, `menu.rs`,
-//! `viewport.rs`, `translucency.rs` for the subsurface model); `viewport.rs` also holds the view and GPU state, `session.rs` the background
+//! `viewport.rs`, `translucency.rs` for the subsurface model, `skin_panel.rs` for the skin maps,
+//! whose bakes and blood flow live in `skin_view.rs`); `viewport.rs` also holds the view and GPU state, `session.rs` the background
 //! jobs (mesh preparation, autosave, recovery, the window screenshot).
 
 mod brush;

@@ -7,7 +7,10 @@
 //! after; the maps are shared ([`Arc`]), so such a step costs a few kilobytes until a map it holds
 //! is painted over (painting copies the map, the step keeps the old one). A brush stroke, from
 //! [`Document::begin_stroke`] to [`Document::end_stroke`], is one step that stores only the
-//! changed rectangle, before and after. The history has a memory budget
+//! changed rectangle, before and after. Other skin maps ([`Document::set_skin`]) are one step
+//! holding the skin before and after (shared), and a skin brush stroke
+//! ([`Document::begin_skin_stroke`]) one step holding the changed rectangle of the skin edits.
+//! The history has a memory budget
 //! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
 //!
 //! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
