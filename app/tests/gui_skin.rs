@@ -219,6 +219,20 @@ fn a_skin_dab_changes_the_pixels_under_it_only_and_undo_restores_the_frame() {
     assert!(doc_skin.edits == skin.edits, "the edits come back bit for bit");
     let worst = worst_in(&painted, &reopened, view);
     assert!(worst <= 1, "the reopened frame differs by {worst}");
+    // Started on the project (`rouge --project DIR`): the same skin from the first frame on.
+    drop(h);
+    let (data_dir, project) = (data.path().to_owned(), dir.clone());
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
+        let options =
+            Options { data_dir, project: Some(project), autosave: false, mesh: None, window_screenshot: None };
+        RougeApp::new(cc, options).expect("the app opens the project")
+    });
+    h.state_mut().wait_ready();
+    h.state_mut().wait_skin();
+    h.state_mut().brush_mut().mirror = false; // no symmetry plane drawn, as in `painted`
+    let started = frame(&mut h);
+    let worst = worst_in(&painted, &started, view);
+    assert!(worst <= 1, "the frame of the app started on the project differs by {worst}");
 }
 
 /// The strip at the bottom of the viewport where the frame time is printed, points.

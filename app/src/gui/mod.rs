@@ -182,6 +182,8 @@ impl RougeApp {
             Some((path, scale)) => app.start_mesh(Some(path), scale),
             None => app.start_mesh(None, 1.0),
         }
+        // A project opened at start shows its skin maps.
+        app.request_skin_bake();
         Ok(app)
     }
 
