@@ -9,6 +9,8 @@ use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
 use rouge_model::look::{Look, ThicknessMap};
 use rouge_model::paint::{Brush, FillRegion, LazyMouse, PaintView, StrokeSpacer, SurfaceMap, apply_dab_in_view, fill};
+use rouge_model::skin::edits::apply_skin_dab;
+use rouge_model::skin::{ProjectSkin, SkinBrush};
 use std::sync::Arc;
 
 /// Why a dab was refused.
@@ -20,6 +22,9 @@ pub enum StrokeError {
     /// The active layer is locked against paint, fill and clear.
     #[error("the active layer is locked: unlock it to paint, fill or clear")]
     LockedLayer,
+    /// A skin brush needs skin maps to paint on.
+    #[error("the skin brushes paint skin maps: choose a tone in the Skin panel first")]
+    NoSkinMaps,
 }
 
 /// Document, active layer, brush and the stroke in progress.
@@ -43,6 +48,9 @@ pub struct Editor {
     last_end: Option<Vec3>,
     /// Render only the active layer (the solo view).
     solo: bool,
+    /// When set, strokes paint the skin edits with this skin brush (the cosmetic brush's
+    /// radius, falloff and mirror) instead of the active layer.
+    pub skin_brush: Option<SkinBrush>,
 }
 
 impl Editor {
@@ -62,6 +70,7 @@ impl Editor {
             pressure: None,
             last_end: None,
             solo: false,
+            skin_brush: None,
         }
     }
 
@@ -125,6 +134,9 @@ impl Editor {
     /// # Errors
     /// [`StrokeError::HiddenLayer`] or [`StrokeError::LockedLayer`].
     pub fn paintable(&self) -> Result<(), StrokeError> {
+        if self.skin_brush.is_some() {
+            return if self.doc.skin.is_some() { Ok(()) } else { Err(StrokeError::NoSkinMaps) };
+        }
         match self.doc.layers.get(self.active) {
             Some(l) if l.locked => Err(StrokeError::LockedLayer),
             Some(l) if l.visible => Ok(()),
@@ -157,6 +169,20 @@ impl Editor {
         let change = edit(&mut self.doc);
         self.set_active_layer(self.active);
         change
+    }
+
+    /// Replaces the skin maps (or, with `None`, goes back to the tone's flat skin) as one undo
+    /// step. New maps keep the skin edits painted so far unless they bring their own: the
+    /// edits are factors, so they apply to another tone's maps as they did to the old.
+    pub fn set_skin(&mut self, skin: Option<ProjectSkin>) -> Change {
+        let edits = self.doc.skin.as_ref().and_then(|s| s.edits.clone());
+        let skin = skin.map(|mut s| {
+            if s.edits.is_none() {
+                s.edits = edits;
+            }
+            Arc::new(s)
+        });
+        self.doc.set_skin(skin)
     }
 
     /// Adds a layer of `preset` on top and makes it active.
@@ -267,7 +293,11 @@ impl Editor {
         self.spacer = None;
         self.lazy = (self.stabiliser_mm > 0.0).then(|| LazyMouse::new(self.stabiliser_mm));
         self.stroke_dabs.clear();
-        let _ = self.doc.begin_stroke(self.active);
+        if self.skin_brush.is_some() {
+            let _ = self.doc.begin_skin_stroke();
+        } else {
+            let _ = self.doc.begin_stroke(self.active);
+        }
     }
 
     /// Whether a stroke has dabbed since [`Editor::begin_stroke`].
@@ -361,6 +391,23 @@ impl Editor {
             None => self.brush,
         };
         let mut sides = [TexelRect::EMPTY; 2];
+        if let Some(skin) = self.skin_brush {
+            if let Some(edits) = self.doc.skin_stroke_edits() {
+                for &c in dabs {
+                    let [a, b] = apply_skin_dab(edits, surface, &brush, &skin, c, self.view.as_ref());
+                    sides = [sides[0].union(a), sides[1].union(b)];
+                }
+            }
+            self.stroke_dabs.extend_from_slice(dabs);
+            return sides
+                .into_iter()
+                .filter(|r| !r.is_empty())
+                .map(|rect| {
+                    self.doc.note_dirty(rect);
+                    Change::Skin { rect: Some(rect) }
+                })
+                .collect();
+        }
         if let Some(map) = self.doc.stroke_map(layer) {
             for &c in dabs {
                 let [a, b] = apply_dab_in_view(map, surface, &brush, c, self.view.as_ref());

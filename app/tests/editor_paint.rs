@@ -132,3 +132,45 @@ fn the_stabiliser_steadies_a_stroke_and_pressure_thins_it() {
     assert!((t - 0.02 * e.document().layers[e.active()].multiplier).abs() < 1e-7);
     assert_eq!(e.thickness_at(Vec3::new(0.0, 0.0, 500.0)), None);
 }
+
+#[test]
+fn a_skin_brush_paints_skin_edits_not_layers_one_step_per_stroke_and_needs_skin_maps() {
+    use rouge_app::editor::StrokeError;
+    use rouge_model::skin::edits::EditChannel;
+    use rouge_model::skin::{ProjectSkin, SkinBrush, SkinBrushKind, SkinRecipe};
+    let surface = plane();
+    let mut e = editor(surface.clone());
+    let layers: Vec<Vec<u32>> =
+        e.document().layers.iter().map(|l| l.map.mm.iter().map(|v| v.to_bits()).collect()).collect();
+    e.skin_brush = Some(SkinBrush { kind: SkinBrushKind::LessBlood, factor: 2.0 });
+    let centre = surface.position(MAP_SIZE / 2, MAP_SIZE / 2).expect("centre");
+    // Without skin maps there is nothing to paint, and the message says what to do.
+    e.begin_stroke();
+    assert_eq!(e.stroke_to(centre), Err(StrokeError::NoSkinMaps));
+    e.end_stroke();
+    assert!(!e.document().can_undo());
+
+    let recipe = SkinRecipe::from_tone("olive", Default::default(), 1, 64).expect("tone");
+    assert_eq!(e.set_skin(Some(ProjectSkin::generate(recipe.clone()).expect("maps"))), Change::Skin { rect: None });
+    e.begin_stroke();
+    let changes = e.stroke_to(centre).expect("paints");
+    assert!(matches!(changes.as_slice(), [Change::Skin { rect: Some(_) }]), "{changes:?}");
+    let step = e.end_stroke();
+    let Some(&Change::Skin { rect: Some(stroke_rect) }) = step.last() else { panic!("one skin step: {step:?}") };
+    let edits = e.document().skin.as_ref().and_then(|s| s.edits.clone()).expect("edits");
+    let blood = edits.plane(EditChannel::Blood);
+    let i = (MAP_SIZE / 2 * MAP_SIZE + MAP_SIZE / 2) as usize;
+    assert!(blood[i] < 0.0 && edits.plane(EditChannel::Melanin).iter().all(|&v| v == 0.0));
+    let after: Vec<Vec<u32>> =
+        e.document().layers.iter().map(|l| l.map.mm.iter().map(|v| v.to_bits()).collect()).collect();
+    assert!(after == layers, "no makeup layer is painted");
+
+    // New maps (another tone) keep the edits; undo takes the tone back, then the stroke.
+    let deep = SkinRecipe::from_tone("deep", Default::default(), 1, 64).expect("tone");
+    e.set_skin(Some(ProjectSkin::generate(deep).expect("maps")));
+    assert!(e.document().skin.as_ref().and_then(|s| s.edits.clone()).is_some_and(|x| *x == *edits));
+    e.undo();
+    assert_eq!(e.document().skin.as_ref().map(|s| &s.recipe), Some(&recipe));
+    assert_eq!(e.undo(), Change::Skin { rect: Some(stroke_rect) });
+    assert!(e.document().skin.as_ref().and_then(|s| s.edits.clone()).is_none_or(|x| x.is_empty()));
+}

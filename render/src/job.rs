@@ -119,8 +119,24 @@ fn skin_albedo(recipe: &SkinRecipe, face: Option<&FacePose>) -> Result<image::Rg
         let (units, _) = TargetSet::default_head().map_err(invalid)?.resolve(face).map_err(invalid)?;
         maps = maps.with_blood_flow(&units);
     }
-    let table = SkinColorTable::new(maps.base()).map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))?;
-    Ok(maps.albedo_image(&table))
+    let table = skin_color_table(maps.base())?;
+    Ok(bake_skin_albedo(&maps, &table))
+}
+
+/// The skin colour table of skin maps whose base is `base` (`SkinColorTable::new`; about a
+/// second on two cores: build it once per tone and keep it).
+///
+/// # Errors
+/// [`RenderError::Invalid`] when the table cannot be built for `base`.
+pub fn skin_color_table(base: &rouge_measure::skin::SkinParams) -> Result<SkinColorTable> {
+    SkinColorTable::new(base).map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))
+}
+
+/// The skin's albedo texture baked from `maps` through `table` (made for the maps' base by
+/// [`skin_color_table`]): the one bake of skin maps that `rouge render` and the painting app
+/// both call ([`rouge_model::skin::SkinMaps::albedo_image`]).
+pub fn bake_skin_albedo(maps: &rouge_model::skin::SkinMaps, table: &SkinColorTable) -> image::RgbaImage {
+    maps.albedo_image(table)
 }
 
 /// Reads a PNG texture as RGBA8.

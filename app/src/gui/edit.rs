@@ -34,6 +34,8 @@ impl RougeApp {
                 }
                 self.view.needs_render = true;
             }
+            Change::Skin { rect: None } => self.request_skin_bake(),
+            Change::Skin { rect: Some(rect) } => self.skin_edits_changed(rect),
         }
     }
 

@@ -80,7 +80,9 @@ impl RougeApp {
     pub(super) fn pose_from_document(&mut self) {
         self.face.mesh = None;
         let pose = self.face().clone();
-        if !pose.is_neutral() {
+        if pose.is_neutral() {
+            self.skin_pose(Default::default());
+        } else {
             self.show_pose(&pose);
         }
     }
@@ -109,6 +111,9 @@ impl RougeApp {
         self.face.surface_stale = true;
         self.view.needs_render = true;
         self.remorph();
+        // The skin's blood follows the expression (the Skin panel's switch).
+        let (units, _) = targets.resolve(pose).map_err(|e| e.to_string())?;
+        self.skin_pose(units);
         Ok(())
     }
 

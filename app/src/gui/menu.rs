@@ -32,6 +32,7 @@ impl RougeApp {
                 if ui.button("New project (default look)").clicked() {
                     let c = self.editor.replace_document(Document::default_project());
                     self.apply_change(c);
+                    self.apply_change(Change::Skin { rect: None });
                 }
                 if ui.button("Open project…").clicked()
                     && let Some(dir) = rfd::FileDialog::new().pick_folder()

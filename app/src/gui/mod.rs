@@ -12,7 +12,8 @@
 //!
 //! Code: edits go through the egui-free [`crate::editor::Editor`]; `edit.rs` uploads what each
 //! edit changed. One file per panel (`layers.rs`, `brush.rs`, `materials_panel.rs`, `menu.rs`,
-//! `viewport.rs`, `translucency.rs` for the subsurface model); `viewport.rs` also holds the view and GPU state, `session.rs` the background
+//! `viewport.rs`, `translucency.rs` for the subsurface model, `skin_panel.rs` for the skin maps,
+//! whose bakes and blood flow live in `skin_view.rs`); `viewport.rs` also holds the view and GPU state, `session.rs` the background
 //! jobs (mesh preparation, autosave, recovery, the window screenshot).
 
 mod brush;
@@ -25,6 +26,10 @@ pub mod materials;
 mod materials_panel;
 mod menu;
 mod session;
+mod skin_panel;
+pub use skin_panel::DEFAULT_SKIN_PX;
+mod skin_view;
+pub use skin_view::{FullBake, SkinBakeTimes};
 mod translucency;
 pub use translucency::SubsurfaceChoice;
 mod viewport;
@@ -36,6 +41,7 @@ use anyhow::{Context as _, Result};
 use egui::{Color32, Key, Modifiers, Pos2, Rect, Sense, Vec2};
 use glam::Vec3;
 use materials::Library;
+use rouge_model::TexelRect;
 use rouge_model::document::{Change, Document};
 use rouge_model::mesh::{Bounds, TriangleMesh};
 use rouge_model::paint::{Brush, BrushMode, SurfaceMap};
@@ -106,6 +112,10 @@ pub struct RougeApp {
     views: views::LayerViews,
     /// The looks library's thumbnails, once loaded ([`looks_panel`]).
     look_thumbnails: Vec<egui::TextureHandle>,
+    /// The skin maps on screen: bakes, blood flow ([`skin_view`]).
+    skin: skin_view::SkinView,
+    /// The Skin panel's settings ([`skin_panel`]).
+    skin_panel: skin_panel::SkinPanel,
 }
 
 /// What the panels keep between frames that is neither document nor view.
@@ -164,12 +174,16 @@ impl RougeApp {
             ui,
             views: views::LayerViews::default(),
             look_thumbnails: Vec::new(),
+            skin: Default::default(),
+            skin_panel: Default::default(),
             options,
         };
         match app.options.mesh.clone() {
             Some((path, scale)) => app.start_mesh(Some(path), scale),
             None => app.start_mesh(None, 1.0),
         }
+        // A project opened at start shows its skin maps.
+        app.request_skin_bake();
         Ok(app)
     }
 
@@ -277,6 +291,7 @@ impl RougeApp {
         self.options.project = Some(dir.to_owned());
         self.ui.project_path = dir.display().to_string();
         self.apply_change(change);
+        self.apply_change(Change::Skin { rect: None });
         self.pose_from_document();
         Ok(())
     }
@@ -316,10 +331,10 @@ impl RougeApp {
 
 impl eframe::App for RougeApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        if self.poll_mesh() || self.library.poll() {
+        if self.poll_mesh() | self.library.poll() | self.poll_skin() {
             ui.ctx().request_repaint();
         }
-        if self.jobs.preparing() || self.library.busy() {
+        if self.jobs.preparing() || self.library.busy() || self.skin.busy() {
             ui.ctx().request_repaint_after(Duration::from_millis(50));
         }
         self.shortcuts(ui.ctx());
@@ -357,6 +372,8 @@ impl eframe::App for RougeApp {
                 self.light_panel(ui);
                 ui.separator();
                 self.subsurface_panel(ui);
+                ui.separator();
+                self.skin_panel_ui(ui);
                 ui.separator();
                 self.expression_panel(ui);
                 self.face_panel(ui);

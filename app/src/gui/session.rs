@@ -96,6 +96,7 @@ impl RougeApp {
                         Ok(doc) => {
                             let c = self.editor.replace_document(doc);
                             self.apply_change(c);
+                            self.apply_change(Change::Skin { rect: None });
                             self.pose_from_document();
                         }
                         Err(e) => self.ui.message = Some((false, e.to_string())),

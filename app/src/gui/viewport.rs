@@ -138,6 +138,9 @@ pub(super) struct GpuState {
     last_frame_ms: f64,
     /// The baked local thickness of the mesh, for the translucency.
     pub(super) local_thickness: LocalThicknessState,
+    /// The skin's albedo texture baked from the document's skin maps (`None`: the flat skin),
+    /// uploaded to both renderers ([`GpuState::set_skin_albedo`]).
+    skin_albedo: Option<Arc<image::RgbaImage>>,
 }
 
 impl std::fmt::Debug for GpuState {
@@ -165,6 +168,7 @@ impl GpuState {
             frame_size: (0, 0),
             last_frame_ms: 0.0,
             local_thickness: LocalThicknessState::Missing,
+            skin_albedo: None,
         }
     }
 
@@ -190,6 +194,20 @@ impl GpuState {
         self.renderer.set_mesh(&mesh, skin_albedo)?;
         self.bare = None;
         self.mesh = Some(mesh);
+        Ok(())
+    }
+
+    /// Uploads the skin's albedo texture (the skin maps' colour) to the document's renderer and
+    /// the split's bare one, or with `None` goes back to the flat skin colour.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_textures`].
+    pub(super) fn set_skin_albedo(&mut self, albedo: Option<Arc<image::RgbaImage>>) -> rouge_render::Result<()> {
+        self.renderer.set_textures(albedo.as_deref(), None)?;
+        if let Some(bare) = self.bare.as_mut() {
+            bare.set_textures(albedo.as_deref(), None)?;
+        }
+        self.skin_albedo = albedo;
         Ok(())
     }
 
@@ -256,6 +274,10 @@ impl GpuState {
             if let Some(mesh) = &self.mesh
                 && bare.set_mesh(mesh, scene.skin.albedo).is_err()
             {
+                return;
+            }
+            // The "before" half shows the bare skin with its maps.
+            if bare.set_textures(self.skin_albedo.as_deref(), None).is_err() {
                 return;
             }
             self.bare = Some(bare);

@@ -28,6 +28,13 @@ impl Document {
     /// Reports texels the painter changed during the open stroke (half-open, clamped to the
     /// map); the document keeps the union. Ignored when no stroke is open.
     pub fn note_dirty(&mut self, rect: TexelRect) {
+        if let Some(stroke) = self.skin_stroke.as_mut() {
+            let rect = rect.clamped(stroke.start.width(), stroke.start.height());
+            if !rect.is_empty() {
+                stroke.rect = Some(stroke.rect.map_or(rect, |r| r.union(rect)));
+            }
+            return;
+        }
         let Some(stroke) = self.stroke.as_mut() else { return };
         let (w, h) = (stroke.start.width, stroke.start.height);
         let rect = rect.clamped(w, h);
@@ -45,6 +52,10 @@ impl Document {
     }
 
     pub(super) fn finish_stroke(&mut self) -> Change {
+        let skin = self.finish_skin_stroke();
+        if skin != Change::Nothing {
+            return skin;
+        }
         let Some(stroke) = self.stroke.take() else { return Change::Nothing };
         let Some(layer) = self.layers.get(stroke.layer) else { return Change::Nothing };
         let (old, new) = (&*stroke.start, &*layer.map);
@@ -73,11 +84,68 @@ impl Document {
     }
 
     // --------------------------------------------------------------------------------------
+    // The skin
+
+    /// Replaces the skin (other maps, or `None` for the tone's flat skin) as one undo step;
+    /// nothing (no step) when `skin` is the skin already there (the same `Arc`). The edits go
+    /// with the [`ProjectSkin`]: to keep them over regenerated maps, put the current
+    /// [`ProjectSkin::edits`] into the new one.
+    pub fn set_skin(&mut self, skin: Option<Arc<ProjectSkin>>) -> Change {
+        self.finish_stroke();
+        let same = match (&self.skin, &skin) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if same {
+            return Change::Nothing;
+        }
+        let before = std::mem::replace(&mut self.skin, skin.clone());
+        self.push(Edit::Skin { before, after: skin });
+        Change::Skin { rect: None }
+    }
+
+    /// Opens a skin brush stroke (ending any open stroke) and returns the skin edits to paint,
+    /// made empty ([`MAP_SIZE`]²) if the skin has none; `None` without skin maps. The edits as
+    /// they were are kept (shared) until the stroke ends.
+    pub fn begin_skin_stroke(&mut self) -> Option<&mut SkinEdits> {
+        self.finish_stroke();
+        let skin = Arc::make_mut(self.skin.as_mut()?);
+        let edits = skin.edits.get_or_insert_with(|| Arc::new(SkinEdits::new(MAP_SIZE, MAP_SIZE)));
+        self.skin_stroke = Some(OpenSkinStroke { start: Arc::clone(edits), rect: None });
+        Some(Arc::make_mut(edits))
+    }
+
+    /// The skin edits being painted: `Some` only while a skin stroke is open.
+    pub fn skin_stroke_edits(&mut self) -> Option<&mut SkinEdits> {
+        self.skin_stroke.as_ref()?;
+        let skin = Arc::make_mut(self.skin.as_mut()?);
+        skin.edits.as_mut().map(Arc::make_mut)
+    }
+
+    /// Ends the open skin stroke: one undo step holding the dirty rectangle of both planes
+    /// before and after; `Change::Nothing` if nothing was noted dirty.
+    fn finish_skin_stroke(&mut self) -> Change {
+        let Some(stroke) = self.skin_stroke.take() else { return Change::Nothing };
+        let Some(edits) = self.skin.as_ref().and_then(|s| s.edits.clone()) else { return Change::Nothing };
+        let Some(rect) = stroke.rect.map(|r| r.clamped(edits.width(), edits.height())).filter(|r| !r.is_empty()) else {
+            return Change::Nothing;
+        };
+        let (before, after) = (stroke.start.read_rect(rect), edits.read_rect(rect));
+        if before == after {
+            return Change::Nothing;
+        }
+        self.push(Edit::SkinStroke { rect, before, after });
+        Change::Skin { rect: Some(rect) }
+    }
+
+    // --------------------------------------------------------------------------------------
     // Undo / redo
 
     /// Whether there is a step to undo (an open stroke counts: undo ends and undoes it).
     pub fn can_undo(&self) -> bool {
-        !self.history.undo.is_empty() || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+        !self.history.undo.is_empty()
+            || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+            || self.skin_stroke.as_ref().is_some_and(|s| s.rect.is_some())
     }
 
     /// Whether there is a step to redo.
@@ -114,6 +182,17 @@ impl Document {
                 write_rect(Arc::make_mut(&mut l.map), *rect, if forward { after } else { before });
                 Change::Map { layer: *layer, rect: *rect }
             }
+            Edit::Skin { before, after } => {
+                self.skin = if forward { after.clone() } else { before.clone() };
+                Change::Skin { rect: None }
+            }
+            Edit::SkinStroke { rect, before, after } => {
+                let Some(skin) = self.skin.as_mut() else { return Change::Nothing };
+                let skin = Arc::make_mut(skin);
+                let edits = skin.edits.get_or_insert_with(|| Arc::new(SkinEdits::new(MAP_SIZE, MAP_SIZE)));
+                Arc::make_mut(edits).write_rect(*rect, if forward { after } else { before });
+                Change::Skin { rect: Some(*rect) }
+            }
         }
     }
 
@@ -130,6 +209,8 @@ impl Document {
     /// counted once, with the newest step holding it (dropping older steps does not free it).
     pub(super) fn step_costs(&self) -> Vec<usize> {
         let live: HashSet<*const ThicknessMap> = self.layers.iter().map(|l| Arc::as_ptr(&l.map)).collect();
+        let live_skin = self.skin.as_ref().map(Arc::as_ptr);
+        let mut seen_skin = HashSet::new();
         let mut seen = HashSet::new();
         let mut costs: Vec<usize> = self
             .history
@@ -138,6 +219,15 @@ impl Document {
             .rev()
             .map(|e| match &e.edit {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
+                Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
+                Edit::Skin { before, after } => before
+                    .iter()
+                    .chain(after)
+                    .map(|s| {
+                        let p = Arc::as_ptr(s);
+                        if live_skin != Some(p) && seen_skin.insert(p) { skin_bytes(s) } else { 0 }
+                    })
+                    .sum(),
                 Edit::Layers { before, after } => before
                     .iter()
                     .chain(after)
@@ -182,6 +272,8 @@ impl Document {
             .iter()
             .map(|e| match &e.edit {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
+                Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
+                Edit::Skin { before, after } => before.iter().chain(after).map(|s| skin_bytes(s)).sum(),
                 Edit::Layers { before, after } => (before.len() + after.len()) * LAYER_SNAPSHOT_BYTES,
             })
             .sum();
@@ -204,9 +296,22 @@ impl Document {
         };
         self.history.saved_id != Some(self.history.state_id())
             || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
+            || self.skin_stroke.as_ref().is_some_and(|s| s.rect.is_some())
             || self.face != self.saved_face
             || !same_skin
     }
+}
+
+/// Bytes a skin stroke step holds.
+fn skin_stroke_bytes(before: &[Vec<f32>; 2], after: &[Vec<f32>; 2]) -> usize {
+    before.iter().chain(after).map(|p| p.len() * std::mem::size_of::<f32>()).sum()
+}
+
+/// Bytes a skin's maps and edits hold.
+fn skin_bytes(skin: &ProjectSkin) -> usize {
+    let texels = |w: u32, h: u32| w as usize * h as usize * std::mem::size_of::<f32>();
+    5 * texels(skin.maps.width(), skin.maps.height())
+        + skin.edits.as_ref().map_or(0, |e| 2 * texels(e.width(), e.height()))
 }
 
 // ------------------------------------------------------------------------------------------

@@ -7,7 +7,10 @@
 //! after; the maps are shared ([`Arc`]), so such a step costs a few kilobytes until a map it holds
 //! is painted over (painting copies the map, the step keeps the old one). A brush stroke, from
 //! [`Document::begin_stroke`] to [`Document::end_stroke`], is one step that stores only the
-//! changed rectangle, before and after. The history has a memory budget
+//! changed rectangle, before and after. Other skin maps ([`Document::set_skin`]) are one step
+//! holding the skin before and after (shared), and a skin brush stroke
+//! ([`Document::begin_skin_stroke`]) one step holding the changed rectangle of the skin edits.
+//! The history has a memory budget
 //! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
 //!
 //! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
@@ -21,7 +24,7 @@ mod history;
 mod project;
 
 use crate::mesh::targets::FacePose;
-use crate::skin::ProjectSkin;
+use crate::skin::{ProjectSkin, SkinEdits};
 pub(crate) use project::{floats_hash, read_versioned};
 use project::{layer_files, look_layer};
 
@@ -132,6 +135,12 @@ pub enum Change {
         /// The changed texels.
         rect: TexelRect,
     },
+    /// The skin changed: other maps or no maps (`rect` `None`), or the skin edits inside `rect`
+    /// (texels of [`SkinEdits`], [`MAP_SIZE`]²).
+    Skin {
+        /// The edited texels, or `None` for the whole skin.
+        rect: Option<TexelRect>,
+    },
     /// Nothing changed (and no undo step was recorded).
     Nothing,
 }
@@ -142,6 +151,10 @@ enum Edit {
     Layers { before: Vec<PaintLayer>, after: Vec<PaintLayer> },
     /// A stroke: the changed rectangle of one map, row by row, before and after.
     Stroke { layer: usize, rect: TexelRect, before: Vec<f32>, after: Vec<f32> },
+    /// Other skin maps (or none): the skin before and after (shared).
+    Skin { before: Option<Arc<ProjectSkin>>, after: Option<Arc<ProjectSkin>> },
+    /// A skin brush stroke: the changed rectangle of the skin edits, both planes, before and after.
+    SkinStroke { rect: TexelRect, before: [Vec<f32>; 2], after: [Vec<f32>; 2] },
 }
 
 struct Entry {
@@ -185,6 +198,12 @@ struct OpenStroke {
     rect: Option<TexelRect>,
 }
 
+/// The open skin stroke: the edits as they were when it began and the union of the dirty rects.
+struct OpenSkinStroke {
+    start: Arc<SkinEdits>,
+    rect: Option<TexelRect>,
+}
+
 // ------------------------------------------------------------------------------------------
 // The document
 
@@ -201,15 +220,17 @@ pub struct Document {
     pub face: FacePose,
     /// The face as last saved (or opened), for [`Document::is_modified`].
     saved_face: FacePose,
-    /// The skin maps and their recipe (saved in the project's `skin.json` and `maps/`; `None`:
-    /// the tone's flat skin, as projects saved before skin maps). Not part of the undo history;
-    /// putting another `Arc` here makes the document modified (compared by pointer, not by
-    /// value: the maps are large).
+    /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
+    /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
+    /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which
+    /// record undo steps; putting another `Arc` here directly bypasses the history but still
+    /// makes the document modified (compared by pointer, not by value: the maps are large).
     pub skin: Option<Arc<ProjectSkin>>,
     /// The skin as last saved (or opened), for [`Document::is_modified`].
     saved_skin: Option<Arc<ProjectSkin>>,
     history: History,
     stroke: Option<OpenStroke>,
+    skin_stroke: Option<OpenSkinStroke>,
 }
 
 impl fmt::Debug for Document {
@@ -240,6 +261,7 @@ impl Document {
             saved_skin: None,
             history: History::new(),
             stroke: None,
+            skin_stroke: None,
         }
     }
 

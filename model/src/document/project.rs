@@ -328,8 +328,9 @@ pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
     write_face(&doc.face, &dir.join(FACE_FILE))?;
     let skin_path = dir.join(SKIN_FILE);
     if let Some(skin) = &doc.skin {
-        let name = write_project_skin(skin, &maps_dir, MAPS_DIR, &skin_path)?;
-        keep.insert(PathBuf::from(MAPS_DIR).join(name));
+        for name in write_project_skin(skin, &maps_dir, MAPS_DIR, &skin_path)? {
+            keep.insert(PathBuf::from(MAPS_DIR).join(name));
+        }
     }
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();

@@ -274,20 +274,8 @@ pub fn apply_dab_in_view(
     {
         return [TexelRect::EMPTY; 2];
     }
-    let mut centres = vec![centre];
-    if brush.mirror {
-        let image = brush.plane(surface).reflect(centre);
-        let on_surface = match brush.reach {
-            Reach::Ball => Some(image),
-            Reach::Surface => surface.nearest_on_surface(image, brush.radius_mm),
-        };
-        if let Some(c) = on_surface.filter(|c| c.distance_squared(centre) > 1.0e-8) {
-            centres.push(c);
-        }
-    }
     let texel = |t: f32| if t.is_finite() { t } else { 0.0 };
-    // Per centre, the texels it reaches; a texel reached by both goes to the nearer.
-    let reached: Vec<reach::Reached> = centres.iter().map(|&c| reach::reached(surface, brush, c, view)).collect();
+    let (reached, hits) = dab_hits(surface, brush, centre, view);
     let mean = reached.iter().map(|hits| {
         if brush.mode != BrushMode::Smooth || hits.is_empty() {
             return 0.0;
@@ -296,21 +284,6 @@ pub fn apply_dab_in_view(
         (sum / hits.len() as f64) as f32
     });
     let mean: Vec<f32> = mean.collect();
-    let mut hits: Vec<(u32, f32, u8)> = Vec::new();
-    match &reached[..] {
-        [one] => hits.extend(one.iter().map(|&(s, d)| (s, d, 0))),
-        [a, b] => {
-            let mut nearest: HashMap<u32, (f32, u8)> = a.iter().map(|&(s, d)| (s, (d, 0))).collect();
-            for &(s, d) in b {
-                let e = nearest.entry(s).or_insert((d, 1));
-                if d < e.0 {
-                    *e = (d, 1);
-                }
-            }
-            hits.extend(nearest.into_iter().map(|(s, (d, k))| (s, d, k)));
-        }
-        _ => {}
-    }
 
     let mut dirty = [TexelRect::EMPTY; 2];
     let width = surface.width as usize;
@@ -337,6 +310,73 @@ pub fn apply_dab_in_view(
         }
     }
     dirty
+}
+
+/// The texels one dab at `centre` reaches (and its mirror image's, with `brush.mirror`): per
+/// centre the slots it reaches, and every reached slot once with its distance from the nearer
+/// centre and which centre that is (0 = `centre`, 1 = the mirror image). The brush, centre and
+/// surface must have been checked as [`apply_dab_in_view`] checks them.
+fn dab_hits(
+    surface: &SurfaceMap,
+    brush: &Brush,
+    centre: Vec3,
+    view: Option<&PaintView>,
+) -> (Vec<reach::Reached>, Vec<(u32, f32, u8)>) {
+    let mut centres = vec![centre];
+    if brush.mirror {
+        let image = brush.plane(surface).reflect(centre);
+        let on_surface = match brush.reach {
+            Reach::Ball => Some(image),
+            Reach::Surface => surface.nearest_on_surface(image, brush.radius_mm),
+        };
+        if let Some(c) = on_surface.filter(|c| c.distance_squared(centre) > 1.0e-8) {
+            centres.push(c);
+        }
+    }
+    // Per centre, the texels it reaches; a texel reached by both goes to the nearer.
+    let reached: Vec<reach::Reached> = centres.iter().map(|&c| reach::reached(surface, brush, c, view)).collect();
+    let mut hits: Vec<(u32, f32, u8)> = Vec::new();
+    match &reached[..] {
+        [one] => hits.extend(one.iter().map(|&(s, d)| (s, d, 0))),
+        [a, b] => {
+            let mut nearest: HashMap<u32, (f32, u8)> = a.iter().map(|&(s, d)| (s, (d, 0))).collect();
+            for &(s, d) in b {
+                let e = nearest.entry(s).or_insert((d, 1));
+                if d < e.0 {
+                    *e = (d, 1);
+                }
+            }
+            hits.extend(nearest.into_iter().map(|(s, (d, k))| (s, d, k)));
+        }
+        _ => {}
+    }
+    (reached, hits)
+}
+
+/// The weights one dab of `brush` at `centre` gives the texels of a map of the surface map's
+/// size, for painting something other than a thickness map (the skin edits,
+/// [`crate::skin::edits`]): (index of the texel, row by row; a = flow · [`Brush::weight`] of its
+/// distance from the nearer centre, in (0, 1]; 0 for `centre`'s side, 1 for its mirror image's),
+/// each reached texel once. The same texels and weights as [`apply_dab_in_view`] paints; empty
+/// for a brush that fails [`Brush::validate`] or a non-finite centre. The brush's mode and
+/// thickness play no part.
+pub fn dab_weights(
+    surface: &SurfaceMap,
+    brush: &Brush,
+    centre: Vec3,
+    view: Option<&PaintView>,
+) -> Vec<(usize, f32, u8)> {
+    let n = surface.width as usize * surface.height as usize;
+    if surface.slot.len() != n || !centre.is_finite() || brush.validate().is_err() {
+        return Vec::new();
+    }
+    let (_, hits) = dab_hits(surface, brush, centre, view);
+    hits.into_iter()
+        .filter_map(|(s, d, k)| {
+            let a = brush.flow * brush.weight(d);
+            (a > 0.0).then(|| (surface.texels[s as usize] as usize, a, k))
+        })
+        .collect()
 }
 
 /// Turns mouse moves into evenly spaced dab centres on the surface.

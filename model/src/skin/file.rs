@@ -2,6 +2,7 @@
 //! 32-bit float channel per [`SkinChannel`] (named as the parameter, lossless), and the project's
 //! `skin.json` (`rouge-skin` v1): the [`SkinRecipe`] they were generated from and the EXR's path.
 
+use super::edits::SkinEdits;
 use super::{SkinChannel, SkinConditions, SkinMaps};
 use crate::document::read_versioned;
 use crate::error::{ModelError, Result};
@@ -9,6 +10,7 @@ use crate::look::read_exr_channels;
 use rouge_measure::preset::write_atomic;
 use rouge_measure::skin::{SkinParams, skin_tone};
 use std::path::Path;
+use std::sync::Arc;
 
 /// The project file that holds the skin maps' recipe and names their EXR.
 pub const SKIN_FILE: &str = "skin.json";
@@ -57,14 +59,17 @@ impl SkinRecipe {
     }
 }
 
-/// A project's skin: the maps and the recipe they came from (the maps are data: they are saved
-/// and reopened as they are, whatever the recipe would give today).
+/// A project's skin: the maps, the recipe they came from (the maps are data: they are saved
+/// and reopened as they are, whatever the recipe would give today) and the skin brushes' edits
+/// painted over them ([`SkinEdits`], shared until painted).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProjectSkin {
     /// How the maps were made.
     pub recipe: SkinRecipe,
-    /// The maps.
+    /// The maps as generated.
     pub maps: SkinMaps,
+    /// The skin brushes' edits on top of `maps` (`None`: none painted).
+    pub edits: Option<Arc<SkinEdits>>,
 }
 
 impl ProjectSkin {
@@ -74,7 +79,16 @@ impl ProjectSkin {
     /// As [`SkinMaps::generate`].
     pub fn generate(recipe: SkinRecipe) -> Result<ProjectSkin> {
         let maps = recipe.generate()?;
-        Ok(ProjectSkin { recipe, maps })
+        Ok(ProjectSkin { recipe, maps, edits: None })
+    }
+
+    /// The maps the skin shows: the generated maps with the edits on top
+    /// ([`SkinMaps::with_edits`]).
+    pub fn edited_maps(&self) -> SkinMaps {
+        match &self.edits {
+            Some(e) => self.maps.with_edits(e),
+            None => self.maps.clone(),
+        }
     }
 }
 
@@ -86,6 +100,9 @@ struct SkinFile {
     version: u32,
     /// The EXR, relative to the project folder.
     maps: String,
+    /// The skin edits' EXR, relative to the project folder (absent: no edits).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    edits: Option<String>,
     recipe: SkinRecipe,
 }
 
@@ -133,36 +150,55 @@ pub(crate) fn maps_file_name(maps: &SkinMaps) -> String {
     format!("skin-{:016x}.exr", maps.content_hash())
 }
 
-/// Whether `file` is named as [`maps_file_name`] names files.
+/// The name of a project's skin edits EXR: `skin-edits-<hash>.exr` (16 hex digits, by content).
+pub(crate) fn edits_file_name(edits: &SkinEdits) -> String {
+    format!("skin-edits-{:016x}.exr", edits.content_hash())
+}
+
+/// Whether `file` is named as [`maps_file_name`] or [`edits_file_name`] name files.
 pub(crate) fn is_maps_file_name(file: &str) -> bool {
-    file.strip_prefix("skin-")
+    file.strip_prefix("skin-edits-")
+        .or_else(|| file.strip_prefix("skin-"))
         .and_then(|s| s.strip_suffix(".exr"))
         .is_some_and(|h| h.len() == 16 && h.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b)))
 }
 
 /// Writes `skin`'s EXR into `maps_dir` (unless a file of that name, hence those values, is
-/// there) and then `skin.json` at `json_path`, each atomically. Returns the EXR's file name.
+/// there), the edits' EXR likewise when there are edits, and then `skin.json` at `json_path`,
+/// each atomically. Returns the EXR files' names.
 pub(crate) fn write_project_skin(
     skin: &ProjectSkin,
     maps_dir: &Path,
     maps_rel: &str,
     json_path: &Path,
-) -> Result<String> {
+) -> Result<Vec<String>> {
+    let write_new = |name: &str, bytes: &dyn Fn() -> std::result::Result<Vec<u8>, String>| -> Result<()> {
+        let path = maps_dir.join(name);
+        if !path.is_file() {
+            let bytes = bytes().map_err(|e| ModelError::file(&path, e))?;
+            write_atomic(&path, &bytes).map_err(|e| ModelError::file(&path, e))?;
+        }
+        Ok(())
+    };
     let name = maps_file_name(&skin.maps);
-    let path = maps_dir.join(&name);
-    if !path.is_file() {
-        let bytes = skin.maps.to_exr_bytes().map_err(|e| ModelError::file(&path, e))?;
-        write_atomic(&path, &bytes).map_err(|e| ModelError::file(&path, e))?;
+    write_new(&name, &|| skin.maps.to_exr_bytes())?;
+    let mut names = vec![name.clone()];
+    let edits = skin.edits.as_deref().filter(|e| !e.is_empty());
+    if let Some(edits) = edits {
+        let edits_name = edits_file_name(edits);
+        write_new(&edits_name, &|| edits.to_exr_bytes())?;
+        names.push(edits_name);
     }
     let file = SkinFile {
         format: SKIN_FORMAT.into(),
         version: 1,
         maps: format!("{maps_rel}/{name}"),
+        edits: names.get(1).map(|n| format!("{maps_rel}/{n}")),
         recipe: skin.recipe.clone(),
     };
     let text = serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(json_path, e))? + "\n";
     write_atomic(json_path, text.as_bytes()).map_err(|e| ModelError::file(json_path, e))?;
-    Ok(name)
+    Ok(names)
 }
 
 /// Reads a project's skin: `None` when `skin.json` is absent (projects saved before skin maps,
@@ -176,5 +212,13 @@ pub(crate) fn read_project_skin(dir: &Path, json_path: &Path) -> Result<Option<P
     let exr = dir.join(&file.maps);
     let bytes = std::fs::read(&exr).map_err(|e| ModelError::file(&exr, e))?;
     let maps = SkinMaps::from_exr_bytes(&bytes, &recipe.base).map_err(|e| ModelError::file(&exr, e))?;
-    Ok(Some(ProjectSkin { recipe, maps }))
+    let edits = match &file.edits {
+        Some(rel) => {
+            let path = dir.join(rel);
+            let bytes = std::fs::read(&path).map_err(|e| ModelError::file(&path, e))?;
+            Some(Arc::new(SkinEdits::from_exr_bytes(&bytes).map_err(|e| ModelError::file(&path, e))?))
+        }
+        None => None,
+    };
+    Ok(Some(ProjectSkin { recipe, maps, edits }))
 }

@@ -10,6 +10,8 @@
 //! - [`conditions`]: [`SkinConditions`], the amounts of freckles, moles, redness, acne,
 //!   hyperpigmentation, under-eye darkness and visible veins (`freckles=0.6,redness=0.4`).
 //! - [`generate`]: [`SkinMaps::generate`], the tone + anatomy + conditions, deterministic per seed.
+//! - [`edits`]: [`SkinEdits`], what the app's skin brushes paint (log factors on melanin and
+//!   blood per texel) on top of the generated maps.
 //! - [`file`](mod@file): the maps as one multi-channel OpenEXR and the project's `skin.json`
 //!   ([`SkinRecipe`], [`ProjectSkin`]); docs/FORMATS.md.
 //!
@@ -20,13 +22,16 @@ pub mod albedo;
 pub mod anatomy;
 pub mod blood_flow;
 pub mod conditions;
+pub mod edits;
 pub mod file;
 pub mod generate;
 
 pub use anatomy::AnatomyRegion;
 pub use conditions::{Condition, ConditionError, SkinConditions};
+pub use edits::{SkinBrush, SkinBrushKind, SkinEdits};
 pub use file::{ProjectSkin, SKIN_FILE, SkinRecipe};
 
+use crate::TexelRect;
 use rouge_measure::skin::SkinParams;
 
 /// One parameter of the skin model that varies over a face: a channel of [`SkinMaps`].
@@ -246,6 +251,22 @@ impl SkinMaps {
             out = ch.with(&out, v.clamp(lo, hi));
         }
         out
+    }
+
+    /// The texels of `rect` (clamped to the maps; at least one texel) as maps of their own, with
+    /// the same base: for baking the colour of a changed rectangle only.
+    pub fn crop(&self, rect: TexelRect) -> SkinMaps {
+        let r = rect.clamped(self.width, self.height);
+        let r = if r.is_empty() { TexelRect::new(0, 0, 1, 1) } else { r };
+        let w = self.width as usize;
+        let planes = self.planes.each_ref().map(|p| {
+            let mut out = Vec::with_capacity(r.area());
+            for y in r.y0 as usize..r.y1 as usize {
+                out.extend_from_slice(&p[y * w + r.x0 as usize..y * w + r.x1 as usize]);
+            }
+            out
+        });
+        SkinMaps { width: r.width(), height: r.height(), base: self.base, planes }
     }
 
     /// Index of texel (x, y) clamped to the map.
