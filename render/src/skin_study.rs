@@ -22,7 +22,7 @@ use rouge_measure::analysis::Layer;
 use rouge_measure::analysis::coverage::{ContrastChart, coverage_table};
 use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, linear_srgb_to_lab};
 use rouge_measure::preset::Preset;
-use rouge_measure::skin::{SkinColorTable, SkinParams};
+use rouge_measure::skin::SkinParams;
 use rouge_measure::spectrum::Spectrum;
 use rouge_model::look::ThicknessMap;
 use rouge_model::mesh::TriangleMesh;
@@ -97,7 +97,7 @@ impl SkinPatch {
             SkinColour::Albedo => None,
             SkinColour::Maps => {
                 let maps = SkinMaps::uniform(params);
-                Some(maps.albedo_image(&SkinColorTable::new(maps.base()).map_err(invalid)?))
+                Some(crate::job::bake_skin_albedo(&maps, &crate::job::skin_color_table(maps.base())?))
             }
         };
         self.renderer.set_textures(albedo.as_ref(), None)?;

@@ -6,7 +6,7 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use rouge_measure::preset::write_atomic;
-use rouge_measure::skin::{SkinColorTable, skin_tone_or_ita};
+use rouge_measure::skin::skin_tone_or_ita;
 use rouge_model::skin::generate::conditions_mask;
 use rouge_model::skin::{SkinConditions, SkinMaps};
 use std::path::{Path, PathBuf};
@@ -60,8 +60,8 @@ pub fn run(args: &MapsArgs) -> Result<()> {
             eprintln!("rouge: skin maps {0}×{0} → {1}", args.size_px, path.display());
         }
         if let Some(path) = &args.albedo {
-            let table = SkinColorTable::new(maps.base()).context("the tone's colour table")?;
-            write_png(path, maps.albedo_image(&table).into())?;
+            let table = rouge_render::job::skin_color_table(maps.base())?;
+            write_png(path, rouge_render::job::bake_skin_albedo(&maps, &table).into())?;
             eprintln!("rouge: their albedo → {}", path.display());
         }
     }
