@@ -3,52 +3,19 @@
 //! snapshot of the window. `UPDATE_SNAPSHOTS=1` rewrites app/tests/snapshots/.
 
 use egui::{Modifiers, Pos2};
+use egui_kittest::SnapshotOptions;
 use egui_kittest::kittest::Queryable;
-use egui_kittest::{Harness, SnapshotOptions};
-use glam::Vec3;
-use rouge_app::gui::{Options, RougeApp};
+use rouge_app::gui::RougeApp;
 use std::path::Path;
 
-fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
-    harness_with_mesh(data_dir, None)
-}
-
-fn harness_with_mesh(data_dir: &Path, mesh: Option<(std::path::PathBuf, f32)>) -> Harness<'static, RougeApp> {
-    let dir = data_dir.to_owned();
-    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false, mesh, window_screenshot: None })
-            .expect("the app opens")
-    });
-    h.state_mut().wait_ready();
-    h.run_steps(4);
-    h
-}
+mod common;
+use common::{beside_nose_tip, harness, harness_with_mesh};
 
 /// Screen points across the face's right cheek (image left of the nose), found from surface
 /// points of the mesh: the nose tip is the frontmost point near the midplane, and the cheek
 /// points are the frontmost surface points beside and below it.
 fn cheek_stroke(app: &RougeApp) -> Vec<Pos2> {
-    let surface = app.surface().expect("surface map");
-    let mid = surface.mirror_x();
-    let frontmost = |keep: &dyn Fn(Vec3) -> bool| {
-        let mut best: Option<Vec3> = None;
-        for y in (0..surface.height).step_by(4) {
-            for x in (0..surface.width).step_by(4) {
-                if let Some(p) = surface.position(x, y)
-                    && keep(p)
-                    && best.is_none_or(|b| p.z > b.z)
-                {
-                    best = Some(p);
-                }
-            }
-        }
-        best.expect("a surface point")
-    };
-    let tip = frontmost(&|p| (p.x - mid).abs() < 10.0);
-    let near = |dx: f32, dy: f32| {
-        let (tx, ty) = (tip.x + dx, tip.y + dy);
-        frontmost(&move |p: Vec3| (p.x - tx).abs() < 4.0 && (p.y - ty).abs() < 4.0)
-    };
+    let near = |dx: f32, dy: f32| beside_nose_tip(app, dx, dy);
     let a = app.screen_pos_of(near(-42.0, -5.0)).expect("on screen");
     let b = app.screen_pos_of(near(-32.0, -28.0)).expect("on screen");
     (0..=6).map(|i| a + (b - a) * (i as f32 / 6.0)).collect()

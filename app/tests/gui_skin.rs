@@ -13,16 +13,8 @@ use rouge_model::mesh::targets::FacePose;
 use rouge_model::skin::{SkinBrush, SkinBrushKind, SkinConditions, SkinRecipe};
 use std::path::Path;
 
-fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
-    let dir = data_dir.to_owned();
-    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
-        RougeApp::new(cc, options).expect("the app opens")
-    });
-    h.state_mut().wait_ready();
-    h.run_steps(4);
-    h
-}
+mod common;
+use common::{beside_nose_tip, harness};
 
 /// Skin maps of `tone`, 512² (quick), without conditions.
 fn recipe(tone: &str) -> SkinRecipe {
@@ -131,25 +123,7 @@ fn a_darker_tone_darkens_the_face_and_no_skin_maps_brings_the_flat_skin_back() {
 /// A point on a cheek (`side` −1: the face's right, image left of the nose): the frontmost
 /// surface point near 42 mm beside and 12 mm above the nose tip, inside the cheeks' mask.
 fn cheek_point(app: &RougeApp, side: f32) -> Vec3 {
-    let surface = app.surface().expect("surface map");
-    let mid = surface.mirror_x();
-    let frontmost = |keep: &dyn Fn(Vec3) -> bool| {
-        let mut best: Option<Vec3> = None;
-        for y in (0..surface.height).step_by(4) {
-            for x in (0..surface.width).step_by(4) {
-                if let Some(p) = surface.position(x, y)
-                    && keep(p)
-                    && best.is_none_or(|b| p.z > b.z)
-                {
-                    best = Some(p);
-                }
-            }
-        }
-        best.expect("a surface point")
-    };
-    let tip = frontmost(&|p| (p.x - mid).abs() < 10.0);
-    let (tx, ty) = (tip.x + side * 42.0, tip.y + 12.0);
-    frontmost(&move |p: Vec3| (p.x - tx).abs() < 4.0 && (p.y - ty).abs() < 4.0)
+    beside_nose_tip(app, side * 42.0, 12.0)
 }
 
 #[test]

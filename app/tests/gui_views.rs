@@ -7,19 +7,10 @@
 use egui::{Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, SnapshotOptions};
-use rouge_app::gui::{Options, RougeApp};
-use std::path::Path;
+use rouge_app::gui::RougeApp;
 
-fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
-    let dir = data_dir.to_owned();
-    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
-        RougeApp::new(cc, options).expect("the app opens")
-    });
-    h.state_mut().wait_ready();
-    h.run_steps(4);
-    h
-}
+mod common;
+use common::harness;
 
 fn button(h: &Harness<'static, RougeApp>, pos: Pos2, button: PointerButton, pressed: bool) {
     h.event(Event::PointerButton { pos, button, pressed, modifiers: Modifiers::NONE });
