@@ -2,7 +2,7 @@
 //! encoded sRGB, and CIEDE2000.
 //!
 //! Tables (CIE 1931 2° and CIE 1964 10° colour-matching functions; illuminants D65, D55, D50, A,
-//! E) are in `data/cie/`, written by `python/gen_cie.py` from colour-science 0.4.7 exactly as its
+//! E, the fluorescent lamps FL2, FL7, FL11 and the white LED LED-B3 of \[CIE15\]) are in `data/cie/`, written by `python/gen_cie.py` from colour-science 0.4.7 exactly as its
 //! `sd_to_XYZ(..., method="Integration", shape=SpectralShape(380, 780, 5))` aligns them, and
 //! embedded at compile time. `python/test_colorimetry.py` checks XYZ, Lab and sRGB against
 //! colour-science to 1e-6 for every illuminant and observer.
@@ -41,11 +41,30 @@ pub enum Illuminant {
     A,
     /// Equal-energy illuminant E.
     E,
+    /// CIE FL2, cool-white standard fluorescent lamp (4230 K).
+    Fl2,
+    /// CIE FL7, broad-band daylight fluorescent lamp (6500 K).
+    Fl7,
+    /// CIE FL11, three-band (narrow tri-phosphor) fluorescent lamp (4000 K): the usual test
+    /// illuminant of metamerism indices.
+    Fl11,
+    /// CIE LED-B3, phosphor-converted white LED (4103 K) of \[CIE15\] (2018) table 12.
+    LedB3,
 }
 
 impl Illuminant {
     /// All illuminants, in table order.
-    pub const ALL: [Illuminant; 5] = [Illuminant::D65, Illuminant::D55, Illuminant::D50, Illuminant::A, Illuminant::E];
+    pub const ALL: [Illuminant; 9] = [
+        Illuminant::D65,
+        Illuminant::D55,
+        Illuminant::D50,
+        Illuminant::A,
+        Illuminant::E,
+        Illuminant::Fl2,
+        Illuminant::Fl7,
+        Illuminant::Fl11,
+        Illuminant::LedB3,
+    ];
 
     /// The name used in tables and on the command line.
     pub fn name(self) -> &'static str {
@@ -55,12 +74,23 @@ impl Illuminant {
             Illuminant::D50 => "D50",
             Illuminant::A => "A",
             Illuminant::E => "E",
+            Illuminant::Fl2 => "FL2",
+            Illuminant::Fl7 => "FL7",
+            Illuminant::Fl11 => "FL11",
+            Illuminant::LedB3 => "LED-B3",
         }
     }
 
-    /// Parses `D65`, `d50`, `A`, ... (case-insensitive).
+    /// Parses `D65`, `d50`, `A`, `FL11` (or `F11`), `LED-B3`, ... (case-insensitive; the names
+    /// are colour-science's keys of `SDS_ILLUMINANTS`).
     pub fn parse(s: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|i| i.name().eq_ignore_ascii_case(s.trim()))
+        let upper = s.trim().to_ascii_uppercase();
+        // CIE 15 writes the fluorescent lamps F1-F12; colour-science keys them FL1-FL12.
+        let name = match upper.strip_prefix('F') {
+            Some(n) if !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) => format!("FL{n}"),
+            _ => upper,
+        };
+        Self::ALL.into_iter().find(|i| i.name() == name)
     }
 
     /// Relative spectral power on the working grid (as tabulated; the scale cancels).
@@ -176,7 +206,7 @@ struct Tables {
     /// Indexed by `Observer as usize`: [x̄, ȳ, z̄].
     cmfs: [[Spectrum; 3]; 2],
     /// Indexed by `Illuminant as usize`.
-    illuminants: [Spectrum; 5],
+    illuminants: [Spectrum; Illuminant::ALL.len()],
 }
 
 const CMFS_1931_CSV: &str = include_str!("../../data/cie/cmfs_cie1931_2.csv");
@@ -208,8 +238,9 @@ fn tables() -> &'static Tables {
             let v = parse_table(text, &["x_bar", "y_bar", "z_bar"]);
             [v[0], v[1], v[2]]
         };
-        let ill = parse_table(ILLUMINANTS_CSV, &["D65", "D55", "D50", "A", "E"]);
-        Tables { cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)], illuminants: [ill[0], ill[1], ill[2], ill[3], ill[4]] }
+        let names = Illuminant::ALL.map(Illuminant::name);
+        let ill = parse_table(ILLUMINANTS_CSV, &names);
+        Tables { cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)], illuminants: std::array::from_fn(|i| ill[i]) }
     })
 }
 
@@ -463,6 +494,21 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     if encoded <= 0.040_45 { encoded / 12.92 } else { ((encoded + 0.055) / 1.055).powf(2.4) }
 }
 
+/// CIE 1976 colour difference ΔE*ab, the Euclidean distance in CIELAB (\[CIE15\] §8.2.1,
+/// eq. 8.10), on bare `[L*, a*, b*]` triples (the caller guarantees a common white).
+///
+/// # Examples
+///
+/// ```
+/// use rouge_measure::colorimetry::delta_e_1976_raw;
+///
+/// assert_eq!(delta_e_1976_raw([50.0, 3.0, 0.0], [50.0, 0.0, 4.0]), 5.0);
+/// ```
+pub fn delta_e_1976_raw(lab1: [f64; 3], lab2: [f64; 3]) -> f64 {
+    let [dl, da, db] = std::array::from_fn(|i| lab1[i] - lab2[i]);
+    (dl * dl + da * da + db * db).sqrt()
+}
+
 /// CIEDE2000 colour difference (\[CIE142\]; implementation notes of \[Sharma2005\]:
 /// hue angles in degrees in [0, 360), the mean hue taken on the shorter arc, `h' = 0` for a
 /// neutral colour). Both colours must share a [`Viewing`].
@@ -568,8 +614,13 @@ mod tests {
             }
         }
         for ill in Illuminant::ALL {
-            assert!(ill.spd().0.iter().all(|v| v.is_finite() && *v > 0.0), "{ill:?}");
+            // LED-B3 emits nothing at 380 nm; every SPD is finite, ≥ 0 and somewhere positive.
+            assert!(ill.spd().0.iter().all(|v| v.is_finite() && *v >= 0.0), "{ill:?}");
+            assert!(ill.spd().0.iter().sum::<f64>() > 0.0, "{ill:?}");
         }
+        assert_eq!(Illuminant::parse("f11"), Some(Illuminant::Fl11));
+        assert_eq!(Illuminant::parse("led-b3"), Some(Illuminant::LedB3));
+        assert_eq!(Illuminant::parse("F"), None);
         let w = crate::spectrum::working_wavelengths_nm();
         let first_rows: Vec<f64> = CMFS_1931_CSV
             .lines()

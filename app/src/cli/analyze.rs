@@ -44,7 +44,7 @@ pub struct CommonArgs {
     /// Hold the end values of --skin spectra that do not cover 380-780 nm (e.g. 360-740 nm data).
     #[arg(long)]
     pub extrapolate: bool,
-    /// Illuminant: D65, D55, D50, A or E.
+    /// Illuminant: D65, D55, D50, A, E, FL2, FL7, FL11 (or F11) or LED-B3.
     #[arg(long, default_value = "D65", value_parser = parse_illuminant)]
     pub illuminant: Illuminant,
     /// Observer: 1931 (2°) or 1964 (10°).

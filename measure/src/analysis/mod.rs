@@ -10,6 +10,7 @@
 
 pub mod coverage;
 pub mod matching;
+pub mod metamerism;
 pub mod mixing;
 pub mod optimize;
 pub mod skin;
