@@ -10,6 +10,7 @@ use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
 use crate::error::LocatedError;
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
+use crate::km_uncertainty::{SpectralUncertainty, propagate_spectrum};
 use crate::layer_table::{TableLayer, layer_rgb_at};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
 use serde::{Deserialize, Serialize};
@@ -112,6 +113,28 @@ pub struct Preset {
     pub specular: Specular,
     /// Renderer tables derived from S and K.
     pub derived: Derived,
+    /// Standard uncertainties of S and K (optional: presets written before it load unchanged).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<PresetUncertainty>,
+}
+
+/// How certain a preset's S and K are (\[GUM\] linear propagation, `km_uncertainty`), and what
+/// was assumed of the measurement to say so.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PresetUncertainty {
+    /// Where the readings' uncertainty came from (an instrument class, a flag, the file).
+    pub source: String,
+    /// Standard uncertainty of each reading (R∞, R, Rg), absolute reflectance, per wavelength.
+    pub u_reflectance: Vec<f64>,
+    /// Standard uncertainty of the thickness, mm.
+    pub u_thickness_mm: f64,
+    /// Correlation coefficient between the readings.
+    pub reading_correlation: f64,
+    /// u(S) per wavelength, mm⁻¹.
+    pub u_s_per_mm: Vec<f64>,
+    /// u(K) per wavelength, mm⁻¹.
+    pub u_k_per_mm: Vec<f64>,
 }
 
 /// Errors of building, loading or saving presets.
@@ -255,7 +278,48 @@ impl Preset {
             measurement: None,
             specular: Specular::default_for(kind),
             derived: derive_tables(s, k),
+            uncertainty: None,
         }
+    }
+
+    /// The standard uncertainties of S and K from the preset's own measurement
+    /// ([`crate::km_uncertainty::propagate_spectrum`]; through the Saunderson correction's
+    /// derivative when one was applied), stored in the preset and returned per wavelength.
+    /// Errors: no measurement, or a wavelength without a solution (named).
+    pub fn estimate_uncertainty(
+        &mut self,
+        source: &str,
+        u_reflectance: &Spectrum,
+        u_thickness_mm: f64,
+        reading_correlation: f64,
+    ) -> Result<SpectralUncertainty, PresetError> {
+        let name = self.name.clone();
+        let m = self.measurement.as_ref().ok_or_else(|| {
+            invalid(&name, "no source measurement: the uncertainty of S and K needs the readings".into())
+        })?;
+        let internal = |v: &[f64]| -> Spectrum {
+            Spectrum(std::array::from_fn(|i| m.saunderson.map_or(v[i], |c| c.to_internal(v[i]))))
+        };
+        let (r_inf, r, rg) = (internal(&m.r_inf), internal(&m.r), internal(&m.rg));
+        // u of an internal reading = u of the measured one × d(internal)/d(measured); the three
+        // readings differ, so the largest factor stands for all (conservative).
+        let u_in = Spectrum(std::array::from_fn(|i| {
+            let f = m.saunderson.map_or(1.0, |c| {
+                [m.r_inf[i], m.r[i], m.rg[i]].into_iter().map(|v| c.to_internal_derivative(v)).fold(0.0, f64::max)
+            });
+            u_reflectance.0[i] * f
+        }));
+        let u = propagate_spectrum(&r_inf, &r, &rg, self.thickness_mm, &u_in, u_thickness_mm, reading_correlation)
+            .map_err(|(wavelength_nm, error)| PresetError::Inversion { path: name.clone(), wavelength_nm, error })?;
+        self.uncertainty = Some(PresetUncertainty {
+            source: source.to_string(),
+            u_reflectance: u_reflectance.0.to_vec(),
+            u_thickness_mm,
+            reading_correlation,
+            u_s_per_mm: u.u_s().0.to_vec(),
+            u_k_per_mm: u.u_k().0.to_vec(),
+        });
+        Ok(u)
     }
 
     /// Inverts a measurement into a preset and reports how well S and K reproduce it.
@@ -431,6 +495,28 @@ impl Preset {
                         format!("`measurement.{field}` at {} nm is {v}: outside [0, 1.5]", working_wavelength_nm(i)),
                     ));
                 }
+            }
+        }
+        if let Some(u) = &self.uncertainty {
+            for (field, values) in
+                [("u_reflectance", &u.u_reflectance), ("u_s_per_mm", &u.u_s_per_mm), ("u_k_per_mm", &u.u_k_per_mm)]
+            {
+                if values.len() != WORKING_LEN {
+                    return Err(invalid(
+                        path,
+                        format!("`uncertainty.{field}` has {} values, expected {WORKING_LEN}", values.len()),
+                    ));
+                }
+                if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(**v >= 0.0 && v.is_finite())) {
+                    return Err(invalid(
+                        path,
+                        format!("`uncertainty.{field}` at {} nm is {v}: must be finite and ≥ 0", working_wavelength_nm(i)),
+                    ));
+                }
+            }
+            if !(u.u_thickness_mm >= 0.0 && u.u_thickness_mm.is_finite()) || !(0.0..=1.0).contains(&u.reading_correlation)
+            {
+                return Err(invalid(path, "`uncertainty.u_thickness_mm` must be ≥ 0 and `reading_correlation` in [0, 1]".into()));
             }
         }
         let d = &self.derived;

@@ -106,3 +106,22 @@ fn linear_propagation_agrees_with_monte_carlo_on_the_sample_presets() {
     );
     assert!(compared > 13 * WORKING_LEN / 2, "most wavelengths are compared: {compared}");
 }
+
+#[test]
+fn a_preset_keeps_its_uncertainty_and_old_presets_load_without_one() {
+    let (path, mut preset) = presets().into_iter().next().expect("a sample preset");
+    assert!(preset.uncertainty.is_none(), "{path}: sample presets predate the field and still load");
+    let u = rouge_measure::Spectrum::constant(U_READING);
+    let spectral = preset.estimate_uncertainty("benchtop (0.001)", &u, U_THICKNESS_MM, 0.0).expect("inverts");
+    assert_eq!(spectral.per_wavelength.len(), WORKING_LEN);
+    let back = Preset::from_json(&preset.to_json(), "<round trip>").expect("valid");
+    assert_eq!(back, preset);
+    let stored = back.uncertainty.expect("stored");
+    assert!(stored.u_s_per_mm.iter().zip(&stored.u_k_per_mm).all(|(s, k)| *s > 0.0 && *k > 0.0));
+    let mut bad = preset.clone();
+    if let Some(u) = bad.uncertainty.as_mut() {
+        u.u_s_per_mm.pop();
+    }
+    let e = Preset::from_json(&bad.to_json(), "bad.json").expect_err("80 values").to_string();
+    assert!(e.contains("bad.json") && e.contains("uncertainty.u_s_per_mm"), "{e}");
+}
