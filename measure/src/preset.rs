@@ -510,13 +510,21 @@ impl Preset {
                 if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(**v >= 0.0 && v.is_finite())) {
                     return Err(invalid(
                         path,
-                        format!("`uncertainty.{field}` at {} nm is {v}: must be finite and ≥ 0", working_wavelength_nm(i)),
+                        format!(
+                            "`uncertainty.{field}` at {} nm is {v}: must be finite and ≥ 0",
+                            working_wavelength_nm(i)
+                        ),
                     ));
                 }
             }
-            if !(u.u_thickness_mm >= 0.0 && u.u_thickness_mm.is_finite()) || !(0.0..=1.0).contains(&u.reading_correlation)
+            if !(u.u_thickness_mm >= 0.0
+                && u.u_thickness_mm.is_finite()
+                && (0.0..=1.0).contains(&u.reading_correlation))
             {
-                return Err(invalid(path, "`uncertainty.u_thickness_mm` must be ≥ 0 and `reading_correlation` in [0, 1]".into()));
+                return Err(invalid(
+                    path,
+                    "`uncertainty.u_thickness_mm` must be ≥ 0 and `reading_correlation` in [0, 1]".into(),
+                ));
             }
         }
         let d = &self.derived;

@@ -79,8 +79,9 @@ fn side(spec: &str, args: &MetamerismArgs, skin: &Option<(String, Spectrum, f64)
         None if all.len() == 1 => all.first(),
         None => bail!("{}: {} spectra ({}): pick one as {}#NAME", path.display(), all.len(), names(), path.display()),
     };
-    let (name, r) =
-        chosen.ok_or_else(|| anyhow!("{}: no spectrum named `{}` (there are: {})", path.display(), pick.unwrap_or(""), names()))?;
+    let (name, r) = chosen.ok_or_else(|| {
+        anyhow!("{}: no spectrum named `{}` (there are: {})", path.display(), pick.unwrap_or(""), names())
+    })?;
     Ok((format!("{} ({name})", path.display()), *r))
 }
 
@@ -115,8 +116,9 @@ pub fn run(args: &MetamerismArgs) -> Result<()> {
                 None => all.into_iter().next(),
                 Some(n) => all.into_iter().find(|(name, _)| name == n),
             };
-            let (name, r) = chosen
-                .ok_or_else(|| anyhow!("--skin-sample: no skin named `{}`", args.skin_sample.as_deref().unwrap_or("")))?;
+            let (name, r) = chosen.ok_or_else(|| {
+                anyhow!("--skin-sample: no skin named `{}`", args.skin_sample.as_deref().unwrap_or(""))
+            })?;
             Some((name, r, t * 1e-3))
         }
     };

@@ -153,7 +153,7 @@ pub fn metamerism_index(
             std::array::from_fn(|i| smp_lab_t[i] - (smp_lab_r[i] - std_lab_r[i]))
         }
         Correction::Multiplicative => {
-            if let Some(i) = (0..3).find(|&i| !(smp_r[i] > 0.0)) {
+            if let Some(i) = (0..3).find(|&i| smp_r[i].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)) {
                 return Err(AnalysisError::Invalid(format!(
                     "the multiplicative correction divides by the sample's {} under {reference}, which is {}: \
                      use the additive correction for a black sample",
