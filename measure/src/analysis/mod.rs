@@ -8,6 +8,7 @@
 //! under a KM layer (\[Huang2013\] eq. 3 with an opaque second layer): light carried sideways in
 //! the skin and the skin's own surface reflection are outside the model.
 
+pub mod correction;
 pub mod coverage;
 pub mod matching;
 pub mod metamerism;
