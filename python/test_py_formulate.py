@@ -156,3 +156,21 @@ def test_sk_uncertainty_errors_name_the_index() -> None:
         rouge.SK_uncertainty([0.5, 0.5], [0.3, 0.3], [0.03, 0.03], 0.01, [0.001, 0.001, 0.001])
     best = rouge.SK_thickness_optimal(np.full(81, 20.0), np.full(81, 2.0), [0.03], [0.001], u_thickness_mm=0.001)
     assert 0.01 < best["thickness_mm"] < 0.5
+
+
+def test_correct_batch_brings_a_weak_batch_back(repo_root) -> None:
+    lib = [tuple(np.array(json.loads((repo_root / "data" / "presets" / f"{n}.json").read_text())[k])
+                 for k in ("s_per_mm", "k_per_mm")) for n in ("foundation_01_porcelain", "foundation_04_caramel", "lipstick_02_red")]
+    recipe = [0.5, 0.35, 0.15]
+    S = lambda lib, c: sum(ci * l[0] for ci, l in zip(c, lib))  # noqa: E731  Duncan's rule
+    K = lambda lib, c: sum(ci * l[1] for ci, l in zip(c, lib))  # noqa: E731
+    weak = [(0.9 * lib[0][0], 0.9 * lib[0][1]), lib[1], lib[2]]
+    standard = rouge.SK_to_Rinf_KubelkaMunk(S(lib, recipe), K(lib, recipe))
+    batch = rouge.SK_to_Rinf_KubelkaMunk(S(weak, recipe), K(weak, recipe))
+    fix = rouge.correct_batch_KubelkaMunk(lib, recipe, np.asarray(batch), np.asarray(standard))
+    assert fix["delta_E_before"] > 0.3 and fix["delta_E_predicted"] < 0.01
+    made = rouge.SK_to_Rinf_KubelkaMunk(S(weak, fix["concentrations"]), K(weak, fix["concentrations"]))
+    lab = lambda r: rouge.XYZ_to_Lab(rouge.sd_to_XYZ(np.asarray(r)) / 100.0)  # noqa: E731
+    assert float(colour.delta_E(lab(made), lab(standard), method="CIE 2000")) < 0.1
+    with pytest.raises(ValueError, match="both skin and thickness_mm"):
+        rouge.correct_batch_KubelkaMunk(lib, recipe, np.asarray(batch), np.asarray(standard), skin=np.full(81, 0.3))

@@ -1,5 +1,5 @@
 //! The formulator's bench for Python (docs/FORMULATION.md): metamerism indices
-//! (`rouge_measure::analysis::metamerism`) and the uncertainty of S and K
+//! (`rouge_measure::analysis::metamerism`), batch correction (`analysis::correction`) and the uncertainty of S and K
 //! (`rouge_measure::km_uncertainty`). Spectra on the working grid (81 values); colour-difference
 //! keys are colour-science's `delta_E` method names (`"CIE 1976"`, `"CIE 2000"`).
 #![allow(non_snake_case)]
@@ -8,7 +8,10 @@ use crate::color::viewing;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use rouge_measure::analysis::Layer;
+use rouge_measure::analysis::correction::{Presentation, correct_batch};
 use rouge_measure::analysis::metamerism::{Correction, metamerism_index};
+use rouge_measure::colorimetry::Colorimeter;
 use rouge_measure::km_uncertainty::{ILL_CONDITIONED, InputUncertainty, optimal_thickness_mm, propagate_s_k};
 use rouge_measure::spectrum::{Spectrum, WORKING_LEN};
 
@@ -148,7 +151,53 @@ pub fn sk_thickness_optimal<'py>(
     .transpose()
 }
 
+/// Batch correction: the amounts of `colorants` (a list of `(S, K)`, 81 values each) that bring
+/// a batch made to `recipe` and measured as `batch` (81 reflectances) back to `standard`; opaque,
+/// or as a layer of `thickness_mm` over `skin` when both are given. Returns a dict:
+/// `concentrations`, `change`, `delta_E_before`, `delta_E_predicted` (CIEDE2000).
+#[pyfunction]
+#[pyo3(name = "correct_batch_KubelkaMunk", signature = (colorants, recipe, batch, standard, *, skin=None, thickness_mm=None,
+    illuminant="D65", observer="CIE 1931 2 Degree Standard Observer"))]
+#[allow(clippy::too_many_arguments)]
+pub fn correct_batch_kubelka_munk<'py>(
+    py: Python<'py>,
+    colorants: Vec<(Vec<f64>, Vec<f64>)>,
+    recipe: Vec<f64>,
+    batch: Vec<f64>,
+    standard: Vec<f64>,
+    skin: Option<Vec<f64>>,
+    thickness_mm: Option<f64>,
+    illuminant: &str,
+    observer: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let layers = colorants
+        .into_iter()
+        .enumerate()
+        .map(|(i, (s, k))| {
+            let what = format!("colorant {i}");
+            Layer::new(&what, spectrum(&format!("{what} S"), s)?, spectrum(&format!("{what} K"), k)?)
+                .map_err(|e| crate::errors::RougeError::new_err(e.to_string()))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let presentation = match (skin, thickness_mm) {
+        (None, None) => Presentation::Opaque,
+        (Some(r), Some(x)) => Presentation::Over { background: Box::new(spectrum("skin", r)?), thickness_mm: x },
+        _ => return Err(PyValueError::new_err("give both skin and thickness_mm, or neither (opaque)")),
+    };
+    let c = Colorimeter::get(viewing(illuminant, observer)?);
+    let fix =
+        correct_batch(&layers, &recipe, &spectrum("batch", batch)?, &spectrum("standard", standard)?, &presentation, c)
+            .map_err(|e| crate::errors::RougeError::new_err(e.to_string()))?;
+    let d = PyDict::new(py);
+    d.set_item("concentrations", fix.concentrations)?;
+    d.set_item("change", fix.change)?;
+    d.set_item("delta_E_before", fix.delta_e_before)?;
+    d.set_item("delta_E_predicted", fix.delta_e_predicted)?;
+    Ok(d)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(correct_batch_kubelka_munk, m)?)?;
     m.add("ILL_CONDITIONED_ABOVE", ILL_CONDITIONED)?;
     m.add_function(wrap_pyfunction!(metamerism_index_special, m)?)?;
     m.add_function(wrap_pyfunction!(sk_uncertainty, m)?)?;

@@ -1,4 +1,4 @@
-//! `rouge analyze coverage|match|mix|metamerism`: what formulators ask of S and K (docs/FORMULATION.md).
+//! `rouge analyze coverage|match|mix|metamerism|correct`: what formulators ask of S and K (docs/FORMULATION.md).
 //! The analyses live in `rouge_measure::analysis`; this module reads the inputs, prints the
 //! tables for people, writes `--json` for machines and `--plot` PNGs (`analyze_plot.rs`).
 
@@ -32,6 +32,9 @@ pub enum AnalyzeCommand {
     /// (CIE 15:2018 §9, ISO 18314-4) per test illuminant and for a change of observer, with the
     /// additive and multiplicative corrections, as ΔE*ab and ΔE2000.
     Metamerism(crate::cli::analyze_metamerism::MetamerismArgs),
+    /// Batch correction: the amounts of the recipe's colorants that bring a measured production
+    /// batch back to the standard (the batch's model error carried, Gauss-Newton on CIELAB).
+    Correct(crate::cli::analyze_correct::CorrectArgs),
 }
 
 /// Options every analysis shares.
@@ -152,6 +155,7 @@ pub fn run(cmd: &AnalyzeCommand) -> Result<()> {
         AnalyzeCommand::Match(args) => run_match(args),
         AnalyzeCommand::Mix(args) => run_mix(args),
         AnalyzeCommand::Metamerism(args) => crate::cli::analyze_metamerism::run(args),
+        AnalyzeCommand::Correct(args) => crate::cli::analyze_correct::run(args),
     }
 }
 
@@ -196,7 +200,7 @@ pub(crate) fn skins(common: &CommonArgs) -> Result<Vec<(String, Spectrum)>> {
     Ok(skins)
 }
 
-fn viewing(common: &CommonArgs) -> Viewing {
+pub(crate) fn viewing(common: &CommonArgs) -> Viewing {
     Viewing { illuminant: common.illuminant, observer: common.observer }
 }
 

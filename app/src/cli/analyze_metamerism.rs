@@ -56,10 +56,7 @@ pub struct MetamerismArgs {
 
 /// One side of the pair: its name and reflectance on the working grid.
 fn side(spec: &str, args: &MetamerismArgs, skin: &Option<(String, Spectrum, f64)>) -> Result<(String, Spectrum)> {
-    let (path_text, pick) = match spec.rsplit_once('#') {
-        Some((p, n)) if Path::new(p).is_file() => (p, Some(n)),
-        _ => (spec, None),
-    };
+    let (path_text, pick) = split_pick(spec);
     let path = Path::new(path_text);
     let is_preset_file = path.is_file() && path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
     if !path.is_file() || is_preset_file {
@@ -71,7 +68,13 @@ fn side(spec: &str, args: &MetamerismArgs, skin: &Option<(String, Spectrum, f64)
             }
         });
     }
-    let extrapolation = if args.extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
+    read_one_spectrum(path, pick, args.extrapolate)
+}
+
+/// One spectrum of a spectrum file (CSV table or CGATS) on the working grid: the only one, or
+/// the one named `pick` (`FILE#NAME` on the command line); errors name the file and the choices.
+pub(crate) fn read_one_spectrum(path: &Path, pick: Option<&str>, extrapolate: bool) -> Result<(String, Spectrum)> {
+    let extrapolation = if extrapolate { Extrapolation::Constant } else { Extrapolation::Refuse };
     let all = read_spectra(path)?.to_working_grid(extrapolation)?;
     let names = || all.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ");
     let chosen = match pick {
@@ -83,6 +86,14 @@ fn side(spec: &str, args: &MetamerismArgs, skin: &Option<(String, Spectrum, f64)
         anyhow!("{}: no spectrum named `{}` (there are: {})", path.display(), pick.unwrap_or(""), names())
     })?;
     Ok((format!("{} ({name})", path.display()), *r))
+}
+
+/// `FILE#NAME` → (FILE, NAME) when FILE exists; else the whole text.
+pub(crate) fn split_pick(spec: &str) -> (&str, Option<&str>) {
+    match spec.rsplit_once('#') {
+        Some((p, n)) if Path::new(p).is_file() => (p, Some(n)),
+        _ => (spec, None),
+    }
 }
 
 fn row(m: &MetamerismIndex) -> serde_json::Value {

@@ -1,6 +1,7 @@
 //! The subcommands of `rouge`, a module each: its options (clap), its run, its output.
 
 pub mod analyze;
+pub mod analyze_correct;
 pub mod analyze_metamerism;
 pub mod analyze_plot;
 pub mod color;

@@ -140,6 +140,11 @@ def metamerism_index_special(
     cmfs_reference: str = "CIE 1931 2 Degree Standard Observer", cmfs_test: str | None = None,
     correction: str = "multiplicative",
 ) -> dict[str, Any]: ...
+def correct_batch_KubelkaMunk(
+    colorants: list[tuple[ArrayLike, ArrayLike]], recipe: ArrayLike, batch: ArrayLike, standard: ArrayLike, *,
+    skin: ArrayLike | None = None, thickness_mm: float | None = None, illuminant: str = "D65",
+    observer: str = "CIE 1931 2 Degree Standard Observer",
+) -> dict[str, Any]: ...
 ILL_CONDITIONED_ABOVE: float
 def SK_uncertainty(
     R_inf: ArrayLike, R: ArrayLike, Rg: ArrayLike, thickness_mm: float, u_R: ArrayLike, *,
