@@ -68,7 +68,7 @@ def metamerism_on_skin(rouge: str, out: Path, skins: Path, images: Path | None) 
         import matplotlib.pyplot as plt
 
         fig, axes = plt.subplots(1, len(names), figsize=(4.2 * len(names), 3.6), sharey=True)
-        labels = ["D65 (match)", "A", "FL11", "LED-B3", "10° obs."]
+        labels = ["D65: the pair itself", "A", "FL11", "LED-B3", "10° obs."]
         x = np.arange(len(FOUNDATIONS))
         for ax, skin in zip(np.atleast_1d(axes), names):
             for j, lab in enumerate(labels):

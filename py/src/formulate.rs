@@ -33,6 +33,7 @@ fn spectrum(what: &str, values: Vec<f64>) -> PyResult<Spectrum> {
 #[pyfunction]
 #[pyo3(signature = (sd_standard, sd_sample, *, illuminant_reference="D65", illuminant_test="A",
     cmfs_reference="CIE 1931 2 Degree Standard Observer", cmfs_test=None, correction="multiplicative"))]
+#[allow(clippy::too_many_arguments)]
 pub fn metamerism_index_special<'py>(
     py: Python<'py>,
     sd_standard: Vec<f64>,
