@@ -31,6 +31,7 @@
 
 use crate::analysis::optimize::golden_section;
 use crate::km::{self, KmCoefficients, KmError, invert_s_k};
+use crate::preset::{Preset, PresetError, PresetUncertainty};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm};
 use nalgebra::{Matrix2, Matrix2x3, Matrix2x4, Matrix4};
 
@@ -303,6 +304,21 @@ impl SpectralUncertainty {
 
 /// [`propagate_s_k`] at every wavelength of the working grid; `u_reflectance` is the readings'
 /// repeatability per wavelength. An error names the first wavelength without a solution.
+///
+/// # Examples
+///
+/// A grey film whose R sits 0.002 from R∞ at every wavelength is flagged everywhere.
+///
+/// ```
+/// use rouge_measure::km_uncertainty::propagate_spectrum;
+/// use rouge_measure::Spectrum;
+///
+/// let c = Spectrum::constant;
+/// let u = propagate_spectrum(&c(0.5), &c(0.498), &c(0.03), 0.05, &c(0.001), 0.0, 0.0).expect("in the domain");
+/// assert_eq!(u.ill_conditioned().len(), 81);
+/// let e = propagate_spectrum(&c(0.5), &c(0.6), &c(0.03), 0.05, &c(0.001), 0.0, 0.0).expect_err("R beyond R∞");
+/// assert_eq!(e.0, 380.0);
+/// ```
 pub fn propagate_spectrum(
     r_inf: &Spectrum,
     r: &Spectrum,
@@ -408,6 +424,69 @@ pub fn optimal_thickness_mm(
     let (x, v) = golden_section(f, lo, hi, 1e-4);
     let (x, v) = if v <= values[best] { (x, v) } else { (grid[best], values[best]) };
     Some(ThicknessDesign { thickness_mm: x.exp(), relative_uncertainty: v })
+}
+
+impl Preset {
+    /// The standard uncertainties of S and K from the preset's own measurement
+    /// ([`crate::km_uncertainty::propagate_spectrum`]; through the Saunderson correction's
+    /// derivative when one was applied), stored in the preset and returned per wavelength.
+    /// Errors: no measurement, or a wavelength without a solution (named).
+    ///
+    /// # Examples
+    ///
+    /// The demo measurement (Ivory) read to 0.001 with D known to 0.5 µm: S to a few per cent
+    /// at 550 nm, and the preset keeps it.
+    ///
+    /// ```
+    /// use rouge_measure::import::{ImportOptions, Kind, read_measurement};
+    /// use rouge_measure::{Extrapolation, Preset, Spectrum};
+    ///
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/measurements/foundation_02_ivory.csv");
+    /// let m = read_measurement(&path, &ImportOptions::default())?;
+    /// let w = m.to_working_grid(Extrapolation::Refuse)?;
+    /// let (mut preset, _) = Preset::from_measurement(&m, &w, "Ivory", Kind::Foundation, 0.02, None)?;
+    /// let u = preset.estimate_uncertainty("benchtop", &Spectrum::constant(0.001), 0.0005, 0.0)?;
+    /// let at_550 = u.per_wavelength[34];
+    /// assert!(at_550.u_s_per_mm / at_550.s_per_mm < 0.05, "{at_550:?}");
+    /// assert!(preset.uncertainty.is_some());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn estimate_uncertainty(
+        &mut self,
+        source: &str,
+        u_reflectance: &Spectrum,
+        u_thickness_mm: f64,
+        reading_correlation: f64,
+    ) -> Result<SpectralUncertainty, PresetError> {
+        let name = self.name.clone();
+        let m = self.measurement.as_ref().ok_or_else(|| PresetError::Invalid {
+            path: name.clone(),
+            message: "no source measurement: the uncertainty of S and K needs the readings".into(),
+        })?;
+        let internal = |v: &[f64]| -> Spectrum {
+            Spectrum(std::array::from_fn(|i| m.saunderson.map_or(v[i], |c| c.to_internal(v[i]))))
+        };
+        let (r_inf, r, rg) = (internal(&m.r_inf), internal(&m.r), internal(&m.rg));
+        // u of an internal reading = u of the measured one × d(internal)/d(measured); the three
+        // readings differ, so the largest factor stands for all (conservative).
+        let u_in = Spectrum(std::array::from_fn(|i| {
+            let f = m.saunderson.map_or(1.0, |c| {
+                [m.r_inf[i], m.r[i], m.rg[i]].into_iter().map(|v| c.to_internal_derivative(v)).fold(0.0, f64::max)
+            });
+            u_reflectance.0[i] * f
+        }));
+        let u = propagate_spectrum(&r_inf, &r, &rg, self.thickness_mm, &u_in, u_thickness_mm, reading_correlation)
+            .map_err(|(wavelength_nm, error)| PresetError::Inversion { path: name.clone(), wavelength_nm, error })?;
+        self.uncertainty = Some(PresetUncertainty {
+            source: source.to_string(),
+            u_reflectance: u_reflectance.0.to_vec(),
+            u_thickness_mm,
+            reading_correlation,
+            u_s_per_mm: u.u_s().0.to_vec(),
+            u_k_per_mm: u.u_k().0.to_vec(),
+        });
+        Ok(u)
+    }
 }
 
 #[cfg(test)]

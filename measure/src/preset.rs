@@ -10,7 +10,6 @@ use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
 use crate::error::LocatedError;
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
-use crate::km_uncertainty::{SpectralUncertainty, propagate_spectrum};
 use crate::layer_table::{TableLayer, layer_rgb_at};
 use crate::spectrum::{Spectrum, WORKING_LEN, working_wavelength_nm, working_wavelengths_nm};
 use serde::{Deserialize, Serialize};
@@ -280,46 +279,6 @@ impl Preset {
             derived: derive_tables(s, k),
             uncertainty: None,
         }
-    }
-
-    /// The standard uncertainties of S and K from the preset's own measurement
-    /// ([`crate::km_uncertainty::propagate_spectrum`]; through the Saunderson correction's
-    /// derivative when one was applied), stored in the preset and returned per wavelength.
-    /// Errors: no measurement, or a wavelength without a solution (named).
-    pub fn estimate_uncertainty(
-        &mut self,
-        source: &str,
-        u_reflectance: &Spectrum,
-        u_thickness_mm: f64,
-        reading_correlation: f64,
-    ) -> Result<SpectralUncertainty, PresetError> {
-        let name = self.name.clone();
-        let m = self.measurement.as_ref().ok_or_else(|| {
-            invalid(&name, "no source measurement: the uncertainty of S and K needs the readings".into())
-        })?;
-        let internal = |v: &[f64]| -> Spectrum {
-            Spectrum(std::array::from_fn(|i| m.saunderson.map_or(v[i], |c| c.to_internal(v[i]))))
-        };
-        let (r_inf, r, rg) = (internal(&m.r_inf), internal(&m.r), internal(&m.rg));
-        // u of an internal reading = u of the measured one × d(internal)/d(measured); the three
-        // readings differ, so the largest factor stands for all (conservative).
-        let u_in = Spectrum(std::array::from_fn(|i| {
-            let f = m.saunderson.map_or(1.0, |c| {
-                [m.r_inf[i], m.r[i], m.rg[i]].into_iter().map(|v| c.to_internal_derivative(v)).fold(0.0, f64::max)
-            });
-            u_reflectance.0[i] * f
-        }));
-        let u = propagate_spectrum(&r_inf, &r, &rg, self.thickness_mm, &u_in, u_thickness_mm, reading_correlation)
-            .map_err(|(wavelength_nm, error)| PresetError::Inversion { path: name.clone(), wavelength_nm, error })?;
-        self.uncertainty = Some(PresetUncertainty {
-            source: source.to_string(),
-            u_reflectance: u_reflectance.0.to_vec(),
-            u_thickness_mm,
-            reading_correlation,
-            u_s_per_mm: u.u_s().0.to_vec(),
-            u_k_per_mm: u.u_k().0.to_vec(),
-        });
-        Ok(u)
     }
 
     /// Inverts a measurement into a preset and reports how well S and K reproduce it.

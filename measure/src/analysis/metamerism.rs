@@ -92,6 +92,16 @@ pub struct ReferenceMatch {
 }
 
 /// How well the pair matches under `reference` (ΔE*ab and ΔE2000).
+///
+/// # Examples
+///
+/// ```
+/// use rouge_measure::analysis::metamerism::reference_match;
+/// use rouge_measure::{Spectrum, Viewing};
+///
+/// let m = reference_match(&Spectrum::constant(0.18), &Spectrum::constant(0.18), Viewing::D65_1931);
+/// assert_eq!((m.delta_e_ab, m.delta_e_2000), (0.0, 0.0));
+/// ```
 pub fn reference_match(standard: &Spectrum, sample: &Spectrum, reference: Viewing) -> ReferenceMatch {
     let c = Colorimeter::get(reference);
     let std = c.lab(&c.xyz(standard)).lab;
@@ -179,6 +189,18 @@ pub fn metamerism_index(
 /// The illuminant metamerism index `M_t` for each test illuminant and each correction (the
 /// observer of `reference` throughout), in the order given: the table `rouge analyze
 /// metamerism` prints.
+///
+/// # Examples
+///
+/// ```
+/// use rouge_measure::analysis::metamerism::{Correction, illuminant_metamerism};
+/// use rouge_measure::{Illuminant, Spectrum, Viewing};
+///
+/// let (a, b) = (Spectrum::constant(0.3), Spectrum::from_fn(|nm| 0.3 + 0.05 * (nm / 20.0).sin()));
+/// let rows = illuminant_metamerism(&a, &b, Viewing::D65_1931, &[Illuminant::A, Illuminant::Fl11], &Correction::ALL)?;
+/// assert_eq!(rows.len(), 6);
+/// # Ok::<(), rouge_measure::analysis::AnalysisError>(())
+/// ```
 pub fn illuminant_metamerism(
     standard: &Spectrum,
     sample: &Spectrum,
