@@ -126,6 +126,11 @@ impl InstrumentClass {
         Self::ALL.into_iter().find(|c| c.name().eq_ignore_ascii_case(s.trim()))
     }
 
+    /// How a preset names this default (`PresetUncertainty::source`).
+    pub fn source_text(self) -> String {
+        format!("± {} ({} instrument class default)", self.u_reflectance(), self.name())
+    }
+
     /// The default repeatability, absolute reflectance.
     pub fn u_reflectance(self) -> f64 {
         match self {
@@ -135,6 +140,11 @@ impl InstrumentClass {
         }
     }
 }
+
+/// The thickness's standard uncertainty `rouge import` and Python's `Preset.from_measurement`
+/// assume unless told (0.5 µm, mm): Rouge's choice, about what a wet-film applicator's gap or a
+/// profilometer gives on a 10-20 µm film.
+pub const DEFAULT_U_THICKNESS_MM: f64 = 0.0005;
 
 /// S and K with their standard uncertainties at one wavelength.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

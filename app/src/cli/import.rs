@@ -5,7 +5,8 @@ use clap::Args;
 use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames, SpectralInput};
 use rouge_measure::km::{self, Saunderson};
 use rouge_measure::km_uncertainty::{
-    ILL_CONDITIONED, InstrumentClass, SpectralUncertainty, ThicknessDesign, design_criterion, optimal_thickness_mm,
+    DEFAULT_U_THICKNESS_MM, ILL_CONDITIONED, InstrumentClass, SpectralUncertainty, ThicknessDesign, design_criterion,
+    optimal_thickness_mm,
 };
 use rouge_measure::preset::{ImportReport, Preset};
 use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum, Spectrum};
@@ -90,7 +91,7 @@ pub struct CommonArgs {
     #[arg(long = "u-reflectance")]
     pub u_reflectance: Option<f64>,
     /// Standard uncertainty of the thin layer's thickness, µm.
-    #[arg(long = "u-thickness-um", default_value_t = 0.5)]
+    #[arg(long = "u-thickness-um", default_value_t = DEFAULT_U_THICKNESS_MM * 1e3)]
     pub u_thickness_um: f64,
     /// Correlation coefficient between the three readings (a shared calibration error), 0-1.
     #[arg(long = "reading-correlation", default_value_t = 0.0)]
@@ -290,7 +291,7 @@ fn uncertainty(
         Some(u) => bail!("--u-reflectance = {u} must be finite and ≥ 0"),
         None => {
             let c = common.instrument_class;
-            (c.u_reflectance(), format!("± {} ({} instrument class default)", c.u_reflectance(), c.name()))
+            (c.u_reflectance(), c.source_text())
         }
     };
     let u_thickness_mm = match common.u_thickness_um {
