@@ -175,3 +175,18 @@ def test_correct_batch_brings_a_weak_batch_back(repo_root) -> None:
     assert float(colour.delta_E(lab(made), lab(standard), method="CIE 2000")) < 0.1
     with pytest.raises(ValueError, match="both skin and thickness_mm"):
         rouge.correct_batch_KubelkaMunk(lib, recipe, np.asarray(batch), np.asarray(standard), skin=np.full(81, 0.3))
+
+
+@pytest.mark.parametrize("metric,method,kw", [("cmc", "CMC", dict(l=2, c=1)), ("de2000", "CIE 2000", {}),
+                                              ("ab", "CIE 1976", {})])
+def test_cli_qc_differences_match_colour_science(rouge_bin, tmp_path, metric, method, kw) -> None:
+    out = tmp_path / "qc.json"
+    subprocess.run([rouge_bin, "qc", "foundation_03_sand", "foundation_02_ivory", "foundation_04_caramel",
+                    "data/skin/colorchecker_skin.csv", "--metric", metric, "--tolerance", "5", "--json", str(out)],
+                   check=True, capture_output=True, cwd=str(__import__("pathlib").Path(__file__).resolve().parent.parent))
+    qc = json.loads(out.read_text())
+    assert len(qc["batches"]) == 4
+    for b in qc["batches"]:
+        ref = float(colour.delta_E(np.array(qc["standard_lab"]), np.array(b["lab"]), method=method, **kw))
+        assert b["judgement"]["delta_e"] == pytest.approx(ref, abs=1e-9), b["batch"]
+        assert b["judgement"]["pass"] == (ref <= 5.0)

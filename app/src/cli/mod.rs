@@ -8,5 +8,6 @@ pub mod color;
 pub mod export;
 pub mod import;
 pub mod km;
+pub mod qc;
 pub mod render;
 pub mod skin;

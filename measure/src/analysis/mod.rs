@@ -14,6 +14,7 @@ pub mod matching;
 pub mod metamerism;
 pub mod mixing;
 pub mod optimize;
+pub mod qc;
 pub mod skin;
 
 use crate::colorimetry::Colorimeter;
