@@ -19,7 +19,7 @@ pub fn delta_e_1976_raw(lab1: [f64; 3], lab2: [f64; 3]) -> f64 {
 
 /// CIEDE2000 colour difference (\[CIE142\]; implementation notes of \[Sharma2005\]:
 /// hue angles in degrees in [0, 360), the mean hue taken on the shorter arc, `h' = 0` for a
-/// neutral colour). Both colours must share a [`Viewing`].
+/// neutral colour). Both colours must share a [`Viewing`](super::Viewing).
 ///
 /// # Examples
 ///
