@@ -35,7 +35,7 @@ import gen_cie
 ATOL = 1e-6
 SHAPE = colour.SpectralShape(380, 780, 5)
 WL = np.arange(380, 781, 5)
-ILLUMINANTS = ("D65", "D55", "D50", "A", "E")
+ILLUMINANTS = gen_cie.ILLUMINANTS
 OBSERVERS = {
     "1931": "CIE 1931 2 Degree Standard Observer",
     "1964": "CIE 1964 10 Degree Standard Observer",

@@ -69,8 +69,8 @@ def test_spectral_distributions_on_their_own_grid():
     assert rouge.sd_to_XYZ(sd.copy().align(colour.SpectralShape(400, 700, 10)), extrapolate=True).shape == (3,)
     with pytest.raises(ValueError, match="wavelengths="):
         rouge.sd_to_XYZ(np.ones(80))
-    with pytest.raises(ValueError, match="unknown illuminant `F2`"):
-        rouge.sd_to_XYZ(np.ones(81), "F2")
+    with pytest.raises(ValueError, match="unknown illuminant `F3`"):
+        rouge.sd_to_XYZ(np.ones(81), "F3")
 
 
 @pytest.fixture

@@ -77,6 +77,9 @@ enum Command {
     /// (tables for people, --json and --plot; docs/FORMULATION.md).
     #[command(subcommand)]
     Analyze(cli::analyze::AnalyzeCommand),
+    /// Quality control: production batches against a standard, pass/fail in ΔE2000, CMC(l:c)
+    /// or ΔE*ab, with 555 shade numbers; a batch report as JSON.
+    Qc(cli::qc::QcArgs),
     /// The spectral skin model: fit measured skin spectra (melanin, blood, scattering), the
     /// forward model, and the named skin tones (docs/SKIN.md).
     #[command(subcommand)]
@@ -126,6 +129,7 @@ fn main() -> ExitCode {
         Command::Export(cmd) => cli::export::run(&cmd),
         Command::Bench(cmd) => bench::run(&cmd),
         Command::Analyze(cmd) => cli::analyze::run(&cmd),
+        Command::Qc(args) => cli::qc::run(&args),
         Command::Skin(cmd) => cli::skin::run(&cmd),
     };
     match result {

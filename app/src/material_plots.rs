@@ -44,14 +44,29 @@ fn curve(name: &str, rgb: [u8; 3], points: Vec<[f64; 2]>) -> Curve {
     Curve { name: name.to_string(), rgb, dashed: false, points }
 }
 
-/// A panel of one Kubelka-Munk coefficient per wavelength, 1/mm, from 0.
-fn coefficient(title: &'static str, name: &str, y_label: &'static str, rgb: [u8; 3], points: Vec<[f64; 2]>) -> Panel {
-    Panel { title, x_label: "wavelength (nm)", y_label, curves: vec![curve(name, rgb, points)], y_include: [0.0, 0.0] }
+/// A panel of one Kubelka-Munk coefficient per wavelength, 1/mm, from 0; with its standard
+/// uncertainty, the band ±2u (a 95 % interval for a normal distribution) as two dashed edges
+/// (the lower one held at 0).
+fn coefficient(
+    title: &'static str,
+    name: &str,
+    y_label: &'static str,
+    rgb: [u8; 3],
+    points: Vec<[f64; 2]>,
+    u: Option<&[f64]>,
+) -> Panel {
+    let mut curves = vec![curve(name, rgb, points.clone())];
+    if let Some(u) = u {
+        let edge = |sign: f64| points.iter().zip(u).map(|(p, u)| [p[0], (p[1] + sign * 2.0 * u).max(0.0)]).collect();
+        curves.push(Curve { dashed: true, ..curve(&format!("{name} ± 2u"), rgb, edge(1.0)) });
+        curves.push(Curve { dashed: true, ..curve("", rgb, edge(-1.0)) });
+    }
+    Panel { title, x_label: "wavelength (nm)", y_label, curves, y_include: [0.0, 0.0] }
 }
 
 /// The panels of `preset`: reflectances (measured R∞, R and Rg when the preset keeps its
 /// measurement, R∞ from S and K, and `r_from_s_k`, R re-computed over the background, when
-/// given), S, K, and R0(X), T(X) of the renderer's tables in linear sRGB.
+/// given), S and K (with their ±2u band when the preset carries its uncertainty), and R0(X), T(X) of the renderer's tables in linear sRGB.
 pub fn material_panels(preset: &Preset, r_from_s_k: Option<&[f64]>) -> Vec<Panel> {
     let wl = &preset.wavelengths_nm;
     let series = |v: &[f64]| -> Vec<[f64; 2]> { wl.iter().zip(v).map(|(&x, &y)| [x, y]).collect() };
@@ -66,6 +81,7 @@ pub fn material_panels(preset: &Preset, r_from_s_k: Option<&[f64]>) -> Vec<Panel
     if let Some(r) = r_from_s_k {
         reflectance.push(Curve { dashed: true, ..curve("R from S, K", SERIES[1], series(r)) });
     }
+    let u = preset.uncertainty.as_ref();
     let xs = table_thicknesses_mm();
     let mut rt = Vec::new();
     for (c, (name, rgb)) in CHANNELS.into_iter().enumerate() {
@@ -82,8 +98,22 @@ pub fn material_panels(preset: &Preset, r_from_s_k: Option<&[f64]>) -> Vec<Panel
             curves: reflectance,
             y_include: [0.0, 1.0],
         },
-        coefficient("S, scattering", "S", "S (1/mm)", SERIES[4], series(&preset.s_per_mm)),
-        coefficient("K, absorption", "K", "K (1/mm)", SERIES[5], series(&preset.k_per_mm)),
+        coefficient(
+            "S, scattering",
+            "S",
+            "S (1/mm)",
+            SERIES[4],
+            series(&preset.s_per_mm),
+            u.map(|u| &u.u_s_per_mm[..]),
+        ),
+        coefficient(
+            "K, absorption",
+            "K",
+            "K (1/mm)",
+            SERIES[5],
+            series(&preset.k_per_mm),
+            u.map(|u| &u.u_k_per_mm[..]),
+        ),
         Panel {
             title: "R0(X) solid, T(X) dashed, linear sRGB",
             x_label: "thickness X (mm)",

@@ -345,7 +345,7 @@ pub fn render_panels(title: &str, swatch: Option<[u8; 3]>, panels: &[Panel]) -> 
         // The legend: a line sample and the label per curve, wrapped within the panel.
         let (x0, x_end) = (ox + MARGIN.0, ox + PANEL_W - MARGIN.1);
         let (mut x, mut y) = (x0, oy + PANEL_H + 6.0);
-        for curve in &panel.curves {
+        for curve in panel.curves.iter().filter(|c| !c.name.is_empty()) {
             let w = 30.0 + c.text_width(&curve.name, 11.0);
             if x + w > x_end && x > x0 {
                 (x, y) = (x0, y + 16.0);

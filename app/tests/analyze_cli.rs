@@ -1,4 +1,4 @@
-//! `rouge analyze coverage|match|mix` through the binary: tables, JSON, PNG plots, and errors
+//! `rouge analyze coverage|match|mix|metamerism|correct` through the binary: tables, JSON, PNG plots, and errors
 //! that name the file, line and column.
 
 use std::path::Path;
@@ -93,4 +93,36 @@ fn bad_inputs_are_named() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("expected three finite numbers"));
     let o = rouge(&["analyze", "match", "foundation_01_porcelain", "--thickness-um", "20:10"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("the maximum is below the minimum"));
+}
+
+#[test]
+fn metamerism_and_correct_write_json_and_refuse_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("m.json");
+    let args = ["analyze", "metamerism", "foundation_03_sand", "foundation_02_ivory", "--test", "A,F11"];
+    let out = stdout(&rouge(&[&args[..], &["--json", json.to_str().unwrap()]].concat()));
+    assert!(out.contains("FL11 / CIE 1931") && out.contains("D65 / CIE 1964"), "{out}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    // Two test illuminants × three corrections, and the observer index with three corrections.
+    assert_eq!(v["illuminant"].as_array().unwrap().len(), 6);
+    assert_eq!(v["observer"].as_array().unwrap().len(), 3);
+    // A spectrum file as the batch (one of several, by name) against the recipe's prediction.
+    let out = stdout(&rouge(&[
+        "analyze",
+        "correct",
+        "--colorant",
+        "foundation_01_porcelain,foundation_04_caramel",
+        "--recipe",
+        "0.4,0.6",
+        "--batch",
+        "data/skin/colorchecker_skin.csv#light_skin",
+    ]));
+    assert!(out.contains("predicted after correction"), "{out}");
+    let o =
+        rouge(&["analyze", "correct", "--colorant", "foundation_01_porcelain", "--recipe", "0.4,0.6", "--batch", "x"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("2 amounts for 1 colorants"));
+    let o = rouge(&["analyze", "metamerism", "foundation_03_sand", "data/skin/colorchecker_skin.csv"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("pick one"), "{}", String::from_utf8_lossy(&o.stderr));
 }

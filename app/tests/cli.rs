@@ -62,7 +62,7 @@ fn errors_exit_2_with_a_message() {
         &["km", "stack", "--r", "0.1,0.2", "--t", "0.5"],
         &["km", "stack", "--r", "0.7", "--t", "0.5"],
         &["color", "does/not/exist.csv"],
-        &["color", "data/skin/colorchecker_skin.csv", "--illuminant", "F2"],
+        &["color", "data/skin/colorchecker_skin.csv", "--illuminant", "F3"],
     ] {
         let o = rouge(args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stdout(&o));

@@ -528,6 +528,26 @@ impl Saunderson {
         r.clamp(0.0, 1.0)
     }
 
+    /// `dR_i/dR_m`, the derivative of [`Saunderson::to_internal`]:
+    /// `A / (A + K2 (R_m − fK1))²` with `A = (1 − K1)(1 − K2)` (0 where the result is clamped),
+    /// what carries a reading's uncertainty to the internal reflectance.
+    ///
+    /// ```
+    /// use rouge_measure::Saunderson;
+    ///
+    /// let c = Saunderson::from_refractive_index(1.5, 0.6, true)?;
+    /// let h = 1e-6;
+    /// let numeric = (c.to_internal(0.3 + h) - c.to_internal(0.3 - h)) / (2.0 * h);
+    /// assert!((c.to_internal_derivative(0.3) - numeric).abs() < 1e-8);
+    /// # Ok::<(), rouge_measure::KmError>(())
+    /// ```
+    pub fn to_internal_derivative(&self, r_measured: f64) -> f64 {
+        let x = r_measured - self.f_k1();
+        let a = (1.0 - self.k1) * (1.0 - self.k2);
+        let r = x / (a + self.k2 * x);
+        if (0.0..=1.0).contains(&r) { a / (a + self.k2 * x).powi(2) } else { 0.0 }
+    }
+
     /// Internal reflectance → measured reflectance.
     pub fn to_measured(&self, r_internal: f64) -> f64 {
         self.f_k1() + (1.0 - self.k1) * (1.0 - self.k2) * r_internal / (1.0 - self.k2 * r_internal)

@@ -18,6 +18,7 @@ pub mod error;
 pub mod import;
 pub mod km;
 pub mod km_batch;
+pub mod km_uncertainty;
 pub mod layer_table;
 pub mod preset;
 pub mod skin;

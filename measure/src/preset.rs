@@ -112,6 +112,28 @@ pub struct Preset {
     pub specular: Specular,
     /// Renderer tables derived from S and K.
     pub derived: Derived,
+    /// Standard uncertainties of S and K (optional: presets written before it load unchanged).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertainty: Option<PresetUncertainty>,
+}
+
+/// How certain a preset's S and K are (\[GUM\] linear propagation, `km_uncertainty`), and what
+/// was assumed of the measurement to say so.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PresetUncertainty {
+    /// Where the readings' uncertainty came from (an instrument class, a flag, the file).
+    pub source: String,
+    /// Standard uncertainty of each reading (R∞, R, Rg), absolute reflectance, per wavelength.
+    pub u_reflectance: Vec<f64>,
+    /// Standard uncertainty of the thickness, mm.
+    pub u_thickness_mm: f64,
+    /// Correlation coefficient between the readings.
+    pub reading_correlation: f64,
+    /// u(S) per wavelength, mm⁻¹.
+    pub u_s_per_mm: Vec<f64>,
+    /// u(K) per wavelength, mm⁻¹.
+    pub u_k_per_mm: Vec<f64>,
 }
 
 /// Errors of building, loading or saving presets.
@@ -255,6 +277,7 @@ impl Preset {
             measurement: None,
             specular: Specular::default_for(kind),
             derived: derive_tables(s, k),
+            uncertainty: None,
         }
     }
 
@@ -431,6 +454,36 @@ impl Preset {
                         format!("`measurement.{field}` at {} nm is {v}: outside [0, 1.5]", working_wavelength_nm(i)),
                     ));
                 }
+            }
+        }
+        if let Some(u) = &self.uncertainty {
+            for (field, values) in
+                [("u_reflectance", &u.u_reflectance), ("u_s_per_mm", &u.u_s_per_mm), ("u_k_per_mm", &u.u_k_per_mm)]
+            {
+                if values.len() != WORKING_LEN {
+                    return Err(invalid(
+                        path,
+                        format!("`uncertainty.{field}` has {} values, expected {WORKING_LEN}", values.len()),
+                    ));
+                }
+                if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(**v >= 0.0 && v.is_finite())) {
+                    return Err(invalid(
+                        path,
+                        format!(
+                            "`uncertainty.{field}` at {} nm is {v}: must be finite and ≥ 0",
+                            working_wavelength_nm(i)
+                        ),
+                    ));
+                }
+            }
+            if !(u.u_thickness_mm >= 0.0
+                && u.u_thickness_mm.is_finite()
+                && (0.0..=1.0).contains(&u.reading_correlation))
+            {
+                return Err(invalid(
+                    path,
+                    "`uncertainty.u_thickness_mm` must be ≥ 0 and `reading_correlation` in [0, 1]".into(),
+                ));
             }
         }
         let d = &self.derived;

@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames};
 use rouge_measure::km::Saunderson;
+use rouge_measure::km_uncertainty::{DEFAULT_U_THICKNESS_MM, InstrumentClass};
 use rouge_measure::preset::{Preset, PresetError};
 use rouge_measure::spectrum::{Extrapolation, SampledSpectrum, Spectrum, WORKING_LEN};
 use std::path::{Path, PathBuf};
@@ -277,8 +278,12 @@ impl PyPreset {
     /// `(preset, report)`; the report (a dict) gives S and K ranges, the largest reconstruction
     /// errors and ΔE2000. `thickness_mm`, `name`, `kind` default to the file's; `saunderson`
     /// (a dict `{"n": 1.5, "K2": 0.6, "specular_included": True}`) corrects the surface first.
+    /// The preset keeps the uncertainty of S and K as `rouge import` computes it: readings to
+    /// `u_reflectance` (default the benchtop class's 0.001), thickness to `u_thickness_mm`.
     #[staticmethod]
-    #[pyo3(signature = (measurement, *, thickness_mm=None, name=None, kind=None, saunderson=None, extrapolate=false))]
+    #[pyo3(signature = (measurement, *, thickness_mm=None, name=None, kind=None, saunderson=None, extrapolate=false,
+        u_reflectance=None, u_thickness_mm=DEFAULT_U_THICKNESS_MM))]
+    #[allow(clippy::too_many_arguments)]
     fn from_measurement<'py>(
         py: Python<'py>,
         measurement: &PyMeasurement,
@@ -287,6 +292,8 @@ impl PyPreset {
         kind: Option<&str>,
         saunderson: Option<&Bound<'py, PyDict>>,
         extrapolate: bool,
+        u_reflectance: Option<f64>,
+        u_thickness_mm: f64,
     ) -> PyResult<(PyPreset, Bound<'py, PyAny>)> {
         let m = &measurement.inner;
         let working = m.to_working_grid(extrapolation(extrapolate)).map_err(|e| import_error(py, e))?;
@@ -309,8 +316,15 @@ impl PyPreset {
                 Some(c)
             }
         };
-        let (inner, report) = py
+        let (mut inner, report) = py
             .detach(|| Preset::from_measurement(m, &working, &name, kind, thickness_mm, saunderson))
+            .map_err(|e| preset_error(py, e))?;
+        let (u, source) = match u_reflectance {
+            None => (InstrumentClass::Benchtop.u_reflectance(), InstrumentClass::Benchtop.source_text()),
+            Some(u) => (u, format!("± {u} (u_reflectance)")),
+        };
+        inner
+            .estimate_uncertainty(&source, &Spectrum::constant(u), u_thickness_mm, 0.0)
             .map_err(|e| preset_error(py, e))?;
         Ok((PyPreset { inner }, json_to_py(py, &report)?))
     }

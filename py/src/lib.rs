@@ -8,6 +8,7 @@ mod analysis;
 mod arrays;
 mod color;
 mod errors;
+mod formulate;
 mod io;
 mod km;
 mod skin;
@@ -21,6 +22,7 @@ fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     color::register(m)?;
     io::register(m)?;
     analysis::register(m)?;
+    formulate::register(m)?;
     skin::register(m)?;
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! `rouge analyze coverage|match|mix`: what formulators ask of S and K (docs/FORMULATION.md).
+//! `rouge analyze coverage|match|mix|metamerism|correct`: what formulators ask of S and K (docs/FORMULATION.md).
 //! The analyses live in `rouge_measure::analysis`; this module reads the inputs, prints the
 //! tables for people, writes `--json` for machines and `--plot` PNGs (`analyze_plot.rs`).
 
@@ -28,6 +28,13 @@ pub enum AnalyzeCommand {
     /// Which mixture of 2-4 base presets reaches a target colour (Duncan's rule, least squares
     /// in ΔE2000 over concentrations ≥ 0 summing to 1).
     Mix(MixArgs),
+    /// How far a match under one light comes apart under others: the special metamerism index
+    /// (CIE 15:2018 §9, ISO 18314-4) per test illuminant and for a change of observer, with the
+    /// additive and multiplicative corrections, as ΔE*ab and ΔE2000.
+    Metamerism(crate::cli::analyze_metamerism::MetamerismArgs),
+    /// Batch correction: the amounts of the recipe's colorants that bring a measured production
+    /// batch back to the standard (the batch's model error carried, Gauss-Newton on CIELAB).
+    Correct(crate::cli::analyze_correct::CorrectArgs),
 }
 
 /// Options every analysis shares.
@@ -44,7 +51,7 @@ pub struct CommonArgs {
     /// Hold the end values of --skin spectra that do not cover 380-780 nm (e.g. 360-740 nm data).
     #[arg(long)]
     pub extrapolate: bool,
-    /// Illuminant: D65, D55, D50, A or E.
+    /// Illuminant: D65, D55, D50, A, E, FL2, FL7, FL11 (or F11) or LED-B3.
     #[arg(long, default_value = "D65", value_parser = parse_illuminant)]
     pub illuminant: Illuminant,
     /// Observer: 1931 (2°) or 1964 (10°).
@@ -147,11 +154,13 @@ pub fn run(cmd: &AnalyzeCommand) -> Result<()> {
         AnalyzeCommand::Coverage(args) => run_coverage(args),
         AnalyzeCommand::Match(args) => run_match(args),
         AnalyzeCommand::Mix(args) => run_mix(args),
+        AnalyzeCommand::Metamerism(args) => crate::cli::analyze_metamerism::run(args),
+        AnalyzeCommand::Correct(args) => crate::cli::analyze_correct::run(args),
     }
 }
 
 /// A preset by built-in name (with or without `builtin:`) or by file.
-fn load_layer(spec: &str) -> Result<(Preset, Layer)> {
+pub(crate) fn load_layer(spec: &str) -> Result<(Preset, Layer)> {
     let name = spec.strip_prefix("builtin:").unwrap_or(spec);
     let preset = match rouge_model::look::builtin_preset(name) {
         Some(p) if !Path::new(spec).exists() => p,
@@ -166,7 +175,7 @@ fn load_layer(spec: &str) -> Result<(Preset, Layer)> {
     Ok((preset, layer))
 }
 
-fn skins(common: &CommonArgs) -> Result<Vec<(String, Spectrum)>> {
+pub(crate) fn skins(common: &CommonArgs) -> Result<Vec<(String, Spectrum)>> {
     let mut skins = match &common.skin {
         None if !common.skin_tone.is_empty() => vec![],
         None => embedded_skins()?,
@@ -191,11 +200,11 @@ fn skins(common: &CommonArgs) -> Result<Vec<(String, Spectrum)>> {
     Ok(skins)
 }
 
-fn viewing(common: &CommonArgs) -> Viewing {
+pub(crate) fn viewing(common: &CommonArgs) -> Viewing {
     Viewing { illuminant: common.illuminant, observer: common.observer }
 }
 
-fn write_json(path: &Option<PathBuf>, value: &serde_json::Value) -> Result<()> {
+pub(crate) fn write_json(path: &Option<PathBuf>, value: &serde_json::Value) -> Result<()> {
     if let Some(p) = path {
         std::fs::write(p, format!("{value:#}\n")).with_context(|| format!("cannot write {}", p.display()))?;
     }

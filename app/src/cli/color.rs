@@ -13,7 +13,7 @@ pub struct ColorArgs {
     /// Spectra: a CSV with `wavelength_nm` and one column per sample (or one sample per row), or
     /// a CGATS file (X-Rite, i1Profiler, ArgyllCMS), read as `rouge import` reads them.
     pub file: PathBuf,
-    /// Illuminant: D65, D55, D50, A or E.
+    /// Illuminant: D65, D55, D50, A, E, FL2, FL7, FL11 (or F11) or LED-B3.
     #[arg(long, default_value = "D65", value_parser = parse_illuminant)]
     pub illuminant: Illuminant,
     /// Observer: 1931 (2°) or 1964 (10°).
@@ -25,7 +25,8 @@ pub struct ColorArgs {
 }
 
 pub fn parse_illuminant(s: &str) -> Result<Illuminant, String> {
-    Illuminant::parse(s).ok_or_else(|| format!("unknown illuminant `{s}` (D65, D55, D50, A or E)"))
+    Illuminant::parse(s)
+        .ok_or_else(|| format!("unknown illuminant `{s}` (D65, D55, D50, A, E, FL2, FL7, FL11, LED-B3)"))
 }
 
 pub fn parse_observer(s: &str) -> Result<Observer, String> {

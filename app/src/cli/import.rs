@@ -4,8 +4,12 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use rouge_measure::import::{self, ImportOptions, Kind, Measurement, SampleNames, SpectralInput};
 use rouge_measure::km::{self, Saunderson};
+use rouge_measure::km_uncertainty::{
+    DEFAULT_U_THICKNESS_MM, ILL_CONDITIONED, InstrumentClass, SpectralUncertainty, ThicknessDesign, design_criterion,
+    optimal_thickness_mm,
+};
 use rouge_measure::preset::{ImportReport, Preset};
-use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum};
+use rouge_measure::spectrum::{Extrapolation, ResampleMethod, SampledSpectrum, Spectrum};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -79,6 +83,23 @@ pub struct CommonArgs {
     /// Print the report as JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// The instrument's class, for its documented default repeatability (one standard deviation
+    /// of a reading, absolute reflectance): benchtop 0.001, portable 0.002, imaging 0.01.
+    #[arg(long = "instrument-class", default_value = "benchtop", value_parser = parse_class)]
+    pub instrument_class: InstrumentClass,
+    /// The readings' repeatability, absolute reflectance (overrides --instrument-class).
+    #[arg(long = "u-reflectance")]
+    pub u_reflectance: Option<f64>,
+    /// Standard uncertainty of the thin layer's thickness, µm.
+    #[arg(long = "u-thickness-um", default_value_t = DEFAULT_U_THICKNESS_MM * 1e3)]
+    pub u_thickness_um: f64,
+    /// Correlation coefficient between the three readings (a shared calibration error), 0-1.
+    #[arg(long = "reading-correlation", default_value_t = 0.0)]
+    pub reading_correlation: f64,
+}
+
+fn parse_class(s: &str) -> Result<InstrumentClass, String> {
+    InstrumentClass::parse(s).ok_or_else(|| format!("unknown instrument class `{s}` (benchtop, portable, imaging)"))
 }
 
 fn png_path(s: &str) -> Result<PathBuf, String> {
@@ -148,7 +169,8 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
         None => None,
         Some(n) => Some(Saunderson::from_refractive_index(n, common.saunderson_k2, !common.specular_excluded)?),
     };
-    let (preset, report) = Preset::from_measurement(m, &working, &name, kind, thickness_mm, saunderson)?;
+    let (mut preset, report) = Preset::from_measurement(m, &working, &name, kind, thickness_mm, saunderson)?;
+    let unc = uncertainty(&mut preset, common, &working, saunderson)?;
     if let Some(out) = out {
         preset.save(out)?;
     }
@@ -173,12 +195,119 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
             "thickness_mm": thickness_mm,
             "saunderson": saunderson,
             "report": report,
+            "uncertainty": {
+                "source": unc.source, "u_thickness_mm": unc.u_thickness_mm,
+                "relative_u_s": unc.relative(true), "relative_u_k": unc.relative(false),
+                "ill_conditioned_nm": unc.spectral.ill_conditioned(), "ill_conditioned_above": ILL_CONDITIONED,
+                "criterion_at_measured_thickness": unc.criterion_now, "best_thickness": unc.design,
+            },
             "preset": out.map(|p| p.display().to_string()),
         });
         crate::emit(&serde_json::to_string_pretty(&v)?)
     } else {
-        crate::emit(&report_text(m, &working, &preset, &report, saunderson, out))
+        let mut text = report_text(m, &working, &preset, &report, saunderson, out);
+        text.push('\n');
+        text.push_str(&unc.text(preset.thickness_mm));
+        crate::emit(&text)
     }
+}
+
+/// What `rouge import` says about how certain S and K are.
+struct ImportUncertainty {
+    source: String,
+    u_thickness_mm: f64,
+    spectral: SpectralUncertainty,
+    /// RMS relative uncertainty at the measured thickness (`design_criterion`).
+    criterion_now: Option<f64>,
+    design: Option<ThicknessDesign>,
+}
+
+impl ImportUncertainty {
+    /// (median, max, wavelength of the max) of u(S)/S or u(K)/K.
+    fn relative(&self, s: bool) -> Option<(f64, f64, f64)> {
+        let mut v: Vec<(f64, f64)> = self
+            .spectral
+            .per_wavelength
+            .iter()
+            .enumerate()
+            .filter_map(|(i, u)| {
+                let (x, ux) = if s { (u.s_per_mm, u.u_s_per_mm) } else { (u.k_per_mm, u.u_k_per_mm) };
+                (x > 0.0).then(|| (ux / x, rouge_measure::spectrum::working_wavelength_nm(i)))
+            })
+            .collect();
+        if v.is_empty() {
+            return None;
+        }
+        let max = v.iter().copied().fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Some((v[v.len() / 2].0, max.0, max.1))
+    }
+
+    fn text(&self, thickness_mm: f64) -> String {
+        let mut lines = vec![format!(
+            "  uncertainty readings {}; thickness ± {} µm (GUM linear propagation, 1 standard uncertainty)",
+            self.source,
+            self.u_thickness_mm * 1e3
+        )];
+        for (name, s) in [("u(S)/S", true), ("u(K)/K", false)] {
+            if let Some((median, max, nm)) = self.relative(s) {
+                lines.push(format!("  {name:<11} median {:.2} %, max {:.2} % at {nm} nm", 100.0 * median, 100.0 * max));
+            }
+        }
+        let ill = self.spectral.ill_conditioned();
+        if let (Some(first), Some(last)) = (ill.first(), ill.last()) {
+            let worst = ill.iter().map(|w| w.1).fold(0.0, f64::max);
+            lines.push(format!(
+                "  WARNING     ill-conditioned inversion at {} wavelengths, {}-{} nm (condition up to {worst:.0} > \
+                 {ILL_CONDITIONED}): R is too close to R∞ or to Rg there, so small reading errors move S and K a lot",
+                ill.len(),
+                first.0,
+                last.0
+            ));
+        }
+        if let (Some(d), Some(now)) = (&self.design, self.criterion_now) {
+            lines.push(format!(
+                "  design      over this background, a {:.1} µm layer would give S, K to {:.2} % (RMS), against {:.2} % at the \
+                 measured {:.1} µm",
+                d.thickness_mm * 1e3,
+                100.0 * d.relative_uncertainty,
+                100.0 * now,
+                thickness_mm * 1e3
+            ));
+        }
+        lines.join("\n")
+    }
+}
+
+/// The uncertainty of the preset's S and K (stored in it), its warnings and the best thickness.
+fn uncertainty(
+    preset: &mut Preset,
+    common: &CommonArgs,
+    working: &import::WorkingMeasurement,
+    saunderson: Option<Saunderson>,
+) -> Result<ImportUncertainty> {
+    let (u, source) = match common.u_reflectance {
+        Some(u) if u >= 0.0 && u.is_finite() => (u, format!("± {u} (--u-reflectance)")),
+        Some(u) => bail!("--u-reflectance = {u} must be finite and ≥ 0"),
+        None => {
+            let c = common.instrument_class;
+            (c.u_reflectance(), c.source_text())
+        }
+    };
+    let u_thickness_mm = match common.u_thickness_um {
+        v if v >= 0.0 && v.is_finite() => v * 1e-3,
+        v => bail!("--u-thickness-um = {v} must be finite and ≥ 0"),
+    };
+    if !(0.0..=1.0).contains(&common.reading_correlation) {
+        bail!("--reading-correlation = {} must be in [0, 1]", common.reading_correlation);
+    }
+    let u_spectrum = Spectrum::constant(u);
+    let spectral = preset.estimate_uncertainty(&source, &u_spectrum, u_thickness_mm, common.reading_correlation)?;
+    let rg = Spectrum(std::array::from_fn(|i| saunderson.map_or(working.rg.0[i], |c| c.to_internal(working.rg.0[i]))));
+    let (s, k) = (preset.s(), preset.k());
+    let criterion_now = design_criterion(&s, &k, &rg, preset.thickness_mm, &u_spectrum, u_thickness_mm);
+    let design = optimal_thickness_mm(&s, &k, &rg, &u_spectrum, u_thickness_mm, 1e-3, 1.0);
+    Ok(ImportUncertainty { source, u_thickness_mm, spectral, criterion_now, design })
 }
 
 /// R of the measured layer over its background, re-computed from the preset's S and K, in the

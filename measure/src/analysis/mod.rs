@@ -8,10 +8,13 @@
 //! under a KM layer (\[Huang2013\] eq. 3 with an opaque second layer): light carried sideways in
 //! the skin and the skin's own surface reflection are outside the model.
 
+pub mod correction;
 pub mod coverage;
 pub mod matching;
+pub mod metamerism;
 pub mod mixing;
 pub mod optimize;
+pub mod qc;
 pub mod skin;
 
 use crate::colorimetry::Colorimeter;

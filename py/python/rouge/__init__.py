@@ -23,6 +23,7 @@ import numpy as np
 from . import _rouge
 from ._rouge import (
     DETACH_MIN_LEN,
+    ILL_CONDITIONED_ABOVE,
     KubelkaMunkError,
     Measurement,
     MeasurementImportError,
@@ -31,11 +32,15 @@ from ._rouge import (
     RougeError,
     SpectrumError,
     XYZ_to_Lab,
+    SK_thickness_optimal,
     SK_to_coverage,
+    SK_uncertainty,
     XYZ_to_sRGB,
+    correct_batch_KubelkaMunk,
     delta_E_CIE2000,
     fit_mix_Duncan,
     match_shades,
+    metamerism_index_special,
     read_measurement,
     read_measurement_files,
     resample_to_working_grid,
@@ -45,7 +50,7 @@ from ._spectral import is_sd, spectra_in, spectral, to_msds
 
 __version__: str = _rouge.__version__
 
-ILLUMINANTS = ("D65", "D55", "D50", "A", "E")
+ILLUMINANTS = ("D65", "D55", "D50", "A", "E", "FL2", "FL7", "FL11", "LED-B3")
 """Illuminants with tables on the working grid."""
 OBSERVERS = ("CIE 1931 2 Degree Standard Observer", "CIE 1964 10 Degree Standard Observer")
 """Observers (also accepted: ``"1931"``, ``"1964"``, ``"2"``, ``"10"``)."""
@@ -160,6 +165,7 @@ def measurement_to_msds(measurement: Measurement) -> Any:
 
 __all__ = [
     "DETACH_MIN_LEN",
+    "ILL_CONDITIONED_ABOVE",
     "ILLUMINANTS",
     "OBSERVERS",
     "KubelkaMunkError",
@@ -173,16 +179,20 @@ __all__ = [
     "R_to_SK_KubelkaMunk",
     "RougeError",
     "SK_mix_Duncan",
+    "SK_thickness_optimal",
     "SK_to_coverage",
+    "SK_uncertainty",
     "SK_to_R0T_KubelkaMunk",
     "SK_to_R_KubelkaMunk",
     "SK_to_Rinf_KubelkaMunk",
     "SpectrumError",
     "XYZ_to_Lab",
     "XYZ_to_sRGB",
+    "correct_batch_KubelkaMunk",
     "delta_E_CIE2000",
     "fit_mix_Duncan",
     "match_shades",
+    "metamerism_index_special",
     "is_sd",
     "measurement_to_msds",
     "read_measurement",

@@ -128,6 +128,7 @@ class Preset:
     def from_measurement(
         measurement: Measurement, *, thickness_mm: float | None = None, name: str | None = None,
         kind: str | None = None, saunderson: dict[str, Any] | None = None, extrapolate: bool = False,
+        u_reflectance: float | None = None, u_thickness_mm: float = 0.0005,
     ) -> tuple[Preset, dict[str, Any]]: ...
     def save(self, path: Path) -> None: ...
     def to_json(self) -> str: ...
@@ -135,6 +136,25 @@ class Preset:
 
 # Formulation analyses (rouge_measure::analysis, docs/FORMULATION.md). Spectra: 81 values on
 # the working grid 380-780 nm / 5 nm; thickness in mm.
+def metamerism_index_special(
+    sd_standard: ArrayLike, sd_sample: ArrayLike, *, illuminant_reference: str = "D65", illuminant_test: str = "A",
+    cmfs_reference: str = "CIE 1931 2 Degree Standard Observer", cmfs_test: str | None = None,
+    correction: str = "multiplicative",
+) -> dict[str, Any]: ...
+def correct_batch_KubelkaMunk(
+    colorants: list[tuple[ArrayLike, ArrayLike]], recipe: ArrayLike, batch: ArrayLike, standard: ArrayLike, *,
+    skin: ArrayLike | None = None, thickness_mm: float | None = None, illuminant: str = "D65",
+    observer: str = "CIE 1931 2 Degree Standard Observer",
+) -> dict[str, Any]: ...
+ILL_CONDITIONED_ABOVE: float
+def SK_uncertainty(
+    R_inf: ArrayLike, R: ArrayLike, Rg: ArrayLike, thickness_mm: float, u_R: ArrayLike, *,
+    u_thickness_mm: float = 0.0, reading_correlation: float = 0.0,
+) -> dict[str, list[Any]]: ...
+def SK_thickness_optimal(
+    S: ArrayLike, K: ArrayLike, Rg: ArrayLike, u_R: ArrayLike, *, u_thickness_mm: float = 0.0,
+    bounds_mm: tuple[float, float] = (0.001, 1.0),
+) -> dict[str, float] | None: ...
 def SK_to_coverage(
     S: ArrayLike, K: ArrayLike, thickness_mm: ArrayLike, *, skins: ArrayLike | None = None,
     black: float = 0.01, white: float = 0.80, illuminant: str = "D65",

@@ -2,7 +2,7 @@
 //! encoded sRGB, and CIEDE2000.
 //!
 //! Tables (CIE 1931 2° and CIE 1964 10° colour-matching functions; illuminants D65, D55, D50, A,
-//! E) are in `data/cie/`, written by `python/gen_cie.py` from colour-science 0.4.7 exactly as its
+//! E, the fluorescent lamps FL2, FL7, FL11 and the white LED LED-B3 of \[CIE15\]) are in `data/cie/`, written by `python/gen_cie.py` from colour-science 0.4.7 exactly as its
 //! `sd_to_XYZ(..., method="Integration", shape=SpectralShape(380, 780, 5))` aligns them, and
 //! embedded at compile time. `python/test_colorimetry.py` checks XYZ, Lab and sRGB against
 //! colour-science to 1e-6 for every illuminant and observer.
@@ -23,6 +23,10 @@
 //! * **Encoded sRGB** is not clipped: `12.92 L` for `L ≤ 0.0031308` (also for negative `L`),
 //!   `1.055 L^{1/2.4} − 0.055` above, as colour-science's `eotf_inverse_sRGB`.
 
+mod difference;
+
+pub use difference::{delta_e_1976_raw, delta_e_2000, delta_e_2000_raw, delta_e_cmc_raw};
+
 use crate::spectrum::{Spectrum, WORKING_LEN};
 use std::borrow::Borrow;
 use std::fmt;
@@ -41,11 +45,30 @@ pub enum Illuminant {
     A,
     /// Equal-energy illuminant E.
     E,
+    /// CIE FL2, cool-white standard fluorescent lamp (4230 K).
+    Fl2,
+    /// CIE FL7, broad-band daylight fluorescent lamp (6500 K).
+    Fl7,
+    /// CIE FL11, three-band (narrow tri-phosphor) fluorescent lamp (4000 K): the usual test
+    /// illuminant of metamerism indices.
+    Fl11,
+    /// CIE LED-B3, phosphor-converted white LED (4103 K) of \[CIE15\] (2018) table 12.
+    LedB3,
 }
 
 impl Illuminant {
     /// All illuminants, in table order.
-    pub const ALL: [Illuminant; 5] = [Illuminant::D65, Illuminant::D55, Illuminant::D50, Illuminant::A, Illuminant::E];
+    pub const ALL: [Illuminant; 9] = [
+        Illuminant::D65,
+        Illuminant::D55,
+        Illuminant::D50,
+        Illuminant::A,
+        Illuminant::E,
+        Illuminant::Fl2,
+        Illuminant::Fl7,
+        Illuminant::Fl11,
+        Illuminant::LedB3,
+    ];
 
     /// The name used in tables and on the command line.
     pub fn name(self) -> &'static str {
@@ -55,12 +78,23 @@ impl Illuminant {
             Illuminant::D50 => "D50",
             Illuminant::A => "A",
             Illuminant::E => "E",
+            Illuminant::Fl2 => "FL2",
+            Illuminant::Fl7 => "FL7",
+            Illuminant::Fl11 => "FL11",
+            Illuminant::LedB3 => "LED-B3",
         }
     }
 
-    /// Parses `D65`, `d50`, `A`, ... (case-insensitive).
+    /// Parses `D65`, `d50`, `A`, `FL11` (or `F11`), `LED-B3`, ... (case-insensitive; the names
+    /// are colour-science's keys of `SDS_ILLUMINANTS`).
     pub fn parse(s: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|i| i.name().eq_ignore_ascii_case(s.trim()))
+        let upper = s.trim().to_ascii_uppercase();
+        // CIE 15 writes the fluorescent lamps F1-F12; colour-science keys them FL1-FL12.
+        let name = match upper.strip_prefix('F') {
+            Some(n) if !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) => format!("FL{n}"),
+            _ => upper,
+        };
+        Self::ALL.into_iter().find(|i| i.name() == name)
     }
 
     /// Relative spectral power on the working grid (as tabulated; the scale cancels).
@@ -176,12 +210,12 @@ struct Tables {
     /// Indexed by `Observer as usize`: [x̄, ȳ, z̄].
     cmfs: [[Spectrum; 3]; 2],
     /// Indexed by `Illuminant as usize`.
-    illuminants: [Spectrum; 5],
+    illuminants: [Spectrum; Illuminant::ALL.len()],
 }
 
-const CMFS_1931_CSV: &str = include_str!("../../data/cie/cmfs_cie1931_2.csv");
-const CMFS_1964_CSV: &str = include_str!("../../data/cie/cmfs_cie1964_10.csv");
-const ILLUMINANTS_CSV: &str = include_str!("../../data/cie/illuminants.csv");
+const CMFS_1931_CSV: &str = include_str!("../../../data/cie/cmfs_cie1931_2.csv");
+const CMFS_1964_CSV: &str = include_str!("../../../data/cie/cmfs_cie1964_10.csv");
+const ILLUMINANTS_CSV: &str = include_str!("../../../data/cie/illuminants.csv");
 
 /// Parses an embedded table: `#` comments, a header with `wavelength_nm` first, 81 rows on the
 /// working grid. The tables are part of the build, so a malformed one is a bug caught by the tests
@@ -208,8 +242,9 @@ fn tables() -> &'static Tables {
             let v = parse_table(text, &["x_bar", "y_bar", "z_bar"]);
             [v[0], v[1], v[2]]
         };
-        let ill = parse_table(ILLUMINANTS_CSV, &["D65", "D55", "D50", "A", "E"]);
-        Tables { cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)], illuminants: [ill[0], ill[1], ill[2], ill[3], ill[4]] }
+        let names = Illuminant::ALL.map(Illuminant::name);
+        let ill = parse_table(ILLUMINANTS_CSV, &names);
+        Tables { cmfs: [cmf(CMFS_1931_CSV), cmf(CMFS_1964_CSV)], illuminants: std::array::from_fn(|i| ill[i]) }
     })
 }
 
@@ -463,98 +498,6 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     if encoded <= 0.040_45 { encoded / 12.92 } else { ((encoded + 0.055) / 1.055).powf(2.4) }
 }
 
-/// CIEDE2000 colour difference (\[CIE142\]; implementation notes of \[Sharma2005\]:
-/// hue angles in degrees in [0, 360), the mean hue taken on the shorter arc, `h' = 0` for a
-/// neutral colour). Both colours must share a [`Viewing`].
-///
-/// # Examples
-///
-/// The first pair of \[Sharma2005\] Table 1: ΔE00 = 2.0425; colours of different whites are
-/// refused.
-///
-/// ```
-/// use rouge_measure::{Illuminant, Lab, Viewing, delta_e_2000};
-///
-/// let a = Lab { lab: [50.0, 2.6772, -79.7751], viewing: Viewing::D65_1931 };
-/// let b = Lab { lab: [50.0, 0.0, -82.7485], viewing: Viewing::D65_1931 };
-/// let de = delta_e_2000(&a, &b)?;
-/// assert!((de - 2.0425).abs() < 5e-5, "{de}");
-/// let under_a = Lab { viewing: Viewing { illuminant: Illuminant::A, ..Viewing::D65_1931 }, ..b };
-/// assert!(delta_e_2000(&a, &under_a).is_err());
-/// # Ok::<(), rouge_measure::colorimetry::ColorError>(())
-/// ```
-pub fn delta_e_2000(lab1: &Lab, lab2: &Lab) -> Result<f64, ColorError> {
-    if lab1.viewing != lab2.viewing {
-        return Err(ColorError::MixedViewing(lab1.viewing, lab2.viewing));
-    }
-    Ok(delta_e_2000_raw(lab1.lab, lab2.lab))
-}
-
-/// CIEDE2000 on bare `[L*, a*, b*]` triples (the caller guarantees a common white).
-pub fn delta_e_2000_raw(lab1: [f64; 3], lab2: [f64; 3]) -> f64 {
-    let [l1, a1, b1] = lab1;
-    let [l2, a2, b2] = lab2;
-    let c1 = a1.hypot(b1);
-    let c2 = a2.hypot(b2);
-    let c_bar = 0.5 * (c1 + c2);
-    let c_bar7 = c_bar.powi(7);
-    let g = 0.5 * (1.0 - (c_bar7 / (c_bar7 + 25.0f64.powi(7))).sqrt());
-    let a1p = (1.0 + g) * a1;
-    let a2p = (1.0 + g) * a2;
-    let c1p = a1p.hypot(b1);
-    let c2p = a2p.hypot(b2);
-    let hue = |b: f64, a: f64| {
-        if a == 0.0 && b == 0.0 {
-            0.0
-        } else {
-            let h = b.atan2(a).to_degrees();
-            if h < 0.0 { h + 360.0 } else { h }
-        }
-    };
-    let h1p = hue(b1, a1p);
-    let h2p = hue(b2, a2p);
-    let dlp = l2 - l1;
-    let dcp = c2p - c1p;
-    let dhp_angle = if c1p * c2p == 0.0 {
-        0.0
-    } else {
-        let d = h2p - h1p;
-        if d > 180.0 {
-            d - 360.0
-        } else if d < -180.0 {
-            d + 360.0
-        } else {
-            d
-        }
-    };
-    let dhp = 2.0 * (c1p * c2p).sqrt() * (dhp_angle.to_radians() / 2.0).sin();
-    let lp_bar = 0.5 * (l1 + l2);
-    let cp_bar = 0.5 * (c1p + c2p);
-    let hp_bar = if c1p * c2p == 0.0 {
-        h1p + h2p
-    } else if (h1p - h2p).abs() <= 180.0 {
-        0.5 * (h1p + h2p)
-    } else if h1p + h2p < 360.0 {
-        0.5 * (h1p + h2p + 360.0)
-    } else {
-        0.5 * (h1p + h2p - 360.0)
-    };
-    let t = 1.0 - 0.17 * (hp_bar - 30.0).to_radians().cos()
-        + 0.24 * (2.0 * hp_bar).to_radians().cos()
-        + 0.32 * (3.0 * hp_bar + 6.0).to_radians().cos()
-        - 0.20 * (4.0 * hp_bar - 63.0).to_radians().cos();
-    let d_theta = 30.0 * (-((hp_bar - 275.0) / 25.0).powi(2)).exp();
-    let cp_bar7 = cp_bar.powi(7);
-    let rc = 2.0 * (cp_bar7 / (cp_bar7 + 25.0f64.powi(7))).sqrt();
-    let l50 = (lp_bar - 50.0).powi(2);
-    let sl = 1.0 + 0.015 * l50 / (20.0 + l50).sqrt();
-    let sc = 1.0 + 0.045 * cp_bar;
-    let sh = 1.0 + 0.015 * cp_bar * t;
-    let rt = -(2.0 * d_theta).to_radians().sin() * rc;
-    let (tl, tc, th) = (dlp / sl, dcp / sc, dhp / sh);
-    (tl * tl + tc * tc + th * th + rt * tc * th).sqrt()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -568,8 +511,13 @@ mod tests {
             }
         }
         for ill in Illuminant::ALL {
-            assert!(ill.spd().0.iter().all(|v| v.is_finite() && *v > 0.0), "{ill:?}");
+            // LED-B3 emits nothing at 380 nm; every SPD is finite, ≥ 0 and somewhere positive.
+            assert!(ill.spd().0.iter().all(|v| v.is_finite() && *v >= 0.0), "{ill:?}");
+            assert!(ill.spd().0.iter().sum::<f64>() > 0.0, "{ill:?}");
         }
+        assert_eq!(Illuminant::parse("f11"), Some(Illuminant::Fl11));
+        assert_eq!(Illuminant::parse("led-b3"), Some(Illuminant::LedB3));
+        assert_eq!(Illuminant::parse("F"), None);
         let w = crate::spectrum::working_wavelengths_nm();
         let first_rows: Vec<f64> = CMFS_1931_CSV
             .lines()
