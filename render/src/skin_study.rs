@@ -22,12 +22,12 @@ use rouge_measure::analysis::Layer;
 use rouge_measure::analysis::coverage::{ContrastChart, coverage_table};
 use rouge_measure::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, linear_srgb_to_lab};
 use rouge_measure::preset::Preset;
-use rouge_measure::skin::SkinParams;
+use rouge_measure::skin::{SkinColorTable, SkinParams};
 use rouge_measure::spectrum::Spectrum;
 use rouge_model::look::ThicknessMap;
 use rouge_model::mesh::TriangleMesh;
 use rouge_model::skin::generate::at_full_strength;
-use rouge_model::skin::{Condition, SkinMaps};
+use rouge_model::skin::{Condition, SkinChannel, SkinMaps};
 
 /// Where the skin's colour comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,6 +55,8 @@ pub struct SkinPatch {
     mesh: TriangleMesh,
     scene: Scene,
     camera: Camera,
+    /// The colour table of the last tone, kept: building one takes seconds.
+    table: Option<(SkinParams, SkinColorTable)>,
 }
 
 impl std::fmt::Debug for SkinPatch {
@@ -81,7 +83,7 @@ impl SkinPatch {
         renderer.set_mesh(&mesh, scene.skin.albedo)?;
         let bounds = renderer.mesh_bounds().ok_or_else(|| RenderError::Invalid("the patch has no bounds".into()))?;
         let camera = Camera::framing(&bounds, 0.0, 0.0);
-        Ok(SkinPatch { renderer, mesh, scene, camera })
+        Ok(SkinPatch { renderer, mesh, scene, camera, table: None })
     }
 
     /// Sets the skin to `params`, coloured as `colour` says; returns its reflectance spectrum.
@@ -89,15 +91,29 @@ impl SkinPatch {
     /// # Errors
     /// Parameters outside the skin model's domain, named.
     pub fn set_skin(&mut self, params: &SkinParams, colour: SkinColour) -> Result<Spectrum> {
-        let invalid = |e: rouge_measure::skin::SkinError| RenderError::Invalid(format!("skin: {e}"));
-        let reflectance = params.reflectance().map_err(invalid)?;
+        self.set_skin_of_tone(params, params, colour)
+    }
+
+    /// [`SkinPatch::set_skin`] for skin of `params` on a face of tone `base`: with skin maps, one
+    /// texel of `params` in maps whose base is `base`, through `base`'s colour table, as the
+    /// generated maps draw a spot (`params` within the maps' ranges around `base`).
+    ///
+    /// # Errors
+    /// Parameters outside the skin model's domain or the maps' ranges, named.
+    pub fn set_skin_of_tone(&mut self, base: &SkinParams, params: &SkinParams, colour: SkinColour) -> Result<Spectrum> {
+        let invalid = |e: String| RenderError::Invalid(format!("skin: {e}"));
+        let reflectance = params.reflectance().map_err(|e| invalid(e.to_string()))?;
         self.scene.skin = Skin { subsurface: SubsurfaceModel::None, ..Skin::from_spectrum(&reflectance) };
         self.renderer.set_mesh(&self.mesh, self.scene.skin.albedo)?;
         let albedo = match colour {
             SkinColour::Albedo => None,
             SkinColour::Maps => {
-                let maps = SkinMaps::uniform(params);
-                Some(crate::job::bake_skin_albedo(&maps, &crate::job::skin_color_table(maps.base())?))
+                let planes = SkinChannel::ALL.map(|c| vec![c.of(params) as f32]);
+                let maps = SkinMaps::from_planes(1, 1, base, planes).map_err(invalid)?;
+                if self.table.as_ref().is_none_or(|(b, _)| b != maps.base()) {
+                    self.table = Some((*maps.base(), crate::job::skin_color_table(maps.base())?));
+                }
+                self.table.as_ref().map(|(_, table)| crate::job::bake_skin_albedo(&maps, table))
             }
         };
         self.renderer.set_textures(albedo.as_ref(), None)?;
@@ -168,7 +184,7 @@ pub fn spot_coverage(
     for &um in thickness_um {
         around.push(linear_srgb_to_lab(patch.render(preset, um)?));
     }
-    patch.set_skin(&spot, colour)?;
+    patch.set_skin_of_tone(base, &spot, colour)?;
     let mut rows = Vec::with_capacity(thickness_um.len());
     for ((&um, row), around) in thickness_um.iter().zip(&paper).zip(around) {
         let on_spot = linear_srgb_to_lab(patch.render(preset, um)?);
