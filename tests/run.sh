@@ -55,9 +55,11 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
 cargo test --doc -p rouge-measure --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
-WGPU_BACKEND=gl cargo test -p rouge-render --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
-WGPU_BACKEND=gl cargo test -p rouge-render --locked --test edges -- a_turning_cube sorted_overdraw
-WGPU_BACKEND=gl cargo test -p rouge-render --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh light_reaches
+# --workspace (these test targets are rouge-render's only) reuses the workspace's test build:
+# `-p rouge-render` alone unifies features differently and rebuilds every dependency (~4 min).
+WGPU_BACKEND=gl cargo test --workspace --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
+WGPU_BACKEND=gl cargo test --workspace --locked --test edges -- a_turning_cube sorted_overdraw
+WGPU_BACKEND=gl cargo test --workspace --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh light_reaches
 
 step "Python package \`rouge\` (py/): wheel built by maturin (release, rouge-measure + pyo3 only), installed into .venv"
 rm -rf target/wheels
