@@ -70,7 +70,8 @@ def test_opaque_lambertian_matches_and_a_wrong_camera_or_light_fails(rouge, roug
     ref = mitsuba_image(rouge_bin, scene, "lambert", tmp_path / "lambert", spp=64)
     mask = interior_mask(ref.mean[..., 3])
     assert mask.sum() > 300, "the object covers too few pixels to compare"
-    flat = ["--subsurface", "none", "--no-specular"]
+    # --flat-skin: the export has the tone's uniform colour; render draws skin maps by default.
+    flat = ["--subsurface", "none", "--no-specular", "--flat-skin"]
     ours = rouge_linear(rouge, [*scene, *flat], tmp_path / "rouge.exr")
     err, noise = relative_error(ours, ref, mask)
     # Shadow maps (PCF) against exact shadows and pixel-centre against box-filtered sampling

@@ -74,6 +74,12 @@ pub fn run(cmd: &ExportCommand) -> Result<()> {
              the skin then has the tone's uniform colour)"
         );
     }
+    if args.scene.render_job()?.0.skin_maps.is_some() {
+        eprintln!(
+            "rouge: note: `rouge render` draws skin maps here; the exported skin has the tone's uniform colour \
+             (render with --flat-skin to compare with the export)"
+        );
+    }
     let loaded = job.load()?;
     let interior = match args.interior {
         InteriorArg::Medium => Interior::Medium,
