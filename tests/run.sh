@@ -55,8 +55,9 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
 cargo test --doc -p rouge-measure --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
-# --workspace (these test targets are rouge-render's only) reuses the workspace's test build:
-# `-p rouge-render` alone unifies features differently and rebuilds every dependency (~4 min).
+# These test targets are rouge-render's. Selecting them (with --workspace as with -p) resolves
+# features for them alone, so wgpu and its dependencies build again here (~4 min on 2 cores);
+# running the workspace step's executables (cargo test --no-run --message-format=json) would not.
 WGPU_BACKEND=gl cargo test --workspace --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
 WGPU_BACKEND=gl cargo test --workspace --locked --test edges -- a_turning_cube sorted_overdraw
 WGPU_BACKEND=gl cargo test --workspace --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh light_reaches
