@@ -55,12 +55,31 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
 cargo test --doc -p rouge-measure --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
-# These test targets are rouge-render's. Selecting them (with --workspace as with -p) resolves
-# features for them alone, so wgpu and its dependencies build again here (~4 min on 2 cores);
-# running the workspace step's executables (cargo test --no-run --message-format=json) would not.
-WGPU_BACKEND=gl cargo test --workspace --locked --test frame -- golden_default_look_and_bare_skin picking_and_captures
-WGPU_BACKEND=gl cargo test --workspace --locked --test edges -- a_turning_cube sorted_overdraw
-WGPU_BACKEND=gl cargo test --workspace --locked --test cube_atlas_gpu -- the_gather_converges a_deformed_mesh light_reaches
+# The workspace step has built these test executables already. Selecting the targets again with
+# cargo (`--test frame`) resolves features for rouge-render alone and rebuilds wgpu and its
+# dependencies (~4 min on 2 cores), so the executables are asked of the same workspace build
+# (`--no-run --message-format=json`, nothing rebuilds) and run directly.
+test_exe() {
+  cargo test --workspace --locked --no-run --message-format=json 2>/dev/null \
+    | .venv/bin/python -c '
+import json, sys
+name = sys.argv[1]
+for line in sys.stdin:
+    m = json.loads(line)
+    if m.get("reason") == "compiler-artifact" and m.get("executable") \
+            and m["target"]["name"] == name and "test" in m["target"]["kind"]:
+        print(m["executable"]); break
+else:
+    sys.exit("no test executable named " + name)
+' "$1"
+}
+FRAME_EXE=$(test_exe frame)
+EDGES_EXE=$(test_exe edges)
+ATLAS_EXE=$(test_exe cube_atlas_gpu)
+# Test executables run from their package's directory under cargo; do the same here.
+(cd render && WGPU_BACKEND=gl "$FRAME_EXE" golden_default_look_and_bare_skin picking_and_captures)
+(cd render && WGPU_BACKEND=gl "$EDGES_EXE" a_turning_cube sorted_overdraw)
+(cd render && WGPU_BACKEND=gl "$ATLAS_EXE" the_gather_converges a_deformed_mesh light_reaches)
 
 step "Python package \`rouge\` (py/): wheel built by maturin (release, rouge-measure + pyo3 only), installed into .venv"
 rm -rf target/wheels
