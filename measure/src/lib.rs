@@ -15,6 +15,7 @@ pub mod analysis;
 pub mod colorimetry;
 pub mod compositing;
 pub mod error;
+pub mod finish;
 pub mod import;
 pub mod km;
 pub mod km_batch;
@@ -22,6 +23,7 @@ pub mod km_uncertainty;
 pub mod layer_table;
 pub mod preset;
 pub mod skin;
+pub mod specular;
 pub mod spectrum;
 
 pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};

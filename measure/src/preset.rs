@@ -3,8 +3,11 @@
 //! use directly (R0 and T in linear sRGB at a table of thicknesses).
 //!
 //! Schema version 1 (`"schema": "rouge-preset", "version": 1`) is specified field by field on
-//! [`Preset`]. Loading checks the schema name, the version and every value; anything unknown or
-//! out of range is an error naming the field (and the wavelength, for spectra).
+//! [`Preset`]; version 2 adds the layer's `finish` ([`crate::finish::Finish`]) and nothing else.
+//! A preset is written with the lowest version that holds it (1 without a finish), so every
+//! preset without a finish still reads in a Rouge that knows only version 1. Loading checks the
+//! schema name, the version and every value; anything unknown or out of range is an error naming
+//! the field (and the wavelength, for spectra).
 
 use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
 use crate::error::LocatedError;
@@ -17,8 +20,10 @@ use std::path::Path;
 
 /// The schema name every preset carries.
 pub const SCHEMA: &str = "rouge-preset";
-/// The schema version this build writes and reads.
-pub const VERSION: u32 = 1;
+/// The newest schema version this build reads and writes (it reads every version from 1).
+pub const VERSION: u32 = 2;
+/// The version a preset without a finish is written as.
+pub const VERSION_WITHOUT_FINISH: u32 = 1;
 
 /// Thicknesses (mm) of the derived tables: 0 to 0.2 mm every 5 µm (41 entries), the range of
 /// cosmetic films (foundation 10-40 µm, lipstick 10-30 µm, heavy layers up to ~0.1 mm).
@@ -92,7 +97,7 @@ pub struct Derived {
 pub struct Preset {
     /// Always `"rouge-preset"`.
     pub schema: String,
-    /// Schema version, [`VERSION`].
+    /// Schema version: 1, or 2 when the preset has a `finish`.
     pub version: u32,
     /// Display name.
     pub name: String,
@@ -115,6 +120,10 @@ pub struct Preset {
     /// Standard uncertainties of S and K (optional: presets written before it load unchanged).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uncertainty: Option<PresetUncertainty>,
+    /// The layer's finish (version 2; absent: a clear film that follows the skin's relief,
+    /// clarity 1 and levelling 0, as version 1 presets render).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub finish: Option<crate::finish::Finish>,
 }
 
 /// How certain a preset's S and K are (\[GUM\] linear propagation, `km_uncertainty`), and what
@@ -267,7 +276,7 @@ impl Preset {
     pub fn from_s_k(name: &str, kind: Kind, thickness_mm: f64, s: &Spectrum, k: &Spectrum) -> Self {
         Preset {
             schema: SCHEMA.into(),
-            version: VERSION,
+            version: VERSION_WITHOUT_FINISH,
             name: name.into(),
             kind,
             thickness_mm,
@@ -278,6 +287,7 @@ impl Preset {
             specular: Specular::default_for(kind),
             derived: derive_tables(s, k),
             uncertainty: None,
+            finish: None,
         }
     }
 
@@ -404,11 +414,17 @@ impl Preset {
         if self.schema != SCHEMA {
             return Err(invalid(path, format!("`schema` is `{}`, expected `{SCHEMA}`", self.schema)));
         }
-        if self.version != VERSION {
+        if !(VERSION_WITHOUT_FINISH..=VERSION).contains(&self.version) {
             return Err(invalid(
                 path,
-                format!("preset schema version {} is not supported: this Rouge reads version {VERSION}", self.version),
+                format!("preset schema version {} is not supported: this Rouge reads versions 1 to {VERSION}", self.version),
             ));
+        }
+        if let Some(finish) = &self.finish {
+            if self.version < 2 {
+                return Err(invalid(path, "`finish` needs preset schema version 2".into()));
+            }
+            finish.validate().map_err(|e| invalid(path, e))?;
         }
         if self.name.trim().is_empty() {
             return Err(invalid(path, "`name` is empty".into()));
@@ -535,22 +551,41 @@ impl Preset {
         // Check the version before the shape, so a future version gets the right message.
         if let Ok(v) = serde_json::from_str::<serde_json::Value>(text)
             && let Some(ver) = v.get("version").and_then(|x| x.as_u64())
-            && ver != u64::from(VERSION)
+            && !(u64::from(VERSION_WITHOUT_FINISH)..=u64::from(VERSION)).contains(&ver)
         {
-            {
-                {
-                    return Err(invalid(
-                        path,
-                        format!("preset schema version {ver} is not supported: this Rouge reads version {VERSION}"),
-                    ));
-                }
-            }
+            return Err(invalid(
+                path,
+                format!("preset schema version {ver} is not supported: this Rouge reads versions 1 to {VERSION}"),
+            ));
         }
         let preset: Preset = serde_json::from_str(text).map_err(|e| {
             PresetError::Json(LocatedError::at(Path::new(path), e.line(), Some(e.column()), e.to_string()))
         })?;
         preset.validate(path)?;
         Ok(preset)
+    }
+
+    /// Gives the preset a finish (and the lobe it comes with), or takes it away: the version
+    /// follows (2 with a finish, 1 without).
+    pub fn set_finish(&mut self, finish: Option<(Specular, crate::finish::Finish)>) {
+        match finish {
+            Some((specular, finish)) => {
+                self.specular = specular;
+                self.finish = Some(finish);
+                self.version = VERSION;
+            }
+            None => {
+                self.finish = None;
+                self.version = VERSION_WITHOUT_FINISH;
+            }
+        }
+    }
+
+    /// The film's clarity and levelling as the renderer draws them: the finish's, or for a preset
+    /// without one a clear film that follows the relief (1, 0), as version 1 presets have always
+    /// rendered.
+    pub fn clarity_levelling(&self) -> (f64, f64) {
+        self.finish.map_or((1.0, 0.0), |f| (f.clarity, f.levelling))
     }
 
     /// Serialises to pretty JSON (numbers round-trip exactly).

@@ -1,9 +1,10 @@
 //! Checks of presets (`rouge_measure::preset`): the JSON round trip is exact, the derived
-//! tables start clear, bad presets are refused naming the field, and a failed save keeps the
-//! old file.
+//! tables start clear, bad presets are refused naming the field, a failed save keeps the old
+//! file, and finishes (schema version 2) load beside version 1 presets.
 
 use rouge_measure::Spectrum;
 use rouge_measure::import::Kind;
+use rouge_measure::finish::FinishKind;
 use rouge_measure::preset::Preset;
 
 fn sample() -> Preset {
@@ -32,9 +33,9 @@ fn zero_thickness_row_is_clear() {
 fn bad_presets_are_refused_with_the_field() {
     let p = sample();
     let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
-    v["version"] = 2.into();
+    v["version"] = 3.into();
     let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
-    assert!(e.contains("version 2 is not supported"), "{e}");
+    assert!(e.contains("version 3 is not supported"), "{e}");
     let mut v: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
     v["k_per_mm"][4] = (-1.0).into();
     let e = Preset::from_json(&v.to_string(), "p.json").unwrap_err().to_string();
@@ -61,4 +62,49 @@ fn failed_save_keeps_the_old_file() {
     other.name = "changed".into();
     assert!(other.save(&path).is_err());
     assert_eq!(std::fs::read(&path).unwrap(), before);
+}
+
+#[test]
+fn version_1_presets_still_load_and_a_finish_makes_version_2() {
+    // Every preset in data/ was written as version 1 and loads as it was.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/presets");
+    let mut loaded = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let p = Preset::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            if p.finish.is_none() {
+                assert_eq!(p.version, 1, "{}", path.display());
+                assert_eq!(p.clarity_levelling(), (1.0, 0.0), "a clear film that follows the relief");
+            }
+            loaded += 1;
+        }
+    }
+    assert!(loaded >= 4, "{loaded} presets in {}", dir.display());
+    // A finish is written as version 2, round-trips, and taking it away goes back to version 1.
+    let mut p = sample();
+    assert_eq!(p.version, 1);
+    p.set_finish(Some(FinishKind::Matte.defaults()));
+    assert_eq!((p.version, p.specular), (2, FinishKind::Matte.defaults().0));
+    let back = Preset::from_json(&p.to_json(), "matte.json").unwrap();
+    assert_eq!(back, p);
+    assert!(p.to_json().contains("\"kind\": \"matte\""));
+    p.set_finish(None);
+    assert_eq!(p.version, 1);
+    assert!(!p.to_json().contains("finish"));
+    // A finish in a version 1 file, or out of range, is refused naming the field.
+    let mut q = sample();
+    q.set_finish(Some(FinishKind::Gloss.defaults()));
+    let mut v: serde_json::Value = serde_json::from_str(&q.to_json()).unwrap();
+    v["version"] = 1.into();
+    let e = Preset::from_json(&v.to_string(), "g.json").unwrap_err().to_string();
+    assert!(e.contains("`finish` needs preset schema version 2"), "{e}");
+    let mut v: serde_json::Value = serde_json::from_str(&q.to_json()).unwrap();
+    v["finish"]["clarity"] = 2.0.into();
+    let e = Preset::from_json(&v.to_string(), "g.json").unwrap_err().to_string();
+    assert!(e.contains("finish.clarity"), "{e}");
+    let mut v: serde_json::Value = serde_json::from_str(&q.to_json()).unwrap();
+    v["finish"]["kind"] = "velvet".into();
+    let e = Preset::from_json(&v.to_string(), "g.json").unwrap_err().to_string();
+    assert!(e.starts_with("g.json:"), "{e}");
 }

@@ -143,7 +143,7 @@ impl GpuLook {
                     layer.preset.specular.roughness as f32,
                     fresnel_f0(layer.preset.specular.ior as f32),
                     LAYER_FULL_COVERAGE_MM,
-                    0.0,
+                    layer.preset.clarity_levelling().0 as f32,
                 ],
             };
         }

@@ -252,8 +252,7 @@ impl Default for Skin {
 
 /// Schlick's normal-incidence reflectance for a dielectric of index `ior` in air.
 pub fn fresnel_f0(ior: f32) -> f32 {
-    let r = (ior - 1.0) / (ior + 1.0);
-    r * r
+    rouge_measure::specular::fresnel_f0(f64::from(ior)) as f32
 }
 
 /// Screen-space scattering settings.

@@ -35,7 +35,7 @@ pub struct LightUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct LayerUniform {
-    /// Roughness, F0, full-coverage thickness, unused.
+    /// Roughness, F0, full-coverage thickness, clarity of the finish.
     pub params: [f32; 4],
 }
 

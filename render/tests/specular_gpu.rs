@@ -1,11 +1,11 @@
-//! The lighting shader's specular lobe against its CPU twin (`rouge_render::specular`), on a
+//! The lighting shader's specular lobes (the skin's two) against its CPU twin (`rouge_render::specular`), on a
 //! real device (lavapipe on CI): a flat skin plane under one directional light, bare look, no
 //! environment, no subsurface model, so the surface radiance is E (n·l) f_r(l, v) exactly.
 
 use glam::{DVec3, Vec3};
 use rouge_model::look::Look;
 use rouge_model::mesh::TriangleMesh;
-use rouge_render::specular::kelemen;
+use rouge_render::specular::skin_lobes;
 use rouge_render::{Camera, Gpu, Renderer, Scene, SubsurfaceModel};
 
 /// A 200 mm square in the z = 0 plane facing +Z, UVs 0..1.
@@ -37,7 +37,7 @@ fn the_shader_lobe_matches_its_cpu_twin() {
         for x in (0..w).step_by(3) {
             let Some(world) = r.pick(x, y).expect("pick") else { continue };
             let v = (eye - world.as_dvec3()).normalize();
-            let want = e * kelemen(DVec3::Z, l, v, m, f0);
+            let want = e * skin_lobes(DVec3::Z, l, v, m, f0);
             let got = cap.surface[(y * w + x) as usize][0] as f64;
             let err = (got - want).abs() / want.max(1e-3);
             worst = worst.max(err);

@@ -144,6 +144,7 @@ pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> 
     let mut out = format!("const LAYERS: u32 = {}u;\n", variant.layers);
     out.push_str(&rouge_measure::layer_table::wgsl_constants());
     out.push_str(&rouge_measure::compositing::CompositingBasis::get().wgsl_constants());
+    out.push_str(&crate::specular::wgsl_constants());
     out.push_str(include_str!("../shaders/common.wgsl"));
     out.push_str(&preprocess(pass.file, pass.source, &variant.flags(encode_srgb))?);
     Ok(out)

@@ -18,7 +18,8 @@ struct Light {
 
 struct Layer {
     // x: Beckmann roughness, y: Fresnel F0, z: thickness (mm) at which the layer's own specular
-    // lobe is fully formed, w: unused.
+    // lobe is fully formed, w: the clarity of its finish (the part of the lobes below it that a
+    // fully formed layer passes specularly).
     params: vec4<f32>,
 }
 

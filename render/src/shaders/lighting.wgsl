@@ -10,8 +10,9 @@
 // - the skin radiance before scattering: light that crossed the stack (× T), with the
 //   inter-reflections between skin and the stack's underside (1 / (1 − R_below·albedo));
 // - what leaves at the surface without scattering: the stack's diffuse reflectance and the
-//   Kelemen/Szirmay-Kalos specular lobes of the skin and of each layer, bottom to top, each lower
-//   lobe attenuated by the layers above it (T² for the way in and the way out).
+//   Kelemen/Szirmay-Kalos specular lobes of the skin (two: a sharp and a broad one) and of each
+//   layer, bottom to top, each lower lobe attenuated by the layers above it (T² for the way in
+//   and the way out, × the clarity of the layer's finish).
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -63,6 +64,14 @@ fn kelemen(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, m: f32, f0: f32) -> f32 {
     }
     let fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, l), 0.0), 5.0);
     return beckmann(n_dot_h, m) * fresnel / (2.0 * (1.0 + dot(l, v)));
+}
+
+// The skin's two lobes: roughness × SKIN_LOBE_ROUGHNESS, mixed SKIN_LOBE_MIX : 1 − SKIN_LOBE_MIX
+// (constants injected from their owner, render/src/specular.rs, whose `skin_lobes` is the CPU twin).
+fn skin_lobes(n: vec3<f32>, l: vec3<f32>, v: vec3<f32>, m: f32, f0: f32) -> f32 {
+    let sharp = kelemen(n, l, v, SKIN_LOBE_ROUGHNESS.x * m, f0);
+    let broad = kelemen(n, l, v, SKIN_LOBE_ROUGHNESS.y * m, f0);
+    return SKIN_LOBE_MIX * sharp + (1.0 - SKIN_LOBE_MIX) * broad;
 }
 
 //#if LAYERS_A
@@ -168,13 +177,14 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
         let e_n = e * (n_dot_l * visible);
         irradiance += e_n;
         if frame.skin.z > 0.0 {
-            var s = kelemen(n, l, v, frame.skin.x, frame.skin.y);
-            var lobes = vec3<f32>(s);
+            var lobes = vec3<f32>(skin_lobes(n, l, v, frame.skin.x, frame.skin.y));
 //#if LAYERS_A
             for (var i = 0u; i < LAYERS; i++) {
+                // x: roughness, y: F0, z: full-coverage thickness, w: the finish's clarity.
                 let q = frame.layers[i].params;
                 let coverage = clamp(thickness[i] / q.z, 0.0, 1.0);
-                lobes = lobes * layer_t[i] * layer_t[i] + vec3<f32>(coverage * kelemen(n, l, v, q.x, q.y));
+                let through = 1.0 - coverage * (1.0 - q.w);
+                lobes = lobes * (through * layer_t[i] * layer_t[i]) + vec3<f32>(coverage * kelemen(n, l, v, q.x, q.y));
             }
 //#endif
             specular += e_n * lobes;
