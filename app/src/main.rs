@@ -67,6 +67,10 @@ enum Command {
     /// Defaults: the embedded head, foundation + blush + lipstick, a studio light rig, 1280×720.
     /// Runs on any wgpu adapter, Mesa's lavapipe included when there is no GPU.
     Render(cli::render::RenderArgs),
+    /// A cosmetic's finish (matte, satin, dewy, gloss): the gloss a meter would read of it, a
+    /// named finish, or the lobe fitted to gloss readings (`--gloss 60=12`), written into the
+    /// preset.
+    Finish(cli::finish::FinishArgs),
     /// Export a scene for another renderer (Mitsuba 3, the ground truth for translucency).
     #[command(subcommand)]
     Export(cli::export::ExportCommand),
@@ -126,6 +130,7 @@ fn main() -> ExitCode {
         Command::Km(cmd) => cli::km::run(&cmd),
         Command::Color(args) => cli::color::run(&args),
         Command::Render(args) => cli::render::run(&args),
+        Command::Finish(args) => cli::finish::run(&args),
         Command::Export(cmd) => cli::export::run(&cmd),
         Command::Bench(cmd) => bench::run(&cmd),
         Command::Analyze(cmd) => cli::analyze::run(&cmd),

@@ -72,6 +72,9 @@ pub struct RenderJob {
     pub yaw_deg: f32,
     /// Camera pitch, degrees.
     pub pitch_deg: f32,
+    /// A close-up of a region of the default head instead of the whole face
+    /// ([`Camera::close_up`]).
+    pub close_up: Option<rouge_model::skin::AnatomyRegion>,
     /// The scene (lights, skin, SSS settings, exposure).
     pub scene: Scene,
     /// Morph of the mesh toward its bounding sphere, 0 (none) to 1: a deformation for testing
@@ -101,6 +104,7 @@ impl Default for RenderJob {
             height: 720,
             yaw_deg: 0.0,
             pitch_deg: 0.0,
+            close_up: None,
             scene: Scene::studio(),
             morph: 0.0,
             thickness_bake_rest_pose: false,
@@ -306,7 +310,15 @@ impl RenderJob {
             mesh.generate_tangents()?;
         }
         let bounds = Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
-        let camera = Camera::framing(&bounds, self.yaw_deg, self.pitch_deg);
+        let camera = match self.close_up {
+            None => Camera::framing(&bounds, self.yaw_deg, self.pitch_deg),
+            Some(region) => Camera::close_up(&mesh, region, self.yaw_deg, self.pitch_deg).ok_or_else(|| {
+                RenderError::Invalid(format!(
+                    "close-up of the {}: the mesh has no vertex in that region (close-ups use the default head's UVs)",
+                    region.name()
+                ))
+            })?,
+        };
         Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
 }

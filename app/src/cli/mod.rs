@@ -6,6 +6,7 @@ pub mod analyze_metamerism;
 pub mod analyze_plot;
 pub mod color;
 pub mod export;
+pub mod finish;
 pub mod import;
 pub mod km;
 pub mod qc;

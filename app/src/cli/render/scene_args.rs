@@ -66,6 +66,11 @@ pub struct SceneArgs {
     /// Camera pitch, degrees (positive: from above).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub pitch: f32,
+    /// A close-up of one region of the default head instead of the whole face, about 60 mm
+    /// across the image's height (12 px/mm at 720 px): cheeks, lips, eyelids, nose, forehead,
+    /// under_eye, chin, temples or ears (of paired regions the side toward --yaw).
+    #[arg(long, value_parser = parse_region)]
+    pub close_up: Option<rouge_model::skin::AnatomyRegion>,
     /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
     /// chicken1, chicken2, cream, ketchup, marble, potato, skimmilk, skin1, skin2, wholemilk) or
     /// a `rouge-medium` JSON file. The skin's albedo, IOR and scattering profile then come from
@@ -315,6 +320,7 @@ impl SceneArgs {
             height: self.height,
             yaw_deg: self.yaw,
             pitch_deg: self.pitch,
+            close_up: self.close_up,
             scene,
             morph: self.morph,
             thickness_bake_rest_pose: false,
@@ -380,4 +386,12 @@ impl SceneArgs {
         }
         Ok(())
     }
+}
+
+fn parse_region(s: &str) -> Result<rouge_model::skin::AnatomyRegion, String> {
+    use rouge_model::skin::AnatomyRegion;
+    AnatomyRegion::ALL.into_iter().find(|r| r.name() == s).ok_or_else(|| {
+        let names: Vec<_> = AnatomyRegion::ALL.iter().map(|r| r.name()).collect();
+        format!("unknown region {s:?}: use one of {}", names.join(", "))
+    })
 }

@@ -1,0 +1,125 @@
+//! `rouge finish PRESET`: a cosmetic's finish (matte, satin, dewy, gloss: its specular lobe and
+//! film, `rouge_measure::finish`), shown as the gloss a meter would read, set by name, or fitted
+//! to gloss readings (ISO 2813), and written back into the preset (schema version 2).
+
+use anyhow::{Result, bail};
+use clap::Args;
+use rouge_measure::finish::{FinishKind, GlossGeometry, GlossReading, fit_gloss, gloss_units};
+use rouge_measure::preset::Specular;
+use rouge_model::look::load_preset_ref;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct FinishArgs {
+    /// The preset: a file, or `builtin:NAME` (then --out is required).
+    pub preset: String,
+    /// Give it a named finish: its lobe (roughness, index), clarity and levelling
+    /// (matte, satin, dewy, gloss). With --gloss, the roughness comes from the readings.
+    #[arg(long, value_parser = parse_kind)]
+    pub kind: Option<FinishKind>,
+    /// Gloss readings, ANGLE=GU (20, 60 or 85 degrees), e.g. `--gloss 60=12 --gloss 85=30`:
+    /// the lobe's roughness is fitted to them (at the preset's index, or --ior).
+    #[arg(long, value_parser = parse_reading)]
+    pub gloss: Vec<GlossReading>,
+    /// Index of refraction of the film's binder for --gloss (default: the preset's).
+    #[arg(long)]
+    pub ior: Option<f64>,
+    /// The part of the shine below the layer that it passes specularly, 0-1 (overrides --kind's).
+    #[arg(long)]
+    pub clarity: Option<f64>,
+    /// How much the film flattens the skin's relief, 0-1 (overrides --kind's).
+    #[arg(long)]
+    pub levelling: Option<f64>,
+    /// Remove the finish (the preset goes back to schema version 1).
+    #[arg(long, conflicts_with_all = ["kind", "gloss", "clarity", "levelling"])]
+    pub clear: bool,
+    /// Where to write the preset (default: over PRESET, atomically). Without a change nothing
+    /// is written.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+fn parse_kind(s: &str) -> Result<FinishKind, String> {
+    FinishKind::from_name(s).ok_or_else(|| format!("unknown finish {s:?}: use matte, satin, dewy or gloss"))
+}
+
+fn parse_reading(s: &str) -> Result<GlossReading, String> {
+    let (angle, gu) = s.split_once('=').ok_or_else(|| format!("{s:?}: write ANGLE=GU, e.g. 60=12.5"))?;
+    let geometry = match angle.trim().trim_end_matches('°') {
+        "20" => GlossGeometry::Deg20,
+        "60" => GlossGeometry::Deg60,
+        "85" => GlossGeometry::Deg85,
+        other => return Err(format!("gloss angle {other:?}: a gloss meter reads at 20, 60 or 85 degrees")),
+    };
+    let gu: f64 = gu.trim().parse().map_err(|_| format!("{s:?}: {gu:?} is not a number of gloss units"))?;
+    Ok(GlossReading { geometry, gu })
+}
+
+/// The gloss a meter would read of `specular` at 20°, 60°, 85°, in words.
+fn gloss_line(specular: Specular) -> String {
+    let gu = GlossGeometry::ALL.map(|g| gloss_units(specular, g));
+    format!("gloss {:.1} GU at 20°, {:.1} at 60°, {:.1} at 85°", gu[0], gu[1], gu[2])
+}
+
+pub fn run(args: &FinishArgs) -> Result<()> {
+    let mut preset = load_preset_ref(&args.preset, Path::new("."))?;
+    let changes = args.kind.is_some()
+        || !args.gloss.is_empty()
+        || args.clarity.is_some()
+        || args.levelling.is_some()
+        || args.clear;
+    let out = match (&args.out, args.preset.starts_with("builtin:")) {
+        (Some(out), _) => out.clone(),
+        (None, false) => PathBuf::from(&args.preset),
+        (None, true) if changes => bail!("{} is built in: say where to write the preset with --out", args.preset),
+        (None, true) => PathBuf::new(),
+    };
+    if args.clear {
+        preset.set_finish(None);
+    } else if changes {
+        let kind = match (args.kind, preset.finish) {
+            (Some(k), _) => k,
+            (None, Some(f)) => f.kind,
+            (None, None) if !args.gloss.is_empty() => FinishKind::Satin,
+            (None, None) => bail!("--clarity/--levelling change a finish: give --kind (matte, satin, dewy, gloss) too"),
+        };
+        let (mut specular, mut finish) = kind.defaults();
+        if args.kind.is_none()
+            && let Some(f) = preset.finish
+        {
+            (specular, finish) = (preset.specular, f);
+        }
+        if !args.gloss.is_empty() {
+            let ior = args.ior.unwrap_or(preset.specular.ior);
+            let fit = fit_gloss(&args.gloss, ior).map_err(|e| anyhow::anyhow!("--gloss: {e}"))?;
+            for (g, measured, fitted) in &fit.readings {
+                eprintln!("rouge: {}°: read {measured:.1} GU, the fitted lobe {fitted:.1} GU", g.incidence_deg());
+            }
+            specular = fit.specular;
+            if args.kind.is_none() && preset.finish.is_none() {
+                finish = fit.nearest_kind.defaults().1;
+            }
+        }
+        finish.clarity = args.clarity.unwrap_or(finish.clarity);
+        finish.levelling = args.levelling.unwrap_or(finish.levelling);
+        finish.validate().map_err(anyhow::Error::msg)?;
+        preset.set_finish(Some((specular, finish)));
+    }
+    let s = preset.specular;
+    let film = match preset.finish {
+        Some(f) => format!("{} (clarity {:.2}, levelling {:.2})", f.kind.name(), f.clarity, f.levelling),
+        None => "none (schema version 1: a clear film that follows the skin's relief)".into(),
+    };
+    crate::emit(&format!(
+        "{}: finish {film}; lobe roughness {:.3}, index {:.3}; {}",
+        preset.name,
+        s.roughness,
+        s.ior,
+        gloss_line(s)
+    ))?;
+    if changes {
+        preset.save(&out)?;
+        eprintln!("rouge: wrote {} (preset schema version {})", out.display(), preset.version);
+    }
+    Ok(())
+}

@@ -1,0 +1,72 @@
+"""Close-ups of finishes (README, docs/FORMULATION.md "Finishes"), rendered by the real `rouge`
+binary under the studio lights:
+
+  docs/images/finishes_closeup.png  a cheek bare, under 30 um of the ivory foundation with a
+                                    matte, a satin and a dewy finish, and the dewy foundation
+                                    under 8 um of a matte powder (the porcelain shade, the
+                                    nearest to a translucent powder among the sample presets);
+                                    the lips with the red lipstick matte, satin and gloss
+
+The finishes are the named ones of `rouge finish --kind` (rouge_measure::finish); the presets
+are written into a temporary folder, nothing in data/ changes.
+
+Usage: python python/finish_figure.py [--rouge target/release/rouge] [--out docs/images]
+(about a minute with the release binary on 2 cores, lavapipe).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+
+from skin_maps_figure import grid, label, render
+
+
+def finished(rouge: str, folder: Path, builtin: str, kind: str) -> Path:
+    out = folder / f"{builtin}_{kind}.json"
+    subprocess.run([rouge, "finish", f"builtin:{builtin}", "--kind", kind, "--out", str(out)], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return out
+
+
+def look(folder: Path, name: str, layers: list[tuple[Path | str, dict]]) -> Path:
+    doc = {"schema": "rouge-look", "version": 1, "name": name,
+           "layers": [{"preset": str(p), "thickness": t} for p, t in layers]}
+    path = folder / f"{name}.json"
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rouge", default="target/release/rouge")
+    ap.add_argument("--out", type=Path, default=Path("docs/images"))
+    a = ap.parse_args()
+    cheek = ["--close-up", "cheeks", "--yaw", "40", "--pitch", "5", "--width", "480", "--height", "320"]
+    lips = ["--close-up", "lips", "--yaw", "15", "--pitch", "10", "--width", "480", "--height", "320"]
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        f = {k: finished(a.rouge, folder, "foundation_02_ivory", k) for k in ("matte", "satin", "dewy")}
+        powder = finished(a.rouge, folder, "foundation_01_porcelain", "matte")
+        coat = {"uniform_mm": 0.030}
+        cells = [label(render(a.rouge, folder / "bare.png", "--look", "bare", *cheek), "bare skin")]
+        for kind, preset in f.items():
+            path = look(folder, f"foundation_{kind}", [(preset, coat)])
+            cells.append(label(render(a.rouge, folder / f"{kind}.png", "--look", str(path), *cheek),
+                               f"ivory foundation 30 um, {kind}"))
+        path = look(folder, "powdered", [(f["dewy"], coat), (powder, {"uniform_mm": 0.008})])
+        cells.append(label(render(a.rouge, folder / "powder.png", "--look", str(path), *cheek),
+                           "dewy foundation + 8 um matte powder"))
+        for kind in ("matte", "satin", "gloss"):
+            red = finished(a.rouge, folder, "lipstick_02_red", kind)
+            path = look(folder, f"lips_{kind}", [(red, {"region": "lips", "thickness_mm": 0.02})])
+            cells.append(label(render(a.rouge, folder / f"lips_{kind}.png", "--look", str(path), *lips),
+                               f"red lipstick 20 um, {kind}"))
+        grid(cells, 4).save(a.out / "finishes_closeup.png")
+
+
+if __name__ == "__main__":
+    main()
