@@ -1,5 +1,5 @@
-//! `rouge render` / `rouge export mitsuba` with --expression and --shape, and `rouge bench
-//! deform`: the face's options end to end.
+//! `rouge render` / `rouge export mitsuba` with --expression and --shape, `rouge bench deform`,
+//! close-ups (`--close-up`) and finishes (`rouge finish`): the face's options end to end.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -172,4 +172,45 @@ fn skin_maps_are_written_as_files() {
     let o = rouge(&["skin", "maps", "--out", missing.to_str().expect("utf-8")]);
     assert!(o.status.code() == Some(2) && stderr(&o).contains("cannot write"), "{}", stderr(&o));
     assert_eq!(std::fs::read(&exr).expect("exr"), before);
+}
+
+#[test]
+fn close_ups_and_finishes_from_the_command_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = path(dir.path(), "lips.png");
+    let o = rouge(&["render", "--close-up", "lips", "--width", "64", "--height", "48", "--out", png.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(png.exists());
+    let o = rouge(&["render", "--close-up", "elbow", "--out", png.to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("cheeks"), "{}", stderr(&o));
+
+    // A named finish is written as preset schema version 2 and read back; gloss readings fit the
+    // lobe; bad input is named and leaves the file as it was.
+    let preset = path(dir.path(), "red.json");
+    let p = preset.to_str().unwrap();
+    let o = rouge(&["finish", "builtin:lipstick_02_red", "--kind", "gloss", "--out", p]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&preset).unwrap();
+    assert!(text.contains("\"version\": 2") && text.contains("\"kind\": \"gloss\""), "{text}");
+    let o = rouge(&["finish", p]);
+    let shown = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success() && shown.contains("finish gloss") && shown.contains("at 60°"), "{shown}");
+    let o = rouge(&["finish", p, "--gloss", "60=12"]);
+    assert!(o.status.success() && stderr(&o).contains("60°: read 12.0 GU"), "{}", stderr(&o));
+    let before = std::fs::read(&preset).unwrap();
+    for (args, says) in [
+        (&["--gloss", "45=3"][..], "20, 60 or 85"),
+        (&["--gloss", "60=lots"][..], "gloss units"),
+        (&["--clarity", "2"][..], "finish.clarity"),
+        (&["--kind", "velvet"][..], "matte, satin, dewy or gloss"),
+    ] {
+        let o = rouge(&[&["finish", p][..], args].concat());
+        assert!(!o.status.success() && stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+    }
+    assert_eq!(std::fs::read(&preset).unwrap(), before, "a refused change writes nothing");
+    let o = rouge(&["finish", "builtin:lipstick_02_red", "--kind", "matte"]);
+    assert!(!o.status.success() && stderr(&o).contains("--out"), "{}", stderr(&o));
+    let o = rouge(&["finish", p, "--clear"]);
+    assert!(o.status.success());
+    assert!(std::fs::read_to_string(&preset).unwrap().contains("\"version\": 1"));
 }

@@ -23,8 +23,8 @@ pub mod km_uncertainty;
 pub mod layer_table;
 pub mod preset;
 pub mod skin;
-pub mod specular;
 pub mod spectrum;
+pub mod specular;
 
 pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};
 pub use error::LocatedError;

@@ -417,7 +417,10 @@ impl Preset {
         if !(VERSION_WITHOUT_FINISH..=VERSION).contains(&self.version) {
             return Err(invalid(
                 path,
-                format!("preset schema version {} is not supported: this Rouge reads versions 1 to {VERSION}", self.version),
+                format!(
+                    "preset schema version {} is not supported: this Rouge reads versions 1 to {VERSION}",
+                    self.version
+                ),
             ));
         }
         if let Some(finish) = &self.finish {

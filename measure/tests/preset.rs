@@ -3,8 +3,8 @@
 //! file, and finishes (schema version 2) load beside version 1 presets.
 
 use rouge_measure::Spectrum;
-use rouge_measure::import::Kind;
 use rouge_measure::finish::FinishKind;
+use rouge_measure::import::Kind;
 use rouge_measure::preset::Preset;
 
 fn sample() -> Preset {

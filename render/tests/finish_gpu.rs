@@ -38,7 +38,8 @@ fn peak(v: &[f32]) -> f32 {
 #[test]
 fn a_matte_foundation_shines_less_than_a_gloss_on_the_same_face() {
     let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
-    let peaks: Vec<(FinishKind, f32)> = FinishKind::ALL.into_iter().map(|k| (k, peak(&surface(&gpu, Some(k))))).collect();
+    let peaks: Vec<(FinishKind, f32)> =
+        FinishKind::ALL.into_iter().map(|k| (k, peak(&surface(&gpu, Some(k))))).collect();
     eprintln!("peak surface radiance per finish: {peaks:?}");
     for w in peaks.windows(2) {
         assert!(w[0].1 < w[1].1, "{:?} peaks at {} but {:?} at {}", w[0].0, w[0].1, w[1].0, w[1].1);
