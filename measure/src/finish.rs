@@ -112,10 +112,10 @@ impl Finish {
 /// no film or a film that follows the relief; falls monotonically with thickness. Non-positive
 /// or non-finite inputs count as no film (1), a pore of no depth as filled (0).
 pub fn pore_relief(thickness_mm: f64, pore_depth_mm: f64, levelling: f64) -> f64 {
-    if !(thickness_mm > 0.0 && levelling > 0.0) || !thickness_mm.is_finite() {
+    if !(thickness_mm > 0.0 && levelling > 0.0 && thickness_mm.is_finite()) {
         return 1.0;
     }
-    if !(pore_depth_mm > 0.0) {
+    if pore_depth_mm.is_nan() || pore_depth_mm <= 0.0 {
         return 0.0;
     }
     (-levelling.min(1.0) * thickness_mm / pore_depth_mm).exp()
