@@ -145,6 +145,7 @@ impl GpuLook {
                     LAYER_FULL_COVERAGE_MM,
                     layer.preset.clarity_levelling().0 as f32,
                 ],
+                film: [layer.preset.clarity_levelling().1 as f32, 0.0, 0.0, 0.0],
             };
         }
         if tables.is_empty() {
@@ -203,6 +204,78 @@ pub struct SkinTextures {
     pub normal: Option<wgpu::TextureView>,
     /// The baked local thickness (Rgba16Float, rgb white = thin), for the thickness model.
     pub local_thickness: Option<wgpu::TextureView>,
+    /// The skin's microgeometry ([`rouge_model::skin::detail`]).
+    pub detail: Option<SkinDetailTextures>,
+}
+
+/// The skin's microgeometry on the device: the tileable relief with its mip chain, the region
+/// map (pore depth, specular scale) in the mesh's UVs, and how many tiles a UV unit holds.
+#[derive(Debug)]
+pub struct SkinDetailTextures {
+    /// [`rouge_model::skin::DetailTile`], RGBA8 linear, every mip level.
+    pub tile: wgpu::TextureView,
+    /// [`rouge_model::skin::RegionDetail`], RGBA8 linear.
+    pub regions: wgpu::TextureView,
+    /// Tiles per UV unit ([`rouge_model::skin::detail::tiles_per_uv`]).
+    pub tiles_per_uv: f32,
+}
+
+impl SkinDetailTextures {
+    /// Uploads `tile` (every level) and `regions`.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a tile without levels, levels that do not halve, or a scale
+    /// that is not finite and positive.
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        tile: &rouge_model::skin::DetailTile,
+        regions: &rouge_model::skin::RegionDetail,
+        tiles_per_uv: f32,
+    ) -> Result<SkinDetailTextures> {
+        let Some(first) = tile.levels.first() else {
+            return Err(RenderError::Invalid("skin detail: a tile without levels".into()));
+        };
+        if !(tiles_per_uv.is_finite() && tiles_per_uv > 0.0) {
+            return Err(RenderError::Invalid(format!("skin detail: {tiles_per_uv} tiles per UV unit")));
+        }
+        let side = first.width();
+        if tile.levels.iter().enumerate().any(|(i, l)| l.width() != (side >> i).max(1) || l.height() != l.width()) {
+            return Err(RenderError::Invalid("skin detail: tile levels must be square and halve".into()));
+        }
+        let format = wgpu::TextureFormat::Rgba8Unorm;
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        let t = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("SkinDetailTextures::tile"),
+            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
+            mip_level_count: tile.levels.len() as u32,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        });
+        for (i, level) in tile.levels.iter().enumerate() {
+            let w = level.width();
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &t,
+                    mip_level: i as u32,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                level.as_raw(),
+                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(w) },
+                wgpu::Extent3d { width: w, height: w, depth_or_array_layers: 1 },
+            );
+        }
+        let r = &regions.image;
+        Ok(SkinDetailTextures {
+            tile: view(&t),
+            regions: upload_2d(device, queue, "SkinDetailTextures::regions", r.dimensions(), format, r.as_raw(), 4),
+            tiles_per_uv,
+        })
+    }
 }
 
 impl SkinTextures {
@@ -227,6 +300,7 @@ impl SkinTextures {
             albedo: albedo.map(|a| upload(a, wgpu::TextureFormat::Rgba8UnormSrgb, "albedo map")).transpose()?,
             normal: normal.map(|n| upload(n, wgpu::TextureFormat::Rgba8Unorm, "normal map")).transpose()?,
             local_thickness: None,
+            detail: None,
         })
     }
 }

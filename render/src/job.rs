@@ -60,6 +60,9 @@ pub struct RenderJob {
     /// ([`rouge_model::skin`]); their colour through the spectral skin model becomes the skin's
     /// albedo texture. Exclusive with `albedo_map`.
     pub skin_maps: Option<SkinRecipe>,
+    /// Whether the skin has its microgeometry ([`rouge_model::skin::detail`]: pores, fine lines,
+    /// the T-zone's shine), tiled at the mesh's scale with the default head's region map.
+    pub skin_detail: bool,
     /// Whether the skin maps' blood follows the face's expression
     /// ([`rouge_model::skin::SkinMaps::with_blood_flow`]: a smile flushes the cheeks, pressed lips
     /// blanch).
@@ -99,6 +102,7 @@ impl Default for RenderJob {
             albedo_map: None,
             normal_map: None,
             skin_maps: None,
+            skin_detail: false,
             blood_flow: true,
             width: 1280,
             height: 720,
@@ -260,6 +264,12 @@ impl RenderJob {
         renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
         renderer.set_look(look)?;
+        if self.skin_detail {
+            let scale = rouge_model::skin::detail::tiles_per_uv(mesh)
+                .ok_or_else(|| RenderError::Invalid("skin detail: the mesh has no UV area".into()))?;
+            let (tile, regions) = default_skin_detail();
+            renderer.set_skin_detail(Some((tile, regions, scale)))?;
+        }
         let mut thickness_bake = None;
         if let SubsurfaceModel::Thickness { source: ThicknessSource::Baked(settings), .. } = &scene.skin.subsurface {
             let bake_mesh = if self.thickness_bake_rest_pose { rest_mesh.as_ref().unwrap_or(mesh) } else { mesh };
@@ -321,6 +331,16 @@ impl RenderJob {
         };
         Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
+}
+
+/// The skin detail every render uses: the relief tile of seed 1 and the default head's region
+/// map, made once per process.
+pub fn default_skin_detail() -> (&'static rouge_model::skin::DetailTile, &'static rouge_model::skin::RegionDetail) {
+    static DETAIL: std::sync::OnceLock<(rouge_model::skin::DetailTile, rouge_model::skin::RegionDetail)> =
+        std::sync::OnceLock::new();
+    let (tile, regions) = DETAIL
+        .get_or_init(|| (rouge_model::skin::DetailTile::generate(1), rouge_model::skin::RegionDetail::default_head()));
+    (tile, regions)
 }
 
 /// The default head subdivided `levels` times at rest (neutral, unshaped) and in `face`'s pose,

@@ -168,8 +168,30 @@ impl Renderer {
         }
         let (device, queue) = (&self.shared.device, &self.shared.queue);
         let local_thickness = self.textures.local_thickness.take();
+        let detail = self.textures.detail.take();
         let uploaded = validated(device, "texture upload", || SkinTextures::upload(device, queue, albedo, normal));
-        self.textures = SkinTextures { local_thickness, ..uploaded? };
+        self.textures = SkinTextures { local_thickness, detail, ..uploaded? };
+        Ok(())
+    }
+
+    /// Sets or clears the skin's microgeometry ([`rouge_model::skin::detail`]): the relief tile,
+    /// the region map in the mesh's UVs, and the tiles per UV unit
+    /// ([`rouge_model::skin::detail::tiles_per_uv`] of the mesh).
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for a malformed tile or scale.
+    pub fn set_skin_detail(
+        &mut self,
+        detail: Option<(&rouge_model::skin::DetailTile, &rouge_model::skin::RegionDetail, f32)>,
+    ) -> Result<()> {
+        let (device, queue) = (&self.shared.device, &self.shared.queue);
+        self.textures.detail = detail
+            .map(|(tile, regions, scale)| {
+                validated(device, "skin detail upload", || {
+                    crate::gpu_look::SkinDetailTextures::upload(device, queue, tile, regions, scale)
+                })
+            })
+            .transpose()?;
         Ok(())
     }
 
@@ -263,6 +285,7 @@ impl Renderer {
             albedo_map: self.textures.albedo.is_some(),
             normal_map: self.textures.normal.is_some(),
             local_thickness_map: self.textures.local_thickness.is_some(),
+            skin_detail: self.textures.detail.is_some(),
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
         FramePlan::new(scene, uploaded, FrameSettings { width, height, display, max_side, aa: self.edge_aa })
@@ -317,8 +340,9 @@ impl Renderer {
         targets.ensure(device, plan.targets.iter().copied());
         passes.shadow.ensure_maps(shared, plan.shadow_maps);
         let view = FrameView::new(camera, &mesh.bounds, plan.size);
-        let frame =
+        let mut frame =
             FrameUniform::new(&plan.constants, camera, &view, &mesh.bounds, plan.size, (look.layers, look.params));
+        frame.skin[3] = textures.detail.as_ref().map_or(0.0, |d| d.tiles_per_uv);
         shared.write_frame(&frame);
 
         let profiler = if *profiling { profiler.as_mut() } else { None };

@@ -37,6 +37,8 @@ pub struct LightUniform {
 pub struct LayerUniform {
     /// Roughness, F0, full-coverage thickness, clarity of the finish.
     pub params: [f32; 4],
+    /// The finish's levelling (how much the film fills the skin's pores), unused × 3.
+    pub film: [f32; 4],
 }
 
 /// The per-frame uniform, as in WGSL `Frame` (shaders/common.wgsl).
@@ -55,7 +57,7 @@ pub struct FrameUniform {
     pub viewport: [f32; 4],
     /// Focal length (px), near, far, exposure.
     pub projection: [f32; 4],
-    /// Skin roughness, F0, specular on, unused.
+    /// Skin roughness, F0, specular on, skin detail tiles per UV unit (0 without detail).
     pub skin: [f32; 4],
     /// SSS width, follow (mm), sample count, unused.
     pub sss: [f32; 4],

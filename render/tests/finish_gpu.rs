@@ -1,6 +1,8 @@
 //! Finishes on a real device (lavapipe on CI): the same foundation on the default head with a
 //! matte, a satin, a dewy and a gloss finish (`rouge_measure::finish`), lit by the studio rig.
 //! The surface radiance (stack reflectance + specular) is read from the lighting pass's target.
+//! With the skin's microgeometry (`rouge_model::skin::detail`): pores show in the highlights of
+//! bare skin and a levelling film fills them as it thickens.
 
 use rouge_measure::finish::FinishKind;
 use rouge_model::look::Look;
@@ -77,4 +79,81 @@ fn a_preset_without_a_finish_renders_as_before_and_a_powder_hides_the_skins_shin
     let (sum_clear, sum_powder) = (clear.iter().sum::<f32>(), powdered.iter().sum::<f32>());
     assert!(sum_powder < sum_clear, "powder {sum_powder} against a clear film {sum_clear}");
     assert!(powdered.iter().zip(&clear).all(|(p, c)| *p <= *c + 1e-4), "nowhere brighter");
+}
+
+/// High-frequency content of the surface radiance over the skin: the mean absolute difference
+/// between each pixel and the mean of its 3 × 3 neighbourhood (pores are a few pixels across in
+/// the test's view), relative to the mean radiance.
+fn speckle(surface: &[[f32; 4]], w: usize, h: usize) -> f64 {
+    let (mut sum, mut mean, mut count) = (0.0f64, 0.0f64, 0usize);
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let window: Vec<&[f32; 4]> = (0..9).map(|k| &surface[(y + k / 3 - 1) * w + x + k % 3 - 1]).collect();
+            if window.iter().any(|p| p[3] == 0.0) {
+                continue;
+            }
+            let centre = f64::from(surface[y * w + x][1]);
+            let around = window.iter().map(|p| f64::from(p[1])).sum::<f64>() / 9.0;
+            sum += (centre - around).abs();
+            mean += centre;
+            count += 1;
+        }
+    }
+    assert!(count > 1000, "{count} skin pixels");
+    sum / mean.max(1e-9)
+}
+
+#[test]
+fn pores_show_on_bare_skin_and_a_levelling_film_fills_them() {
+    use rouge_model::skin::AnatomyRegion;
+    use rouge_model::skin::detail::tiles_per_uv;
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let scene = Scene::studio();
+    // Closer than the close-up (about 9 mm across the image's height, 0.05 mm a pixel), so that a
+    // pore spans pixels.
+    let mut camera = Camera::close_up(head(), AnatomyRegion::Nose, 25.0, 5.0).expect("the nose");
+    camera.distance *= 0.15;
+    let (w, h) = (256usize, 192usize);
+    let scale = tiles_per_uv(head()).expect("UVs");
+    let render = |detail: bool, thickness_mm: f32, levelling: f64| {
+        let text = format!(
+            r#"{{"schema": "rouge-look", "version": 1, "name": "primer",
+            "layers": [{{"preset": "builtin:foundation_02_ivory", "thickness": {{"uniform_mm": {thickness_mm}}}}}]}}"#
+        );
+        let mut look = Look::from_json(&text, Path::new("primer.json")).expect("look");
+        let (lobe, mut film) = FinishKind::Gloss.defaults();
+        film.levelling = levelling;
+        look.layers[0].preset.set_finish(Some((lobe, film)));
+        let mut r = Renderer::new(&gpu.device, &gpu.queue);
+        r.set_mesh(head(), scene.skin.albedo).expect("mesh");
+        r.set_look(&look).expect("look");
+        if detail {
+            let (tile, regions) = rouge_render::job::default_skin_detail();
+            r.set_skin_detail(Some((tile, regions, scale))).expect("detail");
+        }
+        r.render(&scene, &camera, w as u32, h as u32, false).expect("render");
+        let cap = r.capture().expect("capture");
+        assert!(cap.surface.iter().all(|p| p.iter().all(|v| v.is_finite())), "finite");
+        speckle(&cap.surface, w, h)
+    };
+    let smooth = render(false, 0.0, 1.0);
+    let bare = render(true, 0.0, 1.0);
+    eprintln!("speckle without detail {smooth:.4}, bare skin with detail {bare:.4}");
+    assert!(bare > 10.0 * smooth, "pores on bare skin: {bare} against {smooth} without detail");
+    // A formed gloss film (its own sharp lobe, the same at every thickness here) shows less of the
+    // relief as it thickens when it levels, and keeps it when it does not (a thicker film still
+    // hides more of the skin's own speckled lobe below it, so the conformal film is compared with
+    // the levelling one at the same thickness).
+    let thin = render(true, 0.005, 1.0);
+    let mut last = thin;
+    for um in [15.0, 40.0] {
+        let filled = render(true, um / 1000.0, 1.0);
+        eprintln!("{um} µm of a levelling film: {filled:.4} (5 µm: {thin:.4})");
+        assert!(filled < last, "{um} µm: {filled} after {last}");
+        last = filled;
+    }
+    assert!(last < 0.5 * thin, "40 µm fills most of the relief: {last} against {thin}");
+    let conformal = render(true, 0.040, 0.0);
+    eprintln!("40 µm of a film that follows the relief: {conformal:.4}");
+    assert!(conformal > 3.0 * last, "a film with levelling 0 keeps the pores: {conformal} against {last} levelled");
 }

@@ -22,12 +22,14 @@ pub mod albedo;
 pub mod anatomy;
 pub mod blood_flow;
 pub mod conditions;
+pub mod detail;
 pub mod edits;
 pub mod file;
 pub mod generate;
 
 pub use anatomy::AnatomyRegion;
 pub use conditions::{Condition, ConditionError, SkinConditions};
+pub use detail::{DetailTile, RegionDetail};
 pub use edits::{SkinBrush, SkinBrushKind, SkinEdits};
 pub use file::{ProjectSkin, SKIN_FILE, SkinRecipe};
 

@@ -44,6 +44,8 @@ pub struct Uploaded {
     pub normal_map: bool,
     /// A baked local-thickness map is bound ([`crate::Renderer::set_local_thickness`]).
     pub local_thickness_map: bool,
+    /// The skin's microgeometry is bound ([`crate::Renderer::set_skin_detail`]).
+    pub skin_detail: bool,
 }
 
 /// The output of a frame.
@@ -94,6 +96,8 @@ pub enum Resource {
     NormalMap,
     /// The baked local-thickness map.
     LocalThicknessMap,
+    /// The skin's microgeometry: relief tile and region map.
+    SkinDetail,
     /// The environment's spherical-harmonics irradiance.
     Environment,
     /// The dipole models' light G-buffer: light views and side, texels.
@@ -199,6 +203,7 @@ impl FramePlan {
             display: settings.display,
             albedo_map: uploaded.albedo_map,
             normal_map: uploaded.normal_map,
+            skin_detail: uploaded.skin_detail,
             thickness: models.thickness_variant(),
             dipole: models.dipole.is_some() || models.atlas.is_some(),
             atlas: models.atlas.is_some(),

@@ -99,6 +99,11 @@ impl Planner {
         if variant.thickness == ThicknessVariant::Baked {
             reads.push(Resource::LocalThicknessMap);
         }
+        if variant.skin_detail {
+            reads.push(Resource::SkinDetail);
+        } else {
+            self.skip("skin detail (pores, fine lines, oiliness)", "no skin detail is bound");
+        }
         let mut writes = targets(&gbuffer::outputs(variant));
         writes.push(Resource::Target(Target::Depth));
         self.push(Step::Gbuffer(()), reads, writes.into_iter().map(|r| (r, Access::Replace)).collect());

@@ -22,7 +22,7 @@ fn steps(plan: &FramePlan) -> Vec<String> {
 fn the_studio_frame_runs_every_pass() {
     let plan = FramePlan::new(
         &Scene::studio(),
-        Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false },
+        Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
         settings(),
     )
     .expect("plan");
@@ -39,7 +39,7 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     scene.skin.subsurface = SubsurfaceModel::None;
     let plan = FramePlan::new(
         &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
         settings(),
     )
     .expect("plan");
@@ -56,7 +56,7 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     scene.sss.width = 0.0;
     let plan = FramePlan::new(
         &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false },
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
         settings(),
     )
     .expect("plan");
@@ -66,7 +66,8 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
 #[test]
 fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     use crate::local_thickness::TranslucencyParams;
-    let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true };
+    let up =
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true, skin_detail: false };
     let mut scene = Scene::rig(crate::scene::LightRig::Back);
     // Not used: neither the pass nor the target.
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
@@ -107,7 +108,8 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
 
 #[test]
 fn bad_requests_are_errors() {
-    let up = Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false };
+    let up =
+        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false };
     let scene = Scene::studio();
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());

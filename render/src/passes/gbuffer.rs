@@ -44,6 +44,7 @@ impl FramePass for GbufferPass {
         layers: v.layers,
         albedo_map: v.albedo_map,
         normal_map: v.normal_map,
+        skin_detail: v.skin_detail,
         thickness: v.thickness,
         ..Variant::BARE
     });
@@ -58,6 +59,9 @@ impl FramePass for GbufferPass {
                 float_tex(2, true),
                 float_tex(3, true),
                 float_tex(4, true),
+                float_tex(5, true),
+                float_tex(6, true),
+                sampler_entry(7, wgpu::SamplerBindingType::Filtering),
             ],
         );
         GbufferPass { layout, pipelines: Pipelines::default() }
@@ -93,6 +97,9 @@ impl FramePass for GbufferPass {
                 tex(2, textures.albedo.as_ref().unwrap_or(&shared.dummy)),
                 tex(3, textures.normal.as_ref().unwrap_or(&shared.dummy)),
                 tex(4, textures.local_thickness.as_ref().unwrap_or(&shared.dummy)),
+                tex(5, textures.detail.as_ref().map_or(&shared.dummy, |d| &d.tile)),
+                tex(6, textures.detail.as_ref().map_or(&shared.dummy, |d| &d.regions)),
+                sampler(7, &shared.repeat_sampler),
             ],
         });
         let views = slots.iter().map(|t| t.map(|t| targets.view(t)).transpose()).collect::<Result<Vec<_>>>()?;

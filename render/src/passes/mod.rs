@@ -145,6 +145,8 @@ pub struct Shared {
     pub linear_sampler: wgpu::Sampler,
     /// Depth comparison for shadow maps.
     pub shadow_sampler: wgpu::Sampler,
+    /// Trilinear, repeating: the skin's tiled detail.
+    pub repeat_sampler: wgpu::Sampler,
 
     /// A 1×1 Rgba16Float texture bound where a variant reads nothing.
     pub dummy: wgpu::TextureView,
@@ -173,6 +175,15 @@ impl Shared {
             compare: Some(wgpu::CompareFunction::LessEqual),
             ..Default::default()
         });
+        let repeat_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("Shared::repeat_sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
         let dummy = texture(
             device,
             "Shared::dummy",
@@ -191,6 +202,7 @@ impl Shared {
             frame_group,
             linear_sampler,
             shadow_sampler,
+            repeat_sampler,
             dummy: view(&dummy),
         }
     }

@@ -37,6 +37,8 @@ pub struct Variant {
     pub albedo_map: bool,
     /// A tangent-space normal map perturbs the normals.
     pub normal_map: bool,
+    /// The skin's microgeometry perturbs the skin's normals and scales its specular.
+    pub skin_detail: bool,
     /// The thickness translucency and its local-thickness source.
     pub thickness: ThicknessVariant,
     /// A dipole model takes over the skin's direct light (the lighting pass leaves it out).
@@ -54,6 +56,7 @@ impl Variant {
         display: false,
         albedo_map: false,
         normal_map: false,
+        skin_detail: false,
         thickness: ThicknessVariant::Off,
         dipole: false,
         atlas: false,
@@ -64,7 +67,7 @@ impl Variant {
     pub fn all() -> impl Iterator<Item = Variant> {
         let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
         (0..=MAX_LAYERS as u32).flat_map(move |layers| {
-            (0..96u32).flat_map(move |bits| {
+            (0..192u32).flat_map(move |bits| {
                 thickness.into_iter().map(move |thickness| Variant {
                     layers,
                     shadows: bits & 1 != 0,
@@ -72,16 +75,17 @@ impl Variant {
                     display: bits & 4 != 0,
                     albedo_map: bits & 8 != 0,
                     normal_map: bits & 16 != 0,
+                    skin_detail: bits >= 96,
                     thickness,
-                    dipole: bits >= 32,
-                    atlas: bits >= 64,
+                    dipole: bits % 96 >= 32,
+                    atlas: bits % 96 >= 64,
                 })
             })
         })
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 13] {
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 14] {
         [
             ("DIPOLE", self.dipole),
             ("ATLAS", self.atlas),
@@ -95,6 +99,7 @@ impl Variant {
             ("DISPLAY", self.display),
             ("ALBEDO_MAP", self.albedo_map),
             ("NORMAL_MAP", self.normal_map),
+            ("SKIN_DETAIL", self.skin_detail),
             ("ENCODE_SRGB", encode_srgb),
         ]
     }
@@ -145,6 +150,7 @@ pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> 
     out.push_str(&rouge_measure::layer_table::wgsl_constants());
     out.push_str(&rouge_measure::compositing::CompositingBasis::get().wgsl_constants());
     out.push_str(&crate::specular::wgsl_constants());
+    out.push_str(&format!("const PORE_DEPTH_MM: f32 = {:?};\n", rouge_model::skin::detail::PORE_DEPTH_MM));
     out.push_str(include_str!("../shaders/common.wgsl"));
     out.push_str(&preprocess(pass.file, pass.source, &variant.flags(encode_srgb))?);
     Ok(out)

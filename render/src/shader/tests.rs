@@ -60,12 +60,12 @@ fn every_shader_variant_validates() {
             }
         }
     }
-    assert_eq!(Variant::all().count(), 9 * 96 * 3);
-    // G-buffer: 9 layer counts × albedo × normal map × 3 thickness variants; thickness: 3;
+    assert_eq!(Variant::all().count(), 9 * 192 * 3);
+    // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants; thickness: 3;
     // lighting: 9 × shadows × env × 3 (dipole, atlas); composite: 2 × display; shadow, SSS,
     // depth copy, edge overdraw, the three dipole passes and the atlas gather: 1 each; the atlas
     // irradiance: shadows × env.
-    let per_encoding = 9 * 4 * 3 + 3 + 9 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
+    let per_encoding = 9 * 8 * 3 + 3 + 9 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -83,6 +83,7 @@ fn variants_compile_only_what_the_scene_uses() {
         display: true,
         albedo_map: true,
         normal_map: true,
+        skin_detail: true,
         thickness: ThicknessVariant::Baked,
         dipole: false,
         atlas: false,
@@ -93,6 +94,7 @@ fn variants_compile_only_what_the_scene_uses() {
     assert!(!source(GBUFFER, Variant { layers: 4, ..full }).contains("thickness_b"));
     assert!(source(GBUFFER, full).contains("textureSampleLevel(normal_map"));
     assert!(!source(GBUFFER, bare).contains("textureSampleLevel(normal_map"));
+    assert!(source(GBUFFER, full).contains("detail_tile") && !source(GBUFFER, bare).contains("detail_tile"));
     assert!(!source(GBUFFER, bare).contains("textureSampleLevel(albedo_map"));
     // The display encoding: only the GL variant applies the sRGB curve in the shader.
     let encoded = shader_source(COMPOSITE, bare, true).expect("source");
@@ -119,6 +121,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
         display: true,
         albedo_map: true,
         normal_map: true,
+        skin_detail: true,
         thickness: ThicknessVariant::ShadowMap,
         dipole: true,
         atlas: true,
@@ -193,7 +196,11 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("shadow_view_proj", offset_of!(LightUniform, shadow_view_proj)),
             ],
         ),
-        ("Layer", size_of::<LayerUniform>(), vec![("params", offset_of!(LayerUniform, params))]),
+        (
+            "Layer",
+            size_of::<LayerUniform>(),
+            vec![("params", offset_of!(LayerUniform, params)), ("film", offset_of!(LayerUniform, film))],
+        ),
         (
             "DipolePass",
             size_of::<DipoleUniform>(),

@@ -21,6 +21,8 @@ struct Layer {
     // lobe is fully formed, w: the clarity of its finish (the part of the lobes below it that a
     // fully formed layer passes specularly).
     params: vec4<f32>,
+    // x: the finish's levelling (rouge_measure::finish::pore_relief), yzw: unused.
+    film: vec4<f32>,
 }
 
 struct Frame {
@@ -32,7 +34,8 @@ struct Frame {
     viewport: vec4<f32>,
     // focal length in pixels, near (mm), far (mm), exposure
     projection: vec4<f32>,
-    // x: skin Beckmann roughness, y: skin F0, z: 1 when specular is on, w: unused
+    // x: skin Beckmann roughness, y: skin F0, z: 1 when specular is on, w: skin detail tiles per
+    // UV unit (render/src/gpu_look.rs SkinDetailTextures; 0 without detail)
     skin: vec4<f32>,
     // x: SSS width (profile scale), y: depth follow (mm), z: sample count, w: unused
     sss: vec4<f32>,

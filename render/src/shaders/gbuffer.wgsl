@@ -9,6 +9,15 @@
 @group(1) @binding(3) var normal_map: texture_2d<f32>;
 // The baked local thickness ([BarreBrisebois2011]; rgb, white = thin) in the mesh's UV space.
 @group(1) @binding(4) var local_thickness_map: texture_2d<f32>;
+//#if SKIN_DETAIL
+// The skin's microgeometry (model/src/skin/detail.rs): the tileable relief with its mips (rgb: the
+// tangent-space normal, averaged over finer texels; a: cavity), the region map in the mesh's UVs
+// (r: pore depth relative to PORE_DEPTH_MM, g: the skin's specular scale from its oiliness), and
+// a repeating trilinear sampler.
+@group(1) @binding(5) var detail_tile: texture_2d<f32>;
+@group(1) @binding(6) var detail_regions: texture_2d<f32>;
+@group(1) @binding(7) var detail_sampler: sampler;
+//#endif
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -26,6 +35,8 @@ struct VsOut {
     @location(1) uv: vec2<f32>,
     @location(2) albedo: vec4<f32>,
     @location(3) tangent: vec4<f32>,
+    // World position, mm (the skin detail's frame from its derivatives).
+    @location(4) world: vec3<f32>,
 }
 
 @vertex
@@ -36,11 +47,13 @@ fn vs_gbuffer(v: VsIn) -> VsOut {
     out.uv = v.uv;
     out.albedo = v.albedo;
     out.tangent = v.tangent;
+    out.world = v.position;
     return out;
 }
 
 struct GbufferOut {
-    // xyz: world normal, w: 1 where the mesh covers the pixel
+    // xyz: world normal, w: 0 where no mesh covers the pixel, else the skin's specular scale in
+    // (0, 1] (cavity × oiliness with skin detail; 1 without)
     @location(0) normal: vec4<f32>,
     // rgb: albedo (stored sRGB-encoded, read back linear), a: skin flag
     @location(1) albedo: vec4<f32>,
@@ -68,6 +81,17 @@ fn layer_thickness(uv: vec2<f32>, i: u32) -> f32 {
 fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
     var n = normalize(in.normal);
     let tex_uv = vec2<f32>(in.uv.x, 1.0 - in.uv.y);
+//#if SKIN_DETAIL
+    // Derivatives in uniform control flow, before any branch: the detail's footprint and the UVs'
+    // cotangent frame. The tile's image rows run down its v, hence −v.
+    let detail_uv = vec2<f32>(in.uv.x, -in.uv.y) * frame.skin.w;
+    let detail_dx = dpdx(detail_uv);
+    let detail_dy = dpdy(detail_uv);
+    let dp_dx = dpdx(in.world);
+    let dp_dy = dpdy(in.world);
+    let duv_dx = dpdx(in.uv);
+    let duv_dy = dpdy(in.uv);
+//#endif
 //#if NORMAL_MAP
     if dot(in.tangent.xyz, in.tangent.xyz) > 0.0 {
         let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
@@ -87,12 +111,17 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
         out.albedo = vec4<f32>(textureSampleLevel(albedo_map, map_sampler, tex_uv, 0.0).rgb, 1.0);
     }
 //#endif
+    // Σ levelling·thickness over the layers here, mm (what fills the skin's relief).
+    var levelled_mm = 0.0;
 //#if LAYERS_A
     var a = vec4<f32>(0.0);
     for (var i = 0u; i < min(LAYERS, 4u); i++) {
         a[i] = layer_thickness(in.uv, i) * in.albedo.a;
     }
     out.thickness_a = a;
+    for (var i = 0u; i < min(LAYERS, 4u); i++) {
+        levelled_mm += frame.layers[i].film.x * a[i];
+    }
 //#endif
 //#if LAYERS_B
     var b = vec4<f32>(0.0);
@@ -100,6 +129,31 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
         b[i - 4u] = layer_thickness(in.uv, i) * in.albedo.a;
     }
     out.thickness_b = b;
+    for (var i = 4u; i < LAYERS; i++) {
+        levelled_mm += frame.layers[i].film.x * b[i - 4u];
+    }
+//#endif
+//#if SKIN_DETAIL
+    // Skin relief: the tile's slopes scaled by the region's pore depth and by what the layers
+    // leave of the relief, exp(−Σ levelling·t / d) (rouge_measure::finish::pore_relief, whose
+    // product over layers this is), applied in the UVs' cotangent frame ([Schuler2013]: T along
+    // +u, B along +v, the longer of the two made unit); cavity and oiliness scale the skin's lobes.
+    if in.albedo.a > 0.5 && frame.skin.w > 0.0 {
+        let region = textureSampleLevel(detail_regions, map_sampler, tex_uv, 0.0);
+        let depth_mm = max(region.r * PORE_DEPTH_MM, 1e-6);
+        let amplitude = region.r * exp(-levelled_mm / depth_mm);
+        let d = textureSampleGrad(detail_tile, detail_sampler, detail_uv, detail_dx, detail_dy);
+        let m = d.xyz * 2.0 - 1.0;
+        let slope = m.xy / max(m.z, 0.2) * amplitude;
+        let n0 = out.normal.xyz;
+        let dp2perp = cross(dp_dy, n0);
+        let dp1perp = cross(n0, dp_dx);
+        let t = dp2perp * duv_dx.x + dp1perp * duv_dy.x;
+        let b = dp2perp * duv_dx.y + dp1perp * duv_dy.y;
+        let unit = inverseSqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
+        let specular = mix(1.0, d.a, clamp(amplitude, 0.0, 1.0)) * region.g;
+        out.normal = vec4<f32>(normalize(n0 + (t * slope.x + b * slope.y) * unit), max(specular, 1.0 / 64.0));
+    }
 //#endif
 //#if THICKNESS
     let skin = select(0.0, 1.0, in.albedo.a > 0.5);

@@ -177,7 +177,8 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
         let e_n = e * (n_dot_l * visible);
         irradiance += e_n;
         if frame.skin.z > 0.0 {
-            var lobes = vec3<f32>(skin_lobes(n, l, v, frame.skin.x, frame.skin.y));
+            // The skin's lobes × its specular scale (the G-buffer normal's w: cavity × oiliness).
+            var lobes = vec3<f32>(skin_lobes(n, l, v, frame.skin.x, frame.skin.y) * nd.w);
 //#if LAYERS_A
             for (var i = 0u; i < LAYERS; i++) {
                 // x: roughness, y: F0, z: full-coverage thickness, w: the finish's clarity.

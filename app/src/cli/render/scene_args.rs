@@ -126,6 +126,10 @@ pub struct SceneArgs {
     /// Seed of the skin conditions' placement (the same seed, the same freckles).
     #[arg(long, default_value_t = 1)]
     pub skin_seed: u64,
+    /// Leave out the skin's microgeometry (pores, fine lines, the T-zone's shine), which comes
+    /// with the skin maps (docs/FINISHES.md; foundations with a levelling finish fill it).
+    #[arg(long)]
+    pub no_skin_detail: bool,
     /// Keep the skin maps' blood still whatever the --expression (by default it follows it: a
     /// smile flushes the cheeks, pressed lips blanch; docs/SKIN.md).
     #[arg(long)]
@@ -313,6 +317,7 @@ impl SceneArgs {
             look,
             env: self.env.clone(),
             albedo_map: self.albedo_map.clone(),
+            skin_detail: skin_maps.is_some() && !self.no_skin_detail,
             skin_maps,
             blood_flow: !self.no_blood_flow,
             normal_map: self.normal_map.clone(),
