@@ -6,6 +6,10 @@ binary under the studio lights:
                                     under 8 um of a matte powder (the porcelain shade, the
                                     nearest to a translucent powder among the sample presets);
                                     the lips with the red lipstick matte, satin and gloss
+  docs/images/pores_closeup.png     the side of the nose (the centre of a 1280x720 close-up):
+                                    without skin detail, bare skin with its pores, and under
+                                    15 um of the ivory foundation with a matte (levelling
+                                    0.4) and a gloss finish (levelling 1, a primer's)
 
 The finishes are the named ones of `rouge finish --kind` (rouge_measure::finish); the presets
 are written into a temporary folder, nothing in data/ changes.
@@ -66,6 +70,19 @@ def main() -> None:
             cells.append(label(render(a.rouge, folder / f"lips_{kind}.png", "--look", str(path), *lips),
                                f"red lipstick 20 um, {kind}"))
         grid(cells, 4).save(a.out / "finishes_closeup.png")
+        nose = ["--close-up", "nose", "--yaw", "35", "--pitch", "5", "--width", "1280", "--height", "720"]
+        thin = {"uniform_mm": 0.015}
+        gloss = finished(a.rouge, folder, "foundation_02_ivory", "gloss")
+        views = [("no skin detail", ["--look", "bare", "--no-skin-detail"]),
+                 ("bare skin: pores and fine lines", ["--look", "bare"]),
+                 ("15 um foundation, matte (levelling 0.4)",
+                  ["--look", str(look(folder, "thin_matte", [(f["matte"], thin)]))]),
+                 ("15 um foundation, gloss (levelling 1)", ["--look", str(look(folder, "thin_gloss", [(gloss, thin)]))])]
+        crops = []
+        for i, (text, args) in enumerate(views):
+            full = render(a.rouge, folder / f"nose{i}.png", *args, *nose)
+            crops.append(label(full.crop((400, 200, 880, 520)), text))
+        grid(crops, 4).save(a.out / "pores_closeup.png")
 
 
 if __name__ == "__main__":
