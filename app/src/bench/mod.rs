@@ -232,14 +232,16 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     let conditions: rouge_model::skin::SkinConditions =
         "freckles=0.5,moles=0.5,redness=0.5,acne=0.5,hyperpigmentation=0.5,under_eye=0.5,veins=0.5".parse()?;
     let skin_maps = rouge_model::skin::SkinRecipe::from_tone("light-medium", conditions, 1, 1024)?;
-    for (label, look, skin_maps) in [
-        ("bare", LookChoice::Bare, None),
-        ("default look (3 layers)", LookChoice::Default, None),
-        ("default look over skin maps", LookChoice::Default, Some(skin_maps)),
-        ("4 layers", LookChoice::File(four.clone()), None),
+    for (label, look, skin_maps, skin_detail) in [
+        ("bare", LookChoice::Bare, None, false),
+        ("default look (3 layers)", LookChoice::Default, None, false),
+        ("default look over skin maps", LookChoice::Default, Some(skin_maps.clone()), false),
+        ("default look over skin maps + skin detail", LookChoice::Default, Some(skin_maps), true),
+        ("4 layers", LookChoice::File(four.clone()), None, false),
     ] {
         eprintln!("rouge bench render: {label}");
-        let job = RenderJob { look, width: args.width, height: args.height, skin_maps, ..RenderJob::default() };
+        let job =
+            RenderJob { look, width: args.width, height: args.height, skin_maps, skin_detail, ..RenderJob::default() };
         let mut p = job.prepare()?;
         let t = study::frame_times(&mut p, args.frames)?;
         frame_rows.push((label, t));
