@@ -8,6 +8,7 @@ mod analysis;
 mod arrays;
 mod color;
 mod errors;
+mod finish;
 mod formulate;
 mod io;
 mod km;
@@ -24,5 +25,6 @@ fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     analysis::register(m)?;
     formulate::register(m)?;
     skin::register(m)?;
+    finish::register(m)?;
     Ok(())
 }

@@ -38,12 +38,15 @@ from ._rouge import (
     XYZ_to_sRGB,
     correct_batch_KubelkaMunk,
     delta_E_CIE2000,
+    fit_gloss_ISO2813,
+    gloss_units_ISO2813,
     fit_mix_Duncan,
     match_shades,
     metamerism_index_special,
     read_measurement,
     read_measurement_files,
     resample_to_working_grid,
+    specular_BRDF_Kelemen,
     working_wavelengths,
 )
 from ._spectral import is_sd, spectra_in, spectral, to_msds
@@ -190,7 +193,9 @@ __all__ = [
     "XYZ_to_sRGB",
     "correct_batch_KubelkaMunk",
     "delta_E_CIE2000",
+    "fit_gloss_ISO2813",
     "fit_mix_Duncan",
+    "gloss_units_ISO2813",
     "match_shades",
     "metamerism_index_special",
     "is_sd",
@@ -204,6 +209,7 @@ __all__ = [
     "sd_to_sRGB",
     "skin_fit",
     "skin_reflectance",
+    "specular_BRDF_Kelemen",
     "skin_tones",
     "working_wavelengths",
 ]
