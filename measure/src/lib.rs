@@ -25,6 +25,7 @@ pub mod preset;
 pub mod skin;
 pub mod spectrum;
 pub mod specular;
+pub mod thin_film;
 
 pub use colorimetry::{Colorimeter, Illuminant, Lab, Observer, Viewing, Xyz, delta_e_2000};
 pub use error::LocatedError;

@@ -1,5 +1,6 @@
 //! Finishes for Python (`rouge_measure::finish`, docs/FINISHES.md): the specular lobe, gloss
-//! units at the ISO 2813 geometries, roughness from gloss readings.
+//! units at the ISO 2813 geometries, roughness from gloss readings, and the thin-film
+//! reflectance of pearlescent pigments (`rouge_measure::thin_film`).
 
 use pyo3::prelude::*;
 use rouge_measure::finish::{GlossGeometry, GlossReading, fit_gloss, gloss_units};
@@ -71,7 +72,35 @@ pub fn fit_gloss_iso2813(
     Ok(d.unbind())
 }
 
+/// Unpolarised reflectance of a mica platelet coated with `film_nm` of rutile TiO₂ in a binder,
+/// for light at `theta_deg` from the platelet's normal in the binder, at `wavelengths` (nm; default
+/// the working grid 380-780 / 5 nm): `rouge_measure::thin_film` (Airy's formula; rutile after
+/// DeVore 1951, `binder_index` and `core_index` constant).
+#[pyfunction]
+#[pyo3(name = "reflectance_thin_film_TiO2", signature = (film_nm, theta_deg, *, wavelengths=None, binder_index=1.5, core_index=1.58))]
+pub fn reflectance_thin_film_tio2(
+    film_nm: f64,
+    theta_deg: f64,
+    wavelengths: Option<Vec<f64>>,
+    binder_index: f64,
+    core_index: f64,
+) -> PyResult<Vec<f64>> {
+    if !(film_nm.is_finite() && film_nm >= 0.0 && (0.0..=90.0).contains(&theta_deg)) {
+        return Err(value_err(format!("film_nm {film_nm} must be ≥ 0 and theta_deg {theta_deg} in [0, 90]")));
+    }
+    if !(binder_index >= 1.0 && core_index >= 1.0 && binder_index.is_finite() && core_index.is_finite()) {
+        return Err(value_err("indices must be finite and ≥ 1".into()));
+    }
+    let wl = wavelengths.unwrap_or_else(|| (0..81).map(rouge_measure::spectrum::working_wavelength_nm).collect());
+    if let Some(bad) = wl.iter().find(|w| !(**w >= 300.0 && **w <= 2000.0)) {
+        return Err(value_err(format!("wavelength {bad} nm: outside 300-2000 nm")));
+    }
+    let p = rouge_measure::thin_film::CoatedPlatelet { film_nm, binder_index, core_index };
+    Ok(wl.iter().map(|&nm| p.reflectance(nm, theta_deg.to_radians())).collect())
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(reflectance_thin_film_tio2, m)?)?;
     m.add_function(wrap_pyfunction!(specular_brdf_kelemen, m)?)?;
     m.add_function(wrap_pyfunction!(gloss_units_iso2813, m)?)?;
     m.add_function(wrap_pyfunction!(fit_gloss_iso2813, m)?)?;
