@@ -75,7 +75,7 @@ impl FinishKind {
             FinishKind::Dewy => (0.12, 1.48, 0.9, 0.8),
             FinishKind::Gloss => (0.04, 1.50, 1.0, 1.0),
         };
-        (Specular { roughness, ior }, Finish { kind: self, clarity, levelling })
+        (Specular { roughness, ior }, Finish { kind: self, clarity, levelling, shimmer: None })
     }
 }
 
@@ -90,6 +90,48 @@ pub struct Finish {
     pub clarity: f64,
     /// How much the film flattens the skin's relief, in [0, 1] ([`pore_relief`]).
     pub levelling: f64,
+    /// Pearlescent platelets in the film, if any (shimmer).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shimmer: Option<Shimmer>,
+}
+
+/// Pearlescent (shimmer) pigment in a film: mica platelets coated with rutile TiO₂
+/// ([`crate::thin_film::CoatedPlatelet`]) lying roughly parallel to the surface. Their
+/// interference colour is reflected as a second lobe of the layer: a Beckmann lobe of the
+/// platelets' tilt `spread` whose Fresnel factor is the platelets' reflectance at the half
+/// vector's angle (in the binder), times `strength`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shimmer {
+    /// Thickness of the TiO₂ film, nm (0-1000: silver below ~60 nm, then gold, red, violet,
+    /// blue, green interference as it grows).
+    pub film_nm: f64,
+    /// The part of the film's area the platelets cover, facing up, in [0, 1].
+    pub strength: f64,
+    /// RMS tilt of the platelets (a Beckmann roughness), in (0, 1].
+    pub spread: f64,
+}
+
+impl Shimmer {
+    /// The platelet of this shimmer.
+    pub fn platelet(&self) -> crate::thin_film::CoatedPlatelet {
+        crate::thin_film::CoatedPlatelet::mica_tio2(self.film_nm)
+    }
+
+    /// The platelets' reflectance as linear sRGB (D65, CIE 1931) at `entries` values of the
+    /// cosine of the angle in air between the half vector and the light, c = i/(entries − 1):
+    /// the table the lighting pass reads.
+    pub fn interference_table(&self, entries: usize) -> Vec<[f64; 3]> {
+        let colorimeter = crate::colorimetry::Colorimeter::get(crate::colorimetry::Viewing::D65_1931);
+        let platelet = self.platelet();
+        (0..entries)
+            .map(|i| {
+                let cos_air = i as f64 / (entries.max(2) - 1) as f64;
+                let theta = crate::thin_film::angle_in_binder(cos_air.acos(), platelet.binder_index);
+                colorimeter.srgb_linear(&colorimeter.xyz(&platelet.spectrum(theta)))
+            })
+            .collect()
+    }
 }
 
 impl Finish {
@@ -101,6 +143,17 @@ impl Finish {
         for (field, v) in [("clarity", self.clarity), ("levelling", self.levelling)] {
             if !(0.0..=1.0).contains(&v) {
                 return Err(format!("`finish.{field}` = {v} must be in [0, 1]"));
+            }
+        }
+        if let Some(s) = &self.shimmer {
+            if !(0.0..=1000.0).contains(&s.film_nm) {
+                return Err(format!("`finish.shimmer.film_nm` = {} must be in [0, 1000]", s.film_nm));
+            }
+            if !(0.0..=1.0).contains(&s.strength) {
+                return Err(format!("`finish.shimmer.strength` = {} must be in [0, 1]", s.strength));
+            }
+            if !(s.spread > 0.0 && s.spread <= 1.0) {
+                return Err(format!("`finish.shimmer.spread` = {} must be in (0, 1]", s.spread));
             }
         }
         Ok(())
@@ -345,6 +398,24 @@ mod tests {
         assert_eq!(pore_relief(f64::NAN, 0.03, 1.0), 1.0);
         assert_eq!(pore_relief(f64::INFINITY, 0.03, 1.0), 1.0);
         assert!(pore_relief(0.02, 0.03, 0.3) > pore_relief(0.02, 0.03, 0.9), "levelling flattens");
+    }
+
+    #[test]
+    fn a_shimmers_colour_changes_with_angle() {
+        let gold = Shimmer { film_nm: 110.0, strength: 0.5, spread: 0.2 };
+        let table = gold.interference_table(64);
+        assert_eq!(table.len(), 64);
+        assert!(table.iter().flatten().all(|v| v.is_finite()));
+        let (normal, oblique) = (table[63], table[20]);
+        let chroma =
+            |c: [f64; 3]| c.iter().copied().fold(f64::MIN, f64::max) - c.iter().copied().fold(f64::MAX, f64::min);
+        let hue_shift = (0..3).map(|i| (normal[i] / normal[1] - oblique[i] / oblique[1]).abs()).fold(0.0, f64::max);
+        assert!(chroma(normal) > 0.02 && hue_shift > 0.05, "{normal:?} against {oblique:?}");
+        let mut f = FinishKind::Satin.defaults().1;
+        f.shimmer = Some(Shimmer { spread: 0.0, ..gold });
+        assert!(f.validate().unwrap_err().contains("shimmer.spread"));
+        f.shimmer = Some(Shimmer { film_nm: 2000.0, ..gold });
+        assert!(f.validate().unwrap_err().contains("shimmer.film_nm"));
     }
 
     #[test]

@@ -37,7 +37,7 @@ pub struct GpuLook {
     pub maps: wgpu::TextureView,
     texture: wgpu::Texture,
     size: (u32, u32),
-    /// R0 then T rows of every layer, `TABLE_ENTRIES` RGBA entries each.
+    /// R0, T and interference rows of every layer, `TABLE_ENTRIES` RGBA entries each.
     pub tables: wgpu::Buffer,
     /// Specular parameters per layer.
     pub params: [LayerUniform; MAX_LAYERS],
@@ -119,7 +119,7 @@ impl GpuLook {
             &[],
         );
         let entries = rouge_measure::layer_table::TABLE_ENTRIES;
-        let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 2 * entries);
+        let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 3 * entries);
         let mut params = [LayerUniform::default(); MAX_LAYERS];
         let whole = TexelRect::whole(w, h);
         for (i, layer) in layers.iter().enumerate() {
@@ -138,6 +138,14 @@ impl GpuLook {
             };
             tables.extend(table.r0.iter().map(in_basis));
             tables.extend(table.t.iter().map(in_basis));
+            // The shimmer's interference colour by cos(h, l), linear sRGB (zeros without one).
+            let finish = layer.preset.finish;
+            let shimmer = finish.and_then(|f| f.shimmer);
+            match shimmer {
+                Some(s) => tables
+                    .extend(s.interference_table(entries).iter().map(|c| [c[0] as f32, c[1] as f32, c[2] as f32, 0.0])),
+                None => tables.extend(std::iter::repeat_n([0.0f32; 4], entries)),
+            }
             params[i] = LayerUniform {
                 params: [
                     layer.preset.specular.roughness as f32,
@@ -145,7 +153,12 @@ impl GpuLook {
                     LAYER_FULL_COVERAGE_MM,
                     layer.preset.clarity_levelling().0 as f32,
                 ],
-                film: [layer.preset.clarity_levelling().1 as f32, 0.0, 0.0, 0.0],
+                film: [
+                    layer.preset.clarity_levelling().1 as f32,
+                    shimmer.map_or(0.0, |s| s.strength as f32),
+                    shimmer.map_or(1.0, |s| s.spread as f32),
+                    0.0,
+                ],
             };
         }
         if tables.is_empty() {

@@ -11,6 +11,8 @@
 //! powder whose fillers scatter it into the diffuse), reached as the layer forms
 //! (c = 1 − coverage·(1 − clarity)). A layer's own lobe fades in over its first
 //! `LAYER_FULL_COVERAGE_MM` (the renderer's look upload), so a layer of zero thickness adds nothing.
+//! A layer with a shimmer ([`ShimmerLobe`]) adds its platelets' lobe, coloured by their
+//! interference, to its own.
 
 use glam::DVec3;
 pub use rouge_measure::specular::{beckmann, fresnel_f0, kelemen, schlick};
@@ -42,7 +44,7 @@ pub fn wgsl_constants() -> String {
 
 /// One cosmetic layer's specular parameters at a point, as the lighting pass sees them.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LayerLobe {
+pub struct LayerLobe<'a> {
     /// Beckmann roughness of the layer's surface.
     pub roughness: f64,
     /// Schlick F0 of the layer's surface.
@@ -56,6 +58,39 @@ pub struct LayerLobe {
     /// The part of the lobes below that a fully formed layer passes specularly (its finish's
     /// clarity, in [0, 1]).
     pub clarity: f64,
+    /// The layer's shimmer, if any.
+    pub shimmer: Option<ShimmerLobe<'a>>,
+}
+
+/// A shimmer's lobe as the lighting pass draws it: the platelets' Kelemen lobe of roughness
+/// `spread` with Fresnel 1, times their interference colour at cos(h, l) (linear interpolation
+/// in `table`, entries at c = i/(n − 1): `rouge_measure::finish::Shimmer::interference_table`),
+/// times `strength`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShimmerLobe<'a> {
+    /// Strength (platelet coverage), in [0, 1].
+    pub strength: f64,
+    /// The platelets' RMS tilt.
+    pub spread: f64,
+    /// Interference colour by cos(h, l), linear sRGB.
+    pub table: &'a [[f64; 3]],
+}
+
+impl ShimmerLobe<'_> {
+    /// The lobe per channel for light from `l` seen from `v` at normal `n`.
+    pub fn eval(&self, n: DVec3, l: DVec3, v: DVec3) -> [f64; 3] {
+        let h = l + v;
+        let c = if h.length_squared() > 1e-8 { h.normalize().dot(l).clamp(0.0, 1.0) } else { 0.0 };
+        let last = self.table.len().saturating_sub(1);
+        let f = c * last as f64;
+        let i = (f as usize).min(last.saturating_sub(1));
+        let w = f - i as f64;
+        let lobe = self.strength * kelemen(n, l, v, self.spread, 1.0);
+        std::array::from_fn(|k| {
+            let (a, b) = (self.table.get(i).map_or(0.0, |t| t[k]), self.table.get(i + 1).map_or(0.0, |t| t[k]));
+            lobe * (a + (b - a) * w)
+        })
+    }
 }
 
 /// The summed lobes of the skin (`skin` = roughness, F0: its two lobes, [`skin_lobes`]) under
@@ -66,9 +101,10 @@ pub fn layered_lobes(n: DVec3, l: DVec3, v: DVec3, skin: (f64, f64), layers: &[L
     for layer in layers {
         let coverage = (layer.thickness_mm / layer.full_coverage_mm).clamp(0.0, 1.0);
         let own = coverage * kelemen(n, l, v, layer.roughness, layer.f0);
+        let shimmer = layer.shimmer.map_or([0.0; 3], |s| s.eval(n, l, v));
         let through = 1.0 - coverage * (1.0 - layer.clarity);
         for (c, lobe) in lobes.iter_mut().enumerate() {
-            *lobe = *lobe * through * layer.t[c] * layer.t[c] + own;
+            *lobe = *lobe * through * layer.t[c] * layer.t[c] + own + coverage * shimmer[c];
         }
     }
     lobes
@@ -94,6 +130,7 @@ mod tests {
             full_coverage_mm: 0.002,
             t,
             clarity: 1.0,
+            shimmer: None,
         };
         // A zero-thickness layer with T = 1 changes nothing.
         assert_eq!(layered_lobes(n, l, v, (0.35, 0.028), &[layer(0.0, [1.0; 3])]), [skin; 3]);

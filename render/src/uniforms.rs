@@ -37,7 +37,8 @@ pub struct LightUniform {
 pub struct LayerUniform {
     /// Roughness, F0, full-coverage thickness, clarity of the finish.
     pub params: [f32; 4],
-    /// The finish's levelling (how much the film fills the skin's pores), unused × 3.
+    /// The finish's levelling (how much the film fills the skin's pores), its shimmer's strength
+    /// and spread (0 and 1 without a shimmer), unused.
     pub film: [f32; 4],
 }
 

@@ -1,6 +1,7 @@
-//! The lighting shader's specular lobes (the skin's two) against its CPU twin (`rouge_render::specular`), on a
-//! real device (lavapipe on CI): a flat skin plane under one directional light, bare look, no
-//! environment, no subsurface model, so the surface radiance is E (n·l) f_r(l, v) exactly.
+//! The lighting shader's specular lobes (the skin's two, a shimmer's) against their CPU twin
+//! (`rouge_render::specular`), on a real device (lavapipe on CI): a flat skin plane under one
+//! directional light, no environment, no subsurface model, so the surface radiance is
+//! E (n·l) f_r(l, v) exactly (bare look), and a shimmer adds exactly its lobe.
 
 use glam::{DVec3, Vec3};
 use rouge_model::look::Look;
@@ -55,4 +56,59 @@ fn the_shader_lobe_matches_its_cpu_twin() {
     // transcendentals, and is still far below a wrong term (a factor 2, π or n·l is off by
     // tens of percent over this view).
     assert!(worst < 5e-3, "worst relative error {worst} over {checked} pixels");
+}
+
+#[test]
+fn a_shimmers_lobe_matches_its_cpu_twin() {
+    use rouge_measure::finish::{FinishKind, Shimmer};
+    use rouge_render::specular::ShimmerLobe;
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let toward = Vec3::new(0.35, 0.25, 1.0).normalize();
+    let mut scene = Scene::white_light(toward);
+    scene.skin.subsurface = SubsurfaceModel::None;
+    scene.specular = true;
+    let camera = Camera { target: Vec3::ZERO, distance: 260.0, yaw_deg: -20.0, pitch_deg: -10.0, fov_y_deg: 40.0 };
+    let (w, h) = (96u32, 72u32);
+    let gold = Shimmer { film_nm: 110.0, strength: 0.6, spread: 0.25 };
+    // The same eyeshadow, 20 µm, with and without the shimmer: the difference is the shimmer's lobe.
+    let render = |shimmer: Option<Shimmer>| {
+        let text = r#"{"schema": "rouge-look", "version": 1, "name": "shimmer",
+            "layers": [{"preset": "builtin:eyeshadow_03_bronze", "thickness": {"uniform_mm": 0.02}}]}"#;
+        let mut look = Look::from_json(text, std::path::Path::new("shimmer.json")).expect("look");
+        let (lobe, mut film) = FinishKind::Satin.defaults();
+        film.shimmer = shimmer;
+        look.layers[0].preset.set_finish(Some((lobe, film)));
+        let mut r = Renderer::new(&gpu.device, &gpu.queue);
+        r.set_mesh(&plane(), scene.skin.albedo).expect("mesh");
+        r.set_look(&look).expect("look");
+        r.render(&scene, &camera, w, h, false).expect("render");
+        (r.capture().expect("capture"), r)
+    };
+    let (plain, _) = render(None);
+    let (shiny, r) = render(Some(gold));
+    let table = gold.interference_table(rouge_measure::layer_table::TABLE_ENTRIES);
+    let lobe = ShimmerLobe { strength: gold.strength, spread: gold.spread, table: &table };
+    let l = toward.as_dvec3();
+    let e = scene.lights[0].irradiance[0] as f64 * l.z;
+    let eye = camera.position().as_dvec3();
+    let (mut checked, mut worst, mut peak) = (0, 0.0f64, 0.0f64);
+    for y in (0..h).step_by(3) {
+        for x in (0..w).step_by(3) {
+            let Some(world) = r.pick(x, y).expect("pick") else { continue };
+            let v = (eye - world.as_dvec3()).normalize();
+            let want = lobe.eval(DVec3::Z, l, v).map(|c| e * c);
+            let i = (y * w + x) as usize;
+            for c in 0..3 {
+                let got = f64::from(shiny.surface[i][c] - plain.surface[i][c]);
+                worst = worst.max((got - want[c]).abs() / want[c].max(5e-2));
+                peak = peak.max(want[c]);
+            }
+            checked += 1;
+        }
+    }
+    eprintln!("{checked} pixels, peak shimmer {peak:.4}, worst relative error {worst:.2e}");
+    assert!(checked > 300 && peak > 0.05, "{checked} pixels, peak {peak}");
+    // Two f16 targets subtracted (each rounded to 2⁻¹¹ of values up to ~1: a few 1e-4 absolute),
+    // and the table's f32 entries; a wrong term would be off by tens of percent.
+    assert!(worst < 1e-2, "worst relative error {worst}");
 }

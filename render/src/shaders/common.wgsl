@@ -21,7 +21,8 @@ struct Layer {
     // lobe is fully formed, w: the clarity of its finish (the part of the lobes below it that a
     // fully formed layer passes specularly).
     params: vec4<f32>,
-    // x: the finish's levelling (rouge_measure::finish::pore_relief), yzw: unused.
+    // x: the finish's levelling (rouge_measure::finish::pore_relief), y: its shimmer's strength
+    // (0 without one), z: the shimmer platelets' spread (Beckmann roughness), w: unused.
     film: vec4<f32>,
 }
 

@@ -21,8 +21,10 @@
 @group(1) @binding(2) var gb_depth: texture_2d<f32>;
 @group(1) @binding(3) var gb_thickness_a: texture_2d<f32>;
 @group(1) @binding(4) var gb_thickness_b: texture_2d<f32>;
-// Per layer two rows of `frame.counts.z` entries: R0, then T (in the compositing basis), at thickness
-// X = X0·u/(1 − u) for u = i/(n − 1) (the last entry is the opaque limit: R∞, T = 0).
+// Per layer three rows of `frame.counts.z` entries: R0, then T (in the compositing basis), at
+// thickness X = X0·u/(1 − u) for u = i/(n − 1) (the last entry is the opaque limit: R∞, T = 0);
+// then the interference colour of the layer's shimmer platelets (linear sRGB, zeros without a
+// shimmer) at cos(h, l) = i/(n − 1) (rouge_measure::finish::Shimmer::interference_table).
 @group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
@@ -86,12 +88,21 @@ fn layer_rt(layer: u32, x_mm: f32) -> Rt {
     let f = u * f32(n - 1u);
     let i = min(u32(f), n - 2u);
     let w = f - f32(i);
-    let r_row = 2u * layer * n;
+    let r_row = 3u * layer * n;
     let t_row = r_row + n;
     var out: Rt;
     out.r = mix(tables[r_row + i].rgb, tables[r_row + i + 1u].rgb, w);
     out.t = mix(tables[t_row + i].rgb, tables[t_row + i + 1u].rgb, w);
     return out;
+}
+
+// The interference colour of layer `layer`'s shimmer at cos(h, l) = `c` (linear interpolation).
+fn interference(layer: u32, c: f32) -> vec3<f32> {
+    let n = frame.counts.z;
+    let row = (3u * layer + 2u) * n;
+    let f = clamp(c, 0.0, 1.0) * f32(n - 1u);
+    let i = min(u32(f), n - 2u);
+    return mix(tables[row + i].rgb, tables[row + i + 1u].rgb, f - f32(i));
 }
 //#endif
 
@@ -185,7 +196,16 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
                 let q = frame.layers[i].params;
                 let coverage = clamp(thickness[i] / q.z, 0.0, 1.0);
                 let through = 1.0 - coverage * (1.0 - q.w);
-                lobes = lobes * (through * layer_t[i] * layer_t[i]) + vec3<f32>(coverage * kelemen(n, l, v, q.x, q.y));
+                var own = vec3<f32>(coverage * kelemen(n, l, v, q.x, q.y));
+                // Shimmer: the platelets' lobe (spread film.z, Fresnel 1) × their interference
+                // colour at the half vector, × strength film.y.
+                let film = frame.layers[i].film;
+                if film.y > 0.0 {
+                    let h_un = l + v;
+                    let c = select(0.0, dot(h_un, l) * inverseSqrt(max(dot(h_un, h_un), 1e-12)), dot(h_un, h_un) > 1e-8);
+                    own += coverage * film.y * kelemen(n, l, v, film.z, 1.0) * interference(i, c);
+                }
+                lobes = lobes * (through * layer_t[i] * layer_t[i]) + own;
             }
 //#endif
             specular += e_n * lobes;
