@@ -10,6 +10,10 @@ binary under the studio lights:
                                     without skin detail, bare skin with its pores, and under
                                     15 um of the ivory foundation with a matte (levelling
                                     0.4) and a gloss finish (levelling 1, a primer's)
+  docs/images/shimmer_closeup.png   the eyelid with 15 um of the bronze eyeshadow satin, with a
+                                    gold shimmer (70 nm TiO2 on mica) and the sapphire with a
+                                    blue one (125 nm), from two directions (the interference
+                                    colour moves with the angle)
 
 The finishes are the named ones of `rouge finish --kind` (rouge_measure::finish); the presets
 are written into a temporary folder, nothing in data/ changes.
@@ -83,6 +87,18 @@ def main() -> None:
             full = render(a.rouge, folder / f"nose{i}.png", *args, *nose)
             crops.append(label(full.crop((400, 200, 880, 520)), text))
         grid(crops, 4).save(a.out / "pores_closeup.png")
+        presets = Path(__file__).resolve().parent.parent / "data" / "presets"
+        lids = {"bronze satin": finished(a.rouge, folder, "eyeshadow_03_bronze", "satin"),
+                "bronze, gold shimmer": presets / "finishes" / "eyeshadow_03_bronze_gold_shimmer.json",
+                "sapphire, blue shimmer": presets / "finishes" / "eyeshadow_02_sapphire_blue_shimmer.json"}
+        cells = []
+        for yaw, pitch in ((15, 25), (45, 5)):
+            for text, preset in lids.items():
+                path = look(folder, f"lid_{len(cells)}", [(preset, {"region": "eyelids", "thickness_mm": 0.015})])
+                img = render(a.rouge, folder / f"lid{len(cells)}.png", "--look", str(path), "--close-up", "eyelids",
+                             "--yaw", str(yaw), "--pitch", str(pitch), "--width", "480", "--height", "320")
+                cells.append(label(img, f"{text}, yaw {yaw} pitch {pitch}"))
+        grid(cells, 3).save(a.out / "shimmer_closeup.png")
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 //! of titanium dioxide, lying in a cosmetic's binder. Light reflected at the film's two faces
 //! interferes, so the platelet's reflectance is coloured and its colour shifts with the angle:
 //! the silver, gold, red, violet, blue and green "interference" pearls of eyeshadows are one
-//! mica with TiO₂ films of increasing thickness.
+//! mica with TiO₂ films of increasing thickness (with this model at normal incidence: about 50,
+//! 70, 90, 105, 125 and 145 nm; CIELAB hue of the reflectance 218°, 97°, 0°, 319°, 244°, 155°).
 //!
 //! **Model** (Airy's formula for one film between two half-spaces, \[BornWolf1999\] §1.6.4):
 //! with Fresnel amplitude coefficients r₀₁ (binder → film) and r₁₂ (film → mica) for s and p

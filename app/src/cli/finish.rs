@@ -4,7 +4,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use rouge_measure::finish::{FinishKind, GlossGeometry, GlossReading, fit_gloss, gloss_units};
+use rouge_measure::finish::{FinishKind, GlossGeometry, GlossReading, Shimmer, fit_gloss, gloss_units};
 use rouge_measure::preset::Specular;
 use rouge_model::look::load_preset_ref;
 use std::path::{Path, PathBuf};
@@ -30,8 +30,22 @@ pub struct FinishArgs {
     /// How much the film flattens the skin's relief, 0-1 (overrides --kind's).
     #[arg(long)]
     pub levelling: Option<f64>,
+    /// Pearlescent shimmer: mica platelets with a rutile TiO₂ film this thick, nm (at normal
+    /// incidence about 50 silver, 70 gold, 90 red, 105 violet, 125 blue, 145 green;
+    /// docs/FINISHES.md).
+    #[arg(long)]
+    pub shimmer_nm: Option<f64>,
+    /// The shimmer's strength, 0-1 (the platelets' coverage; default 0.5).
+    #[arg(long)]
+    pub shimmer_strength: Option<f64>,
+    /// The shimmer platelets' RMS tilt, a Beckmann roughness in (0, 1] (default 0.25).
+    #[arg(long)]
+    pub shimmer_spread: Option<f64>,
+    /// Take the shimmer out of the finish.
+    #[arg(long, conflicts_with_all = ["shimmer_nm", "shimmer_strength", "shimmer_spread"])]
+    pub no_shimmer: bool,
     /// Remove the finish (the preset goes back to schema version 1).
-    #[arg(long, conflicts_with_all = ["kind", "gloss", "clarity", "levelling"])]
+    #[arg(long, conflicts_with_all = ["kind", "gloss", "clarity", "levelling", "shimmer_nm", "shimmer_strength", "shimmer_spread"])]
     pub clear: bool,
     /// Where to write the preset (default: over PRESET, atomically). Without a change nothing
     /// is written.
@@ -63,10 +77,13 @@ fn gloss_line(specular: Specular) -> String {
 
 pub fn run(args: &FinishArgs) -> Result<()> {
     let mut preset = load_preset_ref(&args.preset, Path::new("."))?;
+    let shimmer_given = args.shimmer_nm.is_some() || args.shimmer_strength.is_some() || args.shimmer_spread.is_some();
     let changes = args.kind.is_some()
         || !args.gloss.is_empty()
         || args.clarity.is_some()
         || args.levelling.is_some()
+        || shimmer_given
+        || args.no_shimmer
         || args.clear;
     let out = match (&args.out, args.preset.starts_with("builtin:")) {
         (Some(out), _) => out.clone(),
@@ -80,7 +97,7 @@ pub fn run(args: &FinishArgs) -> Result<()> {
         let kind = match (args.kind, preset.finish) {
             (Some(k), _) => k,
             (None, Some(f)) => f.kind,
-            (None, None) if !args.gloss.is_empty() => FinishKind::Satin,
+            (None, None) if !args.gloss.is_empty() || shimmer_given => FinishKind::Satin,
             (None, None) => bail!("--clarity/--levelling change a finish: give --kind (matte, satin, dewy, gloss) too"),
         };
         let (mut specular, mut finish) = kind.defaults();
@@ -102,12 +119,34 @@ pub fn run(args: &FinishArgs) -> Result<()> {
         }
         finish.clarity = args.clarity.unwrap_or(finish.clarity);
         finish.levelling = args.levelling.unwrap_or(finish.levelling);
+        if args.no_shimmer {
+            finish.shimmer = None;
+        } else if shimmer_given {
+            let before = finish.shimmer.or(preset.finish.and_then(|f| f.shimmer));
+            let Some(film_nm) = args.shimmer_nm.or(before.map(|s| s.film_nm)) else {
+                bail!("--shimmer-strength/--shimmer-spread change a shimmer: give --shimmer-nm too");
+            };
+            finish.shimmer = Some(Shimmer {
+                film_nm,
+                strength: args.shimmer_strength.or(before.map(|s| s.strength)).unwrap_or(0.5),
+                spread: args.shimmer_spread.or(before.map(|s| s.spread)).unwrap_or(0.25),
+            });
+        }
         finish.validate().map_err(anyhow::Error::msg)?;
         preset.set_finish(Some((specular, finish)));
     }
     let s = preset.specular;
     let film = match preset.finish {
-        Some(f) => format!("{} (clarity {:.2}, levelling {:.2})", f.kind.name(), f.clarity, f.levelling),
+        Some(f) => format!(
+            "{} (clarity {:.2}, levelling {:.2}{})",
+            f.kind.name(),
+            f.clarity,
+            f.levelling,
+            f.shimmer.map_or(String::new(), |s| format!(
+                ", shimmer {} nm TiO₂ strength {:.2} spread {:.2}",
+                s.film_nm, s.strength, s.spread
+            ))
+        ),
         None => "none (schema version 1: a clear film that follows the skin's relief)".into(),
     };
     crate::emit(&format!(
