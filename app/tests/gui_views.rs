@@ -1,7 +1,8 @@
 //! The painting app's layer views and radius drag under egui_kittest with the wgpu renderer
 //! (lavapipe on CI): the heat map of the active layer's rendered thickness with its legend
 //! (snapshot), the F radius drag kept by a click and cancelled by Esc and by a right click, a
-//! locked layer refusing a stroke in the window, and a look applied from the library in one click.
+//! locked layer refusing a stroke in the window, a look applied from the library in one click, and a
+//! finish chosen for the active layer (one undo step).
 //! `UPDATE_SNAPSHOTS=1` rewrites app/tests/snapshots/.
 
 use egui::{Event, Key, Modifiers, PointerButton, Pos2};
@@ -132,6 +133,20 @@ fn a_locked_layer_refuses_a_stroke_with_a_message_and_a_look_applies_in_one_clic
     h.run_steps(2);
     assert_eq!(h.state().document().layers.len(), 3, "one undo step brings the default look back");
     assert!(h.state().document().layers[2].locked);
+
+    // A finish for the active layer (the lipstick, on top): gloss from the list, one undo step.
+    use rouge_measure::finish::FinishKind;
+    assert_eq!(h.state().document().layers[2].preset.finish, None);
+    h.get_by_role_and_label(egui::accesskit::Role::ComboBox, "finish").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("gloss").click_accesskit();
+    h.run_steps(2);
+    let layer = &h.state().document().layers[2];
+    assert_eq!(layer.preset.finish.map(|f| f.kind), Some(FinishKind::Gloss));
+    assert_eq!((layer.preset.version, layer.preset.specular), (2, FinishKind::Gloss.defaults().0));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().document().layers[2].preset.finish, None, "one undo step takes it back");
 }
 
 #[test]

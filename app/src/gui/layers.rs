@@ -1,5 +1,6 @@
 //! The layers panel (top of the left panel): visibility, lock, order, duplicate, remove, rename, clear,
-//! thickness multiplier and material of each layer, and adding a layer of the selected material.
+//! thickness multiplier, finish and material of each layer, and adding a layer of the selected
+//! material.
 
 use super::*;
 
@@ -86,6 +87,7 @@ impl RougeApp {
                 let c = self.editor.edit(|d| d.set_multiplier(i, m));
                 self.apply_change(c);
             }
+            self.finish_choice(ui, i);
             let selected = self.library.materials.get(self.library.selected).cloned();
             if let Some(mat) = selected
                 && ui.button(format!("Use material “{}”", mat.preset.name)).clicked()
@@ -99,6 +101,41 @@ impl RougeApp {
             && ui.button(format!("Add layer of “{}”", mat.preset.name)).clicked()
         {
             let c = self.editor.add_layer(&mat.preset_ref, mat.preset.clone());
+            self.apply_change(c);
+        }
+    }
+
+    /// The active layer's finish (`rouge_measure::finish`): none (a clear film, as presets
+    /// without a finish render) or a named one, as one undo step; the gloss a meter would read
+    /// of its lobe on hover.
+    fn finish_choice(&mut self, ui: &mut egui::Ui, i: usize) {
+        use rouge_measure::finish::{FinishKind, GlossGeometry, gloss_units};
+        let Some((preset_ref, preset)) =
+            self.editor.document().layers.get(i).map(|l| (l.preset_ref.clone(), l.preset.clone()))
+        else {
+            return;
+        };
+        let current = preset.finish.map(|f| f.kind);
+        let mut chosen = current;
+        let gloss = GlossGeometry::ALL.map(|g| gloss_units(preset.specular, g));
+        egui::ComboBox::from_label("finish")
+            .selected_text(current.map_or("none", FinishKind::name))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut chosen, None, "none");
+                for k in FinishKind::ALL {
+                    ui.selectable_value(&mut chosen, Some(k), k.name());
+                }
+            })
+            .response
+            .on_hover_text(format!(
+                "matte to gloss: the layer's specular lobe, how much of the shine below it passes, how much it \
+                 fills the skin's pores (docs/FINISHES.md). Now {:.1} GU at 20°, {:.1} at 60°, {:.1} at 85°",
+                gloss[0], gloss[1], gloss[2]
+            ));
+        if chosen != current {
+            let mut finished = preset;
+            finished.set_finish(chosen.map(FinishKind::defaults));
+            let c = self.editor.edit(|d| d.set_preset(i, &preset_ref, finished));
             self.apply_change(c);
         }
     }
