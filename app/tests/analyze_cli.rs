@@ -1,5 +1,6 @@
-//! `rouge analyze coverage|match|mix|metamerism|correct|recipe` through the binary: tables, JSON, PNG plots, and errors
-//! that name the file, line and column.
+//! `rouge analyze coverage|match|mix|metamerism|correct|recipe`, `rouge qc` and `rouge import
+//! --repeatability` through the binary: tables, JSON, PNG plots, and errors that name the file,
+//! line and column.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -186,7 +187,14 @@ fn recipe_ranks_recipes_writes_json_and_names_bad_constraints() {
     assert!(e.contains("colorant `foundation_02_ivory`: min 0.6 > max 0.4"), "{e}");
     let e = err(&["--fixed", "blush_01_petal:nothing=2"]);
     assert!(e.contains("no colorant `nothing`"), "{e}");
-    let e = err(&["--fixed", "blush_01_petal:blush_02_coral=2", "--max", "blush_01_petal=0.1", "--min", "blush_02_coral=0.2"]);
+    let e = err(&[
+        "--fixed",
+        "blush_01_petal:blush_02_coral=2",
+        "--max",
+        "blush_01_petal=0.1",
+        "--min",
+        "blush_02_coral=0.2",
+    ]);
     assert!(e.contains("fixed ratios of blush_01_petal, blush_02_coral contradict"), "{e}");
     let preset: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string("../data/presets/blush_01_petal.json").unwrap()).unwrap();
@@ -197,7 +205,8 @@ fn recipe_ranks_recipes_writes_json_and_names_bad_constraints() {
     }
     let bad = dir.path().join("short_blush.json");
     std::fs::write(&bad, short.to_string()).unwrap();
-    let o = rouge(&["analyze", "recipe", "lipstick_01_nude", "--library", "foundation_02_ivory", bad.to_str().unwrap()]);
+    let o =
+        rouge(&["analyze", "recipe", "lipstick_01_nude", "--library", "foundation_02_ivory", bad.to_str().unwrap()]);
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("short_blush.json") && e.contains("wavelengths_nm"), "{e}");
 }
@@ -230,6 +239,45 @@ fn qc_draws_the_batch_report_with_its_tolerance_contours() {
     assert_eq!(image.width(), 840);
     let has = |rgb: [u8; 3]| image.pixels().any(|p| p.0 == rgb);
     assert!(has([44, 160, 44]) && has([214, 39, 40]), "no pass marker or CMC contour");
-    let o = rouge(&["qc", "foundation_03_sand", "foundation_02_ivory", "--tolerance", "-1", "--png", png.to_str().unwrap()]);
+    let o =
+        rouge(&["qc", "foundation_03_sand", "foundation_02_ivory", "--tolerance=-1", "--png", png.to_str().unwrap()]);
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("tolerance -1"));
+}
+
+#[test]
+fn import_reads_the_repeatability_per_wavelength_from_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = |from: usize| {
+        let mut t = String::from("wavelength_nm,u\n");
+        for nm in (from..=780).step_by(5) {
+            // A spectrophotometer noisier in the blue: 0.004 at 380 nm falling to 0.001.
+            t += &format!("{nm},{}\n", 0.001 + 0.003 * ((780 - nm) as f64 / 400.0).powi(3));
+        }
+        t
+    };
+    let u_file = dir.path().join("u.csv");
+    std::fs::write(&u_file, table(380)).unwrap();
+    let out = dir.path().join("p.json");
+    let run = |u: &Path| {
+        rouge(&[
+            "import",
+            "data/measurements/lipstick_02_red.csv",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+            "--repeatability",
+            u.to_str().unwrap(),
+        ])
+    };
+    let v: serde_json::Value = serde_json::from_str(&stdout(&run(&u_file))).unwrap();
+    assert!(v["uncertainty"]["source"].as_str().unwrap().contains("per wavelength from"), "{v}");
+    let preset: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let u = preset["uncertainty"]["u_reflectance"].as_array().unwrap();
+    assert!((u[0].as_f64().unwrap() - 0.004).abs() < 1e-12 && (u[80].as_f64().unwrap() - 0.001).abs() < 1e-12);
+    // A file that stops short of 380 nm is refused, naming the file.
+    let short = dir.path().join("short.csv");
+    std::fs::write(&short, table(400)).unwrap();
+    let o = run(&short);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("short.csv"), "{e}");
 }

@@ -68,7 +68,12 @@ fn cpu_description() -> String {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let model = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|t| t.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split_once(':')).map(|(_, m)| m.trim().to_string()))
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, m)| m.trim().to_string())
+        })
         .unwrap_or_else(|| "unknown model".into());
     format!("{cores}-core {} CPU ({model}), one thread", std::env::consts::ARCH)
 }
@@ -104,8 +109,8 @@ pub fn run(args: &RecipeBenchArgs) -> Result<()> {
         let Some(best) = report.recipes.first() else { bail!("k = {k}: no feasible recipe") };
         let amount_of = |name: &str| best.names.iter().position(|n| n == name).map(|j| best.amounts[j]);
         let recovered = TRUTH.iter().all(|(n, _)| amount_of(n).is_some());
-        let largest_amount_error = recovered
-            .then(|| TRUTH.iter().map(|(n, a)| (amount_of(n).unwrap_or(0.0) - a).abs()).fold(0.0, f64::max));
+        let largest_amount_error =
+            recovered.then(|| TRUTH.iter().map(|(n, a)| (amount_of(n).unwrap_or(0.0) - a).abs()).fold(0.0, f64::max));
         rows.push(Row {
             library: library.len(),
             k,
@@ -113,7 +118,13 @@ pub fn run(args: &RecipeBenchArgs) -> Result<()> {
             seconds,
             recipes_per_second: report.combinations as f64 / seconds,
             evaluations_per_second: report.evaluations as f64 / seconds,
-            best: best.names.iter().zip(&best.amounts).map(|(n, a)| format!("{n} {a:.3}")).collect::<Vec<_>>().join(" + "),
+            best: best
+                .names
+                .iter()
+                .zip(&best.amounts)
+                .map(|(n, a)| format!("{n} {a:.3}"))
+                .collect::<Vec<_>>()
+                .join(" + "),
             best_objective: best.objective,
             recovered,
             largest_amount_error,
@@ -122,7 +133,16 @@ pub fn run(args: &RecipeBenchArgs) -> Result<()> {
     }
     let table = markdown_table(
         "Recipe search on the sample presets (target: a noisy mixture of three; D65, A, FL11 weighted 1, 1, 1)",
-        &["k", "combinations", "s", "recipes/s", "evaluations/s", "best objective (ΔE00)", "generating recipe found", "largest amount error"],
+        &[
+            "k",
+            "combinations",
+            "s",
+            "recipes/s",
+            "evaluations/s",
+            "best objective (ΔE00)",
+            "generating recipe found",
+            "largest amount error",
+        ],
         0,
         rows.iter().map(|r| {
             vec![

@@ -3,9 +3,9 @@
 
 use crate::plot_png::{Chart, Marker, Series, render};
 use anyhow::Result;
-use rouge_measure::analysis::qc::{AB_PLANE, Metric, lightness_chroma_plane, tolerance_contour};
 use rouge_measure::analysis::coverage::{CoverageRow, HIDING_CONTRAST_RATIO};
 use rouge_measure::analysis::matching::SkinCoverage;
+use rouge_measure::analysis::qc::{AB_PLANE, Metric, lightness_chroma_plane, tolerance_contour};
 use rouge_measure::analysis::{Layer, lab_of};
 use rouge_measure::colorimetry::Colorimeter;
 use rouge_measure::spectrum::Spectrum;
@@ -212,7 +212,13 @@ fn equal_aspect(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 /// and in the lightness-chroma plane through it, with the tolerance contours of ΔE2000,
 /// CMC(l:c) and ΔE*ab at `tolerance` (traced numerically, [`tolerance_contour`]; the chosen
 /// `metric`'s drawn heavier), passing batches as dots, failing ones as labelled crosses.
-pub fn qc_report(title: &str, standard: [f64; 3], batches: &[QcPoint], metric: Metric, tolerance: f64) -> Result<Vec<u8>> {
+pub fn qc_report(
+    title: &str,
+    standard: [f64; 3],
+    batches: &[QcPoint],
+    metric: Metric,
+    tolerance: f64,
+) -> Result<Vec<u8>> {
     let cmc = match metric {
         Metric::Cmc { .. } => metric,
         _ => Metric::Cmc { l: 2.0, c: 1.0 },
@@ -224,7 +230,9 @@ pub fn qc_report(title: &str, standard: [f64; 3], batches: &[QcPoint], metric: M
     let lc = |p: [f64; 3]| (c_std + (p[1] - standard[1]) * chroma[1][1] + (p[2] - standard[2]) * chroma[1][2], p[0]);
     let mut panels: Vec<Vec<Series>> = vec![Vec::new(), Vec::new()];
     let formulas = [(Metric::De2000, [31, 119, 180]), (cmc, [214, 39, 40]), (Metric::Ab, [120, 120, 120])];
-    for (k, (plane, project)) in [(AB_PLANE, &ab as &dyn Fn([f64; 3]) -> (f64, f64)), (chroma, &lc)].into_iter().enumerate() {
+    for (k, (plane, project)) in
+        [(AB_PLANE, &ab as &dyn Fn([f64; 3]) -> (f64, f64)), (chroma, &lc)].into_iter().enumerate()
+    {
         for (m, rgb) in formulas {
             let mut ring = tolerance_contour(m, standard, tolerance, plane, 144)?;
             ring.push(ring[0]);
@@ -258,13 +266,27 @@ pub fn qc_report(title: &str, standard: [f64; 3], batches: &[QcPoint], metric: M
         let all: Vec<(f64, f64)> = panels[k].iter().flat_map(|s| s.points.iter().map(|p| (p.0, p.1))).collect();
         let corners = equal_aspect(&all).into_iter().map(|(x, y)| (x, y, None)).collect();
         // Invisible corners under the standard's legend entry: equal CIELAB units on both axes.
-        panels[k].push(Series { label: "standard".into(), rgb: [20, 20, 20], points: corners, line: false, marker: Marker::None });
+        panels[k].push(Series {
+            label: "standard".into(),
+            rgb: [20, 20, 20],
+            points: corners,
+            line: false,
+            marker: Marker::None,
+        });
     }
     let [ab_series, lc_series]: [Vec<Series>; 2] = panels.try_into().map_err(|_| anyhow::anyhow!("two panels"))?;
     let charts = [
-        Chart { title: format!("a*b* plane at L* = {:.1}", standard[0]), x_label: "a*".into(), y_label: "b*".into(), series: ab_series },
         Chart {
-            title: format!("lightness and chroma at hue {:.0}°", standard[2].atan2(standard[1]).to_degrees().rem_euclid(360.0)),
+            title: format!("a*b* plane at L* = {:.1}", standard[0]),
+            x_label: "a*".into(),
+            y_label: "b*".into(),
+            series: ab_series,
+        },
+        Chart {
+            title: format!(
+                "lightness and chroma at hue {:.0}°",
+                standard[2].atan2(standard[1]).to_degrees().rem_euclid(360.0)
+            ),
             x_label: "C*ab (along the standard's hue)".into(),
             y_label: "L*".into(),
             series: lc_series,

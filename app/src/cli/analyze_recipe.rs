@@ -154,7 +154,10 @@ fn build_search(args: &RecipeArgs, presentation: Presentation) -> Result<RecipeS
         .illuminants
         .iter()
         .zip(weights)
-        .map(|(&illuminant, weight)| WeightedViewing { viewing: Viewing { illuminant, observer: args.observer }, weight })
+        .map(|(&illuminant, weight)| WeightedViewing {
+            viewing: Viewing { illuminant, observer: args.observer },
+            weight,
+        })
         .collect();
     Ok(RecipeSearch {
         colorants,
@@ -184,7 +187,8 @@ fn presentation(args: &RecipeArgs) -> Result<(Presentation, Option<String>)> {
         None => all.into_iter().next(),
         Some(n) => all.into_iter().find(|(name, _)| name == n),
     };
-    let (name, r) = chosen.ok_or_else(|| anyhow!("--sample: no skin named `{}`", args.sample.as_deref().unwrap_or("")))?;
+    let (name, r) =
+        chosen.ok_or_else(|| anyhow!("--sample: no skin named `{}`", args.sample.as_deref().unwrap_or("")))?;
     Ok((Presentation::Over { background: Box::new(r), thickness_mm: t * 1e-3 }, Some(name)))
 }
 

@@ -123,7 +123,9 @@ pub fn run(args: &QcArgs) -> Result<()> {
                 j.shade,
                 if j.pass { "pass" } else { "FAIL" }
             ))?;
-            points.push(QcPoint { name: name.clone(), lab: lab_of(c, &r), pass: j.pass });
+            // The plot labels a file's spectra by their own names.
+            let short = name.rsplit_once('#').map_or(name.as_str(), |(_, n)| n).to_string();
+            points.push(QcPoint { name: short, lab: lab_of(c, &r), pass: j.pass });
             rows.push(json!({"batch": name, "lab": lab_of(c, &r), "judgement": j}));
         }
     }

@@ -158,7 +158,8 @@ pub fn tolerance_contour(
 ) -> Result<Vec<[f64; 3]>, AnalysisError> {
     judge(standard, standard, metric, tolerance, [1.0; 3])?;
     for d in plane {
-        if !((d.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-9) {
+        let norm_error = (d.iter().map(|x| x * x).sum::<f64>() - 1.0).abs();
+        if norm_error.is_nan() || norm_error >= 1e-9 {
             return Err(invalid(format!("plane direction {d:?}: must be a unit vector")));
         }
     }

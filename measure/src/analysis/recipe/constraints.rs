@@ -84,15 +84,15 @@ pub(super) fn groups(search: &RecipeSearch) -> Result<Vec<Group>, AnalysisError>
                         weight[*a] = Some((root, xb * r));
                         changed = true;
                     }
-                    (Some((ga, xa)), Some((gb, xb))) if ga == root && gb == root => {
-                        if ((xa / xb) / r - 1.0).abs() > 1e-9 {
-                            return Err(invalid(format!(
-                                "{what} contradicts the other fixed pairs, which give {}:{} = {}",
-                                name_of(search, *a),
-                                name_of(search, *b),
-                                xa / xb
-                            )));
-                        }
+                    (Some((ga, xa)), Some((gb, xb)))
+                        if ga == root && gb == root && ((xa / xb) / r - 1.0).abs() > 1e-9 =>
+                    {
+                        return Err(invalid(format!(
+                            "{what} contradicts the other fixed pairs, which give {}:{} = {}",
+                            name_of(search, *a),
+                            name_of(search, *b),
+                            xa / xb
+                        )));
                     }
                     _ => {}
                 }

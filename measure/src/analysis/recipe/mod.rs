@@ -37,9 +37,9 @@ use crate::analysis::metamerism::{Correction, MetamerismIndex, metamerism_index}
 use crate::analysis::mixing::duncan_mix;
 use crate::analysis::optimize::{box_simplex_search, project_box_simplex};
 use crate::analysis::{AnalysisError, Layer, check_reflectance, check_thickness, invalid};
-use constraints::{combinations, groups};
 use crate::colorimetry::{Colorimeter, Illuminant, Viewing, delta_e_2000_raw};
 use crate::spectrum::Spectrum;
+use constraints::{combinations, groups};
 use nalgebra::{DMatrix, DVector};
 
 /// A colorant of the library with its limits and price.
