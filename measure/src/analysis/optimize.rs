@@ -205,18 +205,22 @@ mod tests {
         assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{p:?}");
         assert!(p.iter().zip(lo.iter().zip(&hi)).all(|(x, (l, h))| *l <= *x && x <= h), "{p:?}");
         assert_eq!((p[0], p[1]), (0.5, 0.3));
-        // Minimum of |c − (0.9, 0.05, 0.05)|² on the set: c0 held at 0.5, c2 at its bound 0.2.
-        let target = [0.9, 0.05, 0.05];
+        // Minimum of |c − t|² on the set: for t = (0.9, 0.05, 0.05), c0 held at its bound 0.5 and
+        // the rest shared (0.25, 0.25); for t = (0.9, 0.35, −0.25), every bound holds (0.5, 0.3, 0.2).
         let start = project_box_simplex(&[1.0 / 3.0; 3], &lo, &hi);
-        let (c, _, n) = box_simplex_search(
-            |c| c.iter().zip(&target).map(|(a, b)| (a - b) * (a - b)).sum(),
-            &lo,
-            &hi,
-            &start,
-            0.05,
-            1e-10,
-        );
-        assert!((c[0] - 0.5).abs() < 1e-9 && (c[1] - 0.3).abs() < 1e-9 && (c[2] - 0.2).abs() < 1e-9, "{c:?}");
+        let mut n = 0;
+        for (target, want) in [([0.9, 0.05, 0.05], [0.5, 0.25, 0.25]), ([0.9, 0.35, -0.25], [0.5, 0.3, 0.2])] {
+            let (c, _, evaluations) = box_simplex_search(
+                |c| c.iter().zip(&target).map(|(a, b)| (a - b) * (a - b)).sum(),
+                &lo,
+                &hi,
+                &start,
+                0.05,
+                1e-10,
+            );
+            assert!(c.iter().zip(&want).all(|(a, b)| (a - b).abs() < 1e-8), "{c:?} against {want:?}");
+            n += evaluations;
+        }
         assert!(n > 1);
     }
 }
