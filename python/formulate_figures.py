@@ -8,7 +8,8 @@ build/skin/xiao2016_3.csv` first); the QC batches are mixed with the `rouge` pac
 
 Writes `uncertainty.md` (a table per sample measurement), `metamerism_skin.md`, `qc.txt`,
 `recipe.txt`, and the PNGs `docs/images/metamerism_foundation_on_skin.png` and
-`docs/images/qc_foundation_03_sand.png` (with `--images`).
+`docs/images/qc_foundation_03_sand.png`, `docs/images/recipe_lipstick_01_nude.png` (with
+`--images`).
 """
 
 from __future__ import annotations
@@ -118,11 +119,12 @@ def qc_figure(rouge: str, out: Path, images: Path | None) -> str:
     return run(rouge, *args)
 
 
-def recipe_runs(rouge: str) -> str:
+def recipe_runs(rouge: str, images: Path | None) -> str:
     """The recipe search of section 9 and its bench."""
     base = ["analyze", "recipe", "lipstick_01_nude", "--library", str(REPO / "data" / "presets"),
             "--max", "lipstick_01_nude=0", "--k", "3", "--top", "3"]
-    text = run(rouge, *base) + run(rouge, *base, "--illuminants", "D65")
+    png = [] if images is None else ["--png", str(images / "recipe_lipstick_01_nude.png")]
+    text = run(rouge, *base, *png) + run(rouge, *base, "--illuminants", "D65")
     return text + run(rouge, "bench", "recipe", "--presets", str(REPO / "data" / "presets"))
 
 
@@ -138,7 +140,7 @@ def main() -> int:
     images = REPO / "docs" / "images" if a.images else None
     (a.out / "metamerism_skin.md").write_text(metamerism_on_skin(a.rouge, a.out, a.skins, images))
     (a.out / "qc.txt").write_text(qc_figure(a.rouge, a.out, images))
-    (a.out / "recipe.txt").write_text(recipe_runs(a.rouge))
+    (a.out / "recipe.txt").write_text(recipe_runs(a.rouge, images))
     print((a.out / "uncertainty.md").read_text())
     print((a.out / "metamerism_skin.md").read_text())
     print((a.out / "qc.txt").read_text())

@@ -156,8 +156,11 @@ fn recipe_ranks_recipes_writes_json_and_names_bad_constraints() {
         "5",
         "--json",
         json.to_str().unwrap(),
+        "--png",
+        dir.path().join("r.png").to_str().unwrap(),
     ]));
     assert!(out.contains("ΔE00 A") && out.contains("13 colorants, k = 2"), "{out}");
+    assert_eq!(&std::fs::read(dir.path().join("r.png")).unwrap()[1..4], b"PNG");
     let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let recipes = v["recipes"].as_array().unwrap();
     assert_eq!(recipes.len(), 5);

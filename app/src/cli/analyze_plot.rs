@@ -294,3 +294,53 @@ pub fn qc_report(
     ];
     render(title, &charts, 2)
 }
+
+/// `rouge analyze recipe --png`: the target's reflectance and the best recipes' (each recipe its
+/// own colour), and each recipe's ΔE2000 under each light of the objective.
+pub fn recipes(
+    target_name: &str,
+    target: &Spectrum,
+    found: &[(String, Spectrum, Vec<f64>)],
+    lights: &[String],
+) -> Result<Vec<u8>> {
+    const PALETTE: [[u8; 3]; 5] = [[214, 39, 40], [31, 119, 180], [44, 160, 44], [148, 103, 189], [255, 127, 14]];
+    let spectrum = |r: &Spectrum| r.iter_nm().map(|(nm, v)| (nm, v, None)).collect::<Vec<_>>();
+    let mut curves = vec![Series {
+        label: format!("target: {target_name}"),
+        rgb: [20, 20, 20],
+        points: spectrum(target),
+        line: true,
+        marker: Marker::None,
+    }];
+    let mut errors = Vec::new();
+    for (k, (label, r, de)) in found.iter().enumerate() {
+        let rgb = PALETTE[k % PALETTE.len()];
+        curves.push(Series { label: label.clone(), rgb, points: spectrum(r), line: true, marker: Marker::None });
+        errors.push(Series {
+            label: label.clone(),
+            rgb,
+            points: de
+                .iter()
+                .enumerate()
+                .map(|(i, d)| (i as f64 + 1.0, *d, (k == 0).then(|| lights[i].clone())))
+                .collect(),
+            line: true,
+            marker: Marker::Dot,
+        });
+    }
+    let charts = [
+        Chart {
+            title: "Reflectance (R∞ or over the skin)".into(),
+            x_label: "wavelength (nm)".into(),
+            y_label: "R".into(),
+            series: curves,
+        },
+        Chart {
+            title: format!("ΔE2000 to the target under each light ({})", lights.join(", ")),
+            x_label: "light (in the order given)".into(),
+            y_label: "ΔE2000".into(),
+            series: errors,
+        },
+    ];
+    render(&format!("Recipe search: the best {} recipes for {target_name}", found.len()), &charts, 2)
+}

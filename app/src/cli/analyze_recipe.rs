@@ -8,6 +8,7 @@ use crate::cli::color::{parse_illuminant, parse_observer};
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use rouge_measure::analysis::correction::Presentation;
+use rouge_measure::analysis::mixing::duncan_mix;
 use rouge_measure::analysis::recipe::{
     Colorant, FixedRatio, RecipeReport, RecipeSearch, WeightedViewing, search_recipes,
 };
@@ -75,6 +76,10 @@ pub struct RecipeArgs {
     /// Also write the ranked recipes as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Draw the target's and the best recipes' reflectances (at most 5) and their ΔE2000 per
+    /// light into this PNG.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
 }
 
 /// The library's colorants, named by file stem or built-in name, in the order given (a folder's
@@ -267,5 +272,28 @@ pub fn run(args: &RecipeArgs) -> Result<()> {
         "metamerism": "CIE 15:2018 §9 special index, additive correction, target against recipe, first viewing to each other",
         "recipes": recipes_json(&report, &search),
     });
-    write_json(&args.json, &value)
+    write_json(&args.json, &value)?;
+    if let Some(path) = &args.png {
+        let found = report
+            .recipes
+            .iter()
+            .take(5)
+            .map(|r| {
+                let layers: Vec<_> = r.indices.iter().map(|&i| search.colorants[i].layer.clone()).collect();
+                let mix = duncan_mix("recipe", &layers, &r.amounts)?;
+                let label: Vec<String> = r
+                    .names
+                    .iter()
+                    .zip(&r.amounts)
+                    .filter(|(_, a)| **a > 1e-7)
+                    .map(|(n, a)| format!("{n} {a:.2}"))
+                    .collect();
+                Ok((label.join(" + "), search.presentation.reflectance(&mix), r.delta_e.clone()))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let lights: Vec<String> = search.viewings.iter().map(|v| v.viewing.illuminant.name().to_string()).collect();
+        let png = crate::cli::analyze_plot::recipes(&target_name, &target, &found, &lights)?;
+        std::fs::write(path, png).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
 }
