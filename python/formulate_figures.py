@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
-"""The figures and tables of docs/FORMULATION.md sections 5-7 (metamerism, the uncertainty of S
-and K, batch correction), made by driving the `rouge` binary on the sample measurements and
-presets and on three Xiao 2016 skins (`python/skin_gamut.py --count 3 --out
-build/skin/xiao2016_3.csv` first).
+"""The figures and tables of docs/FORMULATION.md sections 5-9 (metamerism, the uncertainty of S
+and K, batch correction, QC, recipe search), made by driving the `rouge` binary on the sample
+measurements and presets and on three Xiao 2016 skins (`python/skin_gamut.py --count 3 --out
+build/skin/xiao2016_3.csv` first); the QC batches are mixed with the `rouge` package.
 
     .venv/bin/python python/formulate_figures.py --rouge target/debug/rouge --out build/formulate
 
-Writes `uncertainty.md` (a table per sample measurement), `metamerism_skin.md`, and the PNGs
-`docs/images/metamerism_foundation_on_skin.png` (with `--images`).
+Writes `uncertainty.md` (a table per sample measurement), `metamerism_skin.md`, `qc.txt`,
+`recipe.txt`, and the PNGs `docs/images/metamerism_foundation_on_skin.png` and
+`docs/images/qc_foundation_03_sand.png`, `docs/images/recipe_lipstick_01_nude.png` (with
+`--images`).
 """
 
 from __future__ import annotations
@@ -85,6 +87,47 @@ def metamerism_on_skin(rouge: str, out: Path, skins: Path, images: Path | None) 
     return "\n".join(rows) + "\n"
 
 
+def preset_sk(name: str) -> tuple[np.ndarray, np.ndarray]:
+    p = json.loads((REPO / "data" / "presets" / f"{name}.json").read_text())
+    return np.array(p["s_per_mm"]), np.array(p["k_per_mm"])
+
+
+def qc_figure(rouge: str, out: Path, images: Path | None) -> str:
+    """Production batches of Sand with 2-12 % of another foundation or a blush mixed in (Duncan's
+    rule, by the `rouge` package), judged in CMC(2:1) at 1 with the PNG report."""
+    import rouge as rg
+
+    others = {"ivory": "foundation_02_ivory", "caramel": "foundation_04_caramel", "coral": "blush_02_coral",
+              "espresso": "foundation_05_espresso"}
+    sand = preset_sk("foundation_03_sand")
+    columns = {}
+    for short, name in others.items():
+        other = preset_sk(name)
+        for pct in (2, 5, 8, 12):
+            c = pct / 100
+            S, K = rg.SK_mix_Duncan(np.stack([sand[0], other[0]]), np.stack([sand[1], other[1]]), [1 - c, c])
+            columns[f"{short}_{pct}pct"] = np.asarray(rg.SK_to_Rinf_KubelkaMunk(np.asarray(S), np.asarray(K)))
+    table = out / "qc_batches.csv"
+    lines = ["wavelength_nm," + ",".join(columns)]
+    for i, nm in enumerate(range(380, 781, 5)):
+        lines.append(f"{nm}," + ",".join(f"{v[i]:.6f}" for v in columns.values()))
+    table.write_text("\n".join(lines) + "\n")
+    args = ["qc", "foundation_03_sand", str(table), "--metric", "cmc", "--cmc", "2:1", "--tolerance", "1",
+            "--json", str(out / "qc.json")]
+    if images is not None:
+        args += ["--png", str(images / "qc_foundation_03_sand.png")]
+    return run(rouge, *args)
+
+
+def recipe_runs(rouge: str, images: Path | None) -> str:
+    """The recipe search of section 9 and its bench."""
+    base = ["analyze", "recipe", "lipstick_01_nude", "--library", str(REPO / "data" / "presets"),
+            "--max", "lipstick_01_nude=0", "--k", "3", "--top", "3"]
+    png = [] if images is None else ["--png", str(images / "recipe_lipstick_01_nude.png")]
+    text = run(rouge, *base, *png) + run(rouge, *base, "--illuminants", "D65")
+    return text + run(rouge, "bench", "recipe", "--presets", str(REPO / "data" / "presets"))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--rouge", default=str(REPO / "target" / "debug" / "rouge"))
@@ -96,8 +139,12 @@ def main() -> int:
     (a.out / "uncertainty.md").write_text(uncertainty_table(a.rouge, a.out))
     images = REPO / "docs" / "images" if a.images else None
     (a.out / "metamerism_skin.md").write_text(metamerism_on_skin(a.rouge, a.out, a.skins, images))
+    (a.out / "qc.txt").write_text(qc_figure(a.rouge, a.out, images))
+    (a.out / "recipe.txt").write_text(recipe_runs(a.rouge, images))
     print((a.out / "uncertainty.md").read_text())
     print((a.out / "metamerism_skin.md").read_text())
+    print((a.out / "qc.txt").read_text())
+    print((a.out / "recipe.txt").read_text())
     return 0
 
 

@@ -24,6 +24,8 @@ pub enum Marker {
     Diamond,
     /// A filled square.
     Square,
+    /// No marker: a line series drawn as a plain line (a short line stands for it in the legend).
+    None,
 }
 
 /// One series: points joined by a line (or not), each with a marker and an optional label.
@@ -209,6 +211,7 @@ fn draw_chart(c: &mut Canvas, chart: &Chart, origin: (f64, f64)) {
 /// Draws `marker` centred on `at`.
 fn draw_marker(c: &mut Canvas, marker: Marker, (px, py): (f64, f64), rgb: [u8; 3]) {
     match marker {
+        Marker::None => {}
         Marker::Dot => c.fill(&Circle::new((px, py), 3.5).to_path(0.1), rgb),
         Marker::Square => c.fill(&Rect::new(px - 4.0, py - 4.0, px + 4.0, py + 4.0).to_path(0.1), rgb),
         Marker::Diamond => {
@@ -300,7 +303,14 @@ pub fn render(title: &str, charts: &[Chart], columns: usize) -> Result<Vec<u8>> 
         let y = head + PANEL_H * rows as f64 + 14.0 + line_h * k as f64;
         let mut x = (f64::from(width) - total) / 2.0;
         for (label, rgb, marker) in line {
-            draw_marker(&mut c, marker, (x + 4.0, y - 4.0), rgb);
+            if marker == Marker::None {
+                let mut stroke = BezPath::new();
+                stroke.move_to((x - 2.0, y - 4.0));
+                stroke.line_to((x + 10.0, y - 4.0));
+                c.stroke(&stroke, 2.0, rgb);
+            } else {
+                draw_marker(&mut c, marker, (x + 4.0, y - 4.0), rgb);
+            }
             c.text(&label, (x + 12.0, y), 11.0, 0.0, false, [20, 20, 20]);
             x += 24.0 + c.text_width(&label, 11.0);
         }

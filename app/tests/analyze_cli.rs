@@ -1,5 +1,6 @@
-//! `rouge analyze coverage|match|mix|metamerism|correct` through the binary: tables, JSON, PNG plots, and errors
-//! that name the file, line and column.
+//! `rouge analyze coverage|match|mix|metamerism|correct|recipe`, `rouge qc` and `rouge import
+//! --repeatability` through the binary: tables, JSON, PNG plots, and errors that name the file,
+//! line and column.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -125,4 +126,161 @@ fn metamerism_and_correct_write_json_and_refuse_bad_input() {
     let o = rouge(&["analyze", "metamerism", "foundation_03_sand", "data/skin/colorchecker_skin.csv"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("pick one"), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn recipe_ranks_recipes_writes_json_and_names_bad_constraints() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("r.json");
+    // A lipstick as the target from a library of one folder and a file: the lipstick itself is
+    // excluded, the foundations are limited, two colorants are tied and one has a price.
+    let out = stdout(&rouge(&[
+        "analyze",
+        "recipe",
+        "lipstick_01_nude",
+        "--library",
+        "data/presets",
+        "--k",
+        "2",
+        "--illuminants",
+        "D65,A",
+        "--weights",
+        "1,0.5",
+        "--max",
+        "lipstick_01_nude=0,foundation_01_porcelain=0.3",
+        "--fixed",
+        "blush_01_petal:blush_02_coral=1",
+        "--cost",
+        "lipstick_02_red=12.5",
+        "--top",
+        "5",
+        "--json",
+        json.to_str().unwrap(),
+        "--png",
+        dir.path().join("r.png").to_str().unwrap(),
+    ]));
+    assert!(out.contains("ΔE00 A") && out.contains("13 colorants, k = 2"), "{out}");
+    assert_eq!(&std::fs::read(dir.path().join("r.png")).unwrap()[1..4], b"PNG");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let recipes = v["recipes"].as_array().unwrap();
+    assert_eq!(recipes.len(), 5);
+    for r in recipes {
+        let amount = |name: &str| {
+            r["colorants"].as_array().unwrap().iter().find(|c| c["name"] == name).map(|c| c["amount"].as_f64().unwrap())
+        };
+        assert!(amount("lipstick_01_nude").is_none(), "{r}");
+        assert!(amount("foundation_01_porcelain").unwrap_or(0.0) <= 0.3 + 1e-12, "{r}");
+        if let Some(petal) = amount("blush_01_petal") {
+            assert!((petal - amount("blush_02_coral").unwrap()).abs() < 1e-9, "{r}");
+        }
+        assert!((r["cost"].as_f64().unwrap() - 12.5 * amount("lipstick_02_red").unwrap_or(0.0)).abs() < 1e-9);
+        assert_eq!(r["delta_e_2000"].as_array().unwrap().len(), 2);
+    }
+    let objectives: Vec<f64> = recipes.iter().map(|r| r["objective"].as_f64().unwrap()).collect();
+    assert!(objectives.windows(2).all(|w| w[0] <= w[1]), "{objectives:?}");
+    // Impossible constraints and a colorant on another grid say what and where.
+    let err = |args: &[&str]| {
+        let o = rouge(&[&["analyze", "recipe", "lipstick_01_nude", "--library", "data/presets"], args].concat());
+        assert!(!o.status.success());
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let e = err(&["--min", "foundation_02_ivory=0.7,foundation_03_sand=0.6"]);
+    assert!(e.contains("sum to 1.2") && e.contains("foundation_03_sand ≥ 0.6"), "{e}");
+    let e = err(&["--min", "foundation_02_ivory=0.6", "--max", "foundation_02_ivory=0.4"]);
+    assert!(e.contains("colorant `foundation_02_ivory`: min 0.6 > max 0.4"), "{e}");
+    let e = err(&["--fixed", "blush_01_petal:nothing=2"]);
+    assert!(e.contains("no colorant `nothing`"), "{e}");
+    let e = err(&[
+        "--fixed",
+        "blush_01_petal:blush_02_coral=2",
+        "--max",
+        "blush_01_petal=0.1",
+        "--min",
+        "blush_02_coral=0.2",
+    ]);
+    assert!(e.contains("fixed ratios of blush_01_petal, blush_02_coral contradict"), "{e}");
+    let preset: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("../data/presets/blush_01_petal.json").unwrap()).unwrap();
+    let mut short = preset.clone();
+    for field in ["wavelengths_nm", "s_per_mm", "k_per_mm"] {
+        let cut: Vec<serde_json::Value> = short[field].as_array().unwrap()[4..].to_vec();
+        short[field] = serde_json::Value::Array(cut);
+    }
+    let bad = dir.path().join("short_blush.json");
+    std::fs::write(&bad, short.to_string()).unwrap();
+    let o =
+        rouge(&["analyze", "recipe", "lipstick_01_nude", "--library", "foundation_02_ivory", bad.to_str().unwrap()]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("short_blush.json") && e.contains("wavelengths_nm"), "{e}");
+}
+
+#[test]
+fn qc_draws_the_batch_report_with_its_tolerance_contours() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("qc.png");
+    let json = dir.path().join("qc.json");
+    let out = stdout(&rouge(&[
+        "qc",
+        "foundation_03_sand",
+        "foundation_02_ivory",
+        "foundation_04_caramel",
+        "data/skin/colorchecker_skin.csv#light_skin",
+        "--metric",
+        "cmc",
+        "--tolerance",
+        "6",
+        "--png",
+        png.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]));
+    assert!(out.contains("pass") && out.contains("FAIL"), "{out}");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    let image = image::load_from_memory(&bytes).unwrap().to_rgb8();
+    // Two panels side by side; the pass dots (green) and the tolerance contour (red) are drawn.
+    assert_eq!(image.width(), 840);
+    let has = |rgb: [u8; 3]| image.pixels().any(|p| p.0 == rgb);
+    assert!(has([44, 160, 44]) && has([214, 39, 40]), "no pass marker or CMC contour");
+    let o =
+        rouge(&["qc", "foundation_03_sand", "foundation_02_ivory", "--tolerance=-1", "--png", png.to_str().unwrap()]);
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("tolerance -1"));
+}
+
+#[test]
+fn import_reads_the_repeatability_per_wavelength_from_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = |from: usize| {
+        let mut t = String::from("wavelength_nm,u\n");
+        for nm in (from..=780).step_by(5) {
+            // A spectrophotometer noisier in the blue: 0.004 at 380 nm falling to 0.001.
+            t += &format!("{nm},{}\n", 0.001 + 0.003 * ((780 - nm) as f64 / 400.0).powi(3));
+        }
+        t
+    };
+    let u_file = dir.path().join("u.csv");
+    std::fs::write(&u_file, table(380)).unwrap();
+    let out = dir.path().join("p.json");
+    let run = |u: &Path| {
+        rouge(&[
+            "import",
+            "data/measurements/lipstick_02_red.csv",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+            "--repeatability",
+            u.to_str().unwrap(),
+        ])
+    };
+    let v: serde_json::Value = serde_json::from_str(&stdout(&run(&u_file))).unwrap();
+    assert!(v["uncertainty"]["source"].as_str().unwrap().contains("per wavelength from"), "{v}");
+    let preset: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let u = preset["uncertainty"]["u_reflectance"].as_array().unwrap();
+    assert!((u[0].as_f64().unwrap() - 0.004).abs() < 1e-12 && (u[80].as_f64().unwrap() - 0.001).abs() < 1e-12);
+    // A file that stops short of 380 nm is refused, naming the file.
+    let short = dir.path().join("short.csv");
+    std::fs::write(&short, table(400)).unwrap();
+    let o = run(&short);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("short.csv"), "{e}");
 }

@@ -1,5 +1,6 @@
 //! The formulator's bench for Python (docs/FORMULATION.md): metamerism indices
-//! (`rouge_measure::analysis::metamerism`), batch correction (`analysis::correction`) and the uncertainty of S and K
+//! (`rouge_measure::analysis::metamerism`), recipe search (`analysis::recipe`), batch correction
+//! (`analysis::correction`), QC tolerances (`analysis::qc`) and the uncertainty of S and K
 //! (`rouge_measure::km_uncertainty`). Spectra on the working grid (81 values); colour-difference
 //! keys are colour-science's `delta_E` method names (`"CIE 1976"`, `"CIE 2000"`).
 #![allow(non_snake_case)]
@@ -11,9 +12,12 @@ use pyo3::types::PyDict;
 use rouge_measure::analysis::Layer;
 use rouge_measure::analysis::correction::{Presentation, correct_batch};
 use rouge_measure::analysis::metamerism::{Correction, metamerism_index};
+use rouge_measure::analysis::qc::{AB_PLANE, Metric, judge, lightness_chroma_plane, tolerance_contour};
+use rouge_measure::analysis::recipe::{Colorant, FixedRatio, RecipeSearch, WeightedViewing, search_recipes};
 use rouge_measure::colorimetry::Colorimeter;
 use rouge_measure::km_uncertainty::{ILL_CONDITIONED, InputUncertainty, optimal_thickness_mm, propagate_s_k};
 use rouge_measure::spectrum::{Spectrum, WORKING_LEN};
+use std::collections::HashMap;
 
 fn spectrum(what: &str, values: Vec<f64>) -> PyResult<Spectrum> {
     Spectrum::from_slice(&values).map_err(|_| {
@@ -197,11 +201,193 @@ pub fn correct_batch_kubelka_munk<'py>(
     Ok(d)
 }
 
+fn rouge_err(e: impl std::fmt::Display) -> PyErr {
+    crate::errors::RougeError::new_err(e.to_string())
+}
+
+/// Recipe search: the best recipes of `k` of `colorants` (a list of `(S, K)`, 81 values each,
+/// named by `names`, default `"0"`, `"1"`, ...) for a `target` reflectance (81 values), opaque
+/// or as a layer of `thickness_mm` over `skin`; per-colorant limits `min` / `max` and `cost` as
+/// dicts by name, `fixed` pairs `(a, b, ratio)` with amount(a) = ratio × amount(b); ranked by
+/// the weighted RMS of CIEDE2000 under `illuminants` (with `weights`) plus `cost_weight` × cost.
+/// Returns a list (best first) of dicts: `names`, `amounts`, `objective`, `delta_E` (one per
+/// illuminant), `metamerism_index` (CIEDE2000, additive correction, first illuminant to each
+/// other, or to A), `cost`.
+#[pyfunction]
+#[pyo3(name = "recipe_search_KubelkaMunk", signature = (colorants, target, k, *, names=None, min=None, max=None,
+    fixed=None, cost=None, illuminants=vec!["D65".to_string(), "A".to_string(), "FL11".to_string()], weights=None,
+    observer="CIE 1931 2 Degree Standard Observer", skin=None, thickness_mm=None, cost_weight=0.0, top=10))]
+#[allow(clippy::too_many_arguments)]
+pub fn recipe_search_kubelka_munk<'py>(
+    py: Python<'py>,
+    colorants: Vec<(Vec<f64>, Vec<f64>)>,
+    target: Vec<f64>,
+    k: usize,
+    names: Option<Vec<String>>,
+    min: Option<HashMap<String, f64>>,
+    max: Option<HashMap<String, f64>>,
+    fixed: Option<Vec<(String, String, f64)>>,
+    cost: Option<HashMap<String, f64>>,
+    illuminants: Vec<String>,
+    weights: Option<Vec<f64>>,
+    observer: &str,
+    skin: Option<Vec<f64>>,
+    thickness_mm: Option<f64>,
+    cost_weight: f64,
+    top: usize,
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let names = names.unwrap_or_else(|| (0..colorants.len()).map(|i| i.to_string()).collect());
+    if names.len() != colorants.len() {
+        return Err(PyValueError::new_err(format!("{} names for {} colorants", names.len(), colorants.len())));
+    }
+    let mut library = colorants
+        .into_iter()
+        .zip(&names)
+        .map(|((s, k), name)| {
+            let layer = Layer::new(
+                name,
+                spectrum(&format!("colorant `{name}` S"), s)?,
+                spectrum(&format!("colorant `{name}` K"), k)?,
+            )
+            .map_err(rouge_err)?;
+            Ok(Colorant::new(layer))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    for (what, map) in [("min", &min), ("max", &max), ("cost", &cost)] {
+        for (name, v) in map.iter().flatten() {
+            let c = library
+                .iter_mut()
+                .find(|c| &c.layer.name == name)
+                .ok_or_else(|| PyValueError::new_err(format!("{what}: no colorant named `{name}`")))?;
+            match what {
+                "min" => c.min = *v,
+                "max" => c.max = *v,
+                _ => c.cost_per_unit = *v,
+            }
+        }
+    }
+    let weights = weights.unwrap_or_else(|| vec![1.0; illuminants.len()]);
+    if weights.len() != illuminants.len() {
+        return Err(PyValueError::new_err(format!("{} weights for {} illuminants", weights.len(), illuminants.len())));
+    }
+    let viewings = illuminants
+        .iter()
+        .zip(weights)
+        .map(|(il, weight)| Ok(WeightedViewing { viewing: viewing(il, observer)?, weight }))
+        .collect::<PyResult<Vec<_>>>()?;
+    let presentation = match (skin, thickness_mm) {
+        (None, None) => Presentation::Opaque,
+        (Some(r), Some(x)) => Presentation::Over { background: Box::new(spectrum("skin", r)?), thickness_mm: x },
+        _ => return Err(PyValueError::new_err("give both skin and thickness_mm, or neither (opaque)")),
+    };
+    let search = RecipeSearch {
+        colorants: library,
+        fixed: fixed.unwrap_or_default().into_iter().map(|(a, b, ratio)| FixedRatio { a, b, ratio }).collect(),
+        k,
+        viewings,
+        presentation,
+        cost_weight,
+    };
+    let report = search_recipes(&search, &spectrum("target", target)?, top).map_err(rouge_err)?;
+    report
+        .recipes
+        .iter()
+        .map(|r| {
+            let d = PyDict::new(py);
+            d.set_item("names", r.names.clone())?;
+            d.set_item("amounts", r.amounts.clone())?;
+            d.set_item("objective", r.objective)?;
+            d.set_item("delta_E", r.delta_e.clone())?;
+            d.set_item("metamerism_index", r.metamerism.iter().map(|m| m.delta_e_2000).collect::<Vec<_>>())?;
+            d.set_item("cost", r.cost)?;
+            Ok(d)
+        })
+        .collect()
+}
+
+/// The colour-difference formula named as colour-science's `delta_E` methods: `"CIE 2000"`,
+/// `"CMC"` (with `l`, `c`) or `"CIE 1976"`.
+fn metric(method: &str, l: f64, c: f64) -> PyResult<Metric> {
+    match method {
+        "CIE 2000" => Ok(Metric::De2000),
+        "CMC" => Ok(Metric::Cmc { l, c }),
+        "CIE 1976" => Ok(Metric::Ab),
+        other => Err(PyValueError::new_err(format!("method `{other}`: one of \"CIE 2000\", \"CMC\", \"CIE 1976\""))),
+    }
+}
+
+fn lab3(what: &str, v: Vec<f64>) -> PyResult<[f64; 3]> {
+    <[f64; 3]>::try_from(v.as_slice())
+        .map_err(|_| PyValueError::new_err(format!("{what}: {} values, expected L*, a*, b*", v.len())))
+}
+
+/// Pass/fail of `Lab_sample` against `Lab_standard` at `tolerance` in `method` (colour-science's
+/// `delta_E` names: `"CIE 2000"`, `"CMC"` with `l:c`, `"CIE 1976"`), and the 555 shade number
+/// with blocks `block` (ΔL*, Δa*, Δb*; default the tolerance). Returns a dict: `delta_E`,
+/// `pass`, `delta_Lab`, `shade_555`.
+#[pyfunction]
+#[pyo3(signature = (Lab_standard, Lab_sample, tolerance, *, method="CIE 2000", l=2.0, c=1.0, block=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn qc_pass_fail<'py>(
+    py: Python<'py>,
+    Lab_standard: Vec<f64>,
+    Lab_sample: Vec<f64>,
+    tolerance: f64,
+    method: &str,
+    l: f64,
+    c: f64,
+    block: Option<(f64, f64, f64)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let block = block.map_or([tolerance; 3], |(a, b, d)| [a, b, d]);
+    let j = judge(
+        lab3("Lab_standard", Lab_standard)?,
+        lab3("Lab_sample", Lab_sample)?,
+        metric(method, l, c)?,
+        tolerance,
+        block,
+    )
+    .map_err(rouge_err)?;
+    let d = PyDict::new(py);
+    d.set_item("delta_E", j.delta_e)?;
+    d.set_item("pass", j.pass)?;
+    d.set_item("delta_Lab", j.delta_lab.to_vec())?;
+    d.set_item("shade_555", j.shade)?;
+    Ok(d)
+}
+
+/// The tolerance contour of `method` at `tolerance` around `Lab_standard`: `points` CIELAB
+/// colours where the difference equals the tolerance, in the a*b* plane through the standard
+/// (`plane="ab"`) or its lightness-chroma plane (`plane="LC"`), traced numerically per angle
+/// (`rouge qc --png` draws them). Returns a list of `[L*, a*, b*]`.
+#[pyfunction]
+#[pyo3(signature = (Lab_standard, tolerance, *, method="CIE 2000", l=2.0, c=1.0, plane="ab", points=72))]
+#[allow(clippy::too_many_arguments)]
+pub fn qc_tolerance_contour(
+    Lab_standard: Vec<f64>,
+    tolerance: f64,
+    method: &str,
+    l: f64,
+    c: f64,
+    plane: &str,
+    points: usize,
+) -> PyResult<Vec<[f64; 3]>> {
+    let std = lab3("Lab_standard", Lab_standard)?;
+    let plane = match plane {
+        "ab" => AB_PLANE,
+        "LC" => lightness_chroma_plane(std),
+        other => return Err(PyValueError::new_err(format!("plane `{other}`: \"ab\" or \"LC\""))),
+    };
+    tolerance_contour(metric(method, l, c)?, std, tolerance, plane, points).map_err(rouge_err)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(correct_batch_kubelka_munk, m)?)?;
     m.add("ILL_CONDITIONED_ABOVE", ILL_CONDITIONED)?;
     m.add_function(wrap_pyfunction!(metamerism_index_special, m)?)?;
     m.add_function(wrap_pyfunction!(sk_uncertainty, m)?)?;
     m.add_function(wrap_pyfunction!(sk_thickness_optimal, m)?)?;
+    m.add_function(wrap_pyfunction!(recipe_search_kubelka_munk, m)?)?;
+    m.add_function(wrap_pyfunction!(qc_pass_fail, m)?)?;
+    m.add_function(wrap_pyfunction!(qc_tolerance_contour, m)?)?;
     Ok(())
 }

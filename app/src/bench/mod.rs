@@ -6,6 +6,7 @@ pub mod aa;
 pub mod atlas;
 pub mod deform;
 pub mod fit_thickness;
+pub mod recipe;
 pub mod report;
 pub mod skin;
 pub mod translucency;
@@ -56,6 +57,9 @@ pub enum BenchCommand {
     /// five sample foundations at 0-60 µm against the 81-wavelength composition (ΔE2000 mean,
     /// p95, max per tone).
     Skin(crate::bench::skin::SkinBenchArgs),
+    /// Recipe search on the sample presets: combinations fitted per second for k = 2, 3, 4 of
+    /// the 13 presets, and whether the search finds a noisy synthetic mixture's recipe again.
+    Recipe(crate::bench::recipe::RecipeBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -122,6 +126,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Aa(args) => crate::bench::aa::run(args),
         BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
         BenchCommand::Skin(args) => crate::bench::skin::run(args),
+        BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
     }
 }
 

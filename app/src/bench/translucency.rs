@@ -484,7 +484,7 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
                             let k = thickness_labels.iter().position(|l| *l == label).unwrap_or(0);
                             thickness_palette[k % thickness_palette.len()]
                         }
-                        Marker::Dot => palette[series.iter().filter(|s| s.line).count() % palette.len()],
+                        Marker::Dot | Marker::None => palette[series.iter().filter(|s| s.line).count() % palette.len()],
                     };
                     series.push(Series { label: label.clone(), rgb, points: Vec::new(), line, marker });
                     series.len() - 1

@@ -1,4 +1,4 @@
-//! `rouge analyze coverage|match|mix|metamerism|correct`: what formulators ask of S and K (docs/FORMULATION.md).
+//! `rouge analyze coverage|match|mix|metamerism|correct|recipe`: what formulators ask of S and K (docs/FORMULATION.md).
 //! The analyses live in `rouge_measure::analysis`; this module reads the inputs, prints the
 //! tables for people, writes `--json` for machines and `--plot` PNGs (`analyze_plot.rs`).
 
@@ -35,6 +35,10 @@ pub enum AnalyzeCommand {
     /// Batch correction: the amounts of the recipe's colorants that bring a measured production
     /// batch back to the standard (the batch's model error carried, Gauss-Newton on CIELAB).
     Correct(crate::cli::analyze_correct::CorrectArgs),
+    /// Recipe search: the best recipes of k colorants of a library (presets or folders of them)
+    /// for a target, with per-colorant limits, fixed ratios and costs, ranked by the weighted
+    /// ΔE2000 under several illuminants; ΔE per illuminant, metamerism index and cost.
+    Recipe(crate::cli::analyze_recipe::RecipeArgs),
 }
 
 /// Options every analysis shares.
@@ -156,6 +160,7 @@ pub fn run(cmd: &AnalyzeCommand) -> Result<()> {
         AnalyzeCommand::Mix(args) => run_mix(args),
         AnalyzeCommand::Metamerism(args) => crate::cli::analyze_metamerism::run(args),
         AnalyzeCommand::Correct(args) => crate::cli::analyze_correct::run(args),
+        AnalyzeCommand::Recipe(args) => crate::cli::analyze_recipe::run(args),
     }
 }
 

@@ -88,8 +88,14 @@ pub struct CommonArgs {
     #[arg(long = "instrument-class", default_value = "benchtop", value_parser = parse_class)]
     pub instrument_class: InstrumentClass,
     /// The readings' repeatability, absolute reflectance (overrides --instrument-class).
-    #[arg(long = "u-reflectance")]
+    #[arg(long = "u-reflectance", conflicts_with = "repeatability")]
     pub u_reflectance: Option<f64>,
+    /// The instrument's repeatability per wavelength (one standard deviation of a reading,
+    /// absolute reflectance) from a spectrum file: a CSV table (`wavelength_nm` and one column)
+    /// or CGATS, `FILE#NAME` for one of several; resampled to 380-780 nm like a measurement
+    /// (overrides --instrument-class).
+    #[arg(long)]
+    pub repeatability: Option<String>,
     /// Standard uncertainty of the thin layer's thickness, µm.
     #[arg(long = "u-thickness-um", default_value_t = DEFAULT_U_THICKNESS_MM * 1e3)]
     pub u_thickness_um: f64,
@@ -279,6 +285,25 @@ impl ImportUncertainty {
     }
 }
 
+/// The instrument's repeatability per wavelength from `--repeatability FILE[#NAME]` on the
+/// working grid, and the text the report gives as its source. Errors name the file, and the
+/// wavelength of a value that is not finite and ≥ 0.
+fn repeatability_file(spec: &str, extrapolate: bool) -> Result<(Spectrum, String)> {
+    let (path, pick) = crate::cli::analyze_metamerism::split_pick(spec);
+    if !Path::new(path).is_file() {
+        bail!(
+            "--repeatability `{spec}`: no such file (a spectrum file, CSV table or CGATS, `FILE#NAME` for one of several)"
+        );
+    }
+    let (name, u) = crate::cli::analyze_metamerism::read_one_spectrum(Path::new(path), pick, extrapolate)
+        .with_context(|| format!("--repeatability {spec}"))?;
+    if let Some((nm, v)) = u.iter_nm().find(|(_, v)| !(*v >= 0.0 && v.is_finite())) {
+        bail!("--repeatability {name}: at {nm} nm the repeatability is {v}: must be finite and ≥ 0");
+    }
+    let (lo, hi) = u.min_max();
+    Ok((u, format!("per wavelength from {name} ({lo:.4}-{hi:.4})")))
+}
+
 /// The uncertainty of the preset's S and K (stored in it), its warnings and the best thickness.
 fn uncertainty(
     preset: &mut Preset,
@@ -286,12 +311,13 @@ fn uncertainty(
     working: &import::WorkingMeasurement,
     saunderson: Option<Saunderson>,
 ) -> Result<ImportUncertainty> {
-    let (u, source) = match common.u_reflectance {
-        Some(u) if u >= 0.0 && u.is_finite() => (u, format!("± {u} (--u-reflectance)")),
-        Some(u) => bail!("--u-reflectance = {u} must be finite and ≥ 0"),
-        None => {
+    let (u_spectrum, source) = match (&common.repeatability, common.u_reflectance) {
+        (Some(spec), _) => repeatability_file(spec, common.extrapolate)?,
+        (None, Some(u)) if u >= 0.0 && u.is_finite() => (Spectrum::constant(u), format!("± {u} (--u-reflectance)")),
+        (None, Some(u)) => bail!("--u-reflectance = {u} must be finite and ≥ 0"),
+        (None, None) => {
             let c = common.instrument_class;
-            (c.u_reflectance(), c.source_text())
+            (Spectrum::constant(c.u_reflectance()), c.source_text())
         }
     };
     let u_thickness_mm = match common.u_thickness_um {
@@ -301,7 +327,6 @@ fn uncertainty(
     if !(0.0..=1.0).contains(&common.reading_correlation) {
         bail!("--reading-correlation = {} must be in [0, 1]", common.reading_correlation);
     }
-    let u_spectrum = Spectrum::constant(u);
     let spectral = preset.estimate_uncertainty(&source, &u_spectrum, u_thickness_mm, common.reading_correlation)?;
     let rg = Spectrum(std::array::from_fn(|i| saunderson.map_or(working.rg.0[i], |c| c.to_internal(working.rg.0[i]))));
     let (s, k) = (preset.s(), preset.k());

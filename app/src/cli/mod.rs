@@ -4,6 +4,7 @@ pub mod analyze;
 pub mod analyze_correct;
 pub mod analyze_metamerism;
 pub mod analyze_plot;
+pub mod analyze_recipe;
 pub mod color;
 pub mod export;
 pub mod finish;

@@ -1,10 +1,12 @@
 //! `rouge qc STANDARD BATCH...`: pass/fail of production batches against a standard in
-//! ΔE2000, CMC(l:c) or ΔE*ab, and their 555 shade numbers (`rouge_measure::analysis::qc`).
+//! ΔE2000, CMC(l:c) or ΔE*ab, and their 555 shade numbers (`rouge_measure::analysis::qc`), as a
+//! table, JSON and a PNG with the tolerance contours.
 
 use crate::cli::analyze::{load_layer, write_json};
 use crate::cli::analyze_metamerism::{read_one_spectrum, split_pick};
+use crate::cli::analyze_plot::{QcPoint, qc_report};
 use crate::cli::color::{parse_illuminant, parse_observer};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use rouge_measure::analysis::lab_of;
 use rouge_measure::analysis::qc::{Metric, judge};
@@ -45,6 +47,10 @@ pub struct QcArgs {
     /// Also write the batch report as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Also draw the batch report as a PNG here: the batches in the a*b* plane and in lightness
+    /// and chroma around the standard, with the ΔE2000, CMC(l:c) and ΔE*ab tolerance contours.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
 }
 
 /// The spectra a command-line item names: a preset's R∞, one named spectrum, or all of a file's.
@@ -103,6 +109,7 @@ pub fn run(args: &QcArgs) -> Result<()> {
     );
     crate::emit(&format!("{:<40} {:>8} {:>8} {:>8} {:>9} {:>5}  verdict", "batch", "ΔL*", "Δa*", "Δb*", "ΔE", "555"))?;
     let mut rows = Vec::new();
+    let mut points = Vec::new();
     for spec in &args.batches {
         for (name, r) in spectra(spec, args.extrapolate)? {
             let j = judge(std_lab, lab_of(c, &r), metric, args.tolerance, block)?;
@@ -116,6 +123,9 @@ pub fn run(args: &QcArgs) -> Result<()> {
                 j.shade,
                 if j.pass { "pass" } else { "FAIL" }
             ))?;
+            // The plot labels a file's spectra by their own names.
+            let short = name.rsplit_once('#').map_or(name.as_str(), |(_, n)| n).to_string();
+            points.push(QcPoint { name: short, lab: lab_of(c, &r), pass: j.pass });
             rows.push(json!({"batch": name, "lab": lab_of(c, &r), "judgement": j}));
         }
     }
@@ -126,5 +136,18 @@ pub fn run(args: &QcArgs) -> Result<()> {
         "metric": metric.name(), "tolerance": args.tolerance, "block_555": block,
         "batches": rows, "passed": rows.len() - failed, "failed": failed,
     });
-    write_json(&args.json, &value)
+    write_json(&args.json, &value)?;
+    if let Some(path) = &args.png {
+        let title = format!(
+            "QC: {} of {} batches pass, {} ≤ {} ({})",
+            rows.len() - failed,
+            rows.len(),
+            metric.name(),
+            args.tolerance,
+            c.viewing()
+        );
+        let png = qc_report(&title, std_lab, &points, metric, args.tolerance)?;
+        std::fs::write(path, png).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
 }

@@ -1,8 +1,9 @@
 //! What formulators ask of S and K: how much a layer covers ([`coverage`]), which shade suits
-//! which skin ([`matching`]), which mixture of bases reaches a shade ([`mixing`]), on skins read
-//! from the user's files ([`skin`]). docs/FORMULATION.md shows the answers for the sample
-//! products; the Kubelka-Munk model these analyses rest on is judged against adding-doubling
-//! there too (`python/km_adding_doubling.py`).
+//! which skin ([`matching`]), which mixture of bases reaches a shade ([`mixing`]), which recipe
+//! of a colorant library reaches it under limits, costs and several illuminants ([`recipe`]),
+//! on skins read from the user's files ([`skin`]). docs/FORMULATION.md shows the answers for
+//! the sample products; the Kubelka-Munk model these analyses rest on is judged against
+//! adding-doubling there too (`python/km_adding_doubling.py`).
 //!
 //! Every analysis sees skin (or a contrast chart) as an opaque, diffusely reflecting background
 //! under a KM layer (\[Huang2013\] eq. 3 with an opaque second layer): light carried sideways in
@@ -15,6 +16,7 @@ pub mod metamerism;
 pub mod mixing;
 pub mod optimize;
 pub mod qc;
+pub mod recipe;
 pub mod skin;
 
 use crate::colorimetry::Colorimeter;

@@ -146,6 +146,22 @@ def correct_batch_KubelkaMunk(
     skin: ArrayLike | None = None, thickness_mm: float | None = None, illuminant: str = "D65",
     observer: str = "CIE 1931 2 Degree Standard Observer",
 ) -> dict[str, Any]: ...
+def recipe_search_KubelkaMunk(
+    colorants: list[tuple[ArrayLike, ArrayLike]], target: ArrayLike, k: int, *, names: list[str] | None = None,
+    min: dict[str, float] | None = None, max: dict[str, float] | None = None,
+    fixed: list[tuple[str, str, float]] | None = None, cost: dict[str, float] | None = None,
+    illuminants: list[str] = ..., weights: list[float] | None = None,
+    observer: str = "CIE 1931 2 Degree Standard Observer", skin: ArrayLike | None = None,
+    thickness_mm: float | None = None, cost_weight: float = 0.0, top: int = 10,
+) -> list[dict[str, Any]]: ...
+def qc_pass_fail(
+    Lab_standard: ArrayLike, Lab_sample: ArrayLike, tolerance: float, *, method: str = "CIE 2000", l: float = 2.0,
+    c: float = 1.0, block: tuple[float, float, float] | None = None,
+) -> dict[str, Any]: ...
+def qc_tolerance_contour(
+    Lab_standard: ArrayLike, tolerance: float, *, method: str = "CIE 2000", l: float = 2.0, c: float = 1.0,
+    plane: str = "ab", points: int = 72,
+) -> list[list[float]]: ...
 ILL_CONDITIONED_ABOVE: float
 def SK_uncertainty(
     R_inf: ArrayLike, R: ArrayLike, Rg: ArrayLike, thickness_mm: float, u_R: ArrayLike, *,
