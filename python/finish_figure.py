@@ -1,4 +1,4 @@
-"""Close-ups of finishes (README, docs/FORMULATION.md "Finishes"), rendered by the real `rouge`
+"""Close-ups of finishes (README, docs/FINISHES.md), rendered by the real `rouge`
 binary under the studio lights:
 
   docs/images/finishes_closeup.png  a cheek bare, under 30 um of the ivory foundation with a
@@ -87,10 +87,10 @@ def main() -> None:
             full = render(a.rouge, folder / f"nose{i}.png", *args, *nose)
             crops.append(label(full.crop((400, 200, 880, 520)), text))
         grid(crops, 4).save(a.out / "pores_closeup.png")
-        presets = Path(__file__).resolve().parent.parent / "data" / "presets"
+        finishes = Path(__file__).resolve().parent.parent / "data" / "finishes"
         lids = {"bronze satin": finished(a.rouge, folder, "eyeshadow_03_bronze", "satin"),
-                "bronze, gold shimmer": presets / "finishes" / "eyeshadow_03_bronze_gold_shimmer.json",
-                "sapphire, blue shimmer": presets / "finishes" / "eyeshadow_02_sapphire_blue_shimmer.json"}
+                "bronze, gold shimmer": finishes / "eyeshadow_03_bronze_gold_shimmer.json",
+                "sapphire, blue shimmer": finishes / "eyeshadow_02_sapphire_blue_shimmer.json"}
         cells = []
         for yaw, pitch in ((15, 25), (45, 5)):
             for text, preset in lids.items():

@@ -82,7 +82,7 @@ fn version_1_presets_still_load_and_a_finish_makes_version_2() {
     }
     assert!(loaded >= 4, "{loaded} presets in {}", dir.display());
     // The finished variants (`rouge finish`, data/SOURCES.md) are version 2 and load.
-    for entry in std::fs::read_dir(dir.join("finishes")).unwrap() {
+    for entry in std::fs::read_dir(dir.join("../finishes")).unwrap() {
         let p = Preset::load(&entry.unwrap().path()).unwrap_or_else(|e| panic!("{e}"));
         assert!(p.version == 2 && p.finish.is_some(), "{}", p.name);
     }
