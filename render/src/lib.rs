@@ -26,6 +26,7 @@ pub mod edges;
 pub mod env;
 pub mod error;
 pub mod frame;
+pub mod gltf_export;
 pub mod gpu;
 pub(crate) mod gpu_look;
 pub(crate) mod gpu_mesh;

@@ -5,6 +5,7 @@
 pub mod aa;
 pub mod atlas;
 pub mod deform;
+pub mod export;
 pub mod fit_thickness;
 pub mod report;
 pub mod skin;
@@ -56,6 +57,9 @@ pub enum BenchCommand {
     /// five sample foundations at 0-60 µm against the 81-wavelength composition (ΔE2000 mean,
     /// p95, max per tone).
     Skin(crate::bench::skin::SkinBenchArgs),
+    /// glTF export: seconds to bake the look and build the document, to write the .glb, and
+    /// the file's size, per texture side (the scene options of `rouge export gltf`).
+    Export(crate::bench::export::ExportBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -122,6 +126,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Aa(args) => crate::bench::aa::run(args),
         BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
         BenchCommand::Skin(args) => crate::bench::skin::run(args),
+        BenchCommand::Export(args) => crate::bench::export::run(args),
     }
 }
 
