@@ -105,7 +105,7 @@ def blender_stage(glb: str, view_json: str, rouge_exr: str, out_npz: str, sample
     scene.collection.objects.link(sun)
     sun.rotation_euler = to_blender(view["light_direction"], 1.0).to_track_quat("-Z", "Y").to_euler()
 
-    out_exr = str(pathlib.Path(out_npz).with_suffix(".exr"))
+    out_exr = str(pathlib.Path(out_npz).with_name("blender.exr"))
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"
     scene.render.filepath = out_exr
@@ -187,14 +187,14 @@ def main() -> None:
 
     rouge_bg = np.where(mask[..., None], rouge[..., :3], 0)
     panels = [("Rouge (--subsurface none)", display(rouge_bg)), ("Blender Cycles (the .glb)", display(blender)),
-              ("ΔE2000 (blue 0, red ≥ 10)", heat(de))]
+              ("dE2000 (blue 0, red 10 or more)", heat(de))]
     w, h = args.width, args.height
     sheet = Image.new("RGB", (3 * w + 32, h + 52), "white")
     draw = ImageDraw.Draw(sheet)
     for i, (label, img) in enumerate(panels):
         sheet.paste(img, (8 + i * (w + 8), 24))
         draw.text((8 + i * (w + 8), 6), label, fill="black")
-    draw.text((8, h + 30), f"ΔE2000 over the head: mean {stats['delta_e_mean']:.2f}, median "
+    draw.text((8, h + 30), f"dE2000 over the head: mean {stats['delta_e_mean']:.2f}, median "
               f"{stats['delta_e_median']:.2f}, p95 {stats['delta_e_p95']:.2f} ({stats['pixels']} px)", fill="black")
     sheet.save(args.out)
     pathlib.Path(args.out).with_suffix(".json").write_text(json.dumps(stats, indent=1) + "\n")

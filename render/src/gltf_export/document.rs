@@ -27,8 +27,9 @@ pub struct Primitive {
     pub positions_m: Vec<[f32; 3]>,
     /// Unit normals.
     pub normals: Vec<[f32; 3]>,
-    /// MikkTSpace tangents, w = ±1.
-    pub tangents: Vec<[f32; 4]>,
+    /// MikkTSpace tangents, w = ±1, where the material has a normal texture (glTF viewers
+    /// need them only there).
+    pub tangents: Option<Vec<[f32; 4]>>,
     /// TEXCOORD_0 (glTF: v down).
     pub uvs: Vec<[f32; 2]>,
     /// COLOR_0, linear, when the primitive has colours per vertex (the eyes).
@@ -123,9 +124,11 @@ impl Document {
             let mut attributes = json!({
                 "POSITION": bin.floats(&p.positions_m, "VEC3", true),
                 "NORMAL": bin.floats(&p.normals, "VEC3", false),
-                "TANGENT": bin.floats(&p.tangents, "VEC4", false),
                 "TEXCOORD_0": bin.floats(&p.uvs, "VEC2", false),
             });
+            if let Some(t) = &p.tangents {
+                attributes["TANGENT"] = json!(bin.floats(t, "VEC4", false));
+            }
             if let Some(c) = &p.colors {
                 attributes["COLOR_0"] = json!(bin.floats(c, "VEC3", false));
             }

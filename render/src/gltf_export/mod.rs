@@ -62,6 +62,11 @@ pub struct GltfExport {
     pub triangles: usize,
 }
 
+/// `v` as JSON in its shortest decimal form (1.4, not 1.399999976158142).
+fn num(v: f32) -> Value {
+    v.to_string().parse::<f64>().map_or(json!(f64::from(v)), |x| json!(x))
+}
+
 /// glTF's perceptual roughness for a Beckmann lobe of RMS slope `m`: glTF's microfacet α is
 /// roughness², and Beckmann's m and GGX's α describe surfaces of about the same roughness
 /// (their distributions share the mean square slope), so roughness = √m.
@@ -76,7 +81,8 @@ pub fn gltf_roughness(beckmann_m: f32) -> f32 {
 /// or what [`bake_surface`] refuses.
 pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
     let surface = bake_surface(&input.skin, input.layers, input.texture_px)?;
-    let mesh = with_tangents(input.mesh)?;
+    // Tangents only where a normal texture uses them.
+    let mesh = if input.normal_map.is_some() { with_tangents(input.mesh)? } else { checked(input.mesh)? };
     let skin = input.skin;
 
     let mut images = vec![
@@ -104,7 +110,7 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
         images.push(Image { name: "specular", png: encode_png(side(&surface), &texels, 4)? });
         skin_ext.insert(
             "KHR_materials_specular".into(),
-            json!({"specularTexture": texture(images.len() - 1), "specularColorFactor": [color_factor, color_factor, color_factor]}),
+            json!({"specularTexture": texture(images.len() - 1), "specularColorFactor": [num(color_factor), num(color_factor), num(color_factor)]}),
         );
         extensions_used.push("KHR_materials_specular");
     }
@@ -120,14 +126,14 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
         "pbrMetallicRoughness": {
             "baseColorFactor": [1.0, 1.0, 1.0, 1.0],
             "metallicFactor": 0.0,
-            "roughnessFactor": gltf_roughness(skin.beckmann_roughness),
+            "roughnessFactor": num(gltf_roughness(skin.beckmann_roughness)),
         },
     });
     if let Some(ior) = ior {
         eye_material["extensions"] = json!({"KHR_materials_ior": ior});
     }
 
-    let primitives = primitives(&mesh, skin.albedo);
+    let primitives = primitives(&mesh, skin.albedo, input.normal_map.is_some());
     let triangles = primitives.iter().map(|p| p.indices.len() / 3).sum();
     let document = Document {
         primitives,
@@ -179,8 +185,8 @@ fn side(s: &SurfaceMaps) -> (u32, u32) {
     (s.side_px, s.side_px)
 }
 
-/// The mesh with MikkTSpace tangents (generated on a copy when it has none).
-fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMesh>> {
+/// The mesh, refused without triangles or without a UV per vertex.
+fn checked(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMesh>> {
     if mesh.triangle_count() == 0 || mesh.uvs.len() != mesh.positions.len() {
         return Err(RenderError::Invalid(format!(
             "glTF export: the mesh has {} triangles and {} UVs for {} vertices (needs triangles and a UV per vertex)",
@@ -189,6 +195,12 @@ fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMes
             mesh.positions.len()
         )));
     }
+    Ok(std::borrow::Cow::Borrowed(mesh))
+}
+
+/// The mesh with MikkTSpace tangents (generated on a copy when it has none).
+fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMesh>> {
+    checked(mesh)?;
     if mesh.tangents.is_some() {
         return Ok(std::borrow::Cow::Borrowed(mesh));
     }
@@ -199,19 +211,21 @@ fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMes
 
 /// The skin's triangles and the eyes' as primitives of their own vertices, in glTF's
 /// conventions: positions in metres, v = 1 − v_OBJ (the repo's loader flips it back). The eyes
-/// carry the renderer's eye colours per vertex (`gpu_mesh::vertex_albedo`).
-fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Vec<Primitive> {
+/// carry the renderer's eye colours per vertex (`gpu_mesh::vertex_albedo`); the skin its
+/// tangents when `with_tangents` (a normal texture uses them).
+fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -> Vec<Primitive> {
     let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo);
     let mut eye = vec![false; mesh.triangle_count()];
     for g in mesh.groups.iter().filter(|g| g.is_eye()) {
         eye[g.triangles.clone()].iter_mut().for_each(|e| *e = true);
     }
-    let tangents = mesh.tangents.as_deref().unwrap_or_default();
+    let tangents = mesh.tangents.as_deref().filter(|_| with_tangents);
     let mut out = Vec::new();
     for (name, material, is_eye) in [("skin", 0, false), ("eyes", 1, true)] {
         let mut remap = vec![u32::MAX; mesh.positions.len()];
         let mut p = Primitive { name: name.into(), material, ..Primitive::default() };
         let mut colors = Vec::new();
+        let mut tangent = Vec::new();
         for (t, tri) in mesh.indices.chunks_exact(3).enumerate() {
             if eye[t] != is_eye {
                 continue;
@@ -222,7 +236,9 @@ fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Vec<Primitive> {
                     remap[v] = p.positions_m.len() as u32;
                     p.positions_m.push((mesh.positions[v] * 1e-3).to_array());
                     p.normals.push(mesh.normals.get(v).map_or([0.0, 0.0, 1.0], |n| n.try_normalize().unwrap_or(glam::Vec3::Z).to_array()));
-                    p.tangents.push(tangents.get(v).map_or([1.0, 0.0, 0.0, 1.0], |t| t.to_array()));
+                    if let Some(t) = tangents {
+                        tangent.push(t.get(v).map_or([1.0, 0.0, 0.0, 1.0], |t| t.to_array()));
+                    }
                     let uv = mesh.uvs[v];
                     p.uvs.push([uv.x, 1.0 - uv.y]);
                     colors.push([albedo[v][0], albedo[v][1], albedo[v][2]]);
@@ -232,6 +248,8 @@ fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Vec<Primitive> {
         }
         if is_eye {
             p.colors = Some(colors);
+        } else if tangents.is_some() {
+            p.tangents = Some(tangent);
         }
         if !p.indices.is_empty() {
             out.push(p);
@@ -253,7 +271,7 @@ fn roughness_texels(s: &SurfaceMaps) -> Vec<u8> {
 
 /// `KHR_materials_ior` for a surface of index `ior`, unless it is glTF's default.
 fn ior_extension(ior: f32) -> Option<Value> {
-    ((ior - GLTF_DEFAULT_IOR).abs() > 1e-4).then(|| json!({"ior": ior}))
+    ((ior - GLTF_DEFAULT_IOR).abs() > 1e-4).then(|| json!({"ior": num(ior)}))
 }
 
 /// `KHR_materials_specular`'s texture (RGBA8, F0 in alpha, linear) and colour factor such that
