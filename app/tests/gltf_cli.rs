@@ -62,8 +62,15 @@ fn validate(files: &[&Path]) {
     for line in out.lines() {
         let report: serde_json::Value = serde_json::from_str(line).expect("a report per file");
         assert_eq!((report["numErrors"].as_u64(), report["numWarnings"].as_u64()), (Some(0), Some(0)), "{line}");
-        eprintln!("glTF-Validator {}: {} errors, {} warnings, {} infos, {} hints for {}", report["validatorVersion"],
-            report["numErrors"], report["numWarnings"], report["numInfos"], report["numHints"], report["file"]);
+        eprintln!(
+            "glTF-Validator {}: {} errors, {} warnings, {} infos, {} hints for {}",
+            report["validatorVersion"],
+            report["numErrors"],
+            report["numWarnings"],
+            report["numInfos"],
+            report["numHints"],
+            report["file"]
+        );
     }
 }
 
@@ -80,12 +87,21 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
         assert!(o.status.success(), "{}", stderr(&o));
         assert!(stderr(&o).contains("triangles"), "{}", stderr(&o));
     }
-    let mut names: Vec<String> =
-        std::fs::read_dir(dir.path()).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into())
+        .collect();
     names.sort();
     assert_eq!(
         names,
-        ["face.bin", "face.glb", "face.gltf", "face_base_color.png", "face_metallic_roughness.png", "face_specular.png"],
+        [
+            "face.bin",
+            "face.glb",
+            "face.gltf",
+            "face_base_color.png",
+            "face_metallic_roughness.png",
+            "face_specular.png"
+        ],
         "no temporary file is left"
     );
 
@@ -96,16 +112,21 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
         let back = load_mesh(Some(file), 1000.0, 0).expect("re-import");
         assert_eq!(back.triangle_count(), drawn.triangle_count(), "{}", file.display());
         let b = Bounds::of(&back.positions).expect("bounds");
-        assert!(b.min.abs_diff_eq(drawn_bounds.min, 1e-3) && b.max.abs_diff_eq(drawn_bounds.max, 1e-3), "{b:?} vs {drawn_bounds:?}");
+        assert!(
+            b.min.abs_diff_eq(drawn_bounds.min, 1e-3) && b.max.abs_diff_eq(drawn_bounds.max, 1e-3),
+            "{b:?} vs {drawn_bounds:?}"
+        );
         assert!(back.groups.iter().any(|g| g.is_eye()), "the eyes stay eyes: {:?}", back.groups);
     }
 
     // The .glb's base colour is the bake, row 0 at glTF's v = 0 (the mesh's v = 1).
     let bytes = std::fs::read(&glb).expect("glb");
     let (json, bin) = glb_chunks(&bytes);
-    let image = json["images"].as_array().expect("images").iter().find(|i| i["name"] == "base_color").expect("base colour");
+    let image =
+        json["images"].as_array().expect("images").iter().find(|i| i["name"] == "base_color").expect("base colour");
     let view = &json["bufferViews"][image["bufferView"].as_u64().expect("view") as usize];
-    let (at, len) = (view["byteOffset"].as_u64().unwrap_or(0) as usize, view["byteLength"].as_u64().expect("length") as usize);
+    let (at, len) =
+        (view["byteOffset"].as_u64().unwrap_or(0) as usize, view["byteLength"].as_u64().expect("length") as usize);
     let png = image::load_from_memory(&bin[at..at + len]).expect("PNG").to_rgb8();
     assert_eq!(png.dimensions(), (256, 256));
     let baked = export_job(&job(), 256).expect("in-process export").surface;
@@ -115,7 +136,10 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
         .map(|i| ((i as u32 % lips.width) as f32 + 0.5, (i as u32 / lips.width) as f32 + 0.5))
         .map(|(x, y)| (x / lips.width as f32, 1.0 - y / lips.height as f32))
         .expect("lips");
-    let expect = baked.texel_at_uv(u, v).base_color.map(|c| (rouge_measure::colorimetry::srgb_encode(f64::from(c)) * 255.0).round() as i32);
+    let expect = baked
+        .texel_at_uv(u, v)
+        .base_color
+        .map(|c| (rouge_measure::colorimetry::srgb_encode(f64::from(c)) * 255.0).round() as i32);
     let (x, y) = ((u * 256.0) as u32, ((1.0 - v) * 256.0) as u32);
     let got = png.get_pixel(x, y).0.map(i32::from);
     assert!(got.iter().zip(expect).all(|(a, b)| (a - b).abs() <= 1), "lips texel {got:?} vs the bake {expect:?}");
@@ -132,7 +156,15 @@ fn bad_textures_and_unwritable_paths_fail_naming_them_and_leave_no_file() {
     let o = rouge(&["export", "gltf", "--textures", "300", "--out", out.to_str().expect("utf-8")]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--textures"), "{}", stderr(&o));
-    let o = rouge(&["export", "gltf", "--subdiv", "0", "--flat-skin", "--out", dir.path().join("face.obj").to_str().expect("utf-8")]);
+    let o = rouge(&[
+        "export",
+        "gltf",
+        "--subdiv",
+        "0",
+        "--flat-skin",
+        "--out",
+        dir.path().join("face.obj").to_str().expect("utf-8"),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--out") && stderr(&o).contains(".glb"), "{}", stderr(&o));
 

@@ -25,7 +25,8 @@ fn layers(look: &Look) -> Vec<LayerInput<'_>> {
 fn lipstick_texel_follows_the_spectral_composition_and_bare_texels_keep_the_skin() {
     let skin_spectrum = SkinParams::LIGHT.reflectance().expect("light skin");
     let skin = Skin::from_spectrum(&skin_spectrum);
-    let surface = SkinSurface { albedo: skin.albedo, albedo_map: None, beckmann_roughness: skin.roughness, ior: skin.ior };
+    let surface =
+        SkinSurface { albedo: skin.albedo, albedo_map: None, beckmann_roughness: skin.roughness, ior: skin.ior };
     let look = Look::default_look();
     let names: Vec<&str> = look.layers.iter().map(|l| l.preset_ref.as_str()).collect();
     assert_eq!(names, ["builtin:foundation_02_ivory", "builtin:blush_01_petal", "builtin:lipstick_02_red"]);

@@ -63,11 +63,8 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
     let loaded = job.load()?;
     let SkinTextureImages { albedo, normal } = job.skin_textures()?;
     let load_s = t.elapsed().as_secs_f64();
-    let layers: Vec<LayerInput<'_>> = loaded
-        .look
-        .visible_layers()
-        .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 })
-        .collect();
+    let layers: Vec<LayerInput<'_>> =
+        loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
     let skin = &loaded.scene.skin;
     let path = std::env::temp_dir().join(format!("rouge-bench-export-{}.glb", std::process::id()));
     let mut rows = Vec::new();

@@ -102,7 +102,8 @@ impl Bin {
 
     fn indices(&mut self, data: &[u32]) -> usize {
         let view = self.view(bytemuck::cast_slice(data), Some(ELEMENT_ARRAY_BUFFER));
-        self.accessors.push(json!({"bufferView": view, "componentType": UNSIGNED_INT, "count": data.len(), "type": "SCALAR"}));
+        self.accessors
+            .push(json!({"bufferView": view, "componentType": UNSIGNED_INT, "count": data.len(), "type": "SCALAR"}));
         self.accessors.len() - 1
     }
 }
@@ -141,7 +142,9 @@ impl Document {
             .images
             .iter()
             .map(|img| match container {
-                Container::Glb => json!({"name": img.name, "mimeType": "image/png", "bufferView": bin.view(&img.png, None)}),
+                Container::Glb => {
+                    json!({"name": img.name, "mimeType": "image/png", "bufferView": bin.view(&img.png, None)})
+                }
                 Container::Beside { stem } => json!({"name": img.name, "uri": image_file_name(stem, img.name)}),
             })
             .collect();
@@ -217,10 +220,9 @@ impl Document {
                 Ok(vec![path.to_path_buf()])
             }
             Some("gltf") => {
-                let stem = path
-                    .file_stem()
-                    .and_then(|s| s.to_str())
-                    .ok_or_else(|| RenderError::file(path, "the file name must be UTF-8 (it names the .bin and images)"))?;
+                let stem = path.file_stem().and_then(|s| s.to_str()).ok_or_else(|| {
+                    RenderError::file(path, "the file name must be UTF-8 (it names the .bin and images)")
+                })?;
                 let (doc, bin) = self.build(&Container::Beside { stem });
                 let dir = path.parent().unwrap_or(Path::new(""));
                 let mut written = Vec::new();

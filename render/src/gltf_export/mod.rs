@@ -160,11 +160,8 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
     bake::check_texture_px(texture_px)?;
     let loaded = job.load()?;
     let SkinTextureImages { albedo, normal } = job.skin_textures()?;
-    let layers: Vec<LayerInput<'_>> = loaded
-        .look
-        .visible_layers()
-        .map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 })
-        .collect();
+    let layers: Vec<LayerInput<'_>> =
+        loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
     let skin = &loaded.scene.skin;
     export_gltf(&GltfInput {
         mesh: &loaded.mesh,
@@ -235,7 +232,11 @@ fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -
                 if remap[v] == u32::MAX {
                     remap[v] = p.positions_m.len() as u32;
                     p.positions_m.push((mesh.positions[v] * 1e-3).to_array());
-                    p.normals.push(mesh.normals.get(v).map_or([0.0, 0.0, 1.0], |n| n.try_normalize().unwrap_or(glam::Vec3::Z).to_array()));
+                    p.normals.push(
+                        mesh.normals
+                            .get(v)
+                            .map_or([0.0, 0.0, 1.0], |n| n.try_normalize().unwrap_or(glam::Vec3::Z).to_array()),
+                    );
                     if let Some(t) = tangents {
                         tangent.push(t.get(v).map_or([1.0, 0.0, 0.0, 1.0], |t| t.to_array()));
                     }
@@ -284,6 +285,7 @@ fn specular_texels(s: &SurfaceMaps, ior: f32) -> Option<(Vec<u8>, f32)> {
     }
     let max = s.f0.iter().copied().fold(0.0, f32::max);
     let factor = (max / base).max(1.0);
-    let texels = s.f0.iter().flat_map(|&f| [255, 255, 255, ((f / (base * factor)).clamp(0.0, 1.0) * 255.0).round() as u8]);
+    let texels =
+        s.f0.iter().flat_map(|&f| [255, 255, 255, ((f / (base * factor)).clamp(0.0, 1.0) * 255.0).round() as u8]);
     Some((texels.collect(), factor))
 }
