@@ -22,6 +22,8 @@ use std::time::Instant;
 
 // clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
 #[allow(rustdoc::broken_intra_doc_links)]
+// The export bench carries every scene option; the command is parsed once per process.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
     /// Compositing cosmetic layers in linear RGB or a few bands against spectral compositing:

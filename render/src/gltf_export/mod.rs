@@ -135,9 +135,14 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
 
     let primitives = primitives(&mesh, skin.albedo, input.normal_map.is_some());
     let triangles = primitives.iter().map(|p| p.indices.len() / 3).sum();
+    // The eyes' material only with eyes (the skin's is material 0, the eyes' 1).
+    let mut materials = vec![skin_material];
+    if primitives.iter().any(|p| p.material == 1) {
+        materials.push(eye_material);
+    }
     let document = Document {
         primitives,
-        materials: vec![skin_material, eye_material],
+        materials,
         images,
         extensions_used,
         extras: json!({"rouge": {
