@@ -35,8 +35,8 @@ const GLTF_DEFAULT_IOR: f32 = 1.5;
 /// What `rouge export gltf` exports.
 #[derive(Clone, Copy, Debug)]
 pub struct GltfInput<'a> {
-    /// The mesh as drawn, millimetres (posed, shaped, subdivided); groups named like eyes
-    /// become the eyes' primitive.
+    /// The mesh as drawn, millimetres (posed, shaped, subdivided); each group named like an eye
+    /// becomes a primitive of its own.
     pub mesh: &'a TriangleMesh,
     /// The skin under the look.
     pub skin: SkinSurface<'a>,
@@ -211,25 +211,31 @@ fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMes
     Ok(std::borrow::Cow::Owned(m))
 }
 
-/// The skin's triangles and the eyes' as primitives of their own vertices, in glTF's
-/// conventions: positions in metres, v = 1 − v_OBJ (the repo's loader flips it back). The eyes
-/// carry the renderer's eye colours per vertex (`gpu_mesh::vertex_albedo`); the skin its
-/// tangents when `with_tangents` (a normal texture uses them).
+/// The skin's triangles, and each eye group's, as primitives of their own vertices, in glTF's
+/// conventions: positions in metres, v = 1 − v_OBJ (the repo's loader flips it back). Each eye
+/// keeps its group's name (the loader makes each glTF mesh a group, and the renderer places an
+/// eye's iris and pupil about its group's centre) and carries the renderer's eye colours per
+/// vertex (`gpu_mesh::vertex_albedo`); the skin its tangents when `with_tangents` (a normal
+/// texture uses them).
 fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -> Vec<Primitive> {
     let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo);
-    let mut eye = vec![false; mesh.triangle_count()];
-    for g in mesh.groups.iter().filter(|g| g.is_eye()) {
-        eye[g.triangles.clone()].iter_mut().for_each(|e| *e = true);
+    // Which primitive each triangle goes to: 0 the skin, i + 1 the i-th eye group.
+    let eyes: Vec<_> = mesh.groups.iter().filter(|g| g.is_eye()).collect();
+    let mut part = vec![0usize; mesh.triangle_count()];
+    for (i, g) in eyes.iter().enumerate() {
+        part[g.triangles.clone()].iter_mut().for_each(|p| *p = i + 1);
     }
     let tangents = mesh.tangents.as_deref().filter(|_| with_tangents);
+    let names = std::iter::once("skin").chain(eyes.iter().map(|g| g.name.as_str()));
     let mut out = Vec::new();
-    for (name, material, is_eye) in [("skin", 0, false), ("eyes", 1, true)] {
+    for (which, name) in names.enumerate() {
+        let (is_eye, material) = (which > 0, usize::from(which > 0));
         let mut remap = vec![u32::MAX; mesh.positions.len()];
         let mut p = Primitive { name: name.into(), material, ..Primitive::default() };
         let mut colors = Vec::new();
         let mut tangent = Vec::new();
         for (t, tri) in mesh.indices.chunks_exact(3).enumerate() {
-            if eye[t] != is_eye {
+            if part[t] != which {
                 continue;
             }
             for &v in tri {
