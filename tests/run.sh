@@ -5,6 +5,7 @@
 #      apt-get when it is missing (sudo is used when not root), and a Python
 #      venv with the pinned packages of python/requirements.txt (colour-science, mpmath, numpy,
 #      pytest) in .venv/;
+#      the Khronos glTF-Validator (npm, tests/gltf/) when node and npm are there;
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
 #      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
@@ -40,6 +41,16 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements.txt
+
+step "Khronos glTF-Validator (npm gltf-validator, pinned in tests/gltf/package-lock.json) for the glTF export tests"
+# `npm ci` takes about 2 s (one package, no dependencies). Without node/npm, or offline, the
+# export tests skip the validator and print why (app/tests/gltf_cli.rs).
+if command -v npm >/dev/null 2>&1 && command -v node >/dev/null 2>&1; then
+  (cd tests/gltf && timeout 60 npm ci --no-audit --no-fund --loglevel=error) \
+    || echo "glTF-Validator not installed (npm ci failed): the glTF export tests skip it"
+else
+  echo "node/npm absent: the glTF export tests skip the glTF-Validator"
+fi
 
 step "cargo fmt --check"
 cargo fmt --all -- --check

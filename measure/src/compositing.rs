@@ -293,6 +293,44 @@ impl CompositingBasis {
         mat_vec(&self.to_srgb, c)
     }
 
+    /// The diffuse reflectance of cosmetic layers over an opaque skin, composed per channel of
+    /// the basis as the renderer's lighting pass composes them (render/src/shaders/lighting.wgsl,
+    /// whose `r_top + T²·a / (1 − R_below·a)` is this fold): each layer's R0 and T (linear sRGB,
+    /// from its render table, [`crate::layer_table::lookup`]) and the skin's albedo `skin`
+    /// (linear sRGB) taken into the basis, the layers put over the skin bottom to top with
+    /// \[Huang2013\] eq. 3-4 ([`km::compose`]), the result back in linear sRGB. What a surface
+    /// under white light shows with no subsurface scattering; the glTF bake's base colour.
+    ///
+    /// With no layers the skin comes back unchanged (as the shader keeps the albedo where no
+    /// layer covers a pixel). Domain: as the basis's; finite for finite inputs with R0 < 1.
+    ///
+    /// # Examples
+    /// ```
+    /// use rouge_measure::compositing::CompositingBasis;
+    /// let basis = CompositingBasis::get();
+    /// let skin = [0.45, 0.3, 0.2];
+    /// assert_eq!(basis.reflectance_over_skin(&[], skin), skin);
+    /// // A clear layer (R0 = 0, T = 1) changes nothing; an opaque one (T = 0) shows its R0.
+    /// let clear = basis.reflectance_over_skin(&[([0.0; 3], [1.0; 3])], skin);
+    /// assert!(clear.iter().zip(skin).all(|(a, b)| (a - b).abs() < 1e-12));
+    /// let opaque = basis.reflectance_over_skin(&[([0.6, 0.1, 0.1], [0.0; 3])], skin);
+    /// assert!((opaque[0] - 0.6).abs() < 1e-6 && (opaque[2] - 0.1).abs() < 1e-6);
+    /// ```
+    pub fn reflectance_over_skin(&self, layers_bottom_first: &[([f32; 3], [f32; 3])], skin: [f64; 3]) -> [f64; 3] {
+        if layers_bottom_first.is_empty() {
+            return skin;
+        }
+        let a = self.from_linear_srgb(skin);
+        let of = |v: &[f32; 3]| self.from_linear_srgb(v.map(f64::from));
+        let layers: Vec<([f64; 3], [f64; 3])> = layers_bottom_first.iter().map(|(r, t)| (of(r), of(t))).collect();
+        self.to_linear_srgb(std::array::from_fn(|ch| {
+            layers
+                .iter()
+                .fold(LayerRt::opaque(a[ch]), |below, (r, t)| km::compose(LayerRt { r: r[ch], t: t[ch] }, below))
+                .r
+        }))
+    }
+
     /// The matrices as WGSL constants `BASIS_FROM_SRGB` and `BASIS_TO_SRGB` (`mat3x3<f32>`, so
     /// `BASIS_FROM_SRGB * rgb` is A·rgb), for the renderer's shaders.
     pub fn wgsl_constants(&self) -> String {

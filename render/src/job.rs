@@ -248,17 +248,7 @@ impl RenderJob {
     /// A texture that cannot be loaded (named), or no GPU.
     pub fn prepare_loaded(&self, loaded: &Loaded) -> Result<Prepared> {
         let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
-        let albedo = match (&self.albedo_map, &self.skin_maps) {
-            (Some(_), Some(_)) => {
-                return Err(RenderError::Invalid(
-                    "an albedo map and skin maps both set the skin's colour: give one".into(),
-                ));
-            }
-            (Some(path), None) => Some(load_texture(path)?),
-            (None, Some(recipe)) => Some(skin_albedo(recipe, self.blood_flow.then_some(&self.face))?),
-            (None, None) => None,
-        };
-        let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
+        let SkinTextureImages { albedo, normal } = self.skin_textures()?;
         let gpu = Gpu::headless()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
         renderer.set_mesh(mesh, scene.skin.albedo)?;
@@ -286,6 +276,28 @@ impl RenderJob {
             size: (self.width, self.height),
             thickness_bake,
         })
+    }
+
+    /// The skin's textures the job names: the albedo (an `--albedo-map` file, or the skin maps
+    /// baked with the blood following the face's expression) and the normal map; what
+    /// [`RenderJob::prepare_loaded`] uploads and the glTF export bakes.
+    ///
+    /// # Errors
+    /// Both an albedo map and skin maps; a texture that cannot be loaded (named); skin maps
+    /// that cannot be made.
+    pub fn skin_textures(&self) -> Result<SkinTextureImages> {
+        let albedo = match (&self.albedo_map, &self.skin_maps) {
+            (Some(_), Some(_)) => {
+                return Err(RenderError::Invalid(
+                    "an albedo map and skin maps both set the skin's colour: give one".into(),
+                ));
+            }
+            (Some(path), None) => Some(load_texture(path)?),
+            (None, Some(recipe)) => Some(skin_albedo(recipe, self.blood_flow.then_some(&self.face))?),
+            (None, None) => None,
+        };
+        let normal = self.normal_map.as_deref().map(load_texture).transpose()?;
+        Ok(SkinTextureImages { albedo, normal })
     }
 
     /// Loads mesh, look and environment without a GPU (what `rouge export mitsuba` needs), and
@@ -363,6 +375,15 @@ pub fn posed_default_head(mesh: Option<&Path>, face: &FacePose, levels: u32) -> 
     let plan = SubdivisionPlan::new(&base, levels);
     let posed = plan.mesh(&positions);
     Ok((plan.rest().clone(), posed))
+}
+
+/// The skin's textures of a job ([`RenderJob::skin_textures`]), RGBA8, row 0 at v = 1.
+#[derive(Clone, Debug, Default)]
+pub struct SkinTextureImages {
+    /// The albedo, sRGB-encoded.
+    pub albedo: Option<image::RgbaImage>,
+    /// The tangent-space normal map (OpenGL convention, +Y up).
+    pub normal: Option<image::RgbaImage>,
 }
 
 /// A job's scene loaded on the CPU.

@@ -6,7 +6,8 @@
 //! - [`Renderer`]: uploads (mesh, look, skin maps) and the frame; [`Scene`], [`Camera`] and the
 //!   skin's [`SubsurfaceModel`] describe what it draws.
 //! - [`frame`]: the frame plan (which passes run, on which targets, what is skipped and why).
-//! - [`job`]: headless renders to PNG/EXR, the `rouge render` path.
+//! - [`job`]: headless renders to PNG/EXR, the `rouge render` path; [`gltf_export`]: the scene as
+//!   glTF 2.0 with the look baked into textures (`rouge export gltf`).
 //! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
 //!   [`diffusion`], [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
 //!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
@@ -26,6 +27,7 @@ pub mod edges;
 pub mod env;
 pub mod error;
 pub mod frame;
+pub mod gltf_export;
 pub mod gpu;
 pub(crate) mod gpu_look;
 pub(crate) mod gpu_mesh;

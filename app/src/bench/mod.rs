@@ -5,6 +5,7 @@
 pub mod aa;
 pub mod atlas;
 pub mod deform;
+pub mod export;
 pub mod fit_thickness;
 pub mod recipe;
 pub mod report;
@@ -22,6 +23,8 @@ use std::time::Instant;
 
 // clap prints these doc comments as `--help` verbatim: citations stay `[Key]` (`\[Key\]` would show).
 #[allow(rustdoc::broken_intra_doc_links)]
+// The export bench carries every scene option; the command is parsed once per process.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
     /// Compositing cosmetic layers in linear RGB or a few bands against spectral compositing:
@@ -60,6 +63,9 @@ pub enum BenchCommand {
     /// Recipe search on the sample presets: combinations fitted per second for k = 2, 3, 4 of
     /// the 13 presets, and whether the search finds a noisy synthetic mixture's recipe again.
     Recipe(crate::bench::recipe::RecipeBenchArgs),
+    /// glTF export: seconds to bake the look and build the document, to write the .glb, and
+    /// the file's size, per texture side (the scene options of `rouge export gltf`).
+    Export(crate::bench::export::ExportBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -127,6 +133,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
         BenchCommand::Skin(args) => crate::bench::skin::run(args),
         BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
+        BenchCommand::Export(args) => crate::bench::export::run(args),
     }
 }
 

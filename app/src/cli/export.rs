@@ -1,8 +1,9 @@
 //! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (the ground truth
-//! of docs/TRANSLUCENCY.md).
+//! of docs/TRANSLUCENCY.md); `rouge export gltf`: the head and its look as a glTF 2.0 asset for
+//! DCC tools, engines and browsers (docs/FORMATS.md, "Exported files").
 
 use crate::cli::render::scene_args::SceneArgs;
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use rouge_render::mitsuba::{ExportInput, Interior, export};
 use std::path::PathBuf;
@@ -14,6 +15,26 @@ pub enum ExportCommand {
     /// and the skin's boundary and interior medium. Render it with
     /// `python/render_reference.py` or `mi.load_file("DIR/scene.xml", spp=N)`.
     Mitsuba(MitsubaArgs),
+    /// The head as `rouge render` draws it with the same options (posed, shaped, subdivided) and
+    /// its eyes as glTF 2.0, with the look baked into textures: base colour (the skin and its
+    /// cosmetics under white light, subsurface scattering excluded), metallic-roughness, the
+    /// normal map when the scene has one, KHR_materials_ior and KHR_materials_specular.
+    /// Positions in metres (`rouge render --mesh FILE --mesh-scale 1000 --subdiv 0` reads it
+    /// back). docs/FORMATS.md says what each file holds and what is lost.
+    Gltf(GltfArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct GltfArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Side of the baked textures, texels.
+    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(["256", "512", "1024", "2048", "4096"]))]
+    pub textures: String,
+    /// Output: FILE.glb (one file, textures inside) or FILE.gltf (with FILE.bin and
+    /// FILE_*.png beside it). Every file is replaced atomically.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]
@@ -59,7 +80,36 @@ pub enum InteriorArg {
 }
 
 pub fn run(cmd: &ExportCommand) -> Result<()> {
-    let ExportCommand::Mitsuba(args) = cmd;
+    match cmd {
+        ExportCommand::Mitsuba(args) => run_mitsuba(args),
+        ExportCommand::Gltf(args) => run_gltf(args),
+    }
+}
+
+fn run_gltf(args: &GltfArgs) -> Result<()> {
+    args.scene.check()?;
+    let texture_px: u32 = args.textures.parse().with_context(|| format!("--textures {}", args.textures))?;
+    match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("glb" | "gltf") => {}
+        _ => bail!("--out {}: use FILE.glb (one file) or FILE.gltf (files beside it)", args.out.display()),
+    }
+    let (job, _) = args.scene.render_job()?;
+    let start = std::time::Instant::now();
+    let export = rouge_render::gltf_export::export_job(&job, texture_px)?;
+    let written = export.document.write(&args.out)?;
+    let bytes: u64 = written.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
+    eprintln!(
+        "rouge: wrote {} ({} triangles, {} textures of {texture_px}², {:.1} MB, {:.2} s)",
+        written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
+        export.triangles,
+        export.document.images.len(),
+        bytes as f64 / 1e6,
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn run_mitsuba(args: &MitsubaArgs) -> Result<()> {
     args.scene.check()?;
     if !(args.boundary_alpha.is_finite() && (0.0..=1.0).contains(&args.boundary_alpha)) {
         anyhow::bail!("--boundary-alpha {}: must lie in [0, 1]", args.boundary_alpha);

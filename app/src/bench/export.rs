@@ -1,0 +1,129 @@
+//! `rouge bench export`: what `rouge export gltf` costs per texture size: the scene loaded once
+//! (mesh, look, skin maps), then per `--textures` the bake and the document
+//! ([`rouge_render::gltf_export::export_gltf`]), the .glb encoded and written, and its size.
+
+use crate::bench::report::{emit_with_json, markdown_table};
+use crate::cli::render::scene_args::SceneArgs;
+use anyhow::{Result, bail};
+use clap::Args;
+use rouge_render::gltf_export::{GltfInput, SkinSurface, TEXTURE_PX_RANGE, export_gltf};
+use rouge_render::job::SkinTextureImages;
+use rouge_render::renderer::LayerInput;
+use serde::Serialize;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Debug, Args)]
+pub struct ExportBenchArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Texture sides to time, texels.
+    #[arg(long, value_delimiter = ',', default_values_t = [1024u32, 2048, 4096])]
+    pub textures: Vec<u32>,
+    /// Exports timed per size (the median is reported).
+    #[arg(long, default_value_t = 3)]
+    pub repeats: usize,
+    /// Also write the rows as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// One texture size.
+#[derive(Debug, Serialize)]
+struct Row {
+    texture_px: u32,
+    triangles: usize,
+    /// Loading the scene (mesh, look, skin maps), once for every size.
+    load_s: f64,
+    /// The bake, the PNG encoding and the document (median).
+    export_s: f64,
+    /// The .glb's bytes put together and written (median).
+    write_s: f64,
+    glb_bytes: u64,
+    /// PNG bytes of each image, by name.
+    images: Vec<(String, usize)>,
+    threads: usize,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+pub fn run(args: &ExportBenchArgs) -> Result<()> {
+    args.scene.check()?;
+    if args.repeats == 0 {
+        bail!("--repeats 0: time at least one export");
+    }
+    if let Some(px) = args.textures.iter().find(|px| !TEXTURE_PX_RANGE.contains(px)) {
+        bail!("--textures {px}: use {} to {} texels", TEXTURE_PX_RANGE.start(), TEXTURE_PX_RANGE.end());
+    }
+    let (job, _) = args.scene.render_job()?;
+    let t = Instant::now();
+    let loaded = job.load()?;
+    let SkinTextureImages { albedo, normal } = job.skin_textures()?;
+    let load_s = t.elapsed().as_secs_f64();
+    let layers: Vec<LayerInput<'_>> =
+        loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
+    let skin = &loaded.scene.skin;
+    let path = std::env::temp_dir().join(format!("rouge-bench-export-{}.glb", std::process::id()));
+    let mut rows = Vec::new();
+    for &texture_px in &args.textures {
+        let input = GltfInput {
+            mesh: &loaded.mesh,
+            skin: SkinSurface {
+                albedo: skin.albedo,
+                albedo_map: albedo.as_ref(),
+                beckmann_roughness: skin.roughness,
+                ior: skin.ior,
+            },
+            layers: &layers,
+            normal_map: normal.as_ref(),
+            texture_px,
+            look_name: &loaded.look.name,
+        };
+        let (mut export_s, mut write_s) = (Vec::new(), Vec::new());
+        let mut last = None;
+        for _ in 0..args.repeats {
+            let t = Instant::now();
+            let export = export_gltf(&input)?;
+            export_s.push(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            export.document.write(&path)?;
+            write_s.push(t.elapsed().as_secs_f64());
+            last = Some(export);
+        }
+        let Some(export) = last else { bail!("no export ran") };
+        rows.push(Row {
+            texture_px,
+            triangles: export.triangles,
+            load_s,
+            export_s: median(export_s),
+            write_s: median(write_s),
+            glb_bytes: std::fs::metadata(&path)?.len(),
+            images: export.document.images.iter().map(|i| (i.name.to_string(), i.png.len())).collect(),
+            threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        });
+    }
+    std::fs::remove_file(&path).ok();
+    let table = markdown_table(
+        &format!(
+            "`rouge export gltf` per texture size ({} triangles; scene loaded once in {load_s:.2} s; median of {})",
+            rows.first().map_or(0, |r| r.triangles),
+            args.repeats
+        ),
+        &["textures", "bake + PNG + document (s)", "write .glb (s)", ".glb (MB)", "images (MB)"],
+        1,
+        rows.iter().map(|r| {
+            let images = r.images.iter().map(|(n, b)| format!("{n} {:.2}", *b as f64 / 1e6)).collect::<Vec<_>>();
+            vec![
+                format!("{0}²", r.texture_px),
+                format!("{:.2}", r.export_s),
+                format!("{:.3}", r.write_s),
+                format!("{:.1}", r.glb_bytes as f64 / 1e6),
+                images.join(", "),
+            ]
+        }),
+    );
+    emit_with_json(&table, &rows, args.json.as_deref())
+}
