@@ -159,19 +159,8 @@ mod tests {
         }
     }
 
-    /// ∫ f(l) (n·l) dω_l over the hemisphere for the view `v`, midpoint rule in (θ, φ).
     fn albedo_of(f: impl Fn(DVec3) -> f64) -> f64 {
-        let (nt, np) = (400, 400);
-        let (dt, dp) = (0.5 * PI / nt as f64, 2.0 * PI / np as f64);
-        let mut sum = 0.0;
-        for i in 0..nt {
-            let theta = (i as f64 + 0.5) * dt;
-            let w = theta.sin() * theta.cos() * dt * dp;
-            for j in 0..np {
-                sum += f(dir(theta, (j as f64 + 0.5) * dp)) * w;
-            }
-        }
-        sum
+        rouge_measure::specular::hemisphere_integral(f, 400)
     }
 
     #[test]

@@ -19,10 +19,15 @@ fn head() -> &'static TriangleMesh {
 /// The default head under a uniform foundation (0.03 mm) with `finish` (or none), and the
 /// surface radiance of every pixel on the skin (red channel, linear).
 fn surface(gpu: &Gpu, finish: Option<FinishKind>) -> Vec<f32> {
+    surface_of(gpu, |preset| preset.set_finish(finish.map(FinishKind::defaults)))
+}
+
+/// [`surface`] with the foundation's preset changed by `change`.
+fn surface_of(gpu: &Gpu, change: impl FnOnce(&mut rouge_measure::Preset)) -> Vec<f32> {
     let text = r#"{"schema": "rouge-look", "version": 1, "name": "finish",
         "layers": [{"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0.03}}]}"#;
     let mut look = Look::from_json(text, Path::new("finish-look.json")).expect("look");
-    look.layers[0].preset.set_finish(finish.map(FinishKind::defaults));
+    change(&mut look.layers[0].preset);
     let scene = Scene::studio();
     let mut r = Renderer::new(&gpu.device, &gpu.queue);
     r.set_mesh(head(), scene.skin.albedo).expect("mesh");
@@ -30,7 +35,7 @@ fn surface(gpu: &Gpu, finish: Option<FinishKind>) -> Vec<f32> {
     let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 20.0, 0.0);
     r.render(&scene, &camera, 160, 120, false).expect("render");
     let cap = r.capture().expect("capture");
-    cap.surface.iter().zip(&cap.exit_t).filter(|(s, _)| s[3] > 0.0).map(|(s, _)| s[0]).collect()
+    cap.surface.iter().filter(|s| s[3] > 0.0).map(|s| s[0]).collect()
 }
 
 fn peak(v: &[f32]) -> f32 {
@@ -60,21 +65,11 @@ fn a_preset_without_a_finish_renders_as_before_and_a_powder_hides_the_skins_shin
     // Without a finish the film is clear (clarity 1): the skin's lobes pass it as T² alone. A
     // matte finish with the same lobe as the preset's own lets less of the skin's shine through.
     let clear = surface(&gpu, None);
-    let text = r#"{"schema": "rouge-look", "version": 1, "name": "finish",
-        "layers": [{"preset": "builtin:foundation_02_ivory", "thickness": {"uniform_mm": 0.03}}]}"#;
-    let mut look = Look::from_json(text, Path::new("finish-look.json")).expect("look");
-    let own = look.layers[0].preset.specular;
-    let (_, mut matte) = FinishKind::Matte.defaults();
-    matte.levelling = 0.0;
-    look.layers[0].preset.set_finish(Some((own, matte)));
-    let scene = Scene::studio();
-    let mut r = Renderer::new(&gpu.device, &gpu.queue);
-    r.set_mesh(head(), scene.skin.albedo).expect("mesh");
-    r.set_look(&look).expect("look");
-    let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 20.0, 0.0);
-    r.render(&scene, &camera, 160, 120, false).expect("render");
-    let cap = r.capture().expect("capture");
-    let powdered: Vec<f32> = cap.surface.iter().filter(|s| s[3] > 0.0).map(|s| s[0]).collect();
+    let powdered = surface_of(&gpu, |preset| {
+        let (_, mut matte) = FinishKind::Matte.defaults();
+        matte.levelling = 0.0;
+        preset.set_finish(Some((preset.specular, matte)));
+    });
     assert_eq!(powdered.len(), clear.len(), "same pixels");
     let (sum_clear, sum_powder) = (clear.iter().sum::<f32>(), powdered.iter().sum::<f32>());
     assert!(sum_powder < sum_clear, "powder {sum_powder} against a clear film {sum_clear}");

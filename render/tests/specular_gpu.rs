@@ -14,18 +14,25 @@ fn plane() -> TriangleMesh {
     TriangleMesh::flat_square(200.0)
 }
 
-#[test]
-fn the_shader_lobe_matches_its_cpu_twin() {
+/// The device, one white directional light from `toward` with specular on and no subsurface
+/// model, and a camera close and oblique to the plane, so that the view direction sweeps through
+/// the highlight.
+fn lit_plane() -> (Gpu, Scene, Vec3, Camera) {
     let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
     let toward = Vec3::new(0.35, 0.25, 1.0).normalize();
     let mut scene = Scene::white_light(toward);
     scene.skin.subsurface = SubsurfaceModel::None;
     scene.specular = true;
+    let camera = Camera { target: Vec3::ZERO, distance: 260.0, yaw_deg: -20.0, pitch_deg: -10.0, fov_y_deg: 40.0 };
+    (gpu, scene, toward, camera)
+}
+
+#[test]
+fn the_shader_lobe_matches_its_cpu_twin() {
+    let (gpu, scene, toward, camera) = lit_plane();
     let mut r = Renderer::new(&gpu.device, &gpu.queue);
     r.set_mesh(&plane(), scene.skin.albedo).expect("mesh");
     r.set_look(&Look::bare()).expect("look");
-    // Close and oblique, so that the view direction sweeps through the highlight.
-    let camera = Camera { target: Vec3::ZERO, distance: 260.0, yaw_deg: -20.0, pitch_deg: -10.0, fov_y_deg: 40.0 };
     let (w, h) = (96u32, 72u32);
     r.render(&scene, &camera, w, h, false).expect("render");
     let cap = r.capture().expect("capture");
@@ -62,12 +69,7 @@ fn the_shader_lobe_matches_its_cpu_twin() {
 fn a_shimmers_lobe_matches_its_cpu_twin() {
     use rouge_measure::finish::{FinishKind, Shimmer};
     use rouge_render::specular::ShimmerLobe;
-    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
-    let toward = Vec3::new(0.35, 0.25, 1.0).normalize();
-    let mut scene = Scene::white_light(toward);
-    scene.skin.subsurface = SubsurfaceModel::None;
-    scene.specular = true;
-    let camera = Camera { target: Vec3::ZERO, distance: 260.0, yaw_deg: -20.0, pitch_deg: -10.0, fov_y_deg: 40.0 };
+    let (gpu, scene, toward, camera) = lit_plane();
     let (w, h) = (96u32, 72u32);
     let gold = Shimmer { film_nm: 110.0, strength: 0.6, spread: 0.25 };
     // The same eyeshadow, 20 µm, with and without the shimmer: the difference is the shimmer's lobe.
