@@ -178,33 +178,8 @@ pub(super) fn combinations(groups: &[Group], k: usize) -> Vec<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::Layer;
-    use crate::analysis::correction::Presentation;
-    use crate::analysis::recipe::{Colorant, FixedRatio, WeightedViewing};
-    use crate::colorimetry::Viewing;
-    use crate::spectrum::Spectrum;
-
-    fn lib(names: &[&str]) -> Vec<Colorant> {
-        names
-            .iter()
-            .enumerate()
-            .map(|(i, n)| {
-                let k = Spectrum::from_fn(|nm| 0.5 + 10.0 * (((nm - 380.0) / 60.0 + i as f64).sin()).powi(2));
-                Colorant::new(Layer::new(n, Spectrum::constant(20.0), k).expect("finite"))
-            })
-            .collect()
-    }
-
-    fn search(colorants: Vec<Colorant>, fixed: Vec<FixedRatio>, k: usize) -> RecipeSearch {
-        RecipeSearch {
-            colorants,
-            fixed,
-            k,
-            viewings: vec![WeightedViewing { viewing: Viewing::D65_1931, weight: 1.0 }],
-            presentation: Presentation::Opaque,
-            cost_weight: 0.0,
-        }
-    }
+    use crate::analysis::recipe::FixedRatio;
+    use crate::analysis::recipe::test_support::{lib, search};
 
     #[test]
     fn groups_and_combinations_follow_the_constraints() {

@@ -411,11 +411,13 @@ pub fn search_recipes(search: &RecipeSearch, target: &Spectrum, top: usize) -> R
     Ok(report)
 }
 
+/// Small libraries and searches the tests of this module and of `constraints` share.
 #[cfg(test)]
-mod tests {
+pub(crate) mod test_support {
     use super::*;
 
-    fn lib(names: &[&str]) -> Vec<Colorant> {
+    /// Colorants named `names` with S = 20 and distinct K spectra.
+    pub(crate) fn lib(names: &[&str]) -> Vec<Colorant> {
         names
             .iter()
             .enumerate()
@@ -426,7 +428,8 @@ mod tests {
             .collect()
     }
 
-    fn search(colorants: Vec<Colorant>, fixed: Vec<FixedRatio>, k: usize) -> RecipeSearch {
+    /// A search of `k` of `colorants` under D65, opaque, without cost.
+    pub(crate) fn search(colorants: Vec<Colorant>, fixed: Vec<FixedRatio>, k: usize) -> RecipeSearch {
         RecipeSearch {
             colorants,
             fixed,
@@ -436,6 +439,12 @@ mod tests {
             cost_weight: 0.0,
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_support::{lib, search};
+    use super::*;
 
     #[test]
     fn fixed_pairs_and_limits_hold_in_the_recipes() {
