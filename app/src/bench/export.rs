@@ -6,9 +6,7 @@ use crate::bench::report::{emit_with_json, markdown_table};
 use crate::cli::render::scene_args::SceneArgs;
 use anyhow::{Result, bail};
 use clap::Args;
-use rouge_render::gltf_export::{GltfInput, SkinSurface, TEXTURE_PX_RANGE, export_gltf};
-use rouge_render::job::SkinTextureImages;
-use rouge_render::renderer::LayerInput;
+use rouge_render::gltf_export::{TEXTURE_PX_RANGE, export_loaded};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -61,32 +59,16 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
     let (job, _) = args.scene.render_job()?;
     let t = Instant::now();
     let loaded = job.load()?;
-    let SkinTextureImages { albedo, normal } = job.skin_textures()?;
+    let images = job.skin_textures()?;
     let load_s = t.elapsed().as_secs_f64();
-    let layers: Vec<LayerInput<'_>> =
-        loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
-    let skin = &loaded.scene.skin;
     let path = std::env::temp_dir().join(format!("rouge-bench-export-{}.glb", std::process::id()));
     let mut rows = Vec::new();
     for &texture_px in &args.textures {
-        let input = GltfInput {
-            mesh: &loaded.mesh,
-            skin: SkinSurface {
-                albedo: skin.albedo,
-                albedo_map: albedo.as_ref(),
-                beckmann_roughness: skin.roughness,
-                ior: skin.ior,
-            },
-            layers: &layers,
-            normal_map: normal.as_ref(),
-            texture_px,
-            look_name: &loaded.look.name,
-        };
         let (mut export_s, mut write_s) = (Vec::new(), Vec::new());
         let mut last = None;
         for _ in 0..args.repeats {
             let t = Instant::now();
-            let export = export_gltf(&input)?;
+            let export = export_loaded(&loaded, &images, texture_px)?;
             export_s.push(t.elapsed().as_secs_f64());
             let t = Instant::now();
             export.document.write(&path)?;

@@ -21,7 +21,7 @@ pub use bake::{SkinSurface, SurfaceMaps, TEXTURE_PX_RANGE, TexelSurface, bake_su
 pub use document::Document;
 
 use crate::error::{RenderError, Result};
-use crate::job::{RenderJob, SkinTextureImages};
+use crate::job::{Loaded, RenderJob, SkinTextureImages};
 use crate::renderer::LayerInput;
 use crate::scene::fresnel_f0;
 use document::{Image, Primitive, encode_png};
@@ -164,7 +164,16 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
     // Refused before anything is loaded: skin maps take seconds.
     bake::check_texture_px(texture_px)?;
     let loaded = job.load()?;
-    let SkinTextureImages { albedo, normal } = job.skin_textures()?;
+    let images = job.skin_textures()?;
+    export_loaded(&loaded, &images, texture_px)
+}
+
+/// [`export_job`] from a scene already loaded and its skin textures read (what a benchmark
+/// times apart).
+///
+/// # Errors
+/// What [`export_gltf`] refuses.
+pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<GltfExport> {
     let layers: Vec<LayerInput<'_>> =
         loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
     let skin = &loaded.scene.skin;
@@ -172,12 +181,12 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
         mesh: &loaded.mesh,
         skin: SkinSurface {
             albedo: skin.albedo,
-            albedo_map: albedo.as_ref(),
+            albedo_map: images.albedo.as_ref(),
             beckmann_roughness: skin.roughness,
             ior: skin.ior,
         },
         layers: &layers,
-        normal_map: normal.as_ref(),
+        normal_map: images.normal.as_ref(),
         texture_px,
         look_name: &loaded.look.name,
     })
