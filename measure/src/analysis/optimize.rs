@@ -56,35 +56,8 @@ pub fn simplex_search(mut f: impl FnMut(&[f64]) -> f64, n: usize, lattice: usize
             best = (c, v);
         }
     });
-    let (mut c, mut fc) = best;
-    let mut h = 0.5 / lattice as f64;
-    let mut trial = c.clone();
-    while h >= tol {
-        let mut improved = false;
-        for i in 0..n {
-            for j in 0..n {
-                if i == j || c[j] <= 0.0 {
-                    continue;
-                }
-                let step = h.min(c[j]);
-                trial.copy_from_slice(&c);
-                trial[i] += step;
-                trial[j] -= step;
-                if step == c[j] {
-                    trial[j] = 0.0;
-                }
-                let v = f(&trial);
-                if v < fc {
-                    c.copy_from_slice(&trial);
-                    fc = v;
-                    improved = true;
-                }
-            }
-        }
-        if !improved {
-            h *= 0.5;
-        }
-    }
+    let (c, _) = best;
+    let (c, fc, _) = box_simplex_search(f, &vec![0.0; n], &vec![1.0; n], &c, 0.5 / lattice as f64, tol);
     (c, fc)
 }
 
