@@ -66,7 +66,7 @@ impl FinishKind {
     }
 
     /// *Choice*: the default lobe and film of the kind (see the module doc). At 60° the lobes
-    /// read about 1 (matte), 3.5 (satin), 12 (dewy) and 45 GU (gloss): under 10 GU is the usual
+    /// read about 1 (matte), 3.1 (satin), 12 (dewy) and 45 GU (gloss): under 10 GU is the usual
     /// class of matte films, and lip glosses read tens of GU.
     pub fn defaults(self) -> (Specular, Finish) {
         let (roughness, ior, clarity, levelling) = match self {
