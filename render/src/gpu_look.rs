@@ -139,8 +139,8 @@ impl GpuLook {
             tables.extend(table.r0.iter().map(in_basis));
             tables.extend(table.t.iter().map(in_basis));
             // The shimmer's interference colour by cos(h, l), linear sRGB (zeros without one).
-            let finish = layer.preset.finish;
-            let shimmer = finish.and_then(|f| f.shimmer);
+            let shimmer = layer.preset.finish.and_then(|f| f.shimmer);
+            let (clarity, levelling) = layer.preset.clarity_levelling();
             match shimmer {
                 Some(s) => tables
                     .extend(s.interference_table(entries).iter().map(|c| [c[0] as f32, c[1] as f32, c[2] as f32, 0.0])),
@@ -151,10 +151,10 @@ impl GpuLook {
                     layer.preset.specular.roughness as f32,
                     fresnel_f0(layer.preset.specular.ior as f32),
                     LAYER_FULL_COVERAGE_MM,
-                    layer.preset.clarity_levelling().0 as f32,
+                    clarity as f32,
                 ],
                 film: [
-                    layer.preset.clarity_levelling().1 as f32,
+                    levelling as f32,
                     shimmer.map_or(0.0, |s| s.strength as f32),
                     shimmer.map_or(1.0, |s| s.spread as f32),
                     0.0,
@@ -257,34 +257,10 @@ impl SkinDetailTextures {
             return Err(RenderError::Invalid("skin detail: tile levels must be square and halve".into()));
         }
         let format = wgpu::TextureFormat::Rgba8Unorm;
-        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-        let t = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("SkinDetailTextures::tile"),
-            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
-            mip_level_count: tile.levels.len() as u32,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        });
-        for (i, level) in tile.levels.iter().enumerate() {
-            let w = level.width();
-            queue.write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &t,
-                    mip_level: i as u32,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                level.as_raw(),
-                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(w) },
-                wgpu::Extent3d { width: w, height: w, depth_or_array_layers: 1 },
-            );
-        }
+        let levels: Vec<_> = tile.levels.iter().map(|l| (l.dimensions(), l.as_raw().as_slice())).collect();
         let r = &regions.image;
         Ok(SkinDetailTextures {
-            tile: view(&t),
+            tile: upload_mips(device, queue, "SkinDetailTextures::tile", &levels, format, 4),
             regions: upload_2d(device, queue, "SkinDetailTextures::regions", r.dimensions(), format, r.as_raw(), 4),
             tiles_per_uv,
         })
@@ -354,27 +330,50 @@ fn upload_2d(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     format: wgpu::TextureFormat,
     bytes: &[u8],
     bytes_per_texel: u32,
 ) -> wgpu::TextureView {
-    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-    let t = texture(device, label, (width, height), 1, format, usage, &[]);
-    queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture: &t,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        bytes,
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(bytes_per_texel * width),
-            rows_per_image: Some(height),
-        },
-        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-    );
+    upload_mips(device, queue, label, &[(size, bytes)], format, bytes_per_texel)
+}
+
+/// [`upload_2d`] with a mip chain: `levels` from the full size down, each its size and texels.
+fn upload_mips(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    levels: &[((u32, u32), &[u8])],
+    format: wgpu::TextureFormat,
+    bytes_per_texel: u32,
+) -> wgpu::TextureView {
+    let (width, height) = levels.first().map_or((1, 1), |l| l.0);
+    let t = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        mip_level_count: levels.len().max(1) as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (mip_level, &((width, height), bytes)) in levels.iter().enumerate() {
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &t,
+                mip_level: mip_level as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytes,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(bytes_per_texel * width),
+                rows_per_image: Some(height),
+            },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        );
+    }
     view(&t)
 }
