@@ -111,27 +111,24 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
         out.albedo = vec4<f32>(textureSampleLevel(albedo_map, map_sampler, tex_uv, 0.0).rgb, 1.0);
     }
 //#endif
-    // Σ levelling·thickness over the layers here, mm (what fills the skin's relief).
+    // Σ levelling·thickness over the layers here, mm (what fills the skin's relief; unused, and
+    // left out by the compiler, without SKIN_DETAIL).
     var levelled_mm = 0.0;
 //#if LAYERS_A
     var a = vec4<f32>(0.0);
     for (var i = 0u; i < min(LAYERS, 4u); i++) {
         a[i] = layer_thickness(in.uv, i) * in.albedo.a;
-    }
-    out.thickness_a = a;
-    for (var i = 0u; i < min(LAYERS, 4u); i++) {
         levelled_mm += frame.layers[i].film.x * a[i];
     }
+    out.thickness_a = a;
 //#endif
 //#if LAYERS_B
     var b = vec4<f32>(0.0);
     for (var i = 4u; i < LAYERS; i++) {
         b[i - 4u] = layer_thickness(in.uv, i) * in.albedo.a;
-    }
-    out.thickness_b = b;
-    for (var i = 4u; i < LAYERS; i++) {
         levelled_mm += frame.layers[i].film.x * b[i - 4u];
     }
+    out.thickness_b = b;
 //#endif
 //#if SKIN_DETAIL
     // Skin relief: the tile's slopes scaled by the region's pore depth and by what the layers
