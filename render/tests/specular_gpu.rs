@@ -27,6 +27,21 @@ fn lit_plane() -> (Gpu, Scene, Vec3, Camera) {
     (gpu, scene, toward, camera)
 }
 
+/// Every third pixel of a `w` × `h` frame of `r` that shows the plane: its index in the frame and
+/// the unit direction from its surface point toward the camera.
+fn plane_pixels(r: &Renderer, camera: &Camera, (w, h): (u32, u32)) -> Vec<(usize, DVec3)> {
+    let eye = camera.position().as_dvec3();
+    let mut out = Vec::new();
+    for y in (0..h).step_by(3) {
+        for x in (0..w).step_by(3) {
+            if let Some(world) = r.pick(x, y).expect("pick") {
+                out.push(((y * w + x) as usize, (eye - world.as_dvec3()).normalize()));
+            }
+        }
+    }
+    out
+}
+
 #[test]
 fn the_shader_lobe_matches_its_cpu_twin() {
     let (gpu, scene, toward, camera) = lit_plane();
@@ -39,19 +54,14 @@ fn the_shader_lobe_matches_its_cpu_twin() {
     let (m, f0) = (scene.skin.roughness as f64, scene.skin.f0() as f64);
     let l = toward.as_dvec3();
     let e = scene.lights[0].irradiance[0] as f64 * l.z;
-    let eye = camera.position().as_dvec3();
     let (mut checked, mut worst, mut peak) = (0, 0.0f64, 0.0f64);
-    for y in (0..h).step_by(3) {
-        for x in (0..w).step_by(3) {
-            let Some(world) = r.pick(x, y).expect("pick") else { continue };
-            let v = (eye - world.as_dvec3()).normalize();
-            let want = e * skin_lobes(DVec3::Z, l, v, m, f0);
-            let got = cap.surface[(y * w + x) as usize][0] as f64;
-            let err = (got - want).abs() / want.max(1e-3);
-            worst = worst.max(err);
-            peak = peak.max(want);
-            checked += 1;
-        }
+    for (i, v) in plane_pixels(&r, &camera, (w, h)) {
+        let want = e * skin_lobes(DVec3::Z, l, v, m, f0);
+        let got = cap.surface[i][0] as f64;
+        let err = (got - want).abs() / want.max(1e-3);
+        worst = worst.max(err);
+        peak = peak.max(want);
+        checked += 1;
     }
     eprintln!("{checked} pixels, peak E·f_r {peak:.4}, worst relative error {worst:.2e}");
     assert!(checked > 300, "only {checked} pixels on the plane");
@@ -92,21 +102,15 @@ fn a_shimmers_lobe_matches_its_cpu_twin() {
     let lobe = ShimmerLobe { strength: gold.strength, spread: gold.spread, table: &table };
     let l = toward.as_dvec3();
     let e = scene.lights[0].irradiance[0] as f64 * l.z;
-    let eye = camera.position().as_dvec3();
     let (mut checked, mut worst, mut peak) = (0, 0.0f64, 0.0f64);
-    for y in (0..h).step_by(3) {
-        for x in (0..w).step_by(3) {
-            let Some(world) = r.pick(x, y).expect("pick") else { continue };
-            let v = (eye - world.as_dvec3()).normalize();
-            let want = lobe.eval(DVec3::Z, l, v).map(|c| e * c);
-            let i = (y * w + x) as usize;
-            for (c, want) in want.into_iter().enumerate() {
-                let got = f64::from(shiny.surface[i][c] - plain.surface[i][c]);
-                worst = worst.max((got - want).abs() / want.max(5e-2));
-                peak = peak.max(want);
-            }
-            checked += 1;
+    for (i, v) in plane_pixels(&r, &camera, (w, h)) {
+        let want = lobe.eval(DVec3::Z, l, v).map(|c| e * c);
+        for (c, want) in want.into_iter().enumerate() {
+            let got = f64::from(shiny.surface[i][c] - plain.surface[i][c]);
+            worst = worst.max((got - want).abs() / want.max(5e-2));
+            peak = peak.max(want);
         }
+        checked += 1;
     }
     eprintln!("{checked} pixels, peak shimmer {peak:.4}, worst relative error {worst:.2e}");
     assert!(checked > 300 && peak > 0.05, "{checked} pixels, peak {peak}");
