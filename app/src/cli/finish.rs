@@ -94,18 +94,13 @@ pub fn run(args: &FinishArgs) -> Result<()> {
     if args.clear {
         preset.set_finish(None);
     } else if changes {
-        let kind = match (args.kind, preset.finish) {
-            (Some(k), _) => k,
-            (None, Some(f)) => f.kind,
-            (None, None) if !args.gloss.is_empty() || shimmer_given => FinishKind::Satin,
+        // A named kind starts from its defaults, an edit from the preset's own finish.
+        let (mut specular, mut finish) = match (args.kind, preset.finish) {
+            (Some(k), _) => k.defaults(),
+            (None, Some(f)) => (preset.specular, f),
+            (None, None) if !args.gloss.is_empty() || shimmer_given => FinishKind::Satin.defaults(),
             (None, None) => bail!("--clarity/--levelling change a finish: give --kind (matte, satin, dewy, gloss) too"),
         };
-        let (mut specular, mut finish) = kind.defaults();
-        if args.kind.is_none()
-            && let Some(f) = preset.finish
-        {
-            (specular, finish) = (preset.specular, f);
-        }
         if !args.gloss.is_empty() {
             let ior = args.ior.unwrap_or(preset.specular.ior);
             let fit = fit_gloss(&args.gloss, ior).map_err(|e| anyhow::anyhow!("--gloss: {e}"))?;
