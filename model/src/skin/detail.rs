@@ -18,6 +18,7 @@
 //! modelled yet.
 
 use super::AnatomyRegion;
+use crate::thickness::splitmix64;
 use glam::Vec2;
 
 /// Side of the detail tile on the skin, mm.
@@ -64,14 +65,11 @@ pub struct DetailTile {
     pub levels: Vec<TileLevel>,
 }
 
-/// A cheap deterministic hash of two integers and a seed to [0, 1).
+/// A number in [0, 1) from the grid cell (x, y) and `seed`, by the crate's SplitMix64 finaliser
+/// (as the skin conditions draw theirs).
 fn hash(x: i32, y: i32, seed: u32) -> f32 {
-    let mut h =
-        (x as u32).wrapping_mul(0x8da6_b343) ^ (y as u32).wrapping_mul(0xd816_3841) ^ seed.wrapping_mul(0xcb1a_b31f);
-    h ^= h >> 13;
-    h = h.wrapping_mul(0x5bd1_e995);
-    h ^= h >> 15;
-    (h & 0x00ff_ffff) as f32 / 16_777_216.0
+    let cell = (u64::from(x as u32) << 32) | u64::from(y as u32);
+    (splitmix64(u64::from(seed) ^ splitmix64(cell)) >> 40) as f32 / (1u64 << 24) as f32
 }
 
 impl DetailTile {
