@@ -324,7 +324,8 @@ impl CompositingBasis {
         let of = |v: &[f32; 3]| self.from_linear_srgb(v.map(f64::from));
         let layers: Vec<([f64; 3], [f64; 3])> = layers_bottom_first.iter().map(|(r, t)| (of(r), of(t))).collect();
         self.to_linear_srgb(std::array::from_fn(|ch| {
-            let mut top_first: Vec<LayerRt> = layers.iter().rev().map(|(r, t)| LayerRt { r: r[ch], t: t[ch] }).collect();
+            let mut top_first: Vec<LayerRt> =
+                layers.iter().rev().map(|(r, t)| LayerRt { r: r[ch], t: t[ch] }).collect();
             top_first.push(LayerRt::opaque(a[ch]));
             km::stack(&top_first).r
         }))
