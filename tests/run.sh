@@ -75,13 +75,16 @@ test_exe() {
     | .venv/bin/python -c '
 import json, sys
 name = sys.argv[1]
+found = []
+# Read every line (stopping early would close the pipe under cargo, which then fails).
 for line in sys.stdin:
     m = json.loads(line)
     if m.get("reason") == "compiler-artifact" and m.get("executable") \
             and m["target"]["name"] == name and "test" in m["target"]["kind"]:
-        print(m["executable"]); break
-else:
+        found.append(m["executable"])
+if not found:
     sys.exit("no test executable named " + name)
+print(found[0])
 ' "$1"
 }
 FRAME_EXE=$(test_exe frame)
