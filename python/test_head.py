@@ -155,8 +155,11 @@ def test_indices_valid_and_quads(head):
     # normal index == vertex index, every vertex and uv used
     assert (idx[..., 0] == idx[..., 2]).all()
     assert len(np.unique(idx[..., 0])) == len(v) and len(np.unique(idx[..., 1])) == len(vt)
-    assert set(groups) == {"head", "eye_l", "eye_r"}
-    assert set(mtls[groups == "head"]) == {"skin"} and set(mtls[groups != "head"]) == {"eye"}
+    materials = {"head": "skin", "mouth": "oral", "eye_l": "eye", "eye_r": "eye", "teeth_upper": "teeth",
+                 "teeth_lower": "teeth", "tongue": "tongue", "lashes_l": "lash", "lashes_r": "lash"}
+    assert set(groups) == set(materials)
+    for g, m in materials.items():
+        assert set(mtls[groups == g]) == {m}, g
 
 
 def test_millimetres_and_orientation(head):
@@ -213,11 +216,13 @@ def test_masks_only_on_uv_faces(masks, coverage):
         assert stray.sum() == 0, f"{name}: {stray.sum()} nonzero pixels off the UV layout"
 
 
-def test_eye_uvs_do_not_overlap_skin(head, coverage):
+def test_the_other_parts_uvs_do_not_overlap_skin(head, coverage):
+    # The eyes, mouth bag, teeth, tongue and lashes keep UV islands of their own (hm08's), so
+    # paint and the skin's maps never land on them.
     v, vt, vn, faces, groups, _ = head
-    eye_faces = [f for f, g in zip(faces, groups) if g != "head"]
-    eye_cov = uv_coverage(vt[triangles(eye_faces, 1)])
-    assert eye_cov.any() and not (eye_cov & coverage).any()
+    for part in sorted(set(groups) - {"head"}):
+        part_cov = uv_coverage(vt[triangles([f for f, g in zip(faces, groups) if g == part], 1)])
+        assert part_cov.any() and not (part_cov & coverage).any(), part
 
 
 def test_lips_do_not_overlap_cheeks_or_eyelids(masks):

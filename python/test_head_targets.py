@@ -49,8 +49,8 @@ def test_targets_index_the_heads_vertices_in_order():
 def test_the_names_are_the_face_units_and_the_generators_shapes():
     _, blocks = read_targets()
     units = [h[1] for h, _ in blocks if h[0] == "expression"]
-    assert len(units) == 51 and "tongueOut" not in units
-    for name in ("jawOpen", "mouthSmileLeft", "mouthSmileRight", "eyeBlinkLeft", "eyeBlinkRight", "browInnerUp"):
+    assert len(units) == 52
+    for name in ("tongueOut", "jawOpen", "mouthSmileLeft", "mouthSmileRight", "eyeBlinkLeft", "eyeBlinkRight", "browInnerUp"):
         assert name in units
     shapes = {}
     for h, _ in blocks:
@@ -62,14 +62,54 @@ def test_the_names_are_the_face_units_and_the_generators_shapes():
         assert sides in (["both"], ["decr", "incr"]) if decr else sides == ["incr"], (name, sides)
 
 
+def group_vertices(*names: str) -> set[int]:
+    """0-based vertices of the OBJ's faces in the named groups."""
+    out, group = set(), None
+    for ln in HEAD.read_text().splitlines():
+        if ln.startswith("g "):
+            group = ln.split()[1]
+        elif ln.startswith("f ") and group in names:
+            out |= {int(c.split("/")[0]) - 1 for c in ln.split()[1:]}
+    return out
+
+
+def lash_vertices() -> set[int]:
+    return group_vertices("lashes_l", "lashes_r")
+
+
+def test_the_parts_follow_the_face_units():
+    # A blink carries the upper lashes of its eye down with the lid (the eyelash cards move up to
+    # 15 mm: the upper lid's tips travel furthest), the jaw carries the lower teeth and the
+    # tongue, and tongueOut moves the tongue only.
+    _, blocks = read_targets()
+    units = {h[1]: rows for h, rows in blocks if h[0] == "expression"}
+
+    def reach(unit: str, verts: set[int]) -> tuple[int, float]:
+        rows = [r for r in units[unit] if r[0] in verts]
+        return len(rows), max((np.linalg.norm(r[1:]) * gen.UNIT_MM for r in rows), default=0.0)
+
+    lashes_l, lashes_r = group_vertices("lashes_l"), group_vertices("lashes_r")
+    n, mm = reach("eyeBlinkLeft", lashes_l)
+    assert n > 0.6 * len(lashes_l) and 8.0 < mm < 20.0, (n, mm)  # the upper lid's (2/3); the lower barely moves
+    assert reach("eyeBlinkLeft", lashes_r)[0] == 0
+    n, mm = reach("jawOpen", group_vertices("teeth_lower", "tongue"))
+    assert n > 250 and mm > 20.0, (n, mm)
+    assert reach("jawOpen", group_vertices("teeth_upper"))[0] == 0
+    tongue = group_vertices("tongue")
+    assert {int(r[0]) for r in units["tongueOut"]} == tongue
+
+
 def test_left_and_right_units_mirror_each_other():
     # The Face Units' Left/Right pairs move mirror-image vertices by mirror-image offsets.
     P = np.array([[float(t) for t in ln.split()[1:4]] for ln in HEAD.read_text().splitlines() if ln.startswith("v ")])
     _, blocks = read_targets()
     units = {h[1]: rows for h, rows in blocks if h[0] == "expression"}
 
+    # The lashes are grown with seeded randomness per side (python/gen_head_parts.py): left out.
+    lashes = lash_vertices()
+
     def moved(rows):
-        return {tuple(np.round(P[v], 1)): tuple(d) for v, *d in rows}
+        return {tuple(np.round(P[v], 1)): tuple(d) for v, *d in rows if v not in lashes}
 
     for left in ("eyeBlinkLeft", "mouthSmileLeft", "browDownLeft"):
         a, b = moved(units[left]), moved(units[left.replace("Left", "Right")])

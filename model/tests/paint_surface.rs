@@ -135,13 +135,14 @@ fn a_dab_on_the_upper_lip_leaves_the_lower_lip_alone() {
 #[test]
 fn a_dab_on_the_upper_lid_leaves_the_lower_lid_alone() {
     let (mesh, surface) = head();
-    // The left eyeball's bounds: its centre and radius.
-    let eye: Vec<Vec3> = mesh
+    // The left eyeball's bounds: its centre and radius (of the whole head: `head()` is its skin).
+    let full = rouge_model::mesh::load_mesh(None, 1.0, 1).expect("default head");
+    let eye: Vec<Vec3> = full
         .groups
         .iter()
         .filter(|g| g.name == "eye_l")
-        .flat_map(|g| mesh.indices[3 * g.triangles.start..3 * g.triangles.end].iter())
-        .map(|&i| mesh.positions[i as usize])
+        .flat_map(|g| full.indices[3 * g.triangles.start..3 * g.triangles.end].iter())
+        .map(|&i| full.positions[i as usize])
         .collect();
     assert!(!eye.is_empty(), "the head has a left eye");
     let (lo, hi) = eye.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));

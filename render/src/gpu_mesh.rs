@@ -108,17 +108,45 @@ impl GpuMesh {
     }
 }
 
-/// Albedo and material per vertex: skin everywhere but groups named like eyes, which get a
-/// sclera, iris and pupil by angle from the eye's forward axis (+Z) and do not scatter (a = 0).
+/// Linear albedo of the teeth: a natural tooth's shade about CIELAB (78, 1, 18) (the middle of
+/// the VITA classical shade guide's A range, measured by spectrophotometer: Chu, Trushkowsky
+/// and Paravina 2010, "Dental color matching instruments and systems", J Dent 38 e2-e16).
+pub const TEETH_ALBEDO: [f32; 3] = [0.60, 0.52, 0.38];
+/// Linear albedo of the tongue: a healthy tongue body about CIELAB (48, 27, 11) (tongue colour
+/// by spectrophotometry: Wang and Zhang 2013, "Statistical analysis of tongue images for
+/// feature extraction and diagnostics", IEEE TIP 22(12) 5336-5347).
+pub const TONGUE_ALBEDO: [f32; 3] = [0.30, 0.11, 0.09];
+/// Linear albedo of the oral cavity seen between parted lips: the mucosa (about the tongue's
+/// colour) times about 1/3 for the occlusion of the mouth, which the renderer does not compute
+/// (a path-traced open mouth is this dark a few millimetres behind the lips).
+pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
+/// Linear albedo of a dark eyelash: eumelanin-rich hair absorbs nearly everything that enters
+/// it (PBRT-v4's `HairBxDF` with eumelanin 8 gives a diffuse-like albedo of about 0.02-0.03).
+pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
+
+/// Albedo and material per vertex: the skin's albedo (a = 1: scatters, takes cosmetics) on skin
+/// groups; every other part ([`rouge_model::mesh::Part`]) does not scatter (a = 0): eyes get a
+/// sclera, iris and pupil by angle from the eye's forward axis (+Z), the mouth, teeth, tongue
+/// and lashes their constant albedo.
 pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
+    use rouge_model::mesh::Part;
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
     for g in &mesh.groups {
-        if !g.is_eye() {
-            continue;
-        }
         let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();
         verts.sort_unstable();
         verts.dedup();
+        let constant = match g.part() {
+            Part::Skin => continue,
+            Part::Eye => None,
+            Part::Mouth => Some(MOUTH_ALBEDO),
+            Part::Teeth => Some(TEETH_ALBEDO),
+            Part::Tongue => Some(TONGUE_ALBEDO),
+            Part::Lash => Some(LASH_ALBEDO),
+        };
+        if let Some([r, gr, b]) = constant {
+            verts.iter().for_each(|&v| albedo[v as usize] = [r, gr, b, 0.0]);
+            continue;
+        }
         if verts.is_empty() {
             continue;
         }

@@ -188,24 +188,6 @@ pub struct BakeReport {
     pub cache: CacheUse,
 }
 
-/// `mesh` with the eyes' triangles left out (vertices kept, so values stay per vertex): an eye
-/// is not the skin's medium, and light does not cross it toward the lids, so a ray into the
-/// interior that would meet an eyeball goes on through the socket instead (and usually leaves
-/// the cutoff, reading as thick).
-fn without_eyes(mesh: &TriangleMesh) -> TriangleMesh {
-    let mut out = mesh.clone();
-    if mesh.groups.iter().any(|g| g.is_eye()) {
-        out.indices = mesh
-            .groups
-            .iter()
-            .filter(|g| !g.is_eye())
-            .flat_map(|g| mesh.indices[3 * g.triangles.start..3 * g.triangles.end].iter().copied())
-            .collect();
-        out.groups = Vec::new();
-    }
-    out
-}
-
 /// Side of the baked local-thickness map in the mesh's UV space, texels.
 pub const LOCAL_THICKNESS_MAP_SIDE: u32 = 1024;
 
@@ -217,7 +199,11 @@ pub const LOCAL_THICKNESS_MAP_SIDE: u32 = 1024;
 pub fn bake_thickness_map(mesh: &TriangleMesh, settings: &BakeSettings) -> Result<(UvMap, BakeReport)> {
     let fail = |e: rouge_model::thickness::ThicknessError| RenderError::Invalid(e.to_string());
     let cache = default_cache_dir();
-    let skin = without_eyes(mesh);
+    // Only the tissue's surface (skin and mouth bag): an eye, the teeth, the tongue or a lash is
+    // not the skin's medium, and light does not cross an eye toward the lids, so a ray into the
+    // interior that would meet an eyeball goes on through the socket instead (and usually
+    // leaves the cutoff, reading as thick).
+    let skin = mesh.only(|g| g.is_tissue());
     let mesh = &skin;
     // A cache that cannot be written costs a bake, not the frame.
     let (bake, cache_use) = match bake_local_thickness_cached(mesh, settings, cache.as_deref()) {

@@ -16,8 +16,10 @@
 //!   unoccluded; the path tracer integrates the map with occlusion.
 //! - **Skin** (`skin.ply`, binary, mm, smooth normals) with the boundary and interior of
 //!   [`Interior`], its open boundary loops (the default head's neck) closed with flat caps so the
-//!   medium has a closed boundary (Rouge draws the open mesh; the caps face away from the camera); **eyes** (`eyes.ply`, groups named like eyes) opaque diffuse with Rouge's eye
-//!   albedo as vertex colours.
+//!   medium has a closed boundary (Rouge draws the open mesh; the caps face away from the camera);
+//!   the mouth bag is part of it (it closes the head's surface); **eyes and the other parts**
+//!   (`eyes.ply`: eyes, teeth, tongue, lashes) opaque diffuse with Rouge's albedo of each part as
+//!   vertex colours.
 //! - **Integrator**: `volpathmis` (spectral MIS, so chromatic media do not blow up one channel's
 //!   weights) with `max_depth = -1` and Russian roulette only past depth 100000: unbiased;
 //!   emitters hidden from the camera, so the film's alpha is the object's coverage.
@@ -322,11 +324,11 @@ pub fn export(input: &ExportInput) -> Result<MitsubaScene> {
             format!("{boundary}        <ref name=\"interior\" id=\"interior\"/>\n")
         }
     };
-    let mut is_eye = vec![false; mesh.triangle_count()];
-    for g in mesh.groups.iter().filter(|g| g.is_eye()) {
-        is_eye[g.triangles.clone()].fill(true);
+    let mut is_part = vec![false; mesh.triangle_count()];
+    for g in mesh.groups.iter().filter(|g| !g.is_tissue()) {
+        is_part[g.triangles.clone()].fill(true);
     }
-    let (eyes, skin_tris): (Vec<usize>, Vec<usize>) = (0..mesh.triangle_count()).partition(|&t| is_eye[t]);
+    let (eyes, skin_tris): (Vec<usize>, Vec<usize>) = (0..mesh.triangle_count()).partition(|&t| is_part[t]);
     // The medium needs a closed boundary: open loops (the head's neck) get flat caps.
     let (closed, caps) = close_boundary_loops(mesh, &skin_tris);
     let all: Vec<usize> = (0..closed.triangle_count()).collect();

@@ -1,4 +1,4 @@
-//! The "Expression" panel: the presets (smile, surprise, blink, talk) and the 51 Face Units as
+//! The "Expression" panel: the presets (smile, surprise, blink, talk) and the 52 Face Units as
 //! sliders, "Neutral", and the animation toggle that plays the expression cycle.
 
 use super::face::weight_slider;

@@ -258,11 +258,64 @@ pub struct TriangleGroup {
     pub triangles: Range<usize>,
 }
 
+/// What a group of a face mesh is: the skin (the medium that scatters and takes cosmetics) or
+/// one of the parts that are not skin. The default head (`python/gen_head.py`) names its parts
+/// by material: `eye`, `oral`, `teeth`, `tongue`, `lash`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Part {
+    /// Skin: scatters, carries the skin's maps and the cosmetics.
+    Skin,
+    /// An eyeball.
+    Eye,
+    /// The inside of the mouth (the oral cavity behind the lips).
+    Mouth,
+    /// Teeth.
+    Teeth,
+    /// The tongue.
+    Tongue,
+    /// Eyelashes (ribbons).
+    Lash,
+}
+
+impl Part {
+    /// The part a group with this name and material is: the material names it when it is
+    /// `eye`, `oral`, `teeth`, `tongue` or `lash` (any case); otherwise a group whose name contains
+    /// "eye" is an eye (meshes from other tools name their eyes so), and anything else skin.
+    pub fn of(name: &str, material: Option<&str>) -> Part {
+        match material.map(str::to_ascii_lowercase).as_deref() {
+            Some("eye") => Part::Eye,
+            Some("oral") => Part::Mouth,
+            Some("teeth") => Part::Teeth,
+            Some("tongue") => Part::Tongue,
+            Some("lash") => Part::Lash,
+            _ if name.to_ascii_lowercase().contains("eye") => Part::Eye,
+            _ => Part::Skin,
+        }
+    }
+}
+
 impl TriangleGroup {
-    /// Whether the group is an eye (its name contains "eye", any case): the renderer gives its
-    /// vertices an eye's albedo and no scattering, and exports keep it out of the skin's medium.
+    /// What the group is ([`Part::of`] its name and material).
+    pub fn part(&self) -> Part {
+        Part::of(&self.name, self.material.as_deref())
+    }
+
+    /// Whether the group is an eye: the renderer gives its vertices an eye's albedo.
     pub fn is_eye(&self) -> bool {
-        self.name.to_ascii_lowercase().contains("eye")
+        self.part() == Part::Eye
+    }
+
+    /// Whether the group bounds the head's tissue: the skin and the mouth bag, which together
+    /// close the head's surface (the medium a path tracer fills, what a thickness ray crosses).
+    pub fn is_tissue(&self) -> bool {
+        matches!(self.part(), Part::Skin | Part::Mouth)
+    }
+
+    /// Whether the group is skin. Every other part gets its own albedo and no scattering, takes
+    /// no cosmetics, and exports keep it out of the skin's medium (the oral cavity included: it
+    /// closes the skin's surface at the lips, but its tissue is not the skin's).
+    pub fn is_skin(&self) -> bool {
+        self.part() == Part::Skin
     }
 }
 
@@ -285,6 +338,24 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// The mesh with only the triangles of the groups `keep` accepts (all vertices kept, so
+    /// values stay per vertex; the groups are dropped; a group's range past the indices counts
+    /// as empty). A mesh without groups is returned whole.
+    pub fn only(&self, keep: impl Fn(&TriangleGroup) -> bool) -> TriangleMesh {
+        let mut out = self.clone();
+        if self.groups.iter().any(|g| !keep(g)) {
+            out.indices = self
+                .groups
+                .iter()
+                .filter(|g| keep(g))
+                .flat_map(|g| self.indices.get(3 * g.triangles.start..3 * g.triangles.end).unwrap_or_default())
+                .copied()
+                .collect();
+            out.groups = Vec::new();
+        }
+        out
+    }
+
     /// A flat square of side `side_mm` in the z = 0 plane, centred on the origin and facing +Z,
     /// with UVs 0..1 (u along +X, v along +Y): a calibration target for renders of a swatch, a
     /// specular lobe or a brush stroke on a known surface.

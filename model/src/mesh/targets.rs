@@ -1,4 +1,4 @@
-//! Morph targets of the default head: the Face Units expressions (51 ARKit-named units) and
+//! Morph targets of the default head: the Face Units expressions (52 ARKit-named units) and
 //! MakeHuman shapes, as sparse offsets of its base (unsubdivided) vertices in millimetres,
 //! applied as a weighted sum before subdivision. UVs are untouched, so every UV-space map
 //! (thickness layers, region masks, baked local thickness) follows the skin as it moves.

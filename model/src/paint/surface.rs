@@ -155,7 +155,7 @@ pub(super) struct RasterTriangle {
 }
 
 impl SurfaceMap {
-    /// Rasterises every triangle of `mesh` into a `width` × `height` UV map (barycentric
+    /// Rasterises every skin triangle of `mesh` ([`crate::mesh::TriangleGroup::is_skin`]) into a `width` × `height` UV map (barycentric
     /// interpolation of the 3D positions and normals at texel centres), dilates the covered area
     /// by two texels, buckets the covered texels in a 3D grid, notes the triangle under each
     /// texel, and welds the mesh's vertices into a graph for paths along the surface. Triangles
@@ -168,6 +168,10 @@ impl SurfaceMap {
     ///
     /// Uses all available cores (`std::thread::scope`) for rasterising and dilating.
     pub fn build(mesh: &TriangleMesh, width: u32, height: u32) -> SurfaceMap {
+        // Paint and the skin's maps live on the skin: the eyes, mouth, teeth, tongue and lashes
+        // are left out (their UV islands stay uncovered).
+        let skin = mesh.only(|g| g.is_skin());
+        let mesh = &skin;
         let (w, h) = (width as usize, height as usize);
         let centre = Bounds::of(&mesh.positions).map_or(Vec3::ZERO, |b| b.center());
         let centre = if centre.is_finite() { centre } else { Vec3::ZERO };

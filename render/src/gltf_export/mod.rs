@@ -220,25 +220,25 @@ fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMes
     Ok(std::borrow::Cow::Owned(m))
 }
 
-/// The skin's triangles, and each eye group's, as primitives of their own vertices, in glTF's
-/// conventions: positions in metres, v = 1 − v_OBJ (the repo's loader flips it back). Each eye
-/// keeps its group's name (the loader makes each glTF mesh a group, and the renderer places an
-/// eye's iris and pupil about its group's centre) and carries the renderer's eye colours per
-/// vertex (`gpu_mesh::vertex_albedo`); the skin its tangents when `with_tangents` (a normal
-/// texture uses them).
+/// The skin's triangles, and each other part's group (eyes, teeth, tongue, lashes), as
+/// primitives of their own vertices, in glTF's conventions: positions in metres, v = 1 − v_OBJ
+/// (the repo's loader flips it back). Each part keeps its group's name (the loader makes each
+/// glTF mesh a group, and the renderer places an eye's iris and pupil about its group's centre)
+/// and carries the renderer's colours per vertex (`gpu_mesh::vertex_albedo`); the skin its
+/// tangents when `with_tangents` (a normal texture uses them).
 fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -> Vec<Primitive> {
     let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo);
-    // Which primitive each triangle goes to: 0 the skin, i + 1 the i-th eye group.
-    let eyes: Vec<_> = mesh.groups.iter().filter(|g| g.is_eye()).collect();
+    // Which primitive each triangle goes to: 0 the skin, i + 1 the i-th group of another part.
+    let parts: Vec<_> = mesh.groups.iter().filter(|g| !g.is_skin()).collect();
     let mut part = vec![0usize; mesh.triangle_count()];
-    for (i, g) in eyes.iter().enumerate() {
+    for (i, g) in parts.iter().enumerate() {
         part[g.triangles.clone()].iter_mut().for_each(|p| *p = i + 1);
     }
     let tangents = mesh.tangents.as_deref().filter(|_| with_tangents);
-    let names = std::iter::once("skin").chain(eyes.iter().map(|g| g.name.as_str()));
+    let names = std::iter::once("skin").chain(parts.iter().map(|g| g.name.as_str()));
     let mut out = Vec::new();
     for (which, name) in names.enumerate() {
-        let (is_eye, material) = (which > 0, usize::from(which > 0));
+        let (is_part, material) = (which > 0, usize::from(which > 0));
         let mut remap = vec![u32::MAX; mesh.positions.len()];
         let mut p = Primitive { name: name.into(), material, ..Primitive::default() };
         let mut colors = Vec::new();
@@ -267,7 +267,7 @@ fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -
                 p.indices.push(remap[v]);
             }
         }
-        if is_eye {
+        if is_part {
             p.colors = Some(colors);
         } else if tangents.is_some() {
             p.tangents = Some(tangent);

@@ -1,0 +1,104 @@
+//! The default head's parts follow the face: the eyelashes stay on the lids, outside the
+//! eyeballs and the skin, through a blink, a squint and wide eyes; the lower teeth and the
+//! tongue drop with the jaw.
+
+use glam::Vec3;
+use rouge_model::mesh::deform::SubdivisionPlan;
+use rouge_model::mesh::targets::{FacePose, TargetSet};
+use rouge_model::mesh::{Part, TriangleMesh, default_head};
+
+fn posed(units: &[(&str, f32)], levels: u32) -> TriangleMesh {
+    let base = default_head().expect("head");
+    let mut positions = base.positions.clone();
+    let pose = FacePose { expression: units.iter().map(|&(n, w)| (n.to_string(), w)).collect(), ..FacePose::default() };
+    TargetSet::default_head().expect("targets").apply(&pose, &mut positions).expect("pose");
+    SubdivisionPlan::new(&base, levels).mesh(&positions)
+}
+
+/// The vertices of the triangles of the groups `keep` accepts.
+fn vertices(mesh: &TriangleMesh, keep: impl Fn(&rouge_model::mesh::TriangleGroup) -> bool) -> Vec<u32> {
+    let mut v = mesh.only(keep).indices;
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[test]
+fn lashes_stay_on_the_lids_outside_the_eyes_and_the_skin() {
+    for levels in [0, 1] {
+        for pose in [
+            vec![],
+            vec![("eyeBlinkLeft", 0.5), ("eyeBlinkRight", 0.5)],
+            vec![("eyeBlinkLeft", 1.0), ("eyeBlinkRight", 1.0)],
+            vec![("eyeSquintLeft", 1.0), ("eyeWideRight", 1.0)],
+            vec![("eyeLookUpLeft", 1.0), ("browInnerUp", 1.0)],
+        ] {
+            let mesh = posed(&pose, levels);
+            let skin = vertices(&mesh, |g| g.part() == Part::Skin);
+            let mut worst_eye = f32::MAX;
+            let mut worst_skin = f32::MAX;
+            let mut farthest_root = 0.0f32;
+            for (lashes, eye) in [("lashes_l", "eye_l"), ("lashes_r", "eye_r")] {
+                let lash = vertices(&mesh, |g| g.name == lashes);
+                let eye_v = vertices(&mesh, |g| g.name == eye);
+                assert!(!lash.is_empty() && !eye_v.is_empty(), "{lashes} and {eye}");
+                let eye_p: Vec<Vec3> = eye_v.iter().map(|&v| mesh.positions[v as usize]).collect();
+                let centre = eye_p.iter().sum::<Vec3>() / eye_p.len() as f32;
+                let radius = eye_p.iter().map(|p| p.distance(centre)).fold(0.0f32, f32::max);
+                for &v in &lash {
+                    let p = mesh.positions[v as usize];
+                    assert!(p.is_finite());
+                    worst_eye = worst_eye.min(p.distance(centre) - radius);
+                    // Above the skin: along the nearest skin vertex's normal, the lash is not
+                    // more than a fraction of a millimetre inside.
+                    let (s, d) = skin
+                        .iter()
+                        .map(|&s| (s, mesh.positions[s as usize].distance(p)))
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                        .expect("skin");
+                    let q = mesh.positions[s as usize];
+                    // The roots sit in the lid margin, between the lid and the eyeball, where
+                    // the hm08 cards start (up to 1.4 mm behind the margin's surface): the
+                    // check is for the strands beyond them.
+                    if p.distance(centre) > radius + 1.0 {
+                        worst_skin = worst_skin.min((p - q).dot(mesh.normals[s as usize]));
+                    }
+                    // The roots (the lash vertices nearest the eyeball) sit on the lid margin.
+                    if p.distance(centre) < radius + 1.0 {
+                        farthest_root = farthest_root.max(d);
+                    }
+                }
+            }
+            println!(
+                "level {levels} {pose:?}: lashes at least {worst_eye:.2} mm off the eyeballs' spheres, \
+                 {worst_skin:.2} mm along the skin's normal; roots within {farthest_root:.2} mm of the skin"
+            );
+            // The Face Units blend the lid's vertices linearly, so mid-blink the lid (and the
+            // cards on it) cuts the eyeball's sphere by the sagitta of its arc (about 1.3 mm).
+            assert!(worst_eye > -1.5, "a lash inside an eyeball ({worst_eye} mm) in {pose:?}");
+            // Closed or squinting, the upper lashes meet the lower lid and the lower lashes meet
+            // the upper (real lashes bend there; these pass up to 2 mm in); open, they clear
+            // the skin.
+            let closed =
+                pose.iter().any(|&(n, w)| (n.starts_with("eyeBlink") || n.starts_with("eyeSquint")) && w == 1.0);
+            let skin_limit = if closed { -2.0 } else { -0.5 };
+            assert!(worst_skin > skin_limit, "a lash inside the skin ({worst_skin} mm) in {pose:?}");
+            assert!(farthest_root < 3.0, "a lash root off the lid ({farthest_root} mm) in {pose:?}");
+        }
+    }
+}
+
+#[test]
+fn the_lower_teeth_and_tongue_drop_with_the_jaw() {
+    let rest = posed(&[], 0);
+    let open = posed(&[("jawOpen", 1.0)], 0);
+    let drop = |keep: &dyn Fn(&rouge_model::mesh::TriangleGroup) -> bool| {
+        let v = vertices(&rest, keep);
+        v.iter().map(|&i| rest.positions[i as usize].y - open.positions[i as usize].y).sum::<f32>() / v.len() as f32
+    };
+    let (lower, tongue, upper) =
+        (drop(&|g| g.name == "teeth_lower"), drop(&|g| g.part() == Part::Tongue), drop(&|g| g.name == "teeth_upper"));
+    println!("jawOpen 1: lower teeth drop {lower:.1} mm, tongue {tongue:.1} mm, upper teeth {upper:.1} mm");
+    assert!(lower > 10.0 && tongue > 5.0, "the jaw carries the lower teeth and the tongue");
+    assert!(upper.abs() < 0.1, "the upper teeth stay with the skull");
+}

@@ -1,0 +1,76 @@
+//! The mouth's parts on the GPU (lavapipe on CI): the teeth and the tongue of the default head
+//! show only when the lips part, and the cavity behind them is dark.
+
+use rouge_model::mesh::Part;
+use rouge_model::skin::AnatomyRegion;
+use rouge_render::job::{FacePose, LookChoice, RenderJob};
+
+const SIZE: u32 = 192;
+
+/// A close-up of the lips in `pose`, drawn with every part and again without the teeth and
+/// the tongue; returns both frames (RGBA8) and the pixels where they differ.
+fn with_and_without_teeth(pose: &[(&str, f32)]) -> (Vec<u8>, usize) {
+    let job = RenderJob {
+        look: LookChoice::Bare,
+        width: SIZE,
+        height: SIZE,
+        subdivision: 1,
+        close_up: Some(AnatomyRegion::Lips),
+        face: FacePose { expression: pose.iter().map(|&(n, w)| (n.to_string(), w)).collect(), ..FacePose::default() },
+        ..RenderJob::default()
+    };
+    let loaded = job.load().expect("load");
+    let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
+    let with = prepared.render_display().expect("render");
+    // The same vertices (and tangents), fewer triangles: only the teeth and tongue are gone.
+    let without_mesh = loaded.mesh.only(|g| !matches!(g.part(), Part::Teeth | Part::Tongue));
+    prepared.renderer.set_mesh(&without_mesh, loaded.scene.skin.albedo).expect("set mesh");
+    let without = prepared.render_display().expect("render");
+    if let Ok(dir) = std::env::var("ROUGE_TEST_IMAGES") {
+        let name = format!("{dir}/parts_{}.png", pose.iter().map(|(n, w)| format!("{n}{w}")).collect::<String>());
+        image::save_buffer(&name, &with, SIZE, SIZE, image::ExtendedColorType::Rgba8).ok();
+        let diff: Vec<u8> = with
+            .iter()
+            .zip(&without)
+            .enumerate()
+            .map(|(i, (a, b))| if i % 4 == 3 { 255 } else { a.abs_diff(*b).saturating_mul(8) })
+            .collect();
+        image::save_buffer(format!("{name}.diff.png"), &diff, SIZE, SIZE, image::ExtendedColorType::Rgba8).ok();
+    }
+    let differ = with
+        .chunks_exact(4)
+        .zip(without.chunks_exact(4))
+        .filter(|(a, b)| (0..3).map(|c| a[c].abs_diff(b[c]) as u32).sum::<u32>() > 12)
+        .count();
+    (with, differ)
+}
+
+#[test]
+fn the_teeth_and_tongue_show_only_when_the_lips_part() {
+    let (_, closed) = with_and_without_teeth(&[("mouthClose", 1.0)]);
+    // hm08's neutral mouth is relaxed, the lips about a millimetre apart: the incisors' edge
+    // shows in the slit, as in a real relaxed mouth.
+    let (_, relaxed) = with_and_without_teeth(&[]);
+    let (_, open) = with_and_without_teeth(&[("jawOpen", 0.6)]);
+    println!(
+        "pixels that change without the teeth and tongue: lips closed {closed}, relaxed {relaxed}, jaw open 0.6 {open}"
+    );
+    assert_eq!(closed, 0, "closed lips hide the teeth and the tongue");
+    assert!(open > (SIZE * SIZE / 50) as usize, "an open mouth shows them: {open} px");
+    assert!(relaxed < open / 5, "the relaxed mouth shows a sliver: {relaxed} px");
+}
+
+#[test]
+fn the_open_mouth_is_dark_inside() {
+    // The middle of the mouth opening (the close-up centres on the lips): what shows there is
+    // the tongue or the cavity, darker than the lips around it.
+    let (open, _) = with_and_without_teeth(&[("jawOpen", 0.8)]);
+    let luma = |x: u32, y: u32| {
+        let i = 4 * (y * SIZE + x) as usize;
+        0.2126 * f32::from(open[i]) + 0.7152 * f32::from(open[i + 1]) + 0.0722 * f32::from(open[i + 2])
+    };
+    let centre = luma(SIZE / 2, SIZE / 2);
+    let lips = (0..SIZE).map(|y| luma(SIZE / 2, y)).fold(0.0f32, f32::max);
+    println!("luma at the mouth's centre {centre:.0}, brightest on the vertical through it {lips:.0}");
+    assert!(centre < 0.5 * lips, "the open mouth is dark inside: {centre} against {lips}");
+}
