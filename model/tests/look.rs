@@ -434,3 +434,23 @@ fn too_many_layers_are_refused_before_any_is_loaded() {
     assert!(Look::from_json(&look_json(&[ok; 8]), &dir.path().join("l.json")).is_ok());
     assert!(load_err(dir.path(), &look_json(&[ok; 9])).contains("9 layers"));
 }
+
+#[test]
+fn a_look_carries_its_mascara_and_checks_it() {
+    use rouge_model::mesh::lashes::Mascara;
+    let path = std::path::Path::new("lashes.json");
+    let text = r#"{"schema": "rouge-look", "version": 1, "name": "Lashes", "layers": [],
+        "mascara": {"length": 1.4, "volume": 2.5, "curl_deg": 20}}"#;
+    let look = Look::from_json(text, path).expect("a look with a mascara");
+    assert_eq!(look.mascara, Some(Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0 }));
+    let back = Look::from_json(&look.to_json(), path).expect("round trip");
+    assert_eq!(back, look);
+    // No mascara: none written.
+    assert!(!Look::bare().to_json().contains("mascara"));
+    let bad = text.replace("1.4", "3.0");
+    let e = Look::from_json(&bad, path).expect_err("too long").to_string();
+    assert!(e.contains("lashes.json") && e.contains("mascara length 3"), "{e}");
+    let unknown = text.replace("\"volume\"", "\"colour\"");
+    let e = Look::from_json(&unknown, path).expect_err("unknown field").to_string();
+    assert!(e.contains("colour"), "{e}");
+}

@@ -102,3 +102,70 @@ fn the_lower_teeth_and_tongue_drop_with_the_jaw() {
     assert!(lower > 10.0 && tongue > 5.0, "the jaw carries the lower teeth and the tongue");
     assert!(upper.abs() < 0.1, "the upper teeth stay with the skull");
 }
+
+#[test]
+fn mascara_lengthens_thickens_and_curls_every_lash() {
+    use rouge_model::mesh::lashes::{LashRig, Mascara};
+    let base = default_head().expect("head");
+    let rig = LashRig::of(&base);
+    // Both sides of every ribbon: 2 × (2 × 60 upper + 2 × 30 lower) strands, less those the
+    // generator cut to one row (none reach that short).
+    assert_eq!(rig.strand_count(), 2 * 180, "{} strips", rig.strand_count());
+    let mut lash: Vec<u32> = base
+        .groups
+        .iter()
+        .filter(|g| g.material.as_deref() == Some("lash"))
+        .flat_map(|g| base.faces[g.faces.clone()].iter().flat_map(|f| f.corners.iter().map(|c| c.position)))
+        .collect();
+    lash.sort_unstable();
+    lash.dedup();
+    let span = |p: &[Vec3]| {
+        let b =
+            rouge_model::mesh::Bounds::of(&lash.iter().map(|&v| p[v as usize]).collect::<Vec<_>>()).expect("lashes");
+        b.size().length()
+    };
+    let mut long = base.positions.clone();
+    rig.apply(&Mascara { length: 1.5, ..Mascara::default() }, &mut long);
+    let mut curled = base.positions.clone();
+    rig.apply(&Mascara { curl_deg: 30.0, ..Mascara::default() }, &mut curled);
+    let mut none = base.positions.clone();
+    rig.apply(&Mascara::default(), &mut none);
+    assert_eq!(none, base.positions, "no mascara, no change");
+    let moved =
+        |p: &[Vec3]| lash.iter().map(|&v| p[v as usize].distance(base.positions[v as usize])).fold(0.0f32, f32::max);
+    println!(
+        "lash span {:.1} mm, ×1.5 length {:.1} mm; the tips move up to {:.1} mm (length) and {:.1} mm (curl 30°)",
+        span(&base.positions),
+        span(&long),
+        moved(&long),
+        moved(&curled)
+    );
+    assert!(span(&long) > span(&base.positions) + 2.0);
+    assert!(moved(&long) > 2.0 && moved(&curled) > 1.5);
+    assert!(long.iter().chain(&curled).all(|p| p.is_finite()));
+    // Nothing but the lashes moves.
+    let others: Vec<usize> = (0..base.positions.len()).filter(|v| lash.binary_search(&(*v as u32)).is_err()).collect();
+    assert!(others.iter().all(|&v| long[v] == base.positions[v] && curled[v] == base.positions[v]));
+    // Curled upper lashes rise: their mean y goes up; the lower ones go down.
+    let upper_tips: Vec<u32> = lash.iter().copied().filter(|&v| base.positions[v as usize].y > 3.0).collect();
+    let mean_y = |p: &[Vec3]| upper_tips.iter().map(|&v| p[v as usize].y).sum::<f32>() / upper_tips.len() as f32;
+    assert!(mean_y(&curled) > mean_y(&base.positions) + 0.2, "curl lifts the upper lashes");
+}
+
+#[test]
+fn mascara_specs_are_checked() {
+    use rouge_model::mesh::lashes::Mascara;
+    let m = Mascara::parse("length=1.4, volume=2.5,curl=20").expect("parse");
+    assert_eq!(m, Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0 });
+    for (bad, says) in [
+        ("length=0.5", "length 0.5"),
+        ("volume=nan", "volume NaN"),
+        ("curl=90", "curl_deg 90"),
+        ("colour=1", "unknown `colour`"),
+        ("length", "KEY=VALUE"),
+        ("length=abc", "not a number"),
+    ] {
+        let e = Mascara::parse(bad).expect_err(bad).to_string();
+        assert!(e.contains(says), "{bad}: {e}");
+    }
+}

@@ -18,6 +18,7 @@ use rouge_model::mesh::Bounds;
 use rouge_model::mesh::TriangleMesh;
 use rouge_model::mesh::default_head;
 use rouge_model::mesh::deform::SubdivisionPlan;
+use rouge_model::mesh::lashes::{LashRig, Mascara};
 pub use rouge_model::mesh::load_mesh;
 pub use rouge_model::mesh::targets::FacePose;
 use rouge_model::mesh::targets::{TargetError, TargetSet};
@@ -89,6 +90,8 @@ pub struct RenderJob {
     /// Expression and face shape of the default head (its morph targets), applied before
     /// subdivision; the neutral, unshaped head is then the rest mesh.
     pub face: FacePose,
+    /// A mascara on the default head's lashes, over the look's own (`"mascara"`), if any.
+    pub mascara: Option<Mascara>,
 }
 
 impl Default for RenderJob {
@@ -113,6 +116,7 @@ impl Default for RenderJob {
             morph: 0.0,
             thickness_bake_rest_pose: false,
             face: FacePose::default(),
+            mascara: None,
         }
     }
 }
@@ -302,10 +306,12 @@ impl RenderJob {
         if let Some(env) = &env {
             scene.environment = Some(env.sh_irradiance());
         }
-        let (mut mesh, mut rest_mesh) = if self.face.is_neutral() {
+        let mascara = self.mascara.or(look.mascara).filter(|m| !m.is_none());
+        let (mut mesh, mut rest_mesh) = if self.face.is_neutral() && mascara.is_none() {
             (load_mesh(self.mesh.as_deref(), self.mesh_scale_mm, self.subdivision)?, None)
         } else {
-            let (rest, posed) = posed_default_head(self.mesh.as_deref(), &self.face, self.subdivision)?;
+            let (rest, posed) =
+                posed_default_head(self.mesh.as_deref(), &self.face, mascara.as_ref(), self.subdivision)?;
             (posed, Some(rest))
         };
         if self.morph != 0.0 {
@@ -341,16 +347,21 @@ pub fn default_skin_detail() -> (&'static rouge_model::skin::DetailTile, &'stati
     (tile, regions)
 }
 
-/// The default head subdivided `levels` times at rest (neutral, unshaped) and in `face`'s pose,
-/// sharing triangles and UVs. `mesh` must be absent or `builtin:head`: the targets are the
+/// The default head subdivided `levels` times at rest (neutral, unshaped) and in `face`'s pose
+/// with `mascara` on its lashes ([`LashRig`]), sharing triangles and UVs. `mesh` must be absent or `builtin:head`: the targets are the
 /// default head's.
 ///
 /// # Errors
 /// Another mesh; unknown target names or weights out of range (naming `--expression`/`--shape`).
-pub fn posed_default_head(mesh: Option<&Path>, face: &FacePose, levels: u32) -> Result<(TriangleMesh, TriangleMesh)> {
+pub fn posed_default_head(
+    mesh: Option<&Path>,
+    face: &FacePose,
+    mascara: Option<&Mascara>,
+    levels: u32,
+) -> Result<(TriangleMesh, TriangleMesh)> {
     if let Some(p) = mesh.filter(|p| p.to_str() != Some("builtin:head")) {
         return Err(RenderError::Invalid(format!(
-            "--expression/--shape move the default head's vertices; {} is another mesh (leave out --mesh)",
+            "--expression/--shape/--mascara move the default head's vertices; {} is another mesh (leave out --mesh)",
             p.display()
         )));
     }
@@ -358,6 +369,10 @@ pub fn posed_default_head(mesh: Option<&Path>, face: &FacePose, levels: u32) -> 
     let base = default_head().map_err(rouge_model::ModelError::from)?;
     let mut positions = base.positions.clone();
     TargetSet::default_head().map_err(invalid)?.apply(face, &mut positions).map_err(invalid)?;
+    if let Some(m) = mascara {
+        m.validate()?;
+        LashRig::of(&base).apply(m, &mut positions);
+    }
     let plan = SubdivisionPlan::new(&base, levels);
     let posed = plan.mesh(&positions);
     Ok((plan.rest().clone(), posed))

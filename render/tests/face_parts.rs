@@ -74,3 +74,38 @@ fn the_open_mouth_is_dark_inside() {
     println!("luma at the mouth's centre {centre:.0}, brightest on the vertical through it {lips:.0}");
     assert!(centre < 0.5 * lips, "the open mouth is dark inside: {centre} against {lips}");
 }
+
+#[test]
+fn mascara_darkens_and_lengthens_the_lash_line() {
+    use rouge_model::mesh::lashes::Mascara;
+    let frame = |mascara: Option<Mascara>| {
+        let job = RenderJob {
+            look: LookChoice::Bare,
+            width: SIZE,
+            height: SIZE,
+            subdivision: 1,
+            close_up: Some(AnatomyRegion::Eyelids),
+            mascara,
+            ..RenderJob::default()
+        };
+        job.prepare().expect("prepare").render_display().expect("render")
+    };
+    // Dark pixels in the middle half of the columns (the eye; the background shows at the
+    // frame's edge): the lashes, the pupil and the iris' rim; and the highest of them.
+    let dark = |f: &[u8]| {
+        let px: Vec<u32> = (0..SIZE * SIZE)
+            .filter(|&i| (SIZE / 4..3 * SIZE / 4).contains(&(i % SIZE)))
+            .filter(|&i| {
+                let p = &f[4 * i as usize..4 * i as usize + 3];
+                0.2126 * f32::from(p[0]) + 0.7152 * f32::from(p[1]) + 0.0722 * f32::from(p[2]) < 50.0
+            })
+            .collect();
+        let top = px.iter().map(|&i| i / SIZE).min().unwrap_or(SIZE);
+        (px.len(), top)
+    };
+    let (bare, bare_top) = dark(&frame(None));
+    let (coated, coated_top) = dark(&frame(Some(Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0 })));
+    println!("dark pixels: natural lashes {bare} (top row {bare_top}), with mascara {coated} (top row {coated_top})");
+    assert!(coated as f32 > 1.3 * bare as f32, "mascara darkens the lash line: {bare} -> {coated}");
+    assert!(coated_top + 2 < bare_top, "mascara lengthens the upper lashes: top row {bare_top} -> {coated_top}");
+}

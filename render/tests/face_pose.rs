@@ -53,7 +53,7 @@ fn lipstick_stays_on_the_lips_of_a_smile() {
         .collect();
     assert!(lipstick.len() > 100, "{} lipstick pixels", lipstick.len());
     // The lips' silhouette in the same frame, posed and neutral: their projected triangles.
-    let (rest, posed) = posed_default_head(None, &smile, 1).expect("pose");
+    let (rest, posed) = posed_default_head(None, &smile, None, 1).expect("pose");
     let silhouette = |triangles: Vec<[Vec3; 3]>| -> HashSet<(i32, i32)> {
         let mut out = HashSet::new();
         for t in triangles {

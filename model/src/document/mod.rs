@@ -280,7 +280,7 @@ impl Document {
     pub fn to_look(&self) -> Look {
         let layers =
             self.layers.iter().enumerate().map(|(i, l)| look_layer(l, &layer_files(i, l), l.effective_map())).collect();
-        Look { name: self.name.clone(), layers }
+        Look { name: self.name.clone(), layers, mascara: None }
     }
 
     // --------------------------------------------------------------------------------------

@@ -139,6 +139,8 @@ pub struct Look {
     pub name: String,
     /// Layers, bottom to top.
     pub layers: Vec<LookLayer>,
+    /// The mascara on the lashes, if any (`"mascara"`: [`crate::mesh::lashes::Mascara`]).
+    pub mascara: Option<crate::mesh::lashes::Mascara>,
 }
 
 /// The document's shape with the layers left untyped: errors here are not about a layer.
@@ -152,6 +154,8 @@ struct LookIn<L> {
     #[serde(default)]
     name: Option<String>,
     layers: Vec<L>,
+    #[serde(default)]
+    mascara: Option<crate::mesh::lashes::Mascara>,
 }
 
 fn yes() -> bool {
@@ -177,6 +181,8 @@ struct LookOut<'a> {
     version: u32,
     name: &'a str,
     layers: Vec<LayerOut<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mascara: Option<crate::mesh::lashes::Mascara>,
 }
 
 fn is_true(b: &bool) -> bool {
@@ -208,7 +214,7 @@ fn layer_label(v: &serde_json::Value) -> String {
 impl Look {
     /// A look without layers: bare skin.
     pub fn bare() -> Look {
-        Look { name: "Bare".into(), layers: Vec::new() }
+        Look { name: "Bare".into(), layers: Vec::new(), mascara: None }
     }
 
     /// The default look on the default head, bottom to top: Foundation 02 Ivory, 15 µm
@@ -240,7 +246,7 @@ impl Look {
             layer("blush_01_petal", ThicknessSource::Region { region: Region::Cheeks, mm: 0.008 }),
             layer("lipstick_02_red", ThicknessSource::Region { region: Region::Lips, mm: 0.02 }),
         ];
-        Look { name: "Default".into(), layers: layers.into_iter().flatten().collect() }
+        Look { name: "Default".into(), layers: layers.into_iter().flatten().collect(), mascara: None }
     }
 
     /// Reads a look file; presets, masks and maps are resolved relative to its folder.
@@ -306,7 +312,10 @@ impl Look {
         let name = doc.name.unwrap_or_else(|| {
             path.file_stem().map_or_else(|| "Look".to_string(), |s| s.to_string_lossy().into_owned())
         });
-        Ok(Look { name, layers })
+        if let Some(m) = &doc.mascara {
+            m.validate().map_err(|e| err(e.to_string()))?;
+        }
+        Ok(Look { name, layers, mascara: doc.mascara })
     }
 
     /// Pretty JSON that [`Look::from_json`] reads back to an equal look (from the same folder:
@@ -328,6 +337,7 @@ impl Look {
                     locked: l.locked,
                 })
                 .collect(),
+            mascara: self.mascara,
         };
         serde_json::to_string_pretty(&doc).map(|s| s + "\n").unwrap_or_default()
     }

@@ -6,6 +6,7 @@
 mod cap;
 pub mod deform;
 mod gltf;
+pub mod lashes;
 mod load;
 mod obj;
 pub mod shapes;

@@ -71,6 +71,11 @@ pub struct SceneArgs {
     /// under_eye, chin, temples or ears (of paired regions the side toward --yaw).
     #[arg(long, value_parser = parse_region)]
     pub close_up: Option<rouge_model::skin::AnatomyRegion>,
+    /// A mascara on the default head's lashes, over the look's: length=X (1-2, × the natural
+    /// lash), volume=X (1-5, × its thickness), curl=DEG (0-60, extra curl at the tip); e.g.
+    /// `--mascara length=1.4,volume=2.5,curl=20`.
+    #[arg(long, value_parser = parse_mascara)]
+    pub mascara: Option<rouge_model::mesh::lashes::Mascara>,
     /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
     /// chicken1, chicken2, cream, ketchup, marble, potato, skimmilk, skin1, skin2, wholemilk) or
     /// a `rouge-medium` JSON file. The skin's albedo, IOR and scattering profile then come from
@@ -330,6 +335,7 @@ impl SceneArgs {
             morph: self.morph,
             thickness_bake_rest_pose: false,
             face: self.face()?,
+            mascara: self.mascara,
         };
         self.note_regions(&job);
         Ok((job, fit))
@@ -399,4 +405,8 @@ fn parse_region(s: &str) -> Result<rouge_model::skin::AnatomyRegion, String> {
         let names: Vec<_> = AnatomyRegion::ALL.iter().map(|r| r.name()).collect();
         format!("unknown region {s:?}: use one of {}", names.join(", "))
     })
+}
+
+fn parse_mascara(s: &str) -> Result<rouge_model::mesh::lashes::Mascara, String> {
+    rouge_model::mesh::lashes::Mascara::parse(s).map_err(|e| e.to_string())
 }
