@@ -439,3 +439,16 @@ fn duplicating_a_layer_copies_it_above_and_painting_the_copy_leaves_the_original
     // A layer that is not there: nothing, and no undo step.
     assert_eq!(doc.duplicate_layer(99), Change::Nothing);
 }
+
+#[test]
+fn a_looks_mascara_survives_the_project() {
+    use rouge_model::mesh::lashes::Mascara;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut look = Look::bare();
+    look.mascara = Some(Mascara { length: 1.3, volume: 2.0, curl_deg: 15.0 });
+    let mut doc = Document::from_look(&look);
+    assert_eq!(doc.to_look().mascara, look.mascara);
+    doc.save_project(dir.path()).expect("save");
+    let opened = Document::open_project(dir.path()).expect("open");
+    assert_eq!(opened.mascara, look.mascara, "saved and reopened with the project's look.json");
+}

@@ -220,6 +220,9 @@ pub struct Document {
     pub face: FacePose,
     /// The face as last saved (or opened), for [`Document::is_modified`].
     saved_face: FacePose,
+    /// The look's mascara, kept as opened and saved with the project's `look.json` (the app
+    /// does not edit it yet, nor draw it).
+    pub mascara: Option<crate::mesh::lashes::Mascara>,
     /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
     /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
     /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which
@@ -257,6 +260,7 @@ impl Document {
             layers: paint_layers(look),
             face: FacePose::default(),
             saved_face: FacePose::default(),
+            mascara: look.mascara,
             skin: None,
             saved_skin: None,
             history: History::new(),
@@ -280,7 +284,7 @@ impl Document {
     pub fn to_look(&self) -> Look {
         let layers =
             self.layers.iter().enumerate().map(|(i, l)| look_layer(l, &layer_files(i, l), l.effective_map())).collect();
-        Look { name: self.name.clone(), layers, mascara: None }
+        Look { name: self.name.clone(), layers, mascara: self.mascara }
     }
 
     // --------------------------------------------------------------------------------------

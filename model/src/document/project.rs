@@ -334,7 +334,7 @@ pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
     }
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
-    let look = Look { name: doc.name.clone(), layers, mascara: None };
+    let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara };
     look.save(&look_path)?;
     // The project is saved; a file that cannot be deleted now is deleted by a later save.
     if doc.skin.is_none() {
