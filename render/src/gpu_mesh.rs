@@ -109,19 +109,18 @@ impl GpuMesh {
 }
 
 /// Linear albedo of the teeth: a natural tooth's shade about CIELAB (78, 1, 18) (the middle of
-/// the VITA classical shade guide's A range, measured by spectrophotometer: Chu, Trushkowsky
-/// and Paravina 2010, "Dental color matching instruments and systems", J Dent 38 e2-e16).
+/// the VITA classical shade guide's A range as spectrophotometers read it, \[Chu2010\]).
 pub const TEETH_ALBEDO: [f32; 3] = [0.60, 0.52, 0.38];
-/// Linear albedo of the tongue: a healthy tongue body about CIELAB (48, 27, 11) (tongue colour
-/// by spectrophotometry: Wang and Zhang 2013, "Statistical analysis of tongue images for
-/// feature extraction and diagnostics", IEEE TIP 22(12) 5336-5347).
+/// Linear albedo of the tongue: a healthy tongue body, about CIELAB (48, 27, 11) (tongue colour
+/// in calibrated images, \[Wang2013\]).
 pub const TONGUE_ALBEDO: [f32; 3] = [0.30, 0.11, 0.09];
 /// Linear albedo of the oral cavity seen between parted lips: the mucosa (about the tongue's
 /// colour) times about 1/3 for the occlusion of the mouth, which the renderer does not compute
 /// (a path-traced open mouth is this dark a few millimetres behind the lips).
 pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
-/// Linear albedo of a dark eyelash: eumelanin-rich hair absorbs nearly everything that enters
-/// it (PBRT-v4's `HairBxDF` with eumelanin 8 gives a diffuse-like albedo of about 0.02-0.03).
+/// Linear albedo of a dark eyelash: eumelanin-rich hair absorbs nearly all the light that
+/// enters it, so a black lash reflects a few percent, mostly at its surface. A stand-in for a
+/// fibre model (issue 27's hair shading), not a measurement.
 pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
 
 /// Albedo and material per vertex: the skin's albedo (a = 1: scatters, takes cosmetics) on skin

@@ -10,7 +10,7 @@
 //! "curling"): fibres and film lengthen the lash beyond its tip (up to about +30-60 % in
 //! consumer tests), the film thickens it (2-4× its diameter with volumising formulas), and the
 //! film's shrinkage as it dries lifts the lash into a curl (about 10-30° more at the tip)
-//! ([Thibaut2010] for the natural lash: 0.06-0.12 mm thick, 7-12 mm long, 80-160 per upper lid).
+//! (\[Thibaut2010\] for the natural lash: 0.06-0.12 mm thick, 7-12 mm long, 80-160 per upper lid).
 
 use std::collections::HashMap;
 
