@@ -120,13 +120,16 @@ PART_NOTES = {
     "teeth": "an hm08 teeth helper, its own vertices and UVs, open at the back",
     "tongue": "the hm08 tongue helper, closed",
     "lash": "eyelash ribbons grown on the hm08 eyelash cards, front and back faces",
+    "brow": "eyebrow hairs lying on the brow's skin, front faces",
 }
 PARTS_NOTE = (
     "The parts after the eyes come from python/gen_head_parts.py (see there): the teeth and the"
     " tongue are hm08 helpers as they are; the lashes are strands grown on the hm08 eyelash"
     " helper cards, each vertex a fixed linear combination of card vertices (the cards are not"
-    " written), so the morph targets move them as they move the cards. Their vertices, UVs and"
-    " faces follow the head's and the eyes', whose numbers are unchanged."
+    " written), so the morph targets move them as they move the cards; the brows are hairs"
+    " lying on the brow's skin, each vertex a skin point plus a fixed offset, moved with that"
+    " point. Their vertices, UVs and faces follow the head's and the eyes', whose numbers are"
+    " unchanged."
 )
 
 
@@ -444,7 +447,8 @@ def fmt4(x: float) -> str:
 
 CROP_NAMES = ("P", "body", "neck_loop", "neck", "crown", "head_face_ids", "topo", "boundary", "eye_groups",
               "eye_face_ids", "eye_info", "head_verts", "nose_tip", "chin", "chin_to_crown_mm", "eye_y", "ear",
-              "origin", "all_face_ids", "out_v", "out_vt", "vmap", "tmap", "part_groups", "derived", "derived_vt")
+              "origin", "all_face_ids", "out_v", "out_vt", "vmap", "tmap", "part_groups", "derived", "derived_offset",
+              "derived_vt")
 
 
 def crop(obj: Obj) -> dict:
@@ -524,23 +528,32 @@ def crop(obj: Obj) -> dict:
     centres = {name: eye_info[name][0] * 100.0 - np.array(origin) / 100.0 for name, _ in eye_groups}
     card_vt = {c[0]: c[1] for f in obj.faces for c in f}
     derived: list[dict[int, float]] = []
+    derived_offset: list[np.ndarray] = []  # mm, added to the weighted position (brows' lift)
     derived_vt: list[tuple[float, float]] = []
-    for name, quads in gen_head_parts.lashes(obj, Pm, centres):
+    zero = np.zeros(3)
+    lash_parts = [(name, "lash", [[(w, zero) for w in q] for q in quads], (1, -1))
+                  for name, quads in gen_head_parts.lashes(obj, Pm, centres)]
+    brow_parts = [(name, "brow", quads, (1,))
+                  for name, quads in gen_head_parts.brows(head_polys, Pm, centres)]
+    for name, mtl, quads, sides in lash_parts + brow_parts:
         faces = []
-        for side in (1, -1):  # the front, then the back with its own vertices, wound the other way
+        # lashes: the front, then the back with its own vertices, wound the other way; brows
+        # lie on the skin and have a front only
+        for side in sides:
             index: dict[tuple, int] = {}  # a ribbon's consecutive quads share their vertices
             for q in quads:
                 ids = []
-                for w in q[::side]:
-                    key = tuple(sorted((v, round(x, 12)) for v, x in w.items()))
+                for w, off in q[::side]:
+                    key = tuple(sorted((v, round(x, 12)) for v, x in w.items())) + tuple(np.round(off, 9))
                     if key not in index:
                         index[key] = len(out_v) + len(derived)
                         derived.append(w)
+                        derived_offset.append(off)
                         uv = sum(x * np.array(obj.vt[card_vt[v]]) for v, x in w.items())
                         derived_vt.append((float(uv[0]), float(uv[1])))
                     ids.append(index[key])
                 faces.append([(k, k - len(out_v) + len(out_vt)) for k in ids])
-        part_groups.append((name, "lash", faces))
+        part_groups.append((name, mtl, faces))
     return {k: v for k, v in locals().items() if k in CROP_NAMES}
 
 
@@ -548,12 +561,13 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     c = crop(obj)
     (P, body, neck_loop, neck, crown, head_face_ids, topo, boundary, eye_groups, eye_face_ids, eye_info, head_verts,
      nose_tip, chin, chin_to_crown_mm, eye_y, ear, origin, all_face_ids, out_v, out_vt, vmap, tmap, part_groups,
-     derived, derived_vt) = (c[k] for k in CROP_NAMES)
+     derived, derived_offset, derived_vt) = (c[k] for k in CROP_NAMES)
     vi = np.array(obj.v_int, dtype=np.int64)[out_v]
     cmm = vi - np.array(origin, dtype=np.int64)  # hundredths of a mm, exact
     # the lashes' vertices, rounded to the hundredth of a mm like every other
     Psrc_mm = P * 100.0 - np.array(origin) / 100.0
-    cmm_derived = np.array([np.rint(gen_head_parts.at(w, Psrc_mm) * 100.0) for w in derived], dtype=np.int64)
+    cmm_derived = np.array([np.rint((gen_head_parts.at(w, Psrc_mm) + off) * 100.0)
+                            for w, off in zip(derived, derived_offset)], dtype=np.int64)
     cmm = np.concatenate([cmm, cmm_derived.reshape(-1, 3)])
     X = cmm / 100.0  # mm
 

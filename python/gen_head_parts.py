@@ -24,6 +24,19 @@ head and the eyes (so the head's and the eyes' vertex, UV and face numbers do no
   front and a back face with their own vertices, so each side has its own normal and
   back-face culling keeps one of them). UVs: the card's own, combined the same way.
 
+* `brow_l`, `brow_r` (usemtl brow): eyebrow hairs lying on the skin of the brow (hm08 has no
+  brows). BROW_HAIRS roots per brow are scattered over a band in the front view (from 16 mm
+  medial of the eyeball centre over 40 mm laterally, rising from 17 to 24 mm above it at the arch
+  and falling to 19 mm at the tail; 4.5 mm half-height at the head narrowing to 1.5 mm), denser
+  where the band is taller; each hair grows from its root at the brow's growth angle (up at the
+  head, lateral along the body, down at the tail; the lower hairs steeper, the upper flatter, as
+  brows converge) with a slight bend, and every point of it is projected along -z onto the
+  frontmost skin and lifted off it (0.12 mm at the root to 0.35 mm at the tip). A point is the
+  barycentric combination of its skin triangle's hm08 vertices plus a fixed offset (the lift and
+  half the ribbon's width), so the targets move each hair with the skin under it (browInnerUp
+  raises the brows' heads). One face per ribbon (seen from outside the skin); UVs: the skin's at
+  the root's point, so a brow map in the skin's UV space can reach them.
+
 Real lashes (for the counts and sizes): 90-160 on an upper lid, 75-80 on a lower one, 0.06-0.12
 mm thick at the root, 7-12 mm long on top and 6-8 mm below (Thibaut et al. 2010, "Human
 eyelash characterization", Br J Dermatol 162:304-310). The hm08 cards are shorter (4.5-6 mm
@@ -169,5 +182,101 @@ def lashes(obj, P_mm: np.ndarray, eye_centres: dict[str, np.ndarray]) -> list[tu
                 rib = ribbon(points, P_mm, length)
                 for (l0, r0), (l1, r1) in zip(rib, rib[1:]):
                     quads.append([l0, r0, r1, l1])
+        out.append((name, quads))
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# Eyebrows: hairs lying on the skin of the brow, each point embedded in a skin triangle
+
+BROW_HAIRS = 220  # per brow (real brows have 250-600 hairs; each strand stands for one or two)
+BROW_SEGMENTS = 3
+BROW_INNER_DX_MM = -16.0  # the brow's head: this far medial of the eyeball centre (x)
+BROW_SPAN_MM = 40.0  # from head to tail, along x
+BROW_Y_MM = (17.0, 24.0, 19.0)  # height above the eyeball centre at the head, the arch, the tail
+BROW_ARCH_T = 0.6  # the arch's place along the brow
+BROW_HALF_HEIGHT_MM = (4.5, 1.5)  # the brow's half-height at the head and at the tail
+BROW_LENGTH_MM = (5.0, 8.0)  # hair length at the head and along the body
+BROW_ANGLE_DEG = ((0.0, 75.0), (0.3, 25.0), (0.7, 0.0), (1.0, -25.0))  # growth angle from lateral, along t
+BROW_LIFT_MM = (0.12, 0.35)  # height of a hair over the skin at its root and at its tip
+BROW_WIDTH_MM = (0.12, 0.04)  # ribbon width at the root and at the tip
+
+
+def brow_centre_line(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """x offset (lateral, mm) and height above the eye centre (mm) of the brow at t in 0..1."""
+    y0, y1, y2 = BROW_Y_MM
+    rise = y0 + (y1 - y0) * np.sin(0.5 * np.pi * np.clip(t / BROW_ARCH_T, 0.0, 1.0))
+    fall = y1 - (y1 - y2) * np.clip((t - BROW_ARCH_T) / (1.0 - BROW_ARCH_T), 0.0, 1.0) ** 2
+    return BROW_INNER_DX_MM + BROW_SPAN_MM * t, np.where(t <= BROW_ARCH_T, rise, fall)
+
+
+def project_front(points_xy: np.ndarray, tri: np.ndarray, tri_v: np.ndarray, P: np.ndarray):
+    """For each (x, y), the frontmost skin triangle under it seen along -z: its hm08 vertices'
+    barycentric weights and the surface point. tri: (T, 3, 3) mm; tri_v: (T, 3) hm08 vertices."""
+    a, b, c = tri[:, 0, :2], tri[:, 1, :2], tri[:, 2, :2]
+    det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1])
+    ok = np.abs(det) > 1e-9
+    out = []
+    for q in points_xy:
+        l1 = ((q[0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (q[1] - a[:, 1])) / np.where(ok, det, 1)
+        l2 = ((b[:, 0] - a[:, 0]) * (q[1] - a[:, 1]) - (q[0] - a[:, 0]) * (b[:, 1] - a[:, 1])) / np.where(ok, det, 1)
+        l0 = 1 - l1 - l2
+        inside = ok & (l0 >= 0) & (l1 >= 0) & (l2 >= 0)
+        idx = np.nonzero(inside)[0]
+        assert len(idx), f"no skin under {q}"
+        z = l0[idx] * tri[idx, 0, 2] + l1[idx] * tri[idx, 1, 2] + l2[idx] * tri[idx, 2, 2]
+        k = idx[np.argmax(z)]
+        w = {int(tri_v[k, 0]): float(l0[k]), int(tri_v[k, 1]): float(l1[k]), int(tri_v[k, 2]): float(l2[k])}
+        n = np.cross(tri[k, 1] - tri[k, 0], tri[k, 2] - tri[k, 0])
+        out.append((w, at(w, P), n / np.linalg.norm(n)))
+    return out
+
+
+def brows(skin_polys: list[list[int]], P_mm: np.ndarray, eye_centres: dict[str, np.ndarray]):
+    """Per brow: (name, its hairs' quads), each corner (weights over skin vertices, offset mm):
+    the corner lies at the weighted skin point plus the offset (its lift off the skin and half
+    the ribbon's width), and moves with that skin point. One face per ribbon, facing out of the
+    skin (a hair lying on the skin is seen from the front only)."""
+    rng = np.random.default_rng(SEED + 1)
+    tris = [(f[0], f[k], f[k + 1]) for f in skin_polys for k in range(1, len(f) - 1)]
+    tri_v = np.array(tris)
+    tri = P_mm[tri_v]
+    out = []
+    for name, eye, side in (("brow_l", "eye_l", 1.0), ("brow_r", "eye_r", -1.0)):
+        c = eye_centres[eye]
+        weight = np.linspace(BROW_HALF_HEIGHT_MM[0], BROW_HALF_HEIGHT_MM[1], 64)
+        cdf = np.cumsum(weight) / weight.sum()  # more hairs where the brow is taller
+        t = np.interp(rng.random(BROW_HAIRS), cdf, np.linspace(0, 1, 64))
+        v = rng.uniform(-1.0, 1.0, BROW_HAIRS)
+        dx, y = brow_centre_line(t)
+        half = BROW_HALF_HEIGHT_MM[0] + (BROW_HALF_HEIGHT_MM[1] - BROW_HALF_HEIGHT_MM[0]) * t
+        roots = np.stack([c[0] + side * dx, c[1] + y + v * half], axis=1)
+        at_t = np.array(BROW_ANGLE_DEG)
+        angle = np.interp(t, at_t[:, 0], at_t[:, 1]) - 10.0 * v + rng.normal(0.0, 6.0, BROW_HAIRS)
+        length = np.interp(t, [0.0, 0.25, 1.0], [BROW_LENGTH_MM[0], BROW_LENGTH_MM[1], BROW_LENGTH_MM[1]])
+        length = length * rng.uniform(0.8, 1.0, BROW_HAIRS)
+        quads = []
+        for h in range(BROW_HAIRS):
+            s = np.linspace(0.0, 1.0, BROW_SEGMENTS + 1)
+            turn = np.radians(angle[h] - 12.0 * s)  # hairs bend down a little toward the tip
+            steps = np.stack([side * np.cos(turn), np.sin(turn)], axis=1) * (length[h] / BROW_SEGMENTS)
+            pts = roots[h] + np.concatenate([[[0.0, 0.0]], np.cumsum(steps[:-1], axis=0)])
+            hits = project_front(pts, tri, tri_v, P_mm)
+            lifted = [p + n * (BROW_LIFT_MM[0] + (BROW_LIFT_MM[1] - BROW_LIFT_MM[0]) * si)
+                      for (_, p, n), si in zip(hits, s)]
+            corners = []
+            for i, ((w, p, n), si) in enumerate(zip(hits, s)):
+                along = lifted[min(i + 1, len(lifted) - 1)] - lifted[max(i - 1, 0)]
+                across = np.cross(n, along)
+                across /= np.linalg.norm(across)
+                hw = 0.5 * (BROW_WIDTH_MM[0] + (BROW_WIDTH_MM[1] - BROW_WIDTH_MM[0]) * si)
+                corners.append(((w, lifted[i] - p - across * hw), (w, lifted[i] - p + across * hw)))
+            for (l0, r0), (l1, r1) in zip(corners, corners[1:]):
+                # counter-clockwise seen from outside the skin (along n)
+                quad = [l0, r0, r1, l1]
+                q = [at(w, P_mm) + o for w, o in quad]
+                if np.dot(np.cross(q[1] - q[0], q[2] - q[0]), hits[0][2]) < 0:
+                    quad = quad[::-1]
+                quads.append(quad)
         out.append((name, quads))
     return out

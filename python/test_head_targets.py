@@ -73,10 +73,6 @@ def group_vertices(*names: str) -> set[int]:
     return out
 
 
-def lash_vertices() -> set[int]:
-    return group_vertices("lashes_l", "lashes_r")
-
-
 def test_the_parts_follow_the_face_units():
     # A blink carries the upper lashes of its eye down with the lid (the eyelash cards move up to
     # 15 mm: the upper lid's tips travel furthest), the jaw carries the lower teeth and the
@@ -97,6 +93,10 @@ def test_the_parts_follow_the_face_units():
     assert reach("jawOpen", group_vertices("teeth_upper"))[0] == 0
     tongue = group_vertices("tongue")
     assert {int(r[0]) for r in units["tongueOut"]} == tongue
+    # browInnerUp raises the brows' heads (their hairs move with the skin under them).
+    brows = group_vertices("brow_l", "brow_r")
+    rows = [r for r in units["browInnerUp"] if r[0] in brows]
+    assert len(rows) > 0.3 * len(brows) and np.mean([r[2] for r in rows]) * gen.UNIT_MM > 1.0
 
 
 def test_left_and_right_units_mirror_each_other():
@@ -105,8 +105,9 @@ def test_left_and_right_units_mirror_each_other():
     _, blocks = read_targets()
     units = {h[1]: rows for h, rows in blocks if h[0] == "expression"}
 
-    # The lashes are grown with seeded randomness per side (python/gen_head_parts.py): left out.
-    lashes = lash_vertices()
+    # The lashes and brows are grown with seeded randomness per side (python/gen_head_parts.py):
+    # left out.
+    lashes = group_vertices("lashes_l", "lashes_r", "brow_l", "brow_r")
 
     def moved(rows):
         return {tuple(np.round(P[v], 1)): tuple(d) for v, *d in rows if v not in lashes}

@@ -108,13 +108,25 @@ fn mean_dihedral(m: &Mesh) -> f64 {
 #[test]
 fn head_counts_bounds_groups() {
     let m = head();
-    assert_eq!(m.positions.len(), 8106);
-    assert_eq!(m.faces.len(), 6020);
+    assert_eq!(m.positions.len(), 11626);
+    assert_eq!(m.faces.len(), 7340);
     assert!(m.faces.iter().all(|f| f.corners.len() == 4));
     let names: Vec<&str> = m.groups.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(
         names,
-        ["head", "mouth", "eye_l", "eye_r", "teeth_upper", "teeth_lower", "tongue", "lashes_l", "lashes_r"]
+        [
+            "head",
+            "mouth",
+            "eye_l",
+            "eye_r",
+            "teeth_upper",
+            "teeth_lower",
+            "tongue",
+            "lashes_l",
+            "lashes_r",
+            "brow_l",
+            "brow_r"
+        ]
     );
     assert_eq!(m.group("head").unwrap().faces.len() + m.group("mouth").unwrap().faces.len(), 4262);
     assert_eq!(m.group("eye_l").unwrap().faces.len(), 70);

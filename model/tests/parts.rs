@@ -169,3 +169,40 @@ fn mascara_specs_are_checked() {
         assert!(e.contains(says), "{bad}: {e}");
     }
 }
+
+#[test]
+fn the_brows_lie_on_the_skin_and_follow_brow_inner_up() {
+    let rest = posed(&[], 1);
+    let raised = posed(&[("browInnerUp", 1.0)], 1);
+    let skin = vertices(&rest, |g| g.part() == Part::Skin);
+    for brow in ["brow_l", "brow_r"] {
+        let hair = vertices(&rest, |g| g.name == brow);
+        assert!(hair.len() > 1000, "{brow}: {} vertices", hair.len());
+        // Every hair vertex lies over the skin, under a millimetre off it (along the nearest
+        // skin vertex's normal).
+        let mut worst = (0.0f32, f32::MAX);
+        for &v in &hair {
+            let p = rest.positions[v as usize];
+            let (s, _) = skin
+                .iter()
+                .map(|&s| (s, rest.positions[s as usize].distance(p)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("skin");
+            let along = (p - rest.positions[s as usize]).dot(rest.normals[s as usize]);
+            worst = (worst.0.max(along), worst.1.min(along));
+        }
+        // The brows' heads rise with browInnerUp.
+        let medial: Vec<u32> = hair.iter().copied().filter(|&v| rest.positions[v as usize].x.abs() < 25.0).collect();
+        let rise = medial.iter().map(|&v| raised.positions[v as usize].y - rest.positions[v as usize].y).sum::<f32>()
+            / medial.len() as f32;
+        println!(
+            "{brow}: {} vertices, {:.2} to {:.2} mm over the skin along its normal; browInnerUp raises the \
+             head {rise:.1} mm",
+            hair.len(),
+            worst.1,
+            worst.0
+        );
+        assert!(worst.0 < 1.0 && worst.1 > -0.3, "{brow} off the skin: {worst:?}");
+        assert!(rise > 1.5, "{brow}: browInnerUp raised the brow's head {rise} mm");
+    }
+}

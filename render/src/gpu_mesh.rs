@@ -122,11 +122,14 @@ pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
 /// enters it, so a black lash reflects a few percent, mostly at its surface. A stand-in for a
 /// fibre model (issue 27's hair shading), not a measurement.
 pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
+/// Linear albedo of the eyebrow hairs: dark brown (the same stand-in as the lashes', a little
+/// lighter: brow hair carries less eumelanin than lash hair in most people).
+pub const BROW_ALBEDO: [f32; 3] = [0.055, 0.038, 0.027];
 
 /// Albedo and material per vertex: the skin's albedo (a = 1: scatters, takes cosmetics) on skin
 /// groups; every other part ([`rouge_model::mesh::Part`]) does not scatter (a = 0): eyes get a
-/// sclera, iris and pupil by angle from the eye's forward axis (+Z), the mouth, teeth, tongue
-/// and lashes their constant albedo.
+/// sclera, iris and pupil by angle from the eye's forward axis (+Z), the mouth, teeth, tongue,
+/// lashes and brows their constant albedo.
 pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
     use rouge_model::mesh::Part;
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
@@ -141,6 +144,7 @@ pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]
             Part::Teeth => Some(TEETH_ALBEDO),
             Part::Tongue => Some(TONGUE_ALBEDO),
             Part::Lash => Some(LASH_ALBEDO),
+            Part::Brow => Some(BROW_ALBEDO),
         };
         if let Some([r, gr, b]) = constant {
             verts.iter().for_each(|&v| albedo[v as usize] = [r, gr, b, 0.0]);

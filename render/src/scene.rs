@@ -46,7 +46,7 @@ impl Camera {
 
     /// A close-up of `region` of the default head (its UV mask, `rouge_model::skin::AnatomyRegion`)
     /// from the direction `yaw_deg`, `pitch_deg`: the camera aims at the centroid of the mesh's
-    /// vertices weighted by the mask (of cheeks, ears and eyelids only the side toward the camera)
+    /// skin vertices weighted by the mask (of cheeks, ears and eyelids only the side toward the camera)
     /// from a fifth of the framing distance, with the same field of view: about 60 mm of face
     /// across the image's height, so a 1280×720 frame has about 12 pixels per millimetre.
     /// `None` when the mesh has no vertex in the region (another mesh's UVs).
@@ -55,8 +55,11 @@ impl Camera {
         let framing = Camera::framing(&bounds, yaw_deg, pitch_deg);
         let paired = matches!(region, AnatomyRegion::Cheeks | AnatomyRegion::Ears | AnatomyRegion::Eyelids);
         let side = if yaw_deg >= 0.0 { 1.0 } else { -1.0 };
+        // The skin's vertices only: the brows' hairs carry the skin's UVs under them.
+        let mut skin = vec![false; mesh.positions.len()];
+        mesh.only(|g| g.is_skin()).indices.iter().for_each(|&v| skin[v as usize] = true);
         let (mut sum, mut weight) = (Vec3::ZERO, 0.0f64);
-        for (p, uv) in mesh.positions.iter().zip(&mesh.uvs) {
+        for ((p, uv), _) in mesh.positions.iter().zip(&mesh.uvs).zip(&skin).filter(|(_, s)| **s) {
             let on_side = !paired || (p.x - bounds.center().x) * side > 0.0;
             let w = if on_side { region.weight_uv(uv.x, uv.y) } else { 0.0 };
             sum += *p * w as f32;

@@ -244,12 +244,12 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     let conditions: rouge_model::skin::SkinConditions =
         "freckles=0.5,moles=0.5,redness=0.5,acne=0.5,hyperpigmentation=0.5,under_eye=0.5,veins=0.5".parse()?;
     let skin_maps = rouge_model::skin::SkinRecipe::from_tone("light-medium", conditions, 1, 1024)?;
-    // The head's parts (lashes, teeth, tongue) are triangles of the G-buffer and shadow passes:
+    // The head's parts (lashes, brows, teeth, tongue) are triangles of the G-buffer and shadow passes:
     // one row draws the default look without them (the head and eyes alone) to price them.
     for (label, look, skin_maps, skin_detail, all_parts) in [
         ("bare", LookChoice::Bare, None, false, true),
         ("default look (3 layers)", LookChoice::Default, None, false, true),
-        ("default look, no lashes, teeth or tongue", LookChoice::Default, None, false, false),
+        ("default look, no lashes, brows, teeth or tongue", LookChoice::Default, None, false, false),
         ("default look over skin maps", LookChoice::Default, Some(skin_maps.clone()), false, true),
         ("default look over skin maps + skin detail", LookChoice::Default, Some(skin_maps), true, true),
         ("4 layers", LookChoice::File(four.clone()), None, false, true),

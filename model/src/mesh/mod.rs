@@ -261,7 +261,7 @@ pub struct TriangleGroup {
 
 /// What a group of a face mesh is: the skin (the medium that scatters and takes cosmetics) or
 /// one of the parts that are not skin. The default head (`python/gen_head.py`) names its parts
-/// by material: `eye`, `oral`, `teeth`, `tongue`, `lash`.
+/// by material: `eye`, `oral`, `teeth`, `tongue`, `lash`, `brow`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Part {
     /// Skin: scatters, carries the skin's maps and the cosmetics.
@@ -276,11 +276,13 @@ pub enum Part {
     Tongue,
     /// Eyelashes (ribbons).
     Lash,
+    /// Eyebrow hairs (ribbons lying on the brow's skin).
+    Brow,
 }
 
 impl Part {
     /// The part a group with this name and material is: the material names it when it is
-    /// `eye`, `oral`, `teeth`, `tongue` or `lash` (any case); otherwise a group whose name contains
+    /// `eye`, `oral`, `teeth`, `tongue`, `lash` or `brow` (any case); otherwise a group whose name contains
     /// "eye" is an eye (meshes from other tools name their eyes so), and anything else skin.
     pub fn of(name: &str, material: Option<&str>) -> Part {
         match material.map(str::to_ascii_lowercase).as_deref() {
@@ -289,6 +291,7 @@ impl Part {
             Some("teeth") => Part::Teeth,
             Some("tongue") => Part::Tongue,
             Some("lash") => Part::Lash,
+            Some("brow") => Part::Brow,
             _ if name.to_ascii_lowercase().contains("eye") => Part::Eye,
             _ => Part::Skin,
         }
@@ -339,20 +342,21 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
-    /// The mesh with only the triangles of the groups `keep` accepts (all vertices kept, so
-    /// values stay per vertex; the groups are dropped; a group's range past the indices counts
-    /// as empty). A mesh without groups is returned whole.
+    /// The mesh with only the triangles of the groups `keep` accepts, and those groups (their
+    /// ranges renumbered); all vertices are kept, so values stay per vertex. A group's range
+    /// past the indices counts as empty. A mesh without groups is returned whole.
     pub fn only(&self, keep: impl Fn(&TriangleGroup) -> bool) -> TriangleMesh {
         let mut out = self.clone();
         if self.groups.iter().any(|g| !keep(g)) {
-            out.indices = self
-                .groups
-                .iter()
-                .filter(|g| keep(g))
-                .flat_map(|g| self.indices.get(3 * g.triangles.start..3 * g.triangles.end).unwrap_or_default())
-                .copied()
-                .collect();
+            out.indices = Vec::new();
             out.groups = Vec::new();
+            for g in self.groups.iter().filter(|g| keep(g)) {
+                let start = out.indices.len() / 3;
+                out.indices.extend_from_slice(
+                    self.indices.get(3 * g.triangles.start..3 * g.triangles.end).unwrap_or_default(),
+                );
+                out.groups.push(TriangleGroup { triangles: start..out.indices.len() / 3, ..g.clone() });
+            }
         }
         out
     }
