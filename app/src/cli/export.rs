@@ -1,6 +1,7 @@
 //! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (the ground truth
 //! of docs/TRANSLUCENCY.md); `rouge export gltf`: the head and its look as a glTF 2.0 asset for
-//! DCC tools, engines and browsers (docs/FORMATS.md, "Exported files").
+//! DCC tools, engines and browsers; `rouge export web` (`export_web`): a share page
+//! (docs/FORMATS.md, "Exported files").
 
 use crate::cli::render::scene_args::SceneArgs;
 use anyhow::{Context, Result, bail};
@@ -22,14 +23,21 @@ pub enum ExportCommand {
     /// Positions in metres (`rouge render --mesh FILE --mesh-scale 1000 --subdiv 0` reads it
     /// back). docs/FORMATS.md says what each file holds and what is lost.
     Gltf(GltfArgs),
+    /// A share page: DIR/index.html, one self-contained file that opens from disk in a browser
+    /// with no network: three.js draws the head as `export gltf` writes it, with a before/after
+    /// slider (the bare skin | the look) and the look's products.
+    Web(crate::cli::export_web::WebArgs),
 }
+
+/// The sides `--textures` takes, texels.
+pub const TEXTURE_SIDES: [&str; 5] = ["256", "512", "1024", "2048", "4096"];
 
 #[derive(Debug, Args)]
 pub struct GltfArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Side of the baked textures, texels.
-    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(["256", "512", "1024", "2048", "4096"]))]
+    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(TEXTURE_SIDES))]
     pub textures: String,
     /// Output: FILE.glb (one file, textures inside) or FILE.gltf (with FILE.bin and
     /// FILE_*.png beside it). Every file is replaced atomically.
@@ -83,6 +91,7 @@ pub fn run(cmd: &ExportCommand) -> Result<()> {
     match cmd {
         ExportCommand::Mitsuba(args) => run_mitsuba(args),
         ExportCommand::Gltf(args) => run_gltf(args),
+        ExportCommand::Web(args) => crate::cli::export_web::run(args),
     }
 }
 

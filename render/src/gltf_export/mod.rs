@@ -176,20 +176,37 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
 pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<GltfExport> {
     let layers: Vec<LayerInput<'_>> =
         loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
-    let skin = &loaded.scene.skin;
     export_gltf(&GltfInput {
         mesh: &loaded.mesh,
-        skin: SkinSurface {
-            albedo: skin.albedo,
-            albedo_map: images.albedo.as_ref(),
-            beckmann_roughness: skin.roughness,
-            ior: skin.ior,
-        },
+        skin: skin_surface(loaded, images),
         layers: &layers,
         normal_map: images.normal.as_ref(),
         texture_px,
         look_name: &loaded.look.name,
     })
+}
+
+/// The bare skin of a scene (no layer) baked at `texture_px`: its base colour as the PNG texture
+/// [`export_gltf`] writes (sRGB RGB8, rows in glTF's order) and glTF's roughness of its one lobe
+/// (the same everywhere). `rouge export web` shows it beside the look.
+///
+/// # Errors
+/// What [`bake_surface`] and the PNG encoder refuse.
+pub fn bare_skin_texture(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<(Vec<u8>, f32)> {
+    let surface = bake_surface(&skin_surface(loaded, images), &[], texture_px)?;
+    let png = encode_png(side(&surface), &base_color_texels(&surface), 3)?;
+    Ok((png, gltf_roughness(loaded.scene.skin.roughness)))
+}
+
+/// The skin of a loaded scene as the bake reads it.
+fn skin_surface<'a>(loaded: &Loaded, images: &'a SkinTextureImages) -> SkinSurface<'a> {
+    let skin = &loaded.scene.skin;
+    SkinSurface {
+        albedo: skin.albedo,
+        albedo_map: images.albedo.as_ref(),
+        beckmann_roughness: skin.roughness,
+        ior: skin.ior,
+    }
 }
 
 fn side(s: &SurfaceMaps) -> (u32, u32) {
