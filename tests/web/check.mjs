@@ -26,7 +26,7 @@ async function open(hash, viewport) {
   const page = await browser.newPage({ viewport, deviceScaleFactor: 1 });
   page.on('console', (m) => { if (m.type() === 'error') report.errors.push(`console: ${m.text()}`); });
   page.on('pageerror', (e) => report.errors.push(`exception: ${e.message}`));
-  page.on('request', (r) => { if (!r.url().startsWith(url.split('#')[0]) && !r.url().startsWith('data:')) report.requests.push(r.url()); });
+  page.on('request', (r) => { if (!/^(data|blob):/.test(r.url()) && !r.url().startsWith(url.split('#')[0])) report.requests.push(r.url()); });
   await page.goto(url + hash);
   await page.waitForSelector('body[data-ready="1"]', { timeout: 60000 });
   return page;
