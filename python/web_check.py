@@ -1,0 +1,103 @@
+"""three.js draws `rouge export web`'s page: the same view from Rouge and from the page in headless
+Chromium, side by side, with the CIEDE2000 between them (docs/images/web_threejs.png,
+docs/FORMATS.md "rouge export web").
+
+The page's view is Rouge's camera with one white directional light from the camera of
+irradiance π, which is `rouge render --lights front`; three.js has no subsurface scattering, so
+Rouge is drawn with `--subsurface none` (and, for the record, with its default screen-space
+subsurface scattering). The page is opened with `#embed` (the canvas alone, at the frame's size,
+the look) by tests/web/check.mjs (playwright-core driving Debian's chromium, SwiftShader's
+WebGL). Both images are 8-bit sRGB; ΔE2000 (colour-science) is taken over the pixels where both
+differ from their background.
+
+    npm ci --prefix tests/web && apt-get install chromium
+    .venv/bin/python python/web_check.py --rouge target/debug/rouge [--out docs/images/web_threejs.png]
+"""
+
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def run(cmd):
+    print("$", " ".join(map(str, cmd)), flush=True)
+    return subprocess.run([str(c) for c in cmd], check=True, capture_output=True, text=True).stdout
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rouge", default="target/debug/rouge")
+    parser.add_argument("--out", default="docs/images/web_threejs.png")
+    parser.add_argument("--width", type=int, default=400)
+    parser.add_argument("--height", type=int, default=300)
+    parser.add_argument("--textures", default="1024")
+    args = parser.parse_args()
+
+    import colour
+    import numpy as np
+    from PIL import Image, ImageDraw
+
+    def load(path):
+        return np.asarray(Image.open(path).convert("RGB"), dtype=np.float64) / 255.0
+
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        size = ["--width", str(args.width), "--height", str(args.height)]
+        run([args.rouge, "export", "web", "--textures", args.textures, "--out", tmp / "page"])
+        run([args.rouge, "render", "--lights", "front", *size, "--subsurface", "none", "--out", tmp / "rouge.png"])
+        run([args.rouge, "render", "--lights", "front", *size, "--out", tmp / "rouge_sss.png"])
+        report = json.loads(run(["node", ROOT / "tests/web/check.mjs", tmp / "page/index.html", tmp,
+                                 "--embed", args.width, args.height]))
+        if report["errors"]:
+            sys.exit(f"the page reported errors: {report['errors']}")
+        three, rouge, sss = load(tmp / "embed.png"), load(tmp / "rouge.png"), load(tmp / "rouge_sss.png")
+
+    def foreground(img):
+        return np.abs(img - img[0, 0]).sum(axis=-1) > 8 / 255
+
+    mask = foreground(three) & foreground(rouge)
+    lab = lambda rgb: colour.XYZ_to_Lab(colour.RGB_to_XYZ(rgb, "sRGB", apply_cctf_decoding=True))
+    de = colour.delta_E(lab(rouge), lab(three), method="CIE 2000")
+    de_sss = colour.delta_E(lab(sss), lab(three), method="CIE 2000")
+    stats = {
+        "pixels": int(mask.sum()),
+        "delta_e_mean": float(de[mask].mean()),
+        "delta_e_median": float(np.median(de[mask])),
+        "delta_e_p95": float(np.percentile(de[mask], 95)),
+        "delta_e_mean_vs_rouge_screen_space_sss": float(de_sss[mask].mean()),
+        "delta_e_p95_vs_rouge_screen_space_sss": float(np.percentile(de_sss[mask], 95)),
+        "only_three_js_pixels": int((foreground(three) & ~foreground(rouge)).sum()),
+        "only_rouge_pixels": int((foreground(rouge) & ~foreground(three)).sum()),
+        "textures": args.textures,
+        "size": [args.width, args.height],
+    }
+    print(json.dumps(stats, indent=1))
+
+    def heat(d, top=10.0):
+        t = np.clip(d / top, 0, 1)
+        rgb = np.stack([t, 1 - np.abs(2 * t - 1), 1 - t], axis=-1) * mask[..., None]
+        return Image.fromarray((rgb * 255 + 0.5).astype(np.uint8))
+
+    as_image = lambda v: Image.fromarray((v * 255 + 0.5).astype(np.uint8))
+    panels = [("Rouge (--lights front --subsurface none)", as_image(rouge)),
+              ("three.js in Chromium (the share page)", as_image(three)),
+              ("dE2000 (blue 0, red 10 or more)", heat(de))]
+    w, h = args.width, args.height
+    sheet = Image.new("RGB", (3 * w + 32, h + 52), "white")
+    draw = ImageDraw.Draw(sheet)
+    for i, (label, img) in enumerate(panels):
+        sheet.paste(img, (8 + i * (w + 8), 24))
+        draw.text((8 + i * (w + 8), 6), label, fill="black")
+    draw.text((8, h + 30), f"dE2000 over the head: mean {stats['delta_e_mean']:.2f}, median "
+              f"{stats['delta_e_median']:.2f}, p95 {stats['delta_e_p95']:.2f} ({stats['pixels']} px)", fill="black")
+    sheet.save(args.out)
+    pathlib.Path(args.out).with_suffix(".json").write_text(json.dumps(stats, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
