@@ -448,7 +448,8 @@ pub fn skin_of_tone(
     maps: Option<(rouge_model::skin::SkinConditions, u64, u32)>,
 ) -> Result<Option<SkinRecipe>> {
     use rouge_measure::skin::{SkinParams, skin_tone_or_ita};
-    let invalid = |e: &dyn std::fmt::Display| RenderError::Invalid(format!("skin tone {}: {e}", tone.unwrap_or("light")));
+    let invalid =
+        |e: &dyn std::fmt::Display| RenderError::Invalid(format!("skin tone {}: {e}", tone.unwrap_or("light")));
     let params = tone.map(skin_tone_or_ita).transpose().map_err(|e| invalid(&e))?;
     // The recipe keeps a tone's name; an ITA is kept as its parameters only.
     let tone_name = match tone {
@@ -465,7 +466,10 @@ pub fn skin_of_tone(
     });
     if let Some(params) = recipe.as_ref().map(|r| r.base).or(params) {
         let spectrum = params.reflectance().map_err(|e| invalid(&e))?;
-        scene.skin = crate::scene::Skin { subsurface: scene.skin.subsurface.clone(), ..crate::scene::Skin::from_spectrum(&spectrum) };
+        scene.skin = crate::scene::Skin {
+            subsurface: scene.skin.subsurface.clone(),
+            ..crate::scene::Skin::from_spectrum(&spectrum)
+        };
     }
     Ok(recipe)
 }
