@@ -448,8 +448,7 @@ pub fn skin_of_tone(
     maps: Option<(rouge_model::skin::SkinConditions, u64, u32)>,
 ) -> Result<Option<SkinRecipe>> {
     use rouge_measure::skin::{SkinParams, skin_tone_or_ita};
-    let invalid =
-        |e: &dyn std::fmt::Display| RenderError::Invalid(format!("skin tone {}: {e}", tone.unwrap_or("light")));
+    let invalid = |e: &dyn std::fmt::Display| RenderError::Invalid(e.to_string());
     let params = tone.map(skin_tone_or_ita).transpose().map_err(|e| invalid(&e))?;
     // The recipe keeps a tone's name; an ITA is kept as its parameters only.
     let tone_name = match tone {
