@@ -2,9 +2,9 @@
 draws it, and a CSV of per-image colour figures, rendered in this process or on a Dask cluster
 (`dask.distributed`), where each worker process holds one `rouge.Renderer` (one GPU device).
 
-Each image is the default look with its lipstick replaced by the shade (on the lips region,
-20 µm). The colour figures are display-referred: the image's sRGB decoded to CIELAB (D65) over the
-lips, the pixels the shade changes against the same frame without lipstick (drawn once per tone
+Each image is the default look's blush (no foundation, so the tone shows) with the shade on the
+lips region (20 µm). The colour figures are display-referred: the image's sRGB decoded to CIELAB (D65) over the
+lips, the pixels the shade changes against the same frame without the shade (drawn once per tone
 and expression on each worker, then cached), with the mean ΔE2000 between the two there.
 
     .venv/bin/python python/catalogue.py --out cat/                         # here, one renderer
@@ -32,7 +32,7 @@ EXPRESSIONS = ["neutral", "smile"]
 FIELDS = ["file", "shade", "tone", "expression", "lips_pixels", "lips_L", "lips_a", "lips_b",
           "delta_E00_vs_bare_lips", "seconds", "worker"]
 
-# Per process (so per Dask worker): the frames without lipstick, by (tone, expression, size).
+# Per process (so per Dask worker): the frames without a shade, by (tone, expression, size).
 _BARE_LIPS: dict = {}
 
 
@@ -45,6 +45,16 @@ def _lab(srgb8):
     lin = np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
     m = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
     return rouge.XYZ_to_Lab(lin @ m.T)
+
+
+def blush_only():
+    """The default look without its foundation (so the tone shows) and without its lipstick."""
+    import rouge
+
+    look = rouge.Look.default_look()
+    look.remove_layer(2)
+    look.remove_layer(0)
+    return look
 
 
 def render_one(shade: str, tone: str, expression: str, width: int, height: int, subdiv: int) -> tuple[dict, bytes]:
@@ -61,11 +71,8 @@ def render_one(shade: str, tone: str, expression: str, width: int, height: int, 
                  width=width, height=height, subdiv=subdiv)
     key = (tone, expression, width, height, subdiv)
     if key not in _BARE_LIPS:
-        no_lipstick = rouge.Look.default_look()
-        no_lipstick.remove_layer(2)
-        _BARE_LIPS[key] = renderer.render(look=no_lipstick, **frame)
-    look = rouge.Look.default_look()
-    look.remove_layer(2)
+        _BARE_LIPS[key] = renderer.render(look=blush_only(), **frame)
+    look = blush_only()
     look.add_layer(shade, {"region": "lips", "thickness_mm": 0.02})
     img = renderer.render(look=look, **frame)
     bare = _BARE_LIPS[key]
