@@ -40,7 +40,8 @@ def main() -> None:
 
     import colour
     import numpy as np
-    from PIL import Image, ImageDraw
+    from PIL import Image
+    from side_by_side import heat, write_sheet
 
     def load(path):
         return np.asarray(Image.open(path).convert("RGB"), dtype=np.float64) / 255.0
@@ -78,25 +79,11 @@ def main() -> None:
     }
     print(json.dumps(stats, indent=1))
 
-    def heat(d, top=10.0):
-        t = np.clip(d / top, 0, 1)
-        rgb = np.stack([t, 1 - np.abs(2 * t - 1), 1 - t], axis=-1) * mask[..., None]
-        return Image.fromarray((rgb * 255 + 0.5).astype(np.uint8))
-
     as_image = lambda v: Image.fromarray((v * 255 + 0.5).astype(np.uint8))
     panels = [("Rouge (--lights front --subsurface none)", as_image(rouge)),
               ("three.js in Chromium (the share page)", as_image(three)),
-              ("dE2000 (blue 0, red 10 or more)", heat(de))]
-    w, h = args.width, args.height
-    sheet = Image.new("RGB", (3 * w + 32, h + 52), "white")
-    draw = ImageDraw.Draw(sheet)
-    for i, (label, img) in enumerate(panels):
-        sheet.paste(img, (8 + i * (w + 8), 24))
-        draw.text((8 + i * (w + 8), 6), label, fill="black")
-    draw.text((8, h + 30), f"dE2000 over the head: mean {stats['delta_e_mean']:.2f}, median "
-              f"{stats['delta_e_median']:.2f}, p95 {stats['delta_e_p95']:.2f} ({stats['pixels']} px)", fill="black")
-    sheet.save(args.out)
-    pathlib.Path(args.out).with_suffix(".json").write_text(json.dumps(stats, indent=1) + "\n")
+              ("dE2000 (blue 0, red 10 or more)", heat(de, mask))]
+    write_sheet(panels, stats, args.out)
 
 
 if __name__ == "__main__":

@@ -3,33 +3,17 @@
 //! paths fail naming them and leave no temporary file. MaterialX's own validation of the .mtlx is
 //! python/test_materialx_export.py (PyPI materialx).
 
+mod export_common;
+
+use export_common::{names, rouge, stderr};
 use rouge_model::mesh::{Bounds, load_mesh};
 use rouge_render::job::{LookChoice, RenderJob};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+use std::path::Path;
+use std::process::Output;
 
 fn export(out: &Path, textures: &str) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rouge"))
-        .args(["export", "materialx", "--subdiv", "1", "--flat-skin", "--textures", textures, "--out"])
-        .arg(out)
-        .current_dir(root())
-        .output()
-        .expect("run rouge")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut n: Vec<String> =
-        std::fs::read_dir(dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
-    n.sort();
-    n
+    let out = out.to_str().expect("utf-8");
+    rouge(&["export", "materialx", "--subdiv", "1", "--flat-skin", "--textures", textures, "--out", out])
 }
 
 #[test]

@@ -4,27 +4,11 @@
 //! request, lists the look's products, and its slider shows two different faces (the bare skin,
 //! the look); bad options and unwritable paths fail naming them and leave no file behind.
 
-use std::path::{Path, PathBuf};
+mod export_common;
+
+use export_common::{names, root, rouge, stderr};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn rouge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rouge")).args(args).current_dir(root()).output().expect("run rouge")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut n: Vec<String> =
-        std::fs::read_dir(dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
-    n.sort();
-    n
-}
 
 /// The default head at one subdivision with the default look over the flat light skin, 256².
 fn export(out: &Path) -> Output {

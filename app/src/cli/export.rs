@@ -39,9 +39,8 @@ pub enum ExportCommand {
 pub struct MaterialxArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Side of the baked textures, texels.
-    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(TEXTURE_SIDES))]
-    pub textures: String,
+    #[command(flatten)]
+    pub textures: Textures,
     /// Output folder (created): face.obj, face.mtlx and skin_*.png, each replaced atomically.
     #[arg(long)]
     pub out: PathBuf,
@@ -50,13 +49,25 @@ pub struct MaterialxArgs {
 /// The sides `--textures` takes, texels.
 pub const TEXTURE_SIDES: [&str; 5] = ["256", "512", "1024", "2048", "4096"];
 
+/// `--textures` of the exports that bake at 2048² by default.
+#[derive(Debug, Args)]
+pub struct Textures {
+    /// Side of the baked textures, texels.
+    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(TEXTURE_SIDES))]
+    pub textures: String,
+}
+
+/// `--textures SIDE` as texels (one of [`TEXTURE_SIDES`]).
+pub fn texture_px(side: &str) -> Result<u32> {
+    side.parse().with_context(|| format!("--textures {side}"))
+}
+
 #[derive(Debug, Args)]
 pub struct GltfArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Side of the baked textures, texels.
-    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(TEXTURE_SIDES))]
-    pub textures: String,
+    #[command(flatten)]
+    pub textures: Textures,
     /// Output: FILE.glb (one file, textures inside) or FILE.gltf (with FILE.bin and
     /// FILE_*.png beside it). Every file is replaced atomically.
     #[arg(long)]
@@ -116,7 +127,7 @@ pub fn run(cmd: &ExportCommand) -> Result<()> {
 
 fn run_gltf(args: &GltfArgs) -> Result<()> {
     args.scene.check()?;
-    let texture_px: u32 = args.textures.parse().with_context(|| format!("--textures {}", args.textures))?;
+    let texture_px = texture_px(&args.textures.textures)?;
     match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("glb" | "gltf") => {}
         _ => bail!("--out {}: use FILE.glb (one file) or FILE.gltf (files beside it)", args.out.display()),
@@ -139,7 +150,7 @@ fn run_gltf(args: &GltfArgs) -> Result<()> {
 
 fn run_materialx(args: &MaterialxArgs) -> Result<()> {
     args.scene.check()?;
-    let texture_px: u32 = args.textures.parse().with_context(|| format!("--textures {}", args.textures))?;
+    let texture_px = texture_px(&args.textures.textures)?;
     let mtlx = crate::cli::export_web::output_file(&args.out, rouge_render::materialx_export::MTLX_FILE)?;
     let (job, _) = args.scene.render_job()?;
     let start = std::time::Instant::now();

@@ -37,7 +37,7 @@ pub struct WebArgs {
 
 pub fn run(args: &WebArgs) -> Result<()> {
     args.scene.check()?;
-    let texture_px: u32 = args.textures.parse().with_context(|| format!("--textures {}", args.textures))?;
+    let texture_px = crate::cli::export::texture_px(&args.textures)?;
     let page_path = output_file(&args.out, PAGE_FILE)?;
     let (job, _) = args.scene.render_job()?;
     let start = std::time::Instant::now();
