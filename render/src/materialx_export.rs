@@ -55,7 +55,7 @@ impl MaterialxExport {
     /// rename, the .mtlx last. Returns the files written.
     ///
     /// # Errors
-    /// [`RenderError::File`] naming the file that could not be written.
+    /// [`crate::RenderError::File`] naming the file that could not be written.
     pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>> {
         let mut written = Vec::new();
         for (name, bytes) in &self.files {

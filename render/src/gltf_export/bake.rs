@@ -84,7 +84,7 @@ impl SurfaceMaps {
 }
 
 /// The part of a texel a layer `mm` thick covers, as the lighting pass weighs its lobe
-/// (full from [`LAYER_FULL_COVERAGE_MM`]).
+/// (full from `LAYER_FULL_COVERAGE_MM`, 2 µm).
 pub fn layer_coverage(mm: f32) -> f32 {
     (mm / LAYER_FULL_COVERAGE_MM).clamp(0.0, 1.0)
 }
