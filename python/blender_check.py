@@ -24,7 +24,6 @@ import json
 import math
 import pathlib
 import subprocess
-import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
@@ -124,7 +123,7 @@ def run(cmd):
     subprocess.run([str(c) for c in cmd], check=True)
 
 
-def main() -> None:
+def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rouge", default="target/release/rouge")
     parser.add_argument("--blender-python", default="/work/venv-bpy/bin/python")
@@ -134,10 +133,10 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=64)
     parser.add_argument("--textures", default="2048")
     parser.add_argument("--blender-stage", nargs=4, metavar=("GLB", "VIEW", "ROUGE_EXR", "OUT_NPZ"), help=argparse.SUPPRESS)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if args.blender_stage:
         blender_stage(*args.blender_stage, samples=args.samples)
-        return
+        return {}
 
     import colour
     import numpy as np
@@ -185,6 +184,7 @@ def main() -> None:
     panels = [("Rouge (--subsurface none)", display(rouge_bg)), ("Blender Cycles (the .glb)", display(blender)),
               ("dE2000 (blue 0, red 10 or more)", heat(de, mask))]
     write_sheet(panels, stats, args.out)
+    return stats
 
 
 def read_exr_rgb(blender_python, exr, out_npy):
@@ -197,4 +197,4 @@ def read_exr_rgb(blender_python, exr, out_npy):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()
