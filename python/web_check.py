@@ -1,17 +1,18 @@
-"""three.js draws `rouge export web`'s page: the same view from Rouge and from the page in headless
-Chromium, side by side, with the CIEDE2000 between them (docs/images/web_threejs.png,
-docs/FORMATS.md "rouge export web").
+"""three.js draws `rouge export web`'s page: the page in headless Chromium beside
+`rouge render --lights front --subsurface none`'s PNG of the same view, with the CIEDE2000 between
+them (python/test_export_viewers.py holds it within a bound; docs/FORMATS.md §8.2).
 
 The page's view is Rouge's camera with one white directional light from the camera of
-irradiance π, which is `rouge render --lights front`; three.js has no subsurface scattering, so
-Rouge is drawn with `--subsurface none` (and, for the record, with its default screen-space
-subsurface scattering). The page is opened with `#embed` (the canvas alone, at the frame's size,
-the look) by tests/web/check.mjs (playwright-core driving Debian's chromium, SwiftShader's
-WebGL). Both images are 8-bit sRGB; ΔE2000 (colour-science) is taken over the pixels where both
-differ from their background.
+irradiance π, which is `rouge render --lights front`. The page is opened with `#embed` (the
+canvas alone, at the frame's size, the look) by tests/web/check.mjs (playwright-core driving
+Debian's chromium, SwiftShader's WebGL). Both images are 8-bit sRGB, and Rouge's PNG is its
+display frame, **tone-mapped**, so the distance includes Rouge's tone curve: a coarse check of
+the page (colour space, texture orientation, materials), cheap enough for CI. The viewers are
+measured in linear light by python/viewers_figure.py. ΔE2000 (colour-science) is taken over the
+pixels where both differ from their background.
 
     npm ci --prefix tests/web && apt-get install chromium
-    .venv/bin/python python/web_check.py --rouge target/debug/rouge [--out docs/images/web_threejs.png]
+    .venv/bin/python python/web_check.py --rouge target/debug/rouge [--out web_check.png]
 """
 
 import argparse
@@ -32,7 +33,7 @@ def run(cmd):
 def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rouge", default="target/debug/rouge")
-    parser.add_argument("--out", default="docs/images/web_threejs.png")
+    parser.add_argument("--out", default="web_check.png")
     parser.add_argument("--width", type=int, default=400)
     parser.add_argument("--height", type=int, default=300)
     parser.add_argument("--textures", default="1024")
