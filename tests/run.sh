@@ -6,7 +6,7 @@
 #      venv with the pinned packages of python/requirements.txt (colour-science, mpmath, numpy,
 #      pytest) in .venv/;
 #      the Khronos glTF-Validator (npm, tests/gltf/) and playwright-core (npm, tests/web/) when
-#      node and npm are there, and Debian's chromium for the share page's test (app/tests/web_cli.rs);
+#      node and npm are there, and Debian's chromium for the share page's test (app/tests/export_cli/web.rs);
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
 #      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
@@ -47,7 +47,7 @@ fi
 
 step "Khronos glTF-Validator (tests/gltf/) and playwright-core (tests/web/), pinned npm packages, for the export tests"
 # `npm ci` takes about 2 s (one package, no dependencies). Without node/npm, or offline, the
-# export tests skip the validator and print why (app/tests/gltf_cli.rs).
+# export tests skip the validator and print why (app/tests/export_cli/gltf.rs).
 if command -v npm >/dev/null 2>&1 && command -v node >/dev/null 2>&1; then
   (cd tests/gltf && timeout 60 npm ci --no-audit --no-fund --loglevel=error) \
     || echo "glTF-Validator not installed (npm ci failed): the glTF export tests skip it"

@@ -17,7 +17,7 @@ pub fn stderr(o: &Output) -> String {
 }
 
 /// The names in `dir`, sorted.
-#[allow(dead_code)] // not every test file lists a folder
+
 pub fn names(dir: &Path) -> Vec<String> {
     let mut n: Vec<String> =
         std::fs::read_dir(dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
