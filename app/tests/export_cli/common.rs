@@ -17,7 +17,6 @@ pub fn stderr(o: &Output) -> String {
 }
 
 /// The names in `dir`, sorted.
-
 pub fn names(dir: &Path) -> Vec<String> {
     let mut n: Vec<String> =
         std::fs::read_dir(dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
