@@ -24,7 +24,6 @@ import json
 import math
 import pathlib
 import subprocess
-import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
@@ -124,7 +123,7 @@ def run(cmd):
     subprocess.run([str(c) for c in cmd], check=True)
 
 
-def main() -> None:
+def main(argv=None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rouge", default="target/release/rouge")
     parser.add_argument("--blender-python", default="/work/venv-bpy/bin/python")
@@ -134,14 +133,15 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=64)
     parser.add_argument("--textures", default="2048")
     parser.add_argument("--blender-stage", nargs=4, metavar=("GLB", "VIEW", "ROUGE_EXR", "OUT_NPZ"), help=argparse.SUPPRESS)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if args.blender_stage:
         blender_stage(*args.blender_stage, samples=args.samples)
-        return
+        return {}
 
     import colour
     import numpy as np
-    from PIL import Image, ImageDraw
+    from PIL import Image
+    from side_by_side import heat, write_sheet
 
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
@@ -180,24 +180,11 @@ def main() -> None:
         v = np.where(v <= 0.0031308, 12.92 * v, 1.055 * np.power(v, 1 / 2.4) - 0.055)
         return Image.fromarray((v * 255 + 0.5).astype(np.uint8))
 
-    def heat(d, top=10.0):
-        t = np.clip(d / top, 0, 1)
-        rgb = np.stack([t, 1 - np.abs(2 * t - 1), 1 - t], axis=-1) * mask[..., None]
-        return Image.fromarray((rgb * 255 + 0.5).astype(np.uint8))
-
     rouge_bg = np.where(mask[..., None], rouge[..., :3], 0)
     panels = [("Rouge (--subsurface none)", display(rouge_bg)), ("Blender Cycles (the .glb)", display(blender)),
-              ("dE2000 (blue 0, red 10 or more)", heat(de))]
-    w, h = args.width, args.height
-    sheet = Image.new("RGB", (3 * w + 32, h + 52), "white")
-    draw = ImageDraw.Draw(sheet)
-    for i, (label, img) in enumerate(panels):
-        sheet.paste(img, (8 + i * (w + 8), 24))
-        draw.text((8 + i * (w + 8), 6), label, fill="black")
-    draw.text((8, h + 30), f"dE2000 over the head: mean {stats['delta_e_mean']:.2f}, median "
-              f"{stats['delta_e_median']:.2f}, p95 {stats['delta_e_p95']:.2f} ({stats['pixels']} px)", fill="black")
-    sheet.save(args.out)
-    pathlib.Path(args.out).with_suffix(".json").write_text(json.dumps(stats, indent=1) + "\n")
+              ("dE2000 (blue 0, red 10 or more)", heat(de, mask))]
+    write_sheet(panels, stats, args.out)
+    return stats
 
 
 def read_exr_rgb(blender_python, exr, out_npy):
@@ -210,4 +197,4 @@ def read_exr_rgb(blender_python, exr, out_npy):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -5,7 +5,8 @@
 #      apt-get when it is missing (sudo is used when not root), and a Python
 #      venv with the pinned packages of python/requirements.txt (colour-science, mpmath, numpy,
 #      pytest) in .venv/;
-#      the Khronos glTF-Validator (npm, tests/gltf/) when node and npm are there;
+#      the Khronos glTF-Validator (npm, tests/gltf/) and playwright-core (npm, tests/web/) when
+#      node and npm are there, and Debian's chromium for the share page's test (app/tests/export_cli/web.rs);
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
 #      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
@@ -21,8 +22,10 @@ cd "$(dirname "$0")/.."
 
 step() { printf '\n==> %s\n' "$*"; }
 
-step "System packages: Mesa Vulkan (lavapipe) and EGL/GL (llvmpipe) drivers, Vulkan loader, Xvfb"
-APT_PACKAGES="mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb"
+step "System packages: Mesa Vulkan (lavapipe) and EGL/GL (llvmpipe) drivers, Vulkan loader, Xvfb, Chromium"
+# chromium: `rouge export web`'s page opened from disk in headless Chromium (about 30 s to fetch
+# and unpack on a fresh machine).
+APT_PACKAGES="mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri xvfb chromium"
 missing=""
 for p in $APT_PACKAGES; do
   dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
@@ -42,14 +45,18 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements.txt
 
-step "Khronos glTF-Validator (npm gltf-validator, pinned in tests/gltf/package-lock.json) for the glTF export tests"
+step "Khronos glTF-Validator (tests/gltf/) and playwright-core (tests/web/), pinned npm packages, for the export tests"
 # `npm ci` takes about 2 s (one package, no dependencies). Without node/npm, or offline, the
-# export tests skip the validator and print why (app/tests/gltf_cli.rs).
+# export tests skip the validator and print why (app/tests/export_cli/gltf.rs).
 if command -v npm >/dev/null 2>&1 && command -v node >/dev/null 2>&1; then
   (cd tests/gltf && timeout 60 npm ci --no-audit --no-fund --loglevel=error) \
     || echo "glTF-Validator not installed (npm ci failed): the glTF export tests skip it"
+  # playwright-core drives Debian's chromium (no browser download); esbuild and three are only
+  # for bundling the page's script by hand (tests/web/bundle.mjs), hence --omit=dev.
+  (cd tests/web && timeout 60 npm ci --omit=dev --no-audit --no-fund --loglevel=error) \
+    || echo "playwright-core not installed (npm ci failed): the share page's test skips Chromium"
 else
-  echo "node/npm absent: the glTF export tests skip the glTF-Validator"
+  echo "node/npm absent: the glTF export tests skip the glTF-Validator, the share page's test Chromium"
 fi
 
 step "cargo fmt --check"

@@ -1,6 +1,6 @@
-//! `rouge._rouge`: the compiled core of the `rouge` Python package, binding `rouge-measure`
-//! (never the renderer). The public API, its colour-science adapters and stubs live in
-//! `py/python/rouge/`.
+//! `rouge._rouge`: the compiled core of the `rouge` Python package, binding `rouge-measure`, and
+//! with the `render` feature the renderer (`render.rs`: `Renderer`, `Look`). The public API, its
+//! colour-science adapters and stubs live in `py/python/rouge/`.
 
 use pyo3::prelude::*;
 
@@ -12,6 +12,8 @@ mod finish;
 mod formulate;
 mod io;
 mod km;
+#[cfg(feature = "render")]
+mod render;
 mod skin;
 
 #[pymodule]
@@ -26,5 +28,8 @@ fn _rouge(m: &Bound<'_, PyModule>) -> PyResult<()> {
     formulate::register(m)?;
     skin::register(m)?;
     finish::register(m)?;
+    #[cfg(feature = "render")]
+    render::register(m)?;
+    m.add("HAS_RENDER", cfg!(feature = "render"))?;
     Ok(())
 }

@@ -38,6 +38,8 @@ pub enum LookChoice {
     Bare,
     /// A look document.
     File(PathBuf),
+    /// A look already loaded (and perhaps edited): the Python package's `rouge.Look`.
+    Loaded(Box<Look>),
 }
 
 /// Everything a render needs, as the command line gives it.
@@ -237,9 +239,17 @@ impl RenderJob {
     /// # Errors
     /// A texture that cannot be loaded (named), or no GPU.
     pub fn prepare_loaded(&self, loaded: &Loaded) -> Result<Prepared> {
+        self.prepare_on(loaded, Gpu::headless()?)
+    }
+
+    /// [`RenderJob::prepare_loaded`] on a device already open (a long-lived renderer's: the
+    /// Python package draws every frame on one).
+    ///
+    /// # Errors
+    /// A texture that cannot be loaded (named), or what the renderer refuses.
+    pub fn prepare_on(&self, loaded: &Loaded, gpu: Gpu) -> Result<Prepared> {
         let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
         let SkinTextureImages { albedo, normal } = self.skin_textures()?;
-        let gpu = Gpu::headless()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
         renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
@@ -300,6 +310,7 @@ impl RenderJob {
             LookChoice::Default => Look::default_look(),
             LookChoice::Bare => Look::bare(),
             LookChoice::File(p) => Look::load(p)?,
+            LookChoice::Loaded(look) => (**look).clone(),
         };
         let mut scene = self.scene.clone();
         let env = self.env.as_deref().map(EnvMap::load_exr).transpose()?;
@@ -423,6 +434,44 @@ impl Prepared {
         self.renderer.render(&self.scene, &self.camera, self.size.0, self.size.1, false)?;
         self.renderer.read_linear()
     }
+}
+
+/// The skin of a tone, as `rouge render --skin-tone` gives it: `tone` a named tone of the spectral
+/// skin model or an ITA° (`None`: light), painted from skin maps when `maps` gives their
+/// conditions, seed and side (texels). Sets the scene's skin colour from the tone's spectrum
+/// (where a tone is named or maps are made) and returns the maps' recipe.
+///
+/// # Errors
+/// An unknown tone, an ITA outside the tones' span, a spectrum that cannot be made.
+pub fn skin_of_tone(
+    scene: &mut Scene,
+    tone: Option<&str>,
+    maps: Option<(rouge_model::skin::SkinConditions, u64, u32)>,
+) -> Result<Option<SkinRecipe>> {
+    use rouge_measure::skin::{SkinParams, skin_tone_or_ita};
+    let invalid = |e: &dyn std::fmt::Display| RenderError::Invalid(e.to_string());
+    let params = tone.map(skin_tone_or_ita).transpose().map_err(|e| invalid(&e))?;
+    // The recipe keeps a tone's name; an ITA is kept as its parameters only.
+    let tone_name = match tone {
+        None => Some("light".to_string()),
+        Some(spec) if spec.trim().parse::<f64>().is_err() => Some(spec.to_string()),
+        Some(_) => None,
+    };
+    let recipe = maps.map(|(conditions, seed, size_px)| SkinRecipe {
+        tone: tone_name,
+        base: params.unwrap_or(SkinParams::LIGHT),
+        conditions,
+        seed,
+        size_px,
+    });
+    if let Some(params) = recipe.as_ref().map(|r| r.base).or(params) {
+        let spectrum = params.reflectance().map_err(|e| invalid(&e))?;
+        scene.skin = crate::scene::Skin {
+            subsurface: scene.skin.subsurface.clone(),
+            ..crate::scene::Skin::from_spectrum(&spectrum)
+        };
+    }
+    Ok(recipe)
 }
 
 /// Writes RGBA8 pixels as a PNG, atomically.

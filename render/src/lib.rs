@@ -33,6 +33,7 @@ pub(crate) mod gpu_look;
 pub(crate) mod gpu_mesh;
 pub mod job;
 pub mod local_thickness;
+pub mod materialx_export;
 pub mod mitsuba;
 pub(crate) mod passes;
 pub mod profile_fit;

@@ -191,7 +191,7 @@ pub fn export(input: &ExportInput) -> Result<MitsubaScene> {
     let ExportInput { mesh, scene, camera, width, height, interior, spp, .. } = *input;
     let bounds = Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("empty mesh".into()))?;
     let radius = 0.5 * bounds.size().length();
-    let (near, far) = camera.clip_planes(radius.max(camera.distance * 0.02));
+    let (near, far) = camera.clip_planes_around(&bounds);
     let mut x = String::new();
     let _ = writeln!(x, "<!-- Written by `rouge export mitsuba` (Rouge {}). Units: mm. -->", env!("CARGO_PKG_VERSION"));
     x.push_str("<scene version=\"3.0.0\">\n");

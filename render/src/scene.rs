@@ -85,6 +85,12 @@ impl Camera {
         (near, self.distance + 1.5 * radius)
     }
 
+    /// [`Camera::clip_planes`] around a mesh with `bounds` (the renderer's, every export's).
+    pub fn clip_planes_around(&self, bounds: &Bounds) -> (f32, f32) {
+        let radius = 0.5 * bounds.size().length();
+        self.clip_planes(radius.max(self.distance * 0.02))
+    }
+
     /// Perspective projection for `aspect` (width / height), depth in [0, 1].
     pub fn projection(&self, aspect: f32, near: f32, far: f32) -> Mat4 {
         glam::camera::rh::proj::directx::perspective(self.fov_y_deg.to_radians(), aspect, near, far)

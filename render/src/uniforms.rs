@@ -90,8 +90,7 @@ pub struct FrameView {
 impl FrameView {
     /// The view of `camera` at `size` around a mesh with `bounds`.
     pub fn new(camera: &Camera, bounds: &Bounds, (width, height): (u32, u32)) -> FrameView {
-        let radius = 0.5 * bounds.size().length();
-        let (near, far) = camera.clip_planes(radius.max(camera.distance * 0.02));
+        let (near, far) = camera.clip_planes_around(bounds);
         let aspect = width as f32 / height as f32;
         let view_proj = camera.projection(aspect, near, far) * camera.view();
         FrameView { view_proj, near, far, focal_px: camera.focal_px(height) }

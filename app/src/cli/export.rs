@@ -1,6 +1,8 @@
 //! `rouge export mitsuba`: the scene `rouge render` draws, as a Mitsuba 3 scene (the ground truth
 //! of docs/TRANSLUCENCY.md); `rouge export gltf`: the head and its look as a glTF 2.0 asset for
-//! DCC tools, engines and browsers (docs/FORMATS.md, "Exported files").
+//! DCC tools, engines and browsers; `rouge export web` (`export_web`): a share page;
+//! `rouge export materialx`: the mesh as OBJ with an OpenPBR Surface material
+//! (docs/FORMATS.md, "Exported files").
 
 use crate::cli::render::scene_args::SceneArgs;
 use anyhow::{Context, Result, bail};
@@ -22,15 +24,50 @@ pub enum ExportCommand {
     /// Positions in metres (`rouge render --mesh FILE --mesh-scale 1000 --subdiv 0` reads it
     /// back). docs/FORMATS.md says what each file holds and what is lost.
     Gltf(GltfArgs),
+    /// A share page: DIR/index.html, one self-contained file that opens from disk in a browser
+    /// with no network: three.js draws the head as `export gltf` writes it, with a before/after
+    /// slider (the bare skin | the look) and the look's products.
+    Web(crate::cli::export_web::WebArgs),
+    /// The head as `rouge render` draws it with the same options as DIR/face.obj (mm) with an
+    /// OpenPBR Surface material in DIR/face.mtlx (MaterialX 1.39) over the look baked into
+    /// textures: base and subsurface colour, subsurface radius from the skin's medium or
+    /// profile, specular roughness and weight, a coat where a layer is a gloss.
+    Materialx(MaterialxArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MaterialxArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub textures: Textures,
+    /// Output folder (created): face.obj, face.mtlx and skin_*.png, each replaced atomically.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// The sides `--textures` takes, texels.
+pub const TEXTURE_SIDES: [&str; 5] = ["256", "512", "1024", "2048", "4096"];
+
+/// `--textures` of the exports that bake at 2048² by default.
+#[derive(Debug, Args)]
+pub struct Textures {
+    /// Side of the baked textures, texels.
+    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(TEXTURE_SIDES))]
+    pub textures: String,
+}
+
+/// `--textures SIDE` as texels (one of [`TEXTURE_SIDES`]).
+pub fn texture_px(side: &str) -> Result<u32> {
+    side.parse().with_context(|| format!("--textures {side}"))
 }
 
 #[derive(Debug, Args)]
 pub struct GltfArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Side of the baked textures, texels.
-    #[arg(long, default_value = "2048", value_parser = clap::builder::PossibleValuesParser::new(["256", "512", "1024", "2048", "4096"]))]
-    pub textures: String,
+    #[command(flatten)]
+    pub textures: Textures,
     /// Output: FILE.glb (one file, textures inside) or FILE.gltf (with FILE.bin and
     /// FILE_*.png beside it). Every file is replaced atomically.
     #[arg(long)]
@@ -83,12 +120,14 @@ pub fn run(cmd: &ExportCommand) -> Result<()> {
     match cmd {
         ExportCommand::Mitsuba(args) => run_mitsuba(args),
         ExportCommand::Gltf(args) => run_gltf(args),
+        ExportCommand::Web(args) => crate::cli::export_web::run(args),
+        ExportCommand::Materialx(args) => run_materialx(args),
     }
 }
 
 fn run_gltf(args: &GltfArgs) -> Result<()> {
     args.scene.check()?;
-    let texture_px: u32 = args.textures.parse().with_context(|| format!("--textures {}", args.textures))?;
+    let texture_px = texture_px(&args.textures.textures)?;
     match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("glb" | "gltf") => {}
         _ => bail!("--out {}: use FILE.glb (one file) or FILE.gltf (files beside it)", args.out.display()),
@@ -103,6 +142,30 @@ fn run_gltf(args: &GltfArgs) -> Result<()> {
         written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
         export.triangles,
         export.document.images.len(),
+        bytes as f64 / 1e6,
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn run_materialx(args: &MaterialxArgs) -> Result<()> {
+    args.scene.check()?;
+    let texture_px = texture_px(&args.textures.textures)?;
+    let mtlx = crate::cli::export_web::output_file(&args.out, rouge_render::materialx_export::MTLX_FILE)?;
+    let (job, _) = args.scene.render_job()?;
+    let start = std::time::Instant::now();
+    rouge_render::gltf_export::bake::check_texture_px(texture_px)?;
+    let loaded = job.load()?;
+    let images = job.skin_textures()?;
+    let export = rouge_render::materialx_export::export_materialx(&loaded, &images, texture_px)?;
+    let written = export.write(&args.out)?;
+    let bytes: u64 = written.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
+    eprintln!(
+        "rouge: wrote {} and {} other files ({} triangles, textures of {texture_px}², coat {}, {:.1} MB, {:.2} s)",
+        mtlx.display(),
+        written.len() - 1,
+        export.triangles,
+        if export.coat { "from a gloss layer" } else { "none" },
         bytes as f64 / 1e6,
         start.elapsed().as_secs_f64()
     );

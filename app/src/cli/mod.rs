@@ -7,6 +7,7 @@ pub mod analyze_plot;
 pub mod analyze_recipe;
 pub mod color;
 pub mod export;
+pub mod export_web;
 pub mod finish;
 pub mod import;
 pub mod km;

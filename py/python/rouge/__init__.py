@@ -53,6 +53,7 @@ from ._rouge import (
     specular_BRDF_Kelemen,
     working_wavelengths,
 )
+from ._render import HAS_RENDER, Look, Renderer, RenderingError, render
 from ._spectral import is_sd, spectra_in, spectral, to_msds
 
 __version__: str = _rouge.__version__
@@ -171,6 +172,11 @@ def measurement_to_msds(measurement: Measurement) -> Any:
 
 
 __all__ = [
+    "HAS_RENDER",
+    "Look",
+    "Renderer",
+    "RenderingError",
+    "render",
     "DETACH_MIN_LEN",
     "ILL_CONDITIONED_ABOVE",
     "ILLUMINANTS",

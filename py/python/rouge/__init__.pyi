@@ -207,3 +207,58 @@ def reflectance_thin_film_TiO2(
     film_nm: float, theta_deg: float, *, wavelengths: ArrayLike | None = None, binder_index: float = 1.5,
     core_index: float = 1.58,
 ) -> list[float]: ...
+
+# Rendering (the wheel's `render` feature; HAS_RENDER says whether this wheel has it).
+HAS_RENDER: bool
+
+class RenderingError(RougeError): ...
+
+class Look:
+    """A look document: layers bottom to top (preset, thickness, visible)."""
+    @staticmethod
+    def load(path: str | PathLike[str]) -> Look: ...
+    @staticmethod
+    def default_look() -> Look: ...
+    @staticmethod
+    def bare() -> Look: ...
+    name: str
+    @property
+    def layers(self) -> list[dict[str, Any]]: ...
+    def set_visible(self, index: int, visible: bool) -> None: ...
+    def set_thickness(self, index: int, thickness: dict[str, Any]) -> None: ...
+    def add_layer(self, preset: str, thickness: dict[str, Any], name: str | None = None) -> None: ...
+    def remove_layer(self, index: int) -> None: ...
+    def to_json(self) -> str: ...
+    def save(self, path: str | PathLike[str]) -> None: ...
+    def __len__(self) -> int: ...
+
+class Renderer:
+    """One GPU device, kept: every `render` draws on it (GIL released while drawing)."""
+    def __init__(self) -> None: ...
+    @property
+    def adapter(self) -> str: ...
+    def render(
+        self,
+        *,
+        mesh: str | PathLike[str] | None = None,
+        look: Look | str | PathLike[str] | None = None,
+        skin_tone: str | None = None,
+        expression: str | None = None,
+        width: int = 640,
+        height: int = 480,
+        linear: bool = False,
+        subdiv: int = 2,
+        yaw: float = 0.0,
+        pitch: float = 0.0,
+    ) -> npt.NDArray[Any]: ...
+
+def render(
+    mesh: str | PathLike[str] | None = None,
+    look: Look | str | PathLike[str] | None = None,
+    skin_tone: str | None = None,
+    expression: str | None = None,
+    width: int = 640,
+    height: int = 480,
+    linear: bool = False,
+    **options: Any,
+) -> npt.NDArray[Any]: ...

@@ -83,6 +83,12 @@ impl SurfaceMaps {
     }
 }
 
+/// The part of a texel a layer `mm` thick covers, as the lighting pass weighs its lobe
+/// (full from `LAYER_FULL_COVERAGE_MM`, 2 µm).
+pub fn layer_coverage(mm: f32) -> f32 {
+    (mm / LAYER_FULL_COVERAGE_MM).clamp(0.0, 1.0)
+}
+
 /// Refuses a texture side outside [`TEXTURE_PX_RANGE`].
 ///
 /// # Errors
@@ -226,7 +232,7 @@ fn texel_surface(skin: &SkinSurface<'_>, albedo: [f32; 3], layers: &[BakeLayer],
         let (r0, t) = (lookup(&l.table.r0, x), lookup(&l.table.t, x));
         rt.push((r0, t));
         let t_lum: f32 = (0..3).map(|c| LUMINANCE[c] * t[c].clamp(0.0, 1.0)).sum();
-        let coverage = (x / LAYER_FULL_COVERAGE_MM).clamp(0.0, 1.0);
+        let coverage = layer_coverage(x);
         let lobe = coverage * l.f0;
         weight = weight * t_lum * t_lum + lobe;
         weighted_roughness = weighted_roughness * t_lum * t_lum + lobe * l.beckmann_roughness;

@@ -211,9 +211,7 @@ impl Document {
     /// [`RenderError::File`] naming the file that could not be written, or `path` for another
     /// extension or a file name that is not UTF-8.
     pub fn write(&self, path: &Path) -> Result<Vec<PathBuf>> {
-        let write = |p: &Path, bytes: &[u8]| {
-            write_atomic(p, bytes).map_err(|e| RenderError::file(p, format!("cannot write: {e}")))
-        };
+        let write = write_file;
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("glb") => {
                 write(path, &self.glb_bytes())?;
@@ -245,16 +243,26 @@ impl Document {
     }
 }
 
+/// Writes `bytes` to `path` through a temporary file beside it and a rename (every exported
+/// file): a failed write leaves the previous file whole and no partial file.
+///
+/// # Errors
+/// [`RenderError::File`] naming `path`.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic(path, bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+}
+
 fn image_file_name(stem: &str, name: &str) -> String {
     format!("{stem}_{name}.png")
 }
 
-/// 8-bit texels (row 0 first) of `channels` 3 (RGB) or 4 (RGBA) per texel as a PNG file.
+/// 8-bit texels (row 0 first) of `channels` 1 (grey), 3 (RGB) or 4 (RGBA) per texel as a PNG file.
 ///
 /// # Errors
 /// [`RenderError::Invalid`] when the encoder refuses the image.
 pub fn encode_png((width, height): (u32, u32), texels: &[u8], channels: u8) -> Result<Vec<u8>> {
     let kind = match channels {
+        1 => image::ExtendedColorType::L8,
         3 => image::ExtendedColorType::Rgb8,
         _ => image::ExtendedColorType::Rgba8,
     };

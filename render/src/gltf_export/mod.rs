@@ -174,17 +174,10 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
 /// # Errors
 /// What [`export_gltf`] refuses.
 pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<GltfExport> {
-    let layers: Vec<LayerInput<'_>> =
-        loaded.look.visible_layers().map(|l| LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }).collect();
-    let skin = &loaded.scene.skin;
+    let layers: Vec<LayerInput<'_>> = loaded.look.visible_layers().map(layer_input).collect();
     export_gltf(&GltfInput {
         mesh: &loaded.mesh,
-        skin: SkinSurface {
-            albedo: skin.albedo,
-            albedo_map: images.albedo.as_ref(),
-            beckmann_roughness: skin.roughness,
-            ior: skin.ior,
-        },
+        skin: skin_surface(loaded, images),
         layers: &layers,
         normal_map: images.normal.as_ref(),
         texture_px,
@@ -192,12 +185,40 @@ pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u3
     })
 }
 
+/// The bare skin of a scene (no layer) baked at `texture_px`: its base colour as the PNG texture
+/// [`export_gltf`] writes (sRGB RGB8, rows in glTF's order) and glTF's roughness of its one lobe
+/// (the same everywhere). `rouge export web` shows it beside the look.
+///
+/// # Errors
+/// What [`bake_surface`] and the PNG encoder refuse.
+pub fn bare_skin_texture(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<(Vec<u8>, f32)> {
+    let surface = bake_surface(&skin_surface(loaded, images), &[], texture_px)?;
+    let png = encode_png(side(&surface), &base_color_texels(&surface), 3)?;
+    Ok((png, gltf_roughness(loaded.scene.skin.roughness)))
+}
+
+/// A look's layer as the bake takes it (its thickness as painted).
+pub(crate) fn layer_input(l: &rouge_model::look::LookLayer) -> LayerInput<'_> {
+    LayerInput { preset: &l.preset, map: &l.map, multiplier: 1.0 }
+}
+
+/// The skin of a loaded scene as the bake reads it.
+pub(crate) fn skin_surface<'a>(loaded: &Loaded, images: &'a SkinTextureImages) -> SkinSurface<'a> {
+    let skin = &loaded.scene.skin;
+    SkinSurface {
+        albedo: skin.albedo,
+        albedo_map: images.albedo.as_ref(),
+        beckmann_roughness: skin.roughness,
+        ior: skin.ior,
+    }
+}
+
 fn side(s: &SurfaceMaps) -> (u32, u32) {
     (s.side_px, s.side_px)
 }
 
 /// The mesh, refused without triangles or without a UV per vertex.
-fn checked(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMesh>> {
+pub(crate) fn checked(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMesh>> {
     if mesh.triangle_count() == 0 || mesh.uvs.len() != mesh.positions.len() {
         return Err(RenderError::Invalid(format!(
             "glTF export: the mesh has {} triangles and {} UVs for {} vertices (needs triangles and a UV per vertex)",
@@ -280,7 +301,7 @@ fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -
 }
 
 /// The base colour plane as sRGB-encoded RGB8.
-fn base_color_texels(s: &SurfaceMaps) -> Vec<u8> {
+pub(crate) fn base_color_texels(s: &SurfaceMaps) -> Vec<u8> {
     let lut: Vec<u8> = (0..4096).map(|i| (srgb_encode(i as f64 / 4095.0) * 255.0).round() as u8).collect();
     s.base_color.iter().flat_map(|c| c.map(|v| lut[(v.clamp(0.0, 1.0) * 4095.0).round() as usize])).collect()
 }

@@ -6,12 +6,11 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use rouge_measure::Extrapolation;
 use rouge_measure::analysis::skin::read_skins;
-use rouge_measure::skin::{SkinParams, skin_tone_or_ita};
 use rouge_model::look::{Look, ThicknessSource};
 use rouge_model::medium::Medium;
-use rouge_model::skin::{SkinConditions, SkinRecipe};
+use rouge_model::skin::SkinConditions;
 use rouge_render::diffusion::ProfileModel;
-use rouge_render::job::{FacePose, LookChoice, RenderJob};
+use rouge_render::job::{FacePose, LookChoice, RenderJob, skin_of_tone};
 use rouge_render::profile_fit::FittedProfile;
 use rouge_render::{LightRig, Scene, Skin};
 use std::path::PathBuf;
@@ -286,29 +285,11 @@ impl SceneArgs {
             };
             scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(spectrum) };
         }
-        let tone = match &self.skin_tone {
-            Some(spec) => Some(skin_tone_or_ita(spec).with_context(|| format!("--skin-tone {spec}"))?),
-            None => None,
-        };
-        // The recipe keeps a tone's name; an ITA is kept as its parameters only.
-        let tone_name = match &self.skin_tone {
-            None => Some("light".to_string()),
-            Some(spec) if spec.trim().parse::<f64>().is_err() => Some(spec.clone()),
-            Some(_) => None,
-        };
         let wants_maps =
             self.skin_maps || self.skin_conditions.is_some() || (maps_by_default && self.maps_by_default());
-        let skin_maps = wants_maps.then(|| SkinRecipe {
-            tone: tone_name,
-            base: tone.unwrap_or(SkinParams::LIGHT),
-            conditions: self.skin_conditions.unwrap_or_default(),
-            seed: self.skin_seed,
-            size_px: self.skin_map_px,
-        });
-        if let Some(params) = skin_maps.as_ref().map(|r| r.base).or(tone) {
-            let spectrum = params.reflectance().context("--skin-tone")?;
-            scene.skin = Skin { subsurface: scene.skin.subsurface.clone(), ..Skin::from_spectrum(&spectrum) };
-        }
+        let maps = wants_maps.then(|| (self.skin_conditions.unwrap_or_default(), self.skin_seed, self.skin_map_px));
+        let skin_maps = skin_of_tone(&mut scene, self.skin_tone.as_deref(), maps)
+            .with_context(|| format!("--skin-tone {}", self.skin_tone.as_deref().unwrap_or("light")))?;
         let mut fit = None;
         if let Some(medium) = self.medium()? {
             let (skin, fitted) = Skin::from_medium(&medium, self.profile.model());
@@ -352,6 +333,7 @@ impl SceneArgs {
             LookChoice::Default => true,
             LookChoice::Bare => false,
             LookChoice::File(p) => Look::load(p).is_ok_and(|l| regions(&l)),
+            LookChoice::Loaded(l) => regions(l),
         };
         if job.skin_maps.is_some() {
             eprintln!(

@@ -4,23 +4,12 @@
 //! error and no warning (skipped, saying so, without node or `npm ci --prefix tests/gltf`), and
 //! bad options and unwritable paths fail with a message and leave no file behind.
 
+use crate::common::{root, rouge, stderr};
 use rouge_model::mesh::{Bounds, load_mesh};
 use rouge_render::gltf_export::export_job;
 use rouge_render::job::{LookChoice, RenderJob};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-fn rouge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rouge")).args(args).current_dir(root()).output().expect("run rouge")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use std::path::Path;
+use std::process::Command;
 
 /// The scene options of the exports here: the default head at one subdivision level with the
 /// default look over the light tone's flat colour, textures of 256².
