@@ -370,7 +370,7 @@ pub(super) fn read_face(path: &Path) -> Result<FacePose> {
         return Ok(FacePose::default());
     };
     let targets = TargetSet::default_head().map_err(|e| ModelError::file(path, e))?;
-    targets.resolve(&file.face).map_err(|e| ModelError::file(path, e))?;
+    targets.resolve_named(&file.face, ["`expression`", "`shape`"]).map_err(|e| ModelError::file(path, e))?;
     Ok(file.face)
 }
 
