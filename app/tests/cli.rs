@@ -350,6 +350,34 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
 }
 
 #[test]
+fn a_mesh_that_cannot_be_read_ends_the_window_screenshot_with_its_error() {
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        eprintln!("skipped: xvfb-run is not installed (tests/run.sh installs xvfb)");
+        return;
+    }
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = dir.path().join("broken.obj");
+    std::fs::write(&mesh, "v 0 0 0\nv 1 0\n").expect("write");
+    let shot = dir.path().join("window.png");
+    // It waited for a face for ever: the timeout's 124 was the answer.
+    let o = Command::new("timeout")
+        .args(["120", "xvfb-run", "-a", "-s", "-screen 0 1280x800x24"])
+        .arg(env!("CARGO_BIN_EXE_rouge"))
+        .arg("--mesh")
+        .arg(&mesh)
+        .arg("--window-screenshot")
+        .arg(&shot)
+        .env("XDG_DATA_HOME", dir.path())
+        .env("WINIT_UNIX_BACKEND", "x11")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run xvfb-run");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("broken.obj:2:"), "{}", stderr(&o));
+    assert!(!shot.exists(), "no screenshot of an empty viewport");
+}
+
+#[test]
 fn without_a_gpu_driver_render_exits_2_with_the_package_to_install() {
     // Only Vulkan, and a Vulkan loader that finds no driver: no adapter at all.
     let out = std::env::temp_dir().join(format!("rouge-no-driver-{}.png", std::process::id()));
