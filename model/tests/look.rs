@@ -445,9 +445,12 @@ fn a_map_that_is_a_pipe_a_device_or_too_wide_is_refused_before_reading() {
     let made = std::process::Command::new("mkfifo").arg(&pipe).status().is_ok_and(|s| s.success());
     assert!(made, "mkfifo");
     for map in ["pipe.exr", "/dev/zero"] {
-        let e = load_err(dir.path(), &look_json(&[&format!(
-            r#"{{ "preset": "builtin:blush_01_petal", "thickness": {{ "map": "{map}", "scale_mm": 0.01 }} }}"#
-        )]));
+        let e = load_err(
+            dir.path(),
+            &look_json(&[&format!(
+                r#"{{ "preset": "builtin:blush_01_petal", "thickness": {{ "map": "{map}", "scale_mm": 0.01 }} }}"#
+            )]),
+        );
         assert!(e.contains(map) && e.contains("not a regular file"), "{e}");
     }
     // A PNG header claiming 100,000 × 1 pixels (no pixel data follows).
@@ -474,7 +477,9 @@ fn a_map_that_is_a_pipe_a_device_or_too_wide_is_refused_before_reading() {
     std::fs::write(dir.path().join("wide.png"), &png).unwrap();
     let e = load_err(
         dir.path(),
-        &look_json(&[r#"{ "preset": "builtin:blush_01_petal", "thickness": { "map": "wide.png", "scale_mm": 0.01 } }"#]),
+        &look_json(&[
+            r#"{ "preset": "builtin:blush_01_petal", "thickness": { "map": "wide.png", "scale_mm": 0.01 } }"#,
+        ]),
     );
     assert!(e.contains("100000×1 pixels") && e.contains("8192"), "{e}");
 }
