@@ -11,8 +11,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+/// A target's function: arbitrary bytes in, nothing out (a panic is the finding).
+pub type Target = fn(&[u8]);
+
 /// Every target: its name (the folder of its corpus) and the function it runs.
-pub const TARGETS: &[(&str, fn(&[u8]))] = &[
+pub const TARGETS: &[(&str, Target)] = &[
     ("measurement", measurement),
     ("preset", preset),
     ("look", look),
