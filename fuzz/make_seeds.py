@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the fuzz targets (fuzz/corpus/TARGET/) from the repository's data
+"""Writes the seeds of the fuzz targets' corpora (fuzz/corpus/TARGET/) from the repository's data
 and small files built here (uncompressed OpenEXR, 16-bit PNG, a one-triangle GLB and glTF).
 Run from anywhere: python3 fuzz/make_seeds.py. Standard library only."""
-import base64, json, shutil, struct, zlib
+import base64, json, struct, zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -81,7 +81,7 @@ def project_input(files):
 
 
 def main():
-    shutil.rmtree(CORPUS, ignore_errors=True)
+    # Writes (or rewrites) the seeds only: the files the fuzz runs added stay.
     def put(target, name, data):
         d = CORPUS / target
         d.mkdir(parents=True, exist_ok=True)
