@@ -33,6 +33,7 @@ fn every_corpus_file_is_an_answer_not_a_panic() {
             }
         }
     }
+    harness::remove_scratch();
     assert!(failures.is_empty(), "{} of {count} corpus files panicked:\n{}", failures.len(), failures.join("\n"));
 }
 

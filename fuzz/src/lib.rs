@@ -41,6 +41,12 @@ fn scratch() -> &'static Path {
     })
 }
 
+/// Deletes this process's scratch folder (the replay test, when it is done; a fuzzer's stays
+/// until it ends, in /dev/shm).
+pub fn remove_scratch() {
+    let _ = std::fs::remove_dir_all(scratch());
+}
+
 /// A fresh, empty sub-folder `name` of the scratch folder.
 fn fresh_dir(name: &str) -> PathBuf {
     let dir = scratch().join(name);
