@@ -315,25 +315,31 @@ fn render_writes_png_and_exr_and_bad_inputs_name_their_file() {
     assert!(stderr(&o).contains("face.bmp"), "{}", stderr(&o));
 }
 
-#[test]
-fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
+/// The app in a real window under Xvfb with `args`, its data in `data_dir`, ended after
+/// `timeout_s`; `None` (and a line saying so) without xvfb-run.
+fn app_under_xvfb(timeout_s: u32, data_dir: &Path, args: &[&std::ffi::OsStr]) -> Option<Output> {
     if Command::new("xvfb-run").arg("--help").output().is_err() {
         eprintln!("skipped: xvfb-run is not installed (tests/run.sh installs xvfb)");
-        return;
+        return None;
     }
-    let dir = tempfile::tempdir().expect("tempdir");
-    let shot = dir.path().join("window.png");
     let o = Command::new("timeout")
-        .args(["180", "xvfb-run", "-a", "-s", "-screen 0 1280x800x24"])
+        .args([&timeout_s.to_string(), "xvfb-run", "-a", "-s", "-screen 0 1280x800x24"])
         .arg(env!("CARGO_BIN_EXE_rouge"))
-        .arg("--window-screenshot")
-        .arg(&shot)
-        .env("XDG_DATA_HOME", dir.path())
+        .args(args)
+        .env("XDG_DATA_HOME", data_dir)
         .env("WINIT_UNIX_BACKEND", "x11")
         .env_remove("WAYLAND_DISPLAY")
         .current_dir(root())
         .output()
         .expect("run xvfb-run");
+    Some(o)
+}
+
+#[test]
+fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let shot = dir.path().join("window.png");
+    let Some(o) = app_under_xvfb(180, dir.path(), &["--window-screenshot".as_ref(), shot.as_ref()]) else { return };
     assert!(o.status.success(), "status {:?}\n{}", o.status, stderr(&o));
     let img = image::open(&shot).expect("the window screenshot").to_rgba8();
     assert!(img.width() >= 800 && img.height() >= 500, "{}×{}", img.width(), img.height());
@@ -347,6 +353,20 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
         })
         .count();
     assert!(skin > 20_000, "{skin} skin-coloured pixels in the window's centre");
+}
+
+#[test]
+fn a_mesh_that_cannot_be_read_ends_the_window_screenshot_with_its_error() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mesh = dir.path().join("broken.obj");
+    std::fs::write(&mesh, "v 0 0 0\nv 1 0\n").expect("write");
+    let shot = dir.path().join("window.png");
+    // It waited for a face for ever: the timeout's 124 was the answer.
+    let args = ["--mesh".as_ref(), mesh.as_ref(), "--window-screenshot".as_ref(), shot.as_ref()];
+    let Some(o) = app_under_xvfb(120, dir.path(), &args) else { return };
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("broken.obj:2:"), "{}", stderr(&o));
+    assert!(!shot.exists(), "no screenshot of an empty viewport");
 }
 
 #[test]

@@ -528,7 +528,10 @@ impl Preset {
     /// Reads and validates a preset file.
     pub fn load(path: &Path) -> Result<Preset, PresetError> {
         let p = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| PresetError::Io { path: p.clone(), source })?;
+        let io = |source| PresetError::Io { path: p.clone(), source };
+        let bytes = read_bounded(path, MAX_PRESET_FILE_BYTES).map_err(io)?;
+        let text = String::from_utf8(bytes)
+            .map_err(|e| io(std::io::Error::new(std::io::ErrorKind::InvalidData, format!("not UTF-8: {e}"))))?;
         Self::from_json(&text, &p)
     }
 
@@ -602,6 +605,37 @@ impl Preset {
         write_atomic(path, self.to_json().as_bytes())
             .map_err(|source| PresetError::Io { path: path.display().to_string(), source })
     }
+}
+
+/// Largest preset file read (bytes); a preset of the 401-wavelength grid is about 40 kB.
+pub const MAX_PRESET_FILE_BYTES: u64 = 16 << 20;
+
+/// Reads the regular file `path` whole, refusing anything else (a folder, a device such as
+/// `/dev/zero`, a pipe) and any file over `max_bytes` before reading it: files that other files
+/// name (a look's maps and presets, a project's skin maps, a glTF's buffers) come from wherever
+/// that file points, and a device never ends.
+///
+/// # Errors
+/// The I/O error, or [`std::io::ErrorKind::InvalidData`] naming the size or the kind of file.
+pub fn read_bounded(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+    // Asked before opening: opening a pipe blocks until something writes into it.
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(invalid("not a regular file".into()));
+    }
+    if meta.len() > max_bytes {
+        return Err(invalid(format!("{} bytes: more than the {max_bytes} allowed", meta.len())));
+    }
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // A file that grows while it is read stops at the limit all the same.
+    file.take(max_bytes + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(invalid(format!("more than the {max_bytes} bytes allowed")));
+    }
+    Ok(bytes)
 }
 
 /// Writes `bytes` to `path` through a temporary sibling file and a rename.

@@ -231,7 +231,10 @@ impl Medium {
                 return Err(format!(
                     "translucency {{distortion {}, power {}, scale {}, ambient {}}}: need finite values, power > 0, \
                      scale and ambient ≥ 0",
-                    t.distortion, t.power, t.scale, t.ambient
+                    short(t.distortion),
+                    short(t.power),
+                    short(t.scale),
+                    short(t.ambient)
                 ));
             }
         }

@@ -405,9 +405,13 @@ fn autosave_recovery_cycle() {
     // Painting on and autosaving again replaces the autosave; unchanged maps stay.
     paint(&mut doc, 2, TexelRect::new(0, 0, 8, 8), |_, _| 0.01);
     doc.autosave(&recovery).expect("autosave again");
-    let recovered = Document::open_project(&recovery).expect("recover");
+    let mut recovered = Document::open_recovery(&recovery).expect("recover");
     assert_same_layers(&recovered.layers, &doc.layers);
     assert_eq!(files_in(&recovery.join("maps")).len(), 3);
+    // Recovered work is unsaved work (it opened looking saved: no "•", and a close dropped it).
+    assert!(recovered.is_modified(), "a recovered document is modified until saved");
+    recovered.save_project(&tmp.path().join("saved")).expect("save");
+    assert!(!recovered.is_modified());
 
     Document::clear_recovery(&recovery).expect("clear");
     assert!(!Document::recovery_available(&recovery));

@@ -453,4 +453,52 @@ fn a_look_carries_its_mascara_and_checks_it() {
     let unknown = text.replace("\"volume\"", "\"colour\"");
     let e = Look::from_json(&unknown, path).expect_err("unknown field").to_string();
     assert!(e.contains("colour"), "{e}");
+
+/// A look names its maps by path, so they can be anything: a pipe blocked the open for ever and
+/// `/dev/zero` was read until memory ran out. Both are refused before a byte is read, and so
+/// is a map wider than the limit (its header read, its pixels never decoded).
+#[test]
+fn a_map_that_is_a_pipe_a_device_or_too_wide_is_refused_before_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let pipe = dir.path().join("pipe.exr");
+    let made = std::process::Command::new("mkfifo").arg(&pipe).status().is_ok_and(|s| s.success());
+    assert!(made, "mkfifo");
+    for map in ["pipe.exr", "/dev/zero"] {
+        let e = load_err(
+            dir.path(),
+            &look_json(&[&format!(
+                r#"{{ "preset": "builtin:blush_01_petal", "thickness": {{ "map": "{map}", "scale_mm": 0.01 }} }}"#
+            )]),
+        );
+        assert!(e.contains(map) && e.contains("not a regular file"), "{e}");
+    }
+    // A PNG header claiming 100,000 × 1 pixels (no pixel data follows).
+    let crc = |kind_data: &[u8]| {
+        let mut c = 0xffff_ffffu32;
+        for &b in kind_data {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 == 1 { (c >> 1) ^ 0xedb8_8320 } else { c >> 1 };
+            }
+        }
+        !c
+    };
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut chunk = |kind: &[u8], data: &[u8]| {
+        let kind_data = [kind, data].concat();
+        png.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        png.extend_from_slice(&kind_data);
+        png.extend_from_slice(&crc(&kind_data).to_be_bytes());
+    };
+    chunk(b"IHDR", &[&100_000u32.to_be_bytes()[..], &1u32.to_be_bytes(), &[16, 0, 0, 0, 0]].concat());
+    chunk(b"IDAT", &[]);
+    chunk(b"IEND", &[]);
+    std::fs::write(dir.path().join("wide.png"), &png).unwrap();
+    let e = load_err(
+        dir.path(),
+        &look_json(&[
+            r#"{ "preset": "builtin:blush_01_petal", "thickness": { "map": "wide.png", "scale_mm": 0.01 } }"#,
+        ]),
+    );
+    assert!(e.contains("100000×1 pixels") && e.contains("8192"), "{e}");
 }

@@ -254,6 +254,11 @@ fn the_face_is_saved_with_the_project() {
     std::fs::write(&path, "{\"format\": \"rouge-face\", \"version\": 1, \"expression\": {\"smle\": 1}}").expect("w");
     let err = Document::open_project(dir.path()).expect_err("unknown").to_string();
     assert!(err.contains(FACE_FILE) && err.contains("smile"), "{err}");
+    // In the file's words, not the command line's (it said `--expression`).
+    assert!(err.contains("`expression`") && !err.contains("--"), "{err}");
+    std::fs::write(&path, "{\"format\": \"rouge-face\", \"version\": 1, \"shape\": {\"age\": 7}}").expect("w");
+    let err = Document::open_project(dir.path()).expect_err("range").to_string();
+    assert!(err.contains("`shape`: age=7") && !err.contains("--"), "{err}");
     std::fs::write(&path, "{\"format\": \"rouge-face\",\n \"version\": 2}").expect("w");
     let err = Document::open_project(dir.path()).expect_err("version").to_string();
     assert!(err.contains("version 2"), "{err}");

@@ -142,6 +142,10 @@ fn builtin_media_load_and_bad_media_say_why() {
     std::fs::write(&path, misspelt).expect("write");
     let msg = Medium::load(&path).expect_err("unknown field").to_string();
     assert!(msg.contains("sigma_a_per_m") && msg.contains("unknown field"), "{msg}");
+    // A translucency entry out of its domain is said in few digits too (it printed 301).
+    std::fs::write(&path, good.replacen("\"power\": 1,", "\"power\": -1e300,", 1)).expect("write");
+    let msg = Medium::load(&path).expect_err("negative power").to_string();
+    assert!(msg.contains("power -1e300") && msg.len() < 400, "{msg}");
 }
 
 /// ∫₀^a f(r) 2πr dr by composite Simpson on r = a·t², which removes the kink of R at r = 0.

@@ -173,7 +173,7 @@ impl RougeApp {
         let (Some(surface), Some(c)) = (self.editor.surface().cloned(), self.camera()) else { return };
         let plane = self.editor.brush.plane(&surface);
         if self.view.plane_trace.as_ref().is_none_or(|(p, _)| *p != plane) {
-            self.view.plane_trace = Some((plane, plane.trace(&surface, 0.3)));
+            self.view.plane_trace = Some((plane, plane.trace(&surface, 1.0)));
         }
         let Some((_, trace)) = &self.view.plane_trace else { return };
         let eye = c.position();
@@ -182,7 +182,7 @@ impl RougeApp {
             if n.dot(eye - p) > 0.0
                 && let Some(s) = self.screen_pos_of(p)
             {
-                ui.painter().circle_filled(s, 1.2, colour);
+                ui.painter().circle_filled(s, 0.8, colour);
             }
         }
     }

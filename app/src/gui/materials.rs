@@ -124,7 +124,10 @@ impl Library {
         self.progress = (0, paths.len());
         std::thread::spawn(move || {
             for path in paths {
-                if tx.send(import_file(&path, thickness, extrapolate, &user_dir)).is_err() {
+                let what = format!("importing {}", path.display());
+                let result =
+                    crate::gui::session::caught(&what, || import_file(&path, thickness, extrapolate, &user_dir));
+                if tx.send(result).is_err() {
                     return;
                 }
             }

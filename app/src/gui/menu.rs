@@ -30,24 +30,22 @@ impl RougeApp {
         egui::MenuBar::new().ui(ui, |ui| {
             ui.menu_button("File", |ui| {
                 if ui.button("New project (default look)").clicked() {
-                    let c = self.editor.replace_document(Document::default_project());
-                    self.apply_change(c);
-                    self.apply_change(Change::Skin { rect: None });
+                    self.adopt_document(Document::default_project(), None);
                 }
                 if ui.button("Open project…").clicked()
-                    && let Some(dir) = rfd::FileDialog::new().pick_folder()
-                    && let Err(e) = self.open_project_from(&dir)
+                    && let Some(dir) = self.pick_folder_or_explain("Open project")
                 {
-                    self.ui.message = Some((false, format!("{e:#}")));
+                    self.open_project_or_say(&dir);
                 }
                 if ui.button("Save project").clicked()
-                    && let Some(dir) = self.options.project.clone().or_else(|| rfd::FileDialog::new().pick_folder())
+                    && let Some(dir) =
+                        self.options.project.clone().or_else(|| self.pick_folder_or_explain("Save project"))
                 {
                     let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
                     self.report(r);
                 }
                 if ui.button("Save project as…").clicked()
-                    && let Some(dir) = rfd::FileDialog::new().pick_folder()
+                    && let Some(dir) = self.pick_folder_or_explain("Save project as")
                 {
                     let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
                     self.report(r);

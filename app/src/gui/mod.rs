@@ -54,6 +54,9 @@ use std::sync::{Arc, mpsc};
 use std::time::{Duration, Instant};
 use viewport::{GpuState, ViewState};
 
+/// The status bar's height (points): one line, always.
+const STATUS_HEIGHT: f32 = 24.0;
+
 /// How often unsaved work is written to the recovery folder.
 pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(60);
 
@@ -133,6 +136,10 @@ struct UiState {
     mesh_name: String,
     /// Where the brush panel's Fill button fills.
     fill: brush::FillTarget,
+    /// An error to show in a dialog until dismissed (a project that cannot be opened).
+    error_dialog: Option<String>,
+    /// Open the Project folder section on the next frame (no file dialog came up).
+    show_project_folder: bool,
 }
 
 impl std::fmt::Debug for RougeApp {
@@ -152,10 +159,16 @@ impl RougeApp {
     /// Without eframe's wgpu renderer, or when the project cannot be opened.
     pub fn new(cc: &eframe::CreationContext<'_>, options: Options) -> Result<RougeApp> {
         let rs = cc.wgpu_render_state.as_ref().context("the app needs eframe's wgpu renderer")?;
-        let doc = match &options.project {
-            Some(dir) => Document::open_project(dir)?,
-            None => Document::default_project(),
+        // A project that cannot be opened is said in a dialog over the default project.
+        let (doc, error_dialog, project) = match &options.project {
+            Some(dir) => match Document::open_project(dir) {
+                Ok(doc) => (doc, None, Some(dir.clone())),
+                Err(e) => (Document::default_project(), Some(cannot_open(dir, &e.into())), None),
+            },
+            None => (Document::default_project(), None, None),
         };
+        let mut options = options;
+        options.project = project;
         let ui = UiState {
             message: None,
             rename_buffer: doc.layers.last().map(|l| l.name.clone()).unwrap_or_default(),
@@ -163,6 +176,8 @@ impl RougeApp {
             recovery_offer: options.autosave && Document::recovery_available(&options.recovery_dir()),
             mesh_name: "default head (hm08, CC0)".into(),
             fill: brush::FillTarget::Whole,
+            error_dialog,
+            show_project_folder: false,
         };
         let mut app = RougeApp {
             editor: Editor::new(doc),
@@ -243,6 +258,26 @@ impl RougeApp {
         &mut self.library
     }
 
+    /// What the layers panel's Rename field holds.
+    pub fn rename_field(&self) -> &str {
+        &self.ui.rename_buffer
+    }
+
+    /// The project folder File ▸ Save project writes into (none: it asks).
+    pub fn project_folder(&self) -> Option<&Path> {
+        self.options.project.as_deref()
+    }
+
+    /// The status line's thickness readout (mm), while the cursor is over the face.
+    pub fn thickness_under_cursor(&self) -> Option<f32> {
+        self.view.hover_mm
+    }
+
+    /// The error dialog's text, while one is shown.
+    pub fn error_dialog(&self) -> Option<&str> {
+        self.ui.error_dialog.as_deref()
+    }
+
     /// The last message shown (ok, text).
     pub fn message(&self) -> Option<&(bool, String)> {
         self.ui.message.as_ref()
@@ -276,9 +311,23 @@ impl RougeApp {
         self.options.project = Some(dir.to_owned());
         self.ui.project_path = dir.display().to_string();
         if self.options.autosave {
-            let _ = Document::clear_recovery(&self.options.recovery_dir());
+            self.clear_autosave();
         }
         Ok(())
+    }
+
+    /// Makes `doc` the document (opened, recovered or new), belonging to the project folder
+    /// `project`: the layer list, the Rename field, the project folder field, the face and the
+    /// skin maps all follow it.
+    fn adopt_document(&mut self, doc: Document, project: Option<PathBuf>) {
+        let change = self.editor.replace_document(doc);
+        self.ui.project_path = project.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
+        self.options.project = project;
+        self.ui.rename_buffer =
+            self.editor.document().layers.get(self.editor.active()).map(|l| l.name.clone()).unwrap_or_default();
+        self.apply_change(change);
+        self.apply_change(Change::Skin { rect: None });
+        self.pose_from_document();
     }
 
     /// Opens the project in `dir`, replacing the document.
@@ -287,13 +336,29 @@ impl RougeApp {
     /// As [`Document::open_project`]; the current document is kept on error.
     pub fn open_project_from(&mut self, dir: &Path) -> Result<()> {
         let doc = Document::open_project(dir)?;
-        let change = self.editor.replace_document(doc);
-        self.options.project = Some(dir.to_owned());
-        self.ui.project_path = dir.display().to_string();
-        self.apply_change(change);
-        self.apply_change(Change::Skin { rect: None });
-        self.pose_from_document();
+        self.adopt_document(doc, Some(dir.to_owned()));
         Ok(())
+    }
+
+    /// The viewport's size on screen (points), as the last frame laid it out.
+    pub fn viewport_size(&self) -> Vec2 {
+        self.view.rect.size()
+    }
+
+    /// The status line's message, on one line (cut short with "…"; the whole text on hover).
+    fn status_message(&self, ui: &mut egui::Ui) {
+        let (colour, text) = match &self.ui.message {
+            Some((true, m)) => (Color32::LIGHT_GREEN, m.as_str()),
+            Some((false, m)) => (Color32::LIGHT_RED, m.as_str()),
+            None => (
+                ui.visuals().text_color(),
+                "Left drag: paint · Shift+click: straight line · [ ] or F: size · Alt+drag / right drag: orbit · \
+                 Shift+right / middle drag: pan · wheel: zoom · Home: reset view",
+            ),
+        };
+        ui.with_layout(egui::Layout::left_to_right(egui::Align::Center), |ui| {
+            ui.add(egui::Label::new(egui::RichText::new(text).color(colour)).truncate()).on_hover_text(text);
+        });
     }
 
     /// Sets layer `i`'s whole map to zero thickness, as one undo step (e.g. to repaint the
@@ -342,23 +407,19 @@ impl eframe::App for RougeApp {
         self.animate_morph(ui.ctx());
         self.autosave();
         egui::Panel::top("menu").show(ui, |ui| self.menu(ui));
-        egui::Panel::bottom("status").show(ui, |ui| {
-            ui.horizontal(|ui| match &self.ui.message {
-                Some((true, m)) => {
-                    ui.colored_label(Color32::LIGHT_GREEN, m);
-                }
-                Some((false, m)) => {
-                    ui.colored_label(Color32::LIGHT_RED, m);
-                }
-                None => {
-                    ui.label("Left drag: paint · Shift+click: straight line · [ ] or F: size · Alt+drag / right drag: orbit · Shift+right / middle drag: pan · wheel: zoom · Home: reset view");
+        // One row, whatever it shows: a second row for the thickness readout, or a wrapped
+        // message, made the viewport jump by a line as the cursor crossed the face.
+        egui::Panel::bottom("status").exact_size(STATUS_HEIGHT).show(ui, |ui| {
+            ui.horizontal_centered(|ui| {
+                if let Some(mm) = self.view.hover_mm {
+                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                        ui.monospace(format!("active layer under the cursor: {:.1} µm", mm * 1000.0));
+                        self.status_message(ui);
+                    });
+                } else {
+                    self.status_message(ui);
                 }
             });
-            if let Some(mm) = self.view.hover_mm {
-                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                    ui.monospace(format!("active layer under the cursor: {:.1} µm", mm * 1000.0));
-                });
-            }
         });
         egui::Panel::left("layers").default_size(270.0).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
@@ -382,6 +443,7 @@ impl eframe::App for RougeApp {
         egui::Panel::right("materials").default_size(320.0).show(ui, |ui| self.materials_panel(ui));
         egui::CentralPanel::default().show(ui, |ui| self.viewport_ui(ui));
         self.recovery_ui(ui);
+        self.error_dialog_ui(ui);
         self.window_screenshot(ui.ctx());
     }
 
@@ -391,13 +453,17 @@ impl eframe::App for RougeApp {
         }
         // Unsaved work survives a close as an autosave (offered at the next start); a saved
         // document leaves nothing to recover.
-        let dir = self.options.recovery_dir();
         if self.editor.document().is_modified() {
-            let _ = self.editor.document_mut().autosave(&dir);
+            let _ = self.write_autosave();
         } else {
-            let _ = Document::clear_recovery(&dir);
+            self.clear_autosave();
         }
     }
+}
+
+/// "Cannot open the project DIR", and why, in the app's words.
+fn cannot_open(dir: &Path, e: &anyhow::Error) -> String {
+    format!("Rouge cannot open the project folder {}.\n\n{e:#}\n\nThe default project is open instead.", dir.display())
 }
 
 /// Opens the app in a window.

@@ -3,6 +3,36 @@
 
 use super::*;
 
+/// `work`'s answer, or, when it panics, an error naming `what` and the panic's message: a panic
+/// in a worker thread is a message in the window, never a thread that silently stops (which
+/// left an empty viewport, and `--window-screenshot` waiting for ever).
+pub(crate) fn caught<T>(what: &str, work: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)).unwrap_or_else(|payload| {
+        let why = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into());
+        Err(format!("{what} failed with an internal error (a bug in Rouge, please report it): {why}"))
+    })
+}
+
+/// Runs `work` on a new thread; its answer (or its panic, through [`caught`]) arrives on the
+/// receiver.
+pub(super) fn spawn_job<T: Send + 'static>(
+    what: String,
+    work: impl FnOnce() -> Result<T, String> + Send + 'static,
+) -> mpsc::Receiver<Result<T, String>> {
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(caught(&what, work));
+    });
+    rx
+}
+
+/// The file in the recovery folder naming the project folder the autosaved work belongs to.
+const RECOVERED_FROM_FILE: &str = "project-folder.txt";
+
 /// A mesh being prepared on a worker thread: triangles for the renderer, surface map for the brush.
 type Prepared = Result<(TriangleMesh, Arc<SurfaceMap>), String>;
 
@@ -16,11 +46,13 @@ pub(super) struct Jobs {
     frames_shown: u32,
     /// The window screenshot being written.
     screenshot: Option<mpsc::Receiver<Result<(), String>>>,
+    /// The last mesh could not be prepared (nothing to draw until another one is).
+    mesh_failed: bool,
 }
 
 impl Default for Jobs {
     fn default() -> Self {
-        Jobs { preparing: None, last_autosave: Instant::now(), frames_shown: 0, screenshot: None }
+        Jobs { preparing: None, last_autosave: Instant::now(), frames_shown: 0, screenshot: None, mesh_failed: false }
     }
 }
 
@@ -37,18 +69,14 @@ impl Jobs {
 
 impl RougeApp {
     pub(super) fn start_mesh(&mut self, path: Option<PathBuf>, scale: f32) {
-        let (tx, rx) = mpsc::channel();
         let label = path.as_ref().map_or("default head".to_string(), |p| p.display().to_string());
         self.face.on_default_head = path.is_none();
-        std::thread::spawn(move || {
-            let result = (|| -> Result<(TriangleMesh, Arc<SurfaceMap>), String> {
-                let mesh =
-                    load_mesh(path.as_deref(), scale, if path.is_some() { 0 } else { 2 }).map_err(|e| e.to_string())?;
-                let size = rouge_model::document::MAP_SIZE;
-                let surface = SurfaceMap::build(&mesh, size, size);
-                Ok((mesh, Arc::new(surface)))
-            })();
-            let _ = tx.send(result);
+        let rx = spawn_job(format!("preparing the mesh {label}"), move || {
+            let mesh =
+                load_mesh(path.as_deref(), scale, if path.is_some() { 0 } else { 2 }).map_err(|e| e.to_string())?;
+            let size = rouge_model::document::MAP_SIZE;
+            let surface = SurfaceMap::build(&mesh, size, size);
+            Ok((mesh, Arc::new(surface)))
         });
         self.jobs.preparing = Some((label, rx));
     }
@@ -77,7 +105,10 @@ impl RougeApp {
                 self.ui.mesh_name = label;
                 self.pose_from_document();
             }
-            Err(e) => self.ui.message = Some((false, e)),
+            Err(e) => {
+                self.jobs.mesh_failed = true;
+                self.ui.message = Some((false, e));
+            }
         }
         true
     }
@@ -92,14 +123,17 @@ impl RougeApp {
             ui.label(format!("Rouge did not close cleanly last time. An autosave is in {}.", dir.display()));
             ui.horizontal(|ui| {
                 if ui.button("Recover").clicked() {
-                    match Document::open_project(&dir) {
+                    match Document::open_recovery(&dir) {
                         Ok(doc) => {
-                            let c = self.editor.replace_document(doc);
-                            self.apply_change(c);
-                            self.apply_change(Change::Skin { rect: None });
-                            self.pose_from_document();
+                            // The work goes on in the project it came from, when it had one.
+                            let project = std::fs::read_to_string(dir.join(RECOVERED_FROM_FILE))
+                                .ok()
+                                .map(|p| PathBuf::from(p.trim()))
+                                .filter(|p| !p.as_os_str().is_empty());
+                            self.adopt_document(doc, project);
+                            self.ui.message = Some((true, "recovered the unsaved work (not saved yet)".into()));
                         }
-                        Err(e) => self.ui.message = Some((false, e.to_string())),
+                        Err(e) => self.ui.message = Some((false, format!("cannot recover the autosave: {e}"))),
                     }
                     self.ui.recovery_offer = false;
                 }
@@ -111,10 +145,58 @@ impl RougeApp {
         });
     }
 
+    /// The error dialog ([`UiState::error_dialog`]), until OK.
+    pub(super) fn error_dialog_ui(&mut self, ui: &mut egui::Ui) {
+        let Some(text) = self.ui.error_dialog.clone() else { return };
+        egui::Modal::new(egui::Id::unique("rouge error dialog")).show(ui.ctx(), |ui| {
+            ui.set_max_width(520.0);
+            ui.heading("Cannot open the project");
+            ui.label(text);
+            if ui.button("OK").clicked() {
+                self.ui.error_dialog = None;
+            }
+        });
+    }
+
+    /// Opens the project in `dir`; an error goes to the error dialog (the document is kept).
+    pub(super) fn open_project_or_say(&mut self, dir: &Path) {
+        match self.open_project_from(dir) {
+            Ok(()) => self.ui.message = Some((true, format!("opened {}", dir.display()))),
+            Err(e) => {
+                self.ui.error_dialog =
+                    Some(cannot_open(dir, &e).replace("The default project is open instead.", "Nothing was changed."))
+            }
+        }
+    }
+
+    /// A folder from the file dialog; when none comes back (cancelled, or no dialog could be
+    /// shown: without a desktop portal rfd only logs), the status line says where to type one
+    /// and the Project folder section opens.
+    pub(super) fn pick_folder_or_explain(&mut self, purpose: &str) -> Option<PathBuf> {
+        let dir = rfd::FileDialog::new().set_title(purpose).pick_folder();
+        if dir.is_none() {
+            self.ui.message = Some((
+                false,
+                format!(
+                    "{purpose}: no folder was chosen. If no dialog appeared (this system has no file dialog), \
+                     type the folder under Project folder in the left panel and use its buttons."
+                ),
+            ));
+            self.ui.show_project_folder = true;
+        }
+        dir
+    }
+
     /// With `Options::window_screenshot`: once the face has been shown for a few frames, asks
     /// the window for a screenshot, writes it, and closes the window.
     pub(super) fn window_screenshot(&mut self, ctx: &egui::Context) {
         let Some(path) = self.options.window_screenshot.clone() else { return };
+        if self.jobs.mesh_failed && !self.jobs.preparing() {
+            // No face will be drawn: say why and fail, rather than wait for ever.
+            let why = self.ui.message.as_ref().map_or("the mesh could not be prepared", |(_, m)| m.as_str());
+            eprintln!("rouge: --window-screenshot: nothing to show: {why}");
+            std::process::exit(2);
+        }
         if self.ready() && self.gpu.has_frame() {
             self.jobs.frames_shown += 1;
         }
@@ -150,22 +232,44 @@ impl RougeApp {
             return;
         }
         self.jobs.last_autosave = Instant::now();
-        if let Err(e) = self.editor.document_mut().autosave(&self.options.recovery_dir()) {
+        if let Err(e) = self.write_autosave() {
             self.ui.message = Some((false, format!("autosave failed: {e}")));
         }
     }
 
+    /// Writes the autosave, and beside it the project folder the work belongs to.
+    pub(super) fn write_autosave(&mut self) -> Result<()> {
+        let dir = self.options.recovery_dir();
+        self.editor.document_mut().autosave(&dir)?;
+        let from = dir.join(RECOVERED_FROM_FILE);
+        match &self.options.project {
+            Some(p) => rouge_measure::preset::write_atomic(&from, p.display().to_string().as_bytes())
+                .with_context(|| format!("{}", from.display()))?,
+            None => {
+                let _ = std::fs::remove_file(&from);
+            }
+        }
+        Ok(())
+    }
+
+    /// Clears the autosave (after a save, or a close with nothing unsaved).
+    pub(super) fn clear_autosave(&self) {
+        let dir = self.options.recovery_dir();
+        let _ = Document::clear_recovery(&dir);
+        let _ = std::fs::remove_file(dir.join(RECOVERED_FROM_FILE));
+    }
+
     /// The typed project folder, for machines without a file dialog (left panel).
     pub(super) fn project_folder_panel(&mut self, ui: &mut egui::Ui) {
-        egui::CollapsingHeader::new("Project folder").default_open(false).show(ui, |ui| {
+        let open = std::mem::take(&mut self.ui.show_project_folder).then_some(true);
+        egui::CollapsingHeader::new("Project folder").default_open(false).open(open).show(ui, |ui| {
             ui.label("Typed path, for machines without a file dialog");
             ui.text_edit_singleline(&mut self.ui.project_path);
             ui.horizontal(|ui| {
                 let dir = PathBuf::from(self.ui.project_path.trim());
                 let has = !self.ui.project_path.trim().is_empty();
                 if ui.add_enabled(has, egui::Button::new("Open")).clicked() {
-                    let r = self.open_project_from(&dir).map(|()| format!("opened {}", dir.display()));
-                    self.report(r);
+                    self.open_project_or_say(&dir);
                 }
                 if ui.add_enabled(has, egui::Button::new("Save")).clicked() {
                     let r = self.save_project_to(&dir).map(|()| format!("saved {}", dir.display()));
@@ -173,5 +277,22 @@ impl RougeApp {
                 }
             });
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panicking_job_answers_with_an_error_naming_the_job_and_the_panic() {
+        let rx = spawn_job("preparing the mesh x.glb".into(), || -> Result<(), String> {
+            let empty: Vec<u32> = Vec::new();
+            Err(format!("{}", empty[3])) // index out of bounds, as gltf-json did
+        });
+        let answer = rx.recv_timeout(Duration::from_secs(10)).expect("an answer, not a stopped thread");
+        let e = answer.expect_err("an error");
+        assert!(e.contains("preparing the mesh x.glb") && e.contains("index out of bounds"), "{e}");
+        assert_eq!(caught("x", || Ok::<_, String>(7)), Ok(7));
     }
 }

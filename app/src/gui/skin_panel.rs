@@ -149,10 +149,7 @@ impl RougeApp {
     }
 
     fn start_skin_job(&mut self, what: String, job: impl FnOnce() -> Result<ProjectSkin, String> + Send + 'static) {
-        let (tx, rx) = mpsc::channel();
-        std::thread::spawn(move || {
-            let _ = tx.send(job());
-        });
+        let rx = super::session::spawn_job(format!("making the skin maps ({what})"), job);
         // A newer wish replaces one still running (its answer is dropped).
         self.skin.generating = Some((what, rx));
     }

@@ -208,11 +208,9 @@ impl RougeApp {
             return;
         }
         self.skin.stale = false;
-        let (tx, rx) = mpsc::channel();
         let (units, follows, cached) = (self.skin.units.clone(), self.skin.blood_follows, self.skin.table.clone());
-        std::thread::spawn(move || {
-            let _ = tx.send(bake_full(skin, units, follows, cached));
-        });
+        let rx =
+            super::session::spawn_job("baking the skin maps".into(), move || bake_full(skin, units, follows, cached));
         self.skin.bake = Some(rx);
     }
 

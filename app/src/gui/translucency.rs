@@ -117,13 +117,12 @@ impl RougeApp {
             && matches!(self.gpu.local_thickness, LocalThicknessState::Missing)
             && let Some(mesh) = self.gpu.mesh_for_bake()
         {
-            let (tx, rx) = mpsc::channel();
             let settings = match thickness_model(true) {
                 SubsurfaceModel::Thickness { source: ThicknessSource::Baked(s), .. } => s,
                 _ => rouge_model::thickness::BakeSettings::default(),
             };
-            std::thread::spawn(move || {
-                let _ = tx.send(bake_thickness_map(&mesh, &settings).map(|(map, _)| map).map_err(|e| e.to_string()));
+            let rx = super::session::spawn_job("baking the local thickness".into(), move || {
+                bake_thickness_map(&mesh, &settings).map(|(map, _)| map).map_err(|e| e.to_string())
             });
             self.gpu.local_thickness = LocalThicknessState::Baking(rx);
         }

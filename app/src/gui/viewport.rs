@@ -71,7 +71,8 @@ impl Default for ViewState {
             rect: Rect::NOTHING,
             needs_render: true,
             framing: None,
-            show_plane: true,
+            // Drawn on request only: on by default it was a thick cyan line down the face.
+            show_plane: false,
             plane_trace: None,
             hover_world: None,
             hover_mm: None,

@@ -105,6 +105,15 @@ impl Document {
         write_project(self, dir)
     }
 
+    /// Opens the autosave in `dir` as [`Document::open_project`] does, as unsaved work: the
+    /// document is modified (its title says so, and closing without saving keeps it for the
+    /// next recovery) until it is saved.
+    pub fn open_recovery(dir: &Path) -> Result<Document> {
+        let mut doc = Document::open_project(dir)?;
+        doc.history.saved_id = None;
+        Ok(doc)
+    }
+
     /// Whether `dir` holds an autosave that was not cleared (open it with
     /// [`Document::open_project`]).
     pub fn recovery_available(dir: &Path) -> bool {
@@ -370,7 +379,7 @@ pub(super) fn read_face(path: &Path) -> Result<FacePose> {
         return Ok(FacePose::default());
     };
     let targets = TargetSet::default_head().map_err(|e| ModelError::file(path, e))?;
-    targets.resolve(&file.face).map_err(|e| ModelError::file(path, e))?;
+    targets.resolve_named(&file.face, ["`expression`", "`shape`"]).map_err(|e| ModelError::file(path, e))?;
     Ok(file.face)
 }
 

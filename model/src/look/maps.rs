@@ -107,6 +107,27 @@ impl ThicknessMap {
     }
 }
 
+/// Widest and tallest thickness map, mask or skin map read (pixels), checked in the file's header
+/// before its pixels are decoded: maps are resampled to the document's 2048² anyway.
+pub const MAX_MAP_SIDE_PX: u32 = 8192;
+/// Largest map, mask or skin-map file read (bytes), checked before it is read: 8192² texels
+/// of five 32-bit channels, uncompressed, fit.
+pub const MAX_MAP_FILE_BYTES: u64 = 1 << 31;
+
+/// Reads a map file named by a look or a project ([`rouge_measure::preset::read_bounded`] with
+/// [`MAX_MAP_FILE_BYTES`]).
+pub(crate) fn read_map_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    rouge_measure::preset::read_bounded(path, MAX_MAP_FILE_BYTES)
+}
+
+/// Refuses a `width × height` image past [`MAX_MAP_SIDE_PX`].
+fn check_side(width: u32, height: u32) -> std::result::Result<(), String> {
+    if width > MAX_MAP_SIDE_PX || height > MAX_MAP_SIDE_PX {
+        return Err(format!("{width}×{height} pixels: a map is at most {MAX_MAP_SIDE_PX} pixels on a side"));
+    }
+    Ok(())
+}
+
 /// The first channel of a PNG as values in [0, 1] (value / max for 8- and 16-bit images).
 pub(crate) fn decode_png_unit(bytes: &[u8]) -> std::result::Result<ThicknessMap, String> {
     use image::DynamicImage as D;
@@ -118,8 +139,16 @@ pub(crate) fn decode_png_unit(bytes: &[u8]) -> std::result::Result<ThicknessMap,
         };
         return Err(format!("not a PNG file ({}{signature})", describe_start(bytes)));
     }
-    let img = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
-        .map_err(|e| format!("not a readable PNG file ({e})"))?;
+    let unreadable = |e: image::ImageError| format!("not a readable PNG file ({e})");
+    let reader = || image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
+    let (w, h) = reader().into_dimensions().map_err(unreadable)?;
+    check_side(w, h)?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_MAP_SIDE_PX);
+    limits.max_image_height = Some(MAX_MAP_SIDE_PX);
+    let mut reader = reader();
+    reader.limits(limits);
+    let img = reader.decode().map_err(unreadable)?;
     let (width, height) = (img.width(), img.height());
     pub(super) fn first<T: Copy + Into<f32>>(raw: &[T], channels: usize, max: f32) -> Vec<f32> {
         raw.iter().step_by(channels).map(|&v| v.into() / max).collect()
@@ -186,6 +215,12 @@ pub(crate) struct ExrChannels {
 /// file is unreadable.
 pub(crate) fn read_exr_channels(bytes: &[u8]) -> std::result::Result<ExrChannels, String> {
     use exr::prelude::{ReadChannels, ReadLayers, read};
+    let unreadable = |e: exr::error::Error| format!("not a readable OpenEXR file ({e})");
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false).map_err(unreadable)?;
+    for header in &meta.headers {
+        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        check_side(side(header.layer_size.width()), side(header.layer_size.height()))?;
+    }
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -193,7 +228,7 @@ pub(crate) fn read_exr_channels(bytes: &[u8]) -> std::result::Result<ExrChannels
         .first_valid_layer()
         .all_attributes()
         .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| format!("not a readable OpenEXR file ({e})"))?;
+        .map_err(unreadable)?;
     let layer = image.layer_data;
     let (w, h) = (layer.size.width(), layer.size.height());
     let mut channels = Vec::with_capacity(layer.channel_data.list.len());

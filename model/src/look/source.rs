@@ -140,7 +140,7 @@ impl ThicknessSource {
     pub(super) fn resolve(&self, base_dir: &Path) -> std::result::Result<ThicknessMap, String> {
         let read = |what: &str, p: &Path| {
             let full = resolve_path(base_dir, p);
-            std::fs::read(&full)
+            read_map_file(&full)
                 .map_err(|e| format!("{what} {:?}: cannot read {}: {e}", p.display().to_string(), full.display()))
         };
         match self {

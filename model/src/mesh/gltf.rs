@@ -16,6 +16,9 @@ fn gltf_err(path: &Path, message: impl Into<String>) -> MeshError {
 pub const MAX_NODE_DEPTH: usize = 64;
 /// Most node placements a scene may make (each reference of a node, and of its children, counts).
 pub const MAX_NODE_INSTANCES: usize = 10_000;
+/// Largest external buffer file read (bytes), checked before it is read (5,000,000 triangles
+/// with positions, normals, UVs and indices take about 200 MB).
+pub const MAX_BUFFER_BYTES: u64 = 1 << 30;
 /// Most triangles a glTF mesh may place, before subdivision.
 pub const MAX_TRIANGLES: usize = 5_000_000;
 
@@ -97,7 +100,8 @@ fn load_buffers(doc: &gltf::Document, blob: Option<Vec<u8>>, path: &Path) -> Res
                     decode_base64(payload).ok_or_else(|| gltf_err(path, "invalid base64 in data URI"))?
                 } else {
                     let file = path.parent().unwrap_or(Path::new(".")).join(uri);
-                    std::fs::read(&file).map_err(|source| MeshError::Io { path: file, source })?
+                    rouge_measure::preset::read_bounded(&file, MAX_BUFFER_BYTES)
+                        .map_err(|source| MeshError::Io { path: file, source })?
                 }
             }
         };

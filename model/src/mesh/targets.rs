@@ -369,6 +369,16 @@ impl TargetSet {
     /// [`TargetError::Unknown`] (with near names) or [`TargetError::Range`], naming `--expression`
     /// or `--shape`.
     pub fn resolve(&self, pose: &FacePose) -> Result<(Weights, Weights), TargetError> {
+        self.resolve_named(pose, ["--expression", "--shape"])
+    }
+
+    /// [`TargetSet::resolve`] with errors naming `fields` (the expression's and the shape's)
+    /// instead of the command line's options: a project's `face.json` says `` `expression` ``.
+    ///
+    /// # Errors
+    /// As [`TargetSet::resolve`].
+    pub fn resolve_named(&self, pose: &FacePose, fields: [&str; 2]) -> Result<(Weights, Weights), TargetError> {
+        let [expression_field, shape_field] = fields;
         let range = |option: &str, name: &str, value: f32, (lo, hi): (f32, f32)| {
             if value.is_finite() && (lo..=hi).contains(&value) {
                 Ok(())
@@ -378,7 +388,7 @@ impl TargetSet {
         };
         let mut units: BTreeMap<String, f32> = BTreeMap::new();
         for (name, &w) in &pose.expression {
-            range("--expression", name, w, (0.0, 1.0))?;
+            range(expression_field, name, w, (0.0, 1.0))?;
             if let Some(p) = EXPRESSION_PRESETS.iter().find(|p| p.name == name) {
                 for &(u, uw) in p.units {
                     *units.entry(u.to_string()).or_insert(0.0) += w * uw;
@@ -389,7 +399,7 @@ impl TargetSet {
                 let known =
                     EXPRESSION_PRESETS.iter().map(|p| p.name).chain(self.expressions.iter().map(|(n, _)| n.as_str()));
                 return Err(TargetError::Unknown {
-                    option: "--expression".into(),
+                    option: expression_field.into(),
                     what: "expression unit or preset".into(),
                     name: name.clone(),
                     near: near_names(name, known),
@@ -402,13 +412,13 @@ impl TargetSet {
         for (name, &w) in &pose.shape {
             let Some(s) = self.shape(name) else {
                 return Err(TargetError::Unknown {
-                    option: "--shape".into(),
+                    option: shape_field.into(),
                     what: "shape".into(),
                     name: name.clone(),
                     near: near_names(name, self.shapes.iter().map(|s| s.name.as_str())),
                 });
             };
-            range("--shape", name, w, s.range())?;
+            range(shape_field, name, w, s.range())?;
         }
         Ok((units, pose.shape.clone()))
     }

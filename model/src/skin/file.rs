@@ -210,12 +210,12 @@ pub(crate) fn read_project_skin(dir: &Path, json_path: &Path) -> Result<Option<P
     let recipe = file.recipe;
     recipe.base.validate().map_err(|e| ModelError::file(json_path, format!("recipe.base: {e}")))?;
     let exr = dir.join(&file.maps);
-    let bytes = std::fs::read(&exr).map_err(|e| ModelError::file(&exr, e))?;
+    let bytes = crate::look::read_map_file(&exr).map_err(|e| ModelError::file(&exr, e))?;
     let maps = SkinMaps::from_exr_bytes(&bytes, &recipe.base).map_err(|e| ModelError::file(&exr, e))?;
     let edits = match &file.edits {
         Some(rel) => {
             let path = dir.join(rel);
-            let bytes = std::fs::read(&path).map_err(|e| ModelError::file(&path, e))?;
+            let bytes = crate::look::read_map_file(&path).map_err(|e| ModelError::file(&path, e))?;
             Some(Arc::new(SkinEdits::from_exr_bytes(&bytes).map_err(|e| ModelError::file(&path, e))?))
         }
         None => None,
