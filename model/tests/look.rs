@@ -453,6 +453,7 @@ fn a_look_carries_its_mascara_and_checks_it() {
     let unknown = text.replace("\"volume\"", "\"colour\"");
     let e = Look::from_json(&unknown, path).expect_err("unknown field").to_string();
     assert!(e.contains("colour"), "{e}");
+}
 
 /// A look names its maps by path, so they can be anything: a pipe blocked the open for ever and
 /// `/dev/zero` was read until memory ran out. Both are refused before a byte is read, and so
