@@ -134,9 +134,6 @@ pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]
     use rouge_model::mesh::Part;
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
     for g in &mesh.groups {
-        let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();
-        verts.sort_unstable();
-        verts.dedup();
         let constant = match g.part() {
             Part::Skin => continue,
             Part::Eye => None,
@@ -146,6 +143,9 @@ pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]
             Part::Lash => Some(LASH_ALBEDO),
             Part::Brow => Some(BROW_ALBEDO),
         };
+        let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();
+        verts.sort_unstable();
+        verts.dedup();
         if let Some([r, gr, b]) = constant {
             verts.iter().for_each(|&v| albedo[v as usize] = [r, gr, b, 0.0]);
             continue;

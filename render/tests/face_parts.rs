@@ -26,17 +26,6 @@ fn with_and_without_teeth(pose: &[(&str, f32)]) -> (Vec<u8>, usize) {
     let without_mesh = loaded.mesh.only(|g| !matches!(g.part(), Part::Teeth | Part::Tongue));
     prepared.renderer.set_mesh(&without_mesh, loaded.scene.skin.albedo).expect("set mesh");
     let without = prepared.render_display().expect("render");
-    if let Ok(dir) = std::env::var("ROUGE_TEST_IMAGES") {
-        let name = format!("{dir}/parts_{}.png", pose.iter().map(|(n, w)| format!("{n}{w}")).collect::<String>());
-        image::save_buffer(&name, &with, SIZE, SIZE, image::ExtendedColorType::Rgba8).ok();
-        let diff: Vec<u8> = with
-            .iter()
-            .zip(&without)
-            .enumerate()
-            .map(|(i, (a, b))| if i % 4 == 3 { 255 } else { a.abs_diff(*b).saturating_mul(8) })
-            .collect();
-        image::save_buffer(format!("{name}.diff.png"), &diff, SIZE, SIZE, image::ExtendedColorType::Rgba8).ok();
-    }
     let differ = with
         .chunks_exact(4)
         .zip(without.chunks_exact(4))
@@ -93,12 +82,7 @@ fn mascara_darkens_and_lengthens_the_lash_line() {
         let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
         let no_brows = loaded.mesh.only(|g| g.part() != Part::Brow);
         prepared.renderer.set_mesh(&no_brows, loaded.scene.skin.albedo).expect("set mesh");
-        let frame = prepared.render_display().expect("render");
-        if let Ok(dir) = std::env::var("ROUGE_TEST_IMAGES") {
-            let name = format!("{dir}/mascara_{}.png", mascara.is_some());
-            image::save_buffer(&name, &frame, SIZE, SIZE, image::ExtendedColorType::Rgba8).ok();
-        }
-        frame
+        prepared.render_display().expect("render")
     };
     // Dark pixels in the middle half of the columns (the eye; the background shows at the
     // frame's edge): the lashes, the pupil and the iris' rim; and the highest of them.
