@@ -167,3 +167,77 @@ fn the_material_plots_have_ticks_axis_labels_and_legends_under_them() {
     }
     h.snapshot_options("material_plots", &SnapshotOptions::new().threshold(2.0).max_failed_pixels(2000));
 }
+
+/// The lash tips' mean distance from the lash roots' plane, as the viewport shows them: the
+/// span of the lash vertices along their largest extent, mm.
+fn lash_extent_mm(app: &RougeApp) -> f32 {
+    let mesh = app.posed_mesh().expect("a posed head");
+    let (mut lo, mut hi) = (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN));
+    for g in mesh.groups.iter().filter(|g| g.part() == rouge_model::mesh::Part::Lash) {
+        for &i in &mesh.indices[3 * g.triangles.start..3 * g.triangles.end] {
+            let p = mesh.positions[i as usize];
+            (lo, hi) = (lo.min(p), hi.max(p));
+        }
+    }
+    (hi - lo).max_element()
+}
+
+#[test]
+fn the_mascara_switch_and_sliders_coat_the_lashes_as_one_undo_step_each() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    assert!(h.state().document().mascara.is_none());
+    h.get_by_label("Lashes").scroll_to_me();
+    h.run_steps(1);
+    h.get_by_label("Lashes").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("Mascara").scroll_to_me();
+    h.run_steps(1);
+    h.get_by_label("Mascara").click_accesskit();
+    h.run_steps(2);
+    let coated = h.state().document().mascara.expect("the switch puts a mascara on");
+    assert!(coated.length > 1.0 && coated.volume > 1.0, "{coated:?}");
+    let long = lash_extent_mm(h.state());
+    assert!(h.state().document().is_modified());
+
+    // Undo takes the mascara off the document and the viewport's lashes.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert!(h.state().document().mascara.is_none());
+    let natural = lash_extent_mm(h.state());
+    assert!(long > natural + 0.5, "the coated lashes reach {long} mm, the natural {natural} mm");
+
+    // Redo, then a longer mascara through the state the slider writes: the lashes grow again.
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().document().mascara, Some(coated));
+    let longest = rouge_model::mesh::lashes::Mascara { length: 2.0, ..coated };
+    h.state_mut().commit_mascara(Some(longest));
+    h.run_steps(2);
+    assert_eq!(h.state().document().mascara, Some(longest));
+    assert!(lash_extent_mm(h.state()) > long, "length 2 reaches past length {}", coated.length);
+}
+
+#[test]
+fn a_close_up_of_the_lips_fills_the_viewport_and_home_goes_back() {
+    use rouge_model::skin::AnatomyRegion;
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let lips = h.state().lip_point().expect("lips");
+    // Pixels per 10 mm across the lips, and how far the lips are from the viewport's centre.
+    let measure = |app: &RougeApp| {
+        let rect = app.viewport_rect();
+        let a = app.screen_pos_of(lips).expect("on screen");
+        let b = app.screen_pos_of(lips + glam::Vec3::X * 10.0).expect("on screen");
+        ((b - a).length() / rect.height(), (a - rect.center()).length() / rect.height())
+    };
+    let (whole_scale, _) = measure(h.state());
+    h.state_mut().view_close_up(AnatomyRegion::Lips);
+    h.run_steps(2);
+    let (close_scale, off_centre) = measure(h.state());
+    assert!(close_scale > 4.0 * whole_scale, "10 mm: {close_scale} of the height up close, {whole_scale} whole");
+    assert!(close_scale > 0.1 && off_centre < 0.1, "10 mm {close_scale} of the height, {off_centre} off centre");
+    h.key_press(Key::Home);
+    h.run_steps(2);
+    assert!((measure(h.state()).0 - whole_scale).abs() < 1e-3 * whole_scale, "Home frames the whole face again");
+}

@@ -36,6 +36,10 @@ impl RougeApp {
             }
             Change::Skin { rect: None } => self.request_skin_bake(),
             Change::Skin { rect: Some(rect) } => self.skin_edits_changed(rect),
+            Change::Mascara => {
+                let pose = self.face().clone();
+                self.show_pose(&pose);
+            }
         }
     }
 

@@ -8,6 +8,7 @@
 use super::*;
 use rouge_model::mesh::default_head;
 use rouge_model::mesh::deform::SubdivisionPlan;
+use rouge_model::mesh::lashes::{LashRig, Mascara};
 use rouge_model::mesh::targets::{FacePose, TargetSet};
 
 /// Subdivision of the painted default head (what `start_mesh` loads).
@@ -16,8 +17,12 @@ const HEAD_LEVELS: u32 = 2;
 /// The posing state: the plan, the base positions, the animation clock.
 #[derive(Debug, Default)]
 pub(super) struct FaceState {
-    /// The default head's base positions and its subdivision plan, made on the first pose.
-    plan: Option<(Vec<Vec3>, SubdivisionPlan)>,
+    /// The default head's base positions, its subdivision plan and its lash strips, made on the
+    /// first pose.
+    plan: Option<(Vec<Vec3>, SubdivisionPlan, LashRig)>,
+    /// The mascara shown while a Lashes slider is dragged (the document's takes over when the
+    /// drag ends and becomes one undo step).
+    pub(super) mascara_preview: Option<Mascara>,
     /// The posed mesh (updated in place), and whether the viewport shows it.
     mesh: Option<TriangleMesh>,
     /// The surface map predates the last pose.
@@ -44,6 +49,12 @@ impl RougeApp {
         TargetSet::default_head()?.resolve(&pose)?;
         self.editor.document_mut().face = pose.clone();
         self.pose_head(&pose).map_err(anyhow::Error::msg)
+    }
+
+    /// The viewport's posed default head (subdivided), `None` while it shows the head at rest
+    /// (nothing posed since the mesh was loaded).
+    pub fn posed_mesh(&self) -> Option<&TriangleMesh> {
+        self.face.mesh.as_ref()
     }
 
     /// Plays or stops the expression cycle (neutral, smile, blink, talk, surprise).
@@ -79,8 +90,9 @@ impl RougeApp {
     /// After a new mesh or document: pose the default head as the document says.
     pub(super) fn pose_from_document(&mut self) {
         self.face.mesh = None;
+        self.face.mascara_preview = None;
         let pose = self.face().clone();
-        if pose.is_neutral() {
+        if pose.is_neutral() && self.shown_mascara().is_none() {
             self.skin_pose(Default::default());
         } else {
             self.show_pose(&pose);
@@ -92,18 +104,23 @@ impl RougeApp {
         if !self.face.on_default_head {
             return Err("expressions and face shapes move the default head's vertices; this mesh has no targets".into());
         }
-        if self.face.mesh.is_none() && pose.is_neutral() {
+        let mascara = self.shown_mascara();
+        if self.face.mesh.is_none() && pose.is_neutral() && mascara.is_none() {
             return Ok(());
         }
         let targets = TargetSet::default_head().map_err(|e| e.to_string())?;
         if self.face.plan.is_none() {
             let head = default_head().map_err(|e| e.to_string())?;
             let plan = SubdivisionPlan::new(&head, HEAD_LEVELS);
-            self.face.plan = Some((head.positions, plan));
+            let rig = LashRig::of(&head);
+            self.face.plan = Some((head.positions, plan, rig));
         }
-        let Some((base, plan)) = &self.face.plan else { return Ok(()) };
+        let Some((base, plan, rig)) = &self.face.plan else { return Ok(()) };
         let mut positions = base.clone();
         targets.apply(pose, &mut positions).map_err(|e| e.to_string())?;
+        if let Some(m) = &mascara {
+            rig.apply(m, &mut positions);
+        }
         let mesh = self.face.mesh.get_or_insert_with(|| plan.rest().clone());
         plan.update(&positions, mesh);
         self.view.framing = Bounds::of(&plan.rest().positions);
@@ -115,6 +132,11 @@ impl RougeApp {
         let (units, _) = targets.resolve(pose).map_err(|e| e.to_string())?;
         self.skin_pose(units);
         Ok(())
+    }
+
+    /// The mascara on the viewport's lashes: the one being dragged, else the document's.
+    pub(super) fn shown_mascara(&self) -> Option<Mascara> {
+        self.face.mascara_preview.or(self.editor.document().mascara)
     }
 
     /// A panel's edit of the face: into the document, and onto the head unless the animation

@@ -102,6 +102,13 @@ impl RougeApp {
                 if ui.button("Reset view (Home)").clicked() {
                     self.view.reset_orbit();
                 }
+                ui.menu_button("Close-up", |ui| {
+                    for region in AnatomyRegion::ALL {
+                        if ui.button(region.name().replace('_', " ")).clicked() {
+                            self.view_close_up(region);
+                        }
+                    }
+                });
                 self.views_menu(ui);
                 if ui.checkbox(&mut self.view.split, "Before / after split").changed() {
                     self.view.needs_render = true;

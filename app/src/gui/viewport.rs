@@ -103,6 +103,31 @@ impl ViewState {
         self.scene.environment = if self.environment { studio.environment } else { None };
     }
 
+    /// Aims the orbit at a close-up of `region` ([`Camera::close_up`]: about 60 mm of face
+    /// across the viewport's height) from the current direction, on `mesh` (the drawn one).
+    ///
+    /// # Errors
+    /// No mesh yet, or the mesh has no skin in the region (UVs other than the default head's).
+    fn close_up(
+        &mut self,
+        renderer: &Renderer,
+        mesh: Option<&TriangleMesh>,
+        region: AnatomyRegion,
+    ) -> std::result::Result<(), String> {
+        let (Some(mesh), Some(bounds)) = (mesh, self.framing.or_else(|| renderer.mesh_bounds())) else {
+            return Err("no mesh to look at yet".into());
+        };
+        let (yaw, pitch) = (self.orbit.yaw_deg, self.orbit.pitch_deg);
+        let close = Camera::close_up(mesh, region, yaw, pitch).ok_or_else(|| {
+            format!("this mesh has no skin in the {} region (its UVs are not the default head's)", region.name())
+        })?;
+        let whole = Camera::framing(&bounds, yaw, pitch);
+        self.orbit.zoom = whole.distance / close.distance;
+        self.orbit.pan_mm = close.target - whole.target;
+        self.needs_render = true;
+        Ok(())
+    }
+
     /// Back to the default orbit (F, View → Reset view, a new mesh).
     pub(super) fn reset_orbit(&mut self) {
         self.orbit = Orbit::default();
@@ -316,6 +341,14 @@ impl GpuState {
 impl RougeApp {
     pub(super) fn camera(&self) -> Option<Camera> {
         self.view.camera(&self.gpu.renderer)
+    }
+
+    /// View ▸ Close-up: the viewport aimed at `region` of the face (from the current direction;
+    /// Home goes back to the whole face). A failure is shown in the status line.
+    pub fn view_close_up(&mut self, region: AnatomyRegion) {
+        if let Err(e) = self.view.close_up(&self.gpu.renderer, self.gpu.mesh.as_ref(), region) {
+            self.ui.message = Some((false, e));
+        }
     }
 
     /// The surface point under the screen point `pos`, read from the last frame's depth.

@@ -104,6 +104,25 @@ impl Document {
         Change::Skin { rect: None }
     }
 
+    /// Puts `mascara` on the lashes (`None`, or one that changes nothing: natural lashes) as one
+    /// undo step; nothing (no step) when it is the mascara already there.
+    ///
+    /// # Errors
+    /// A field out of its range ([`Mascara::validate`], naming it); the document is unchanged.
+    pub fn set_mascara(&mut self, mascara: Option<Mascara>) -> Result<Change> {
+        let mascara = mascara.filter(|m| !m.is_none());
+        if let Some(m) = &mascara {
+            m.validate()?;
+        }
+        self.finish_stroke();
+        if self.mascara == mascara {
+            return Ok(Change::Nothing);
+        }
+        let before = std::mem::replace(&mut self.mascara, mascara);
+        self.push(Edit::Mascara { before, after: mascara });
+        Ok(Change::Mascara)
+    }
+
     /// Opens a skin brush stroke (ending any open stroke) and returns the skin edits to paint,
     /// made empty ([`MAP_SIZE`]²) if the skin has none; `None` without skin maps. The edits as
     /// they were are kept (shared) until the stroke ends.
@@ -193,6 +212,10 @@ impl Document {
                 Arc::make_mut(edits).write_rect(*rect, if forward { after } else { before });
                 Change::Skin { rect: Some(*rect) }
             }
+            Edit::Mascara { before, after } => {
+                self.mascara = if forward { *after } else { *before };
+                Change::Mascara
+            }
         }
     }
 
@@ -220,6 +243,7 @@ impl Document {
             .map(|e| match &e.edit {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
                 Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
+                Edit::Mascara { .. } => std::mem::size_of::<Edit>(),
                 Edit::Skin { before, after } => before
                     .iter()
                     .chain(after)
@@ -274,6 +298,7 @@ impl Document {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
                 Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
                 Edit::Skin { before, after } => before.iter().chain(after).map(|s| skin_bytes(s)).sum(),
+                Edit::Mascara { .. } => std::mem::size_of::<Edit>(),
                 Edit::Layers { before, after } => (before.len() + after.len()) * LAYER_SNAPSHOT_BYTES,
             })
             .sum();

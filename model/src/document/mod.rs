@@ -23,6 +23,7 @@
 mod history;
 mod project;
 
+use crate::mesh::lashes::Mascara;
 use crate::mesh::targets::FacePose;
 use crate::skin::{ProjectSkin, SkinEdits};
 pub(crate) use project::{floats_hash, read_versioned};
@@ -141,6 +142,8 @@ pub enum Change {
         /// The edited texels, or `None` for the whole skin.
         rect: Option<TexelRect>,
     },
+    /// The mascara changed ([`Document::set_mascara`]): pose the lashes again.
+    Mascara,
     /// Nothing changed (and no undo step was recorded).
     Nothing,
 }
@@ -155,6 +158,8 @@ enum Edit {
     Skin { before: Option<Arc<ProjectSkin>>, after: Option<Arc<ProjectSkin>> },
     /// A skin brush stroke: the changed rectangle of the skin edits, both planes, before and after.
     SkinStroke { rect: TexelRect, before: [Vec<f32>; 2], after: [Vec<f32>; 2] },
+    /// Another mascara (or none), before and after.
+    Mascara { before: Option<Mascara>, after: Option<Mascara> },
 }
 
 struct Entry {
@@ -220,9 +225,9 @@ pub struct Document {
     pub face: FacePose,
     /// The face as last saved (or opened), for [`Document::is_modified`].
     saved_face: FacePose,
-    /// The look's mascara, kept as opened and saved with the project's `look.json` (the app
-    /// does not edit it yet, nor draw it).
-    pub mascara: Option<crate::mesh::lashes::Mascara>,
+    /// The look's mascara on the default head's lashes, saved with the project's `look.json`.
+    /// Change it through [`Document::set_mascara`] (one undo step); `None` is natural lashes.
+    pub mascara: Option<Mascara>,
     /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
     /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
     /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which

@@ -1,0 +1,61 @@
+//! The "Lashes" panel: a mascara on the default head's lashes ([`Mascara`]: length, volume,
+//! curl), shown live while a slider is dragged and kept as one undo step when the drag ends
+//! (or at once for a click or a key), saved with the project's `look.json`.
+
+use super::*;
+use rouge_model::mesh::lashes::Mascara;
+
+/// What the Mascara switch puts on natural lashes: a lengthening, volumising mascara with a
+/// little curl, inside every range and visible at the default framing.
+const DEFAULT_MASCARA: Mascara = Mascara { length: 1.3, volume: 2.5, curl_deg: 15.0 };
+
+impl RougeApp {
+    /// The mascara panel (under the Face panel).
+    pub(super) fn lashes_panel(&mut self, ui: &mut egui::Ui) {
+        egui::CollapsingHeader::new("Lashes").default_open(false).show(ui, |ui| {
+            if !self.face.on_default_head {
+                ui.label("Mascara coats the default head's lashes only.");
+                return;
+            }
+            let saved = self.editor.document().mascara;
+            let mut on = saved.is_some();
+            if ui
+                .checkbox(&mut on, "Mascara")
+                .on_hover_text("natural lashes, or a mascara that lengthens, thickens and curls them")
+                .changed()
+            {
+                self.face.mascara_preview = None;
+                self.commit_mascara(on.then_some(DEFAULT_MASCARA));
+            }
+            let Some(mut m) = self.face.mascara_preview.or(saved) else { return };
+            let sliders = [
+                (&mut m.length, Mascara::LENGTH, "length (× natural)", "how much longer the lashes look"),
+                (&mut m.volume, Mascara::VOLUME, "volume (× natural)", "how much thicker each lash is coated"),
+                (&mut m.curl_deg, Mascara::CURL_DEG, "curl (°)", "extra turn of the tips away from the eye"),
+            ];
+            let mut commit = false;
+            let mut preview = false;
+            for (value, (lo, hi), text, hover) in sliders {
+                let r = ui.add(egui::Slider::new(value, lo..=hi).text(text)).on_hover_text(hover);
+                preview |= r.dragged() && r.changed();
+                commit |= r.drag_stopped() || (r.changed() && !r.dragged());
+            }
+            if commit {
+                self.face.mascara_preview = None;
+                self.commit_mascara(Some(m));
+            } else if preview {
+                self.face.mascara_preview = Some(m);
+                let pose = self.face().clone();
+                self.show_pose(&pose);
+            }
+        });
+    }
+
+    /// Puts `mascara` into the document (one undo step) and onto the viewport's lashes.
+    pub fn commit_mascara(&mut self, mascara: Option<Mascara>) {
+        match self.editor.document_mut().set_mascara(mascara) {
+            Ok(c) => self.apply_change(c),
+            Err(e) => self.ui.message = Some((false, e.to_string())),
+        }
+    }
+}
