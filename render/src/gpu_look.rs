@@ -219,6 +219,40 @@ pub struct SkinTextures {
     pub local_thickness: Option<wgpu::TextureView>,
     /// The skin's microgeometry ([`rouge_model::skin::detail`]).
     pub detail: Option<SkinDetailTextures>,
+    /// The default head's wrinkle map ([`rouge_model::skin::wrinkles`]), drawn with the detail.
+    pub wrinkles: Option<WrinkleTexture>,
+}
+
+/// The wrinkle map on the device (RGBA8 linear, one family a channel) and where it lies in the
+/// mesh's UVs.
+#[derive(Debug)]
+pub struct WrinkleTexture {
+    /// [`rouge_model::skin::WrinkleMap::image`].
+    pub view: wgpu::TextureView,
+    /// [`rouge_model::skin::WrinkleMap::uv_rect`].
+    pub uv_rect: rouge_model::skin::wrinkles::UvRect,
+    /// Texels across the map.
+    pub side_px: u32,
+}
+
+impl WrinkleTexture {
+    /// Uploads `map`.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for an empty or non-square map.
+    pub fn upload(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        map: &rouge_model::skin::WrinkleMap,
+    ) -> Result<WrinkleTexture> {
+        let (w, h) = map.image.dimensions();
+        if w == 0 || w != h {
+            return Err(RenderError::Invalid(format!("wrinkle map: {w}×{h} texels, expected a square")));
+        }
+        let format = wgpu::TextureFormat::Rgba8Unorm;
+        let view = upload_2d(device, queue, "WrinkleTexture", (w, h), format, map.image.as_raw(), 4);
+        Ok(WrinkleTexture { view, uv_rect: map.uv_rect, side_px: w })
+    }
 }
 
 /// The skin's microgeometry on the device: the tileable relief with its mip chain, the region
@@ -290,6 +324,7 @@ impl SkinTextures {
             normal: normal.map(|n| upload(n, wgpu::TextureFormat::Rgba8Unorm, "normal map")).transpose()?,
             local_thickness: None,
             detail: None,
+            wrinkles: None,
         })
     }
 }

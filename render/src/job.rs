@@ -64,7 +64,9 @@ pub struct RenderJob {
     /// albedo texture. Exclusive with `albedo_map`.
     pub skin_maps: Option<SkinRecipe>,
     /// Whether the skin has its microgeometry ([`rouge_model::skin::detail`]: pores, fine lines,
-    /// the T-zone's shine), tiled at the mesh's scale with the default head's region map.
+    /// the T-zone's shine), tiled at the mesh's scale with the default head's region map, and on
+    /// the default head its expression wrinkles and lip furrows ([`rouge_model::skin::wrinkles`],
+    /// as deep as `face` makes them).
     pub skin_detail: bool,
     /// Whether the skin maps' blood follows the face's expression
     /// ([`rouge_model::skin::SkinMaps::with_blood_flow`]: a smile flushes the cheeks, pressed lips
@@ -259,6 +261,14 @@ impl RenderJob {
                 .ok_or_else(|| RenderError::Invalid("skin detail: the mesh has no UV area".into()))?;
             let (tile, regions) = default_skin_detail();
             renderer.set_skin_detail(Some((tile, regions, scale)))?;
+            // The default head's wrinkles, as deep as the face's pose makes them (their map lies
+            // in the default head's UVs: another mesh goes without).
+            if self.mesh.as_deref().is_none_or(|p| p.to_str() == Some("builtin:head")) {
+                let invalid = |e: TargetError| RenderError::Invalid(e.to_string());
+                let (units, _) = TargetSet::default_head().map_err(invalid)?.resolve(&self.face).map_err(invalid)?;
+                renderer.set_wrinkle_map(Some(rouge_model::skin::WrinkleMap::default_head()))?;
+                renderer.set_wrinkle_weights(rouge_model::skin::WrinkleWeights::of(&units));
+            }
         }
         let mut thickness_bake = None;
         if let SubsurfaceModel::Thickness { source: ThicknessSource::Baked(settings), .. } = &scene.skin.subsurface {

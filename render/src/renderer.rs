@@ -65,6 +65,8 @@ pub struct Renderer {
     atlas: AtlasResources,
     /// Counts mesh uploads (the dipole maps depend on the mesh).
     mesh_generation: u64,
+    /// How deep the wrinkle families are ([`Renderer::set_wrinkle_weights`]).
+    wrinkle_weights: rouge_model::skin::WrinkleWeights,
 }
 
 impl Renderer {
@@ -92,6 +94,7 @@ impl Renderer {
             dipole: DipoleResources::new(device, formats.min_array_layers),
             atlas: AtlasResources::new(device, formats.min_array_layers),
             mesh_generation: 0,
+            wrinkle_weights: Default::default(),
             shared,
         }
     }
@@ -169,8 +172,9 @@ impl Renderer {
         let (device, queue) = (&self.shared.device, &self.shared.queue);
         let local_thickness = self.textures.local_thickness.take();
         let detail = self.textures.detail.take();
+        let wrinkles = self.textures.wrinkles.take();
         let uploaded = validated(device, "texture upload", || SkinTextures::upload(device, queue, albedo, normal));
-        self.textures = SkinTextures { local_thickness, detail, ..uploaded? };
+        self.textures = SkinTextures { local_thickness, detail, wrinkles, ..uploaded? };
         Ok(())
     }
 
@@ -193,6 +197,29 @@ impl Renderer {
             })
             .transpose()?;
         Ok(())
+    }
+
+    /// Sets or clears the default head's expression wrinkles and lip furrows
+    /// ([`rouge_model::skin::wrinkles`]): drawn by the G-buffer pass with the skin detail
+    /// ([`Renderer::set_skin_detail`]; without it the map costs nothing), each family as deep
+    /// as [`Renderer::set_wrinkle_weights`] says.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for an empty or non-square map.
+    pub fn set_wrinkle_map(&mut self, map: Option<&rouge_model::skin::WrinkleMap>) -> Result<()> {
+        let (device, queue) = (&self.shared.device, &self.shared.queue);
+        self.textures.wrinkles = map
+            .map(|m| {
+                validated(device, "wrinkle map upload", || crate::gpu_look::WrinkleTexture::upload(device, queue, m))
+            })
+            .transpose()?;
+        Ok(())
+    }
+
+    /// How deep each wrinkle family is on each side (a pose's
+    /// [`rouge_model::skin::WrinkleWeights`]; a neutral face's until set).
+    pub fn set_wrinkle_weights(&mut self, weights: rouge_model::skin::WrinkleWeights) {
+        self.wrinkle_weights = weights;
     }
 
     /// Sets or clears the baked local thickness of the thickness translucency
@@ -331,6 +358,7 @@ impl Renderer {
             dipole,
             atlas,
             mesh_generation,
+            wrinkle_weights,
             ..
         } = self;
         let mesh =
@@ -343,6 +371,11 @@ impl Renderer {
         let mut frame =
             FrameUniform::new(&plan.constants, camera, &view, &mesh.bounds, plan.size, (look.layers, look.params));
         frame.skin[3] = textures.detail.as_ref().map_or(0.0, |d| d.tiles_per_uv);
+        if let (Some(_), Some(w)) = (&textures.detail, &textures.wrinkles) {
+            let [left, right] = wrinkle_weights.depths_mm();
+            let r = w.uv_rect;
+            frame.wrinkles = [[r.u0, r.v0, r.side, 1.0 / w.side_px as f32], left, right];
+        }
         shared.write_frame(&frame);
 
         let profiler = if *profiling { profiler.as_mut() } else { None };

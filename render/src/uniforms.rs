@@ -66,6 +66,9 @@ pub struct FrameUniform {
     pub background: [f32; 4],
     /// Lights, layers, table entries, unused.
     pub counts: [u32; 4],
+    /// The wrinkle map's UV square (u0, v0, side, 1 / texels across; side 0 without wrinkles),
+    /// then each family's depth (mm) on the left and on the right (`rouge_model::skin::wrinkles`).
+    pub wrinkles: [[f32; 4]; 3],
     /// SH irradiance coefficients.
     pub sh: [[f32; 4]; 9],
     /// Lights.
@@ -153,6 +156,7 @@ impl FrameUniform {
             sss: constants.sss,
             background: constants.background,
             counts: [constants.lights.len() as u32, layers.0, rouge_measure::layer_table::TABLE_ENTRIES as u32, 0],
+            wrinkles: [[0.0; 4]; 3],
             sh: constants.sh,
             lights: light_uniforms(&constants.lights, bounds),
             layers: layers.1,

@@ -152,3 +152,74 @@ fn pores_show_on_bare_skin_and_a_levelling_film_fills_them() {
     eprintln!("40 µm of a film that follows the relief: {conformal:.4}");
     assert!(conformal > 3.0 * last, "a film with levelling 0 keeps the pores: {conformal} against {last} levelled");
 }
+
+/// The mean absolute difference of the skin's diffuse radiance (green) between two captures,
+/// relative to the mean, over the pixels of `columns` (half-open, of a `w`-wide frame) where
+/// both show the skin.
+fn change(a: &[[f32; 4]], b: &[[f32; 4]], w: usize, columns: std::ops::Range<usize>) -> f64 {
+    let (mut diff, mut mean) = (0.0f64, 0.0f64);
+    for (i, (p, q)) in a.iter().zip(b).enumerate() {
+        if columns.contains(&(i % w)) && p[3] > 0.0 && q[3] > 0.0 {
+            diff += f64::from((p[1] - q[1]).abs());
+            mean += f64::from(p[1]);
+        }
+    }
+    diff / mean.max(1e-9)
+}
+
+#[test]
+fn expression_wrinkles_follow_their_face_units_and_a_levelling_film_fills_them() {
+    use rouge_model::skin::detail::tiles_per_uv;
+    use rouge_model::skin::{AnatomyRegion, WrinkleMap, WrinkleWeights};
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let scene = Scene::studio();
+    let (w, h) = (192usize, 144usize);
+    let scale = tiles_per_uv(head()).expect("UVs");
+    let units = |pairs: &[(&str, f32)]| pairs.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+    let render = |camera: &Camera, weights: WrinkleWeights, film_mm: f32| {
+        let text = format!(
+            r#"{{"schema": "rouge-look", "version": 1, "name": "film",
+            "layers": [{{"preset": "builtin:foundation_02_ivory", "thickness": {{"uniform_mm": {film_mm}}}}}]}}"#
+        );
+        let mut look = Look::from_json(&text, Path::new("film.json")).expect("look");
+        look.layers[0].preset.set_finish(Some(FinishKind::Gloss.defaults()));
+        let mut r = Renderer::new(&gpu.device, &gpu.queue);
+        r.set_mesh(head(), scene.skin.albedo).expect("mesh");
+        r.set_look(&look).expect("look");
+        let (tile, regions) = rouge_render::job::default_skin_detail();
+        r.set_skin_detail(Some((tile, regions, scale))).expect("detail");
+        r.set_wrinkle_map(Some(WrinkleMap::default_head())).expect("wrinkles");
+        r.set_wrinkle_weights(weights);
+        r.render(&scene, camera, w as u32, h as u32, false).expect("render");
+        let cap = r.capture().expect("capture");
+        assert!(cap.diffuse.iter().all(|p| p.iter().all(|v| v.is_finite())), "finite");
+        cap.diffuse
+    };
+    // The forehead, from the front: raised brows draw its lines; a smile leaves it as it is.
+    let forehead = Camera::close_up(head(), AnatomyRegion::Forehead, 0.0, 10.0).expect("the forehead");
+    let rest = render(&forehead, WrinkleWeights::default(), 0.0);
+    let raised = render(&forehead, WrinkleWeights::of(&units(&[("browInnerUp", 1.0)])), 0.0);
+    let smiling = render(&forehead, WrinkleWeights::of(&units(&[("mouthSmileLeft", 1.0)])), 0.0);
+    let lines = change(&raised, &rest, w, 0..w);
+    let none = change(&smiling, &rest, w, 0..w);
+    eprintln!("forehead: raised brows change the diffuse by {lines:.4}, a smile by {none:.6}");
+    assert!(lines > 0.001, "forehead lines: {lines}");
+    assert!(none < 0.05 * lines, "a smile draws no forehead lines: {none}");
+    // Under 0.1 mm of a levelling film (gloss: levelling 1) the lines are shallower,
+    // exp(−0.1 / 0.15) ≈ half as deep.
+    let (rest_film, raised_film) = (
+        render(&forehead, WrinkleWeights::default(), 0.1),
+        render(&forehead, WrinkleWeights::of(&units(&[("browInnerUp", 1.0)])), 0.1),
+    );
+    let filled = change(&raised_film, &rest_film, w, 0..w);
+    eprintln!("under 0.1 mm of a levelling gloss film: {filled:.4}");
+    assert!(filled < 0.75 * lines, "a film fills the lines: {filled} against {lines}");
+    // The mouth from the front: a smile on the subject's left (+x: the image's right half)
+    // deepens the fold there and not on the other side.
+    let mouth = Camera::close_up(head(), AnatomyRegion::Lips, 0.0, 0.0).expect("the lips");
+    let rest = render(&mouth, WrinkleWeights::default(), 0.0);
+    let smile = render(&mouth, WrinkleWeights::of(&units(&[("mouthSmileLeft", 1.0)])), 0.0);
+    let (left, right) = (change(&smile, &rest, w, w / 2 + 8..w), change(&smile, &rest, w, 0..w / 2 - 8));
+    eprintln!("a left smile changes the subject's left by {left:.4}, the right by {right:.6}");
+    assert!(left > 0.005 && right < 0.1 * left, "left {left} right {right}");
+}

@@ -245,21 +245,44 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         "freckles=0.5,moles=0.5,redness=0.5,acne=0.5,hyperpigmentation=0.5,under_eye=0.5,veins=0.5".parse()?;
     let skin_maps = rouge_model::skin::SkinRecipe::from_tone("light-medium", conditions, 1, 1024)?;
     // The head's parts (lashes, brows, teeth, tongue) are triangles of the G-buffer and shadow passes:
-    // one row draws the default look without them (the head and eyes alone) to price them.
-    for (label, look, skin_maps, skin_detail, all_parts) in [
-        ("bare", LookChoice::Bare, None, false, true),
-        ("default look (3 layers)", LookChoice::Default, None, false, true),
-        ("default look, no lashes, brows, teeth or tongue", LookChoice::Default, None, false, false),
-        ("default look over skin maps", LookChoice::Default, Some(skin_maps.clone()), false, true),
-        ("default look over skin maps + skin detail", LookChoice::Default, Some(skin_maps), true, true),
-        ("4 layers", LookChoice::File(four.clone()), None, false, true),
+    // one row draws the default look without them (the head and eyes alone) to price them. The
+    // skin detail comes with the default head's wrinkles (lip furrows and nasolabial folds at
+    // rest): one row leaves their map out to price them.
+    #[derive(PartialEq)]
+    enum LeftOut {
+        Nothing,
+        Parts,
+        Wrinkles,
+    }
+    for (label, look, skin_maps, skin_detail, left_out) in [
+        ("bare", LookChoice::Bare, None, false, LeftOut::Nothing),
+        ("default look (3 layers)", LookChoice::Default, None, false, LeftOut::Nothing),
+        ("default look, no lashes, brows, teeth or tongue", LookChoice::Default, None, false, LeftOut::Parts),
+        ("default look over skin maps", LookChoice::Default, Some(skin_maps.clone()), false, LeftOut::Nothing),
+        (
+            "default look over skin maps + skin detail, no wrinkles",
+            LookChoice::Default,
+            Some(skin_maps.clone()),
+            true,
+            LeftOut::Wrinkles,
+        ),
+        (
+            "default look over skin maps + skin detail and wrinkles",
+            LookChoice::Default,
+            Some(skin_maps),
+            true,
+            LeftOut::Nothing,
+        ),
+        ("4 layers", LookChoice::File(four.clone()), None, false, LeftOut::Nothing),
     ] {
         eprintln!("rouge bench render: {label}");
         let job =
             RenderJob { look, width: args.width, height: args.height, skin_maps, skin_detail, ..RenderJob::default() };
         let loaded = job.load()?;
         let mut p = job.prepare_loaded(&loaded)?;
-        if !all_parts {
+        if left_out == LeftOut::Wrinkles {
+            p.renderer.set_wrinkle_map(None)?;
+        } else if left_out == LeftOut::Parts {
             use rouge_model::mesh::Part;
             let head = loaded.mesh.only(|g| matches!(g.part(), Part::Skin | Part::Mouth | Part::Eye));
             p.renderer.set_mesh(&head, loaded.scene.skin.albedo)?;

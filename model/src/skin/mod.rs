@@ -12,6 +12,8 @@
 //! - [`generate`]: [`SkinMaps::generate`], the tone + anatomy + conditions, deterministic per seed.
 //! - [`edits`]: [`SkinEdits`], what the app's skin brushes paint (log factors on melanin and
 //!   blood per texel) on top of the generated maps.
+//! - [`detail`] and [`wrinkles`]: the skin's microgeometry (pores, fine lines) and the default
+//!   head's expression wrinkles and lip furrows, for the renderer's G-buffer pass.
 //! - [`file`](mod@file): the maps as one multi-channel OpenEXR and the project's `skin.json`
 //!   ([`SkinRecipe`], [`ProjectSkin`]); docs/FORMATS.md.
 //!
@@ -26,12 +28,14 @@ pub mod detail;
 pub mod edits;
 pub mod file;
 pub mod generate;
+pub mod wrinkles;
 
 pub use anatomy::AnatomyRegion;
 pub use conditions::{Condition, ConditionError, SkinConditions};
 pub use detail::{DetailTile, RegionDetail};
 pub use edits::{SkinBrush, SkinBrushKind, SkinEdits};
 pub use file::{ProjectSkin, SKIN_FILE, SkinRecipe};
+pub use wrinkles::{WrinkleFamily, WrinkleMap, WrinkleWeights};
 
 use crate::TexelRect;
 use rouge_measure::skin::SkinParams;

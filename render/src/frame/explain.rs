@@ -21,7 +21,7 @@ impl Resource {
             Resource::AlbedoMap => "albedo map".into(),
             Resource::NormalMap => "normal map".into(),
             Resource::LocalThicknessMap => "local-thickness map".into(),
-            Resource::SkinDetail => "skin detail (relief tile, region map)".into(),
+            Resource::SkinDetail => "skin detail (relief tile, region map, wrinkle map)".into(),
             Resource::Environment => "SH environment".into(),
             Resource::LightGbuffer { .. } => "light G-buffer".into(),
             Resource::RadianceMaps { .. } => "radiance maps".into(),

@@ -96,7 +96,7 @@ pub enum Resource {
     NormalMap,
     /// The baked local-thickness map.
     LocalThicknessMap,
-    /// The skin's microgeometry: relief tile and region map.
+    /// The skin's microgeometry: relief tile, region map and (on the default head) wrinkle map.
     SkinDetail,
     /// The environment's spherical-harmonics irradiance.
     Environment,

@@ -62,6 +62,7 @@ impl FramePass for GbufferPass {
                 float_tex(5, true),
                 float_tex(6, true),
                 sampler_entry(7, wgpu::SamplerBindingType::Filtering),
+                float_tex(8, true),
             ],
         );
         GbufferPass { layout, pipelines: Pipelines::default() }
@@ -100,6 +101,7 @@ impl FramePass for GbufferPass {
                 tex(5, textures.detail.as_ref().map_or(&shared.dummy, |d| &d.tile)),
                 tex(6, textures.detail.as_ref().map_or(&shared.dummy, |d| &d.regions)),
                 sampler(7, &shared.repeat_sampler),
+                tex(8, textures.wrinkles.as_ref().map_or(&shared.dummy, |w| &w.view)),
             ],
         });
         let views = slots.iter().map(|t| t.map(|t| targets.view(t)).transpose()).collect::<Result<Vec<_>>>()?;

@@ -180,6 +180,7 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("sss", offset_of!(FrameUniform, sss)),
                 ("background", offset_of!(FrameUniform, background)),
                 ("counts", offset_of!(FrameUniform, counts)),
+                ("wrinkles", offset_of!(FrameUniform, wrinkles)),
                 ("sh", offset_of!(FrameUniform, sh)),
                 ("lights", offset_of!(FrameUniform, lights)),
                 ("layers", offset_of!(FrameUniform, layers)),

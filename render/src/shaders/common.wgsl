@@ -44,6 +44,10 @@ struct Frame {
     background: vec4<f32>,
     // x: lights, y: layers, z: table entries per row, w: unused
     counts: vec4<u32>,
+    // [0]: the wrinkle map's UV square (u0, v0, side, 1 / texels across; side 0 without wrinkles);
+    // [1], [2]: each family's depth (mm: forehead, crow's feet, nasolabial, lip furrows) on the
+    // left (+x) and the right (model/src/skin/wrinkles.rs)
+    wrinkles: array<vec4<f32>, 3>,
     sh: array<vec4<f32>, 9>,
     lights: array<Light, 4>,
     layers: array<Layer, 8>,

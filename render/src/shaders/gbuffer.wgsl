@@ -17,6 +17,15 @@
 @group(1) @binding(5) var detail_tile: texture_2d<f32>;
 @group(1) @binding(6) var detail_regions: texture_2d<f32>;
 @group(1) @binding(7) var detail_sampler: sampler;
+// The default head's expression wrinkles and lip furrows (model/src/skin/wrinkles.rs): per
+// channel a family's depth, 0-1 of its depth at full weight, over the square frame.wrinkles[0]
+// of the UVs.
+@group(1) @binding(8) var wrinkle_map: texture_2d<f32>;
+
+// The wrinkles' depth at `st` (the wrinkle map's texture coordinates), mm.
+fn wrinkle_depth_mm(st: vec2<f32>, depth_mm: vec4<f32>) -> f32 {
+    return dot(textureSampleLevel(wrinkle_map, map_sampler, st, 0.0), depth_mm);
+}
 //#endif
 
 struct VsIn {
@@ -150,6 +159,32 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
         let unit = inverseSqrt(max(max(dot(t, t), dot(b, b)), 1e-20));
         let specular = mix(1.0, d.a, clamp(amplitude, 0.0, 1.0)) * region.g;
         out.normal = vec4<f32>(normalize(n0 + (t * slope.x + b * slope.y) * unit), max(specular, 1.0 / 64.0));
+        // Wrinkles: the surface −Σ depth lowered by the furrows, its UV gradient by central
+        // differences over the pixel's footprint (at least a texel: a box-filtered slope, so
+        // furrows finer than a pixel fade instead of aliasing), as a surface gradient from the
+        // UVs' derivatives ([Schuler2013]'s cotangent frame with its determinant), n − ∇h. Each
+        // family is left by the layers above as the pores are, exp(−Σ levelling·t / depth), and
+        // its depth blends from the right side's to the left's across the midline (±10 mm).
+        let rect = frame.wrinkles[0];
+        let st = vec2<f32>((in.uv.x - rect.x) / rect.z, 1.0 - (in.uv.y - rect.y) / rect.z);
+        if rect.z > 0.0 && all(st > vec2<f32>(0.0)) && all(st < vec2<f32>(1.0)) {
+            let weighted = mix(frame.wrinkles[2], frame.wrinkles[1], smoothstep(-10.0, 10.0, in.world.x));
+            let depth_mm = weighted * exp(-levelled_mm / max(weighted, vec4<f32>(1e-6)));
+            let e = max(rect.w, 0.5 * max(length(duv_dx), length(duv_dy)) / rect.z);
+            let ds = wrinkle_depth_mm(st + vec2<f32>(e, 0.0), depth_mm) - wrinkle_depth_mm(st - vec2<f32>(e, 0.0), depth_mm);
+            let dt = wrinkle_depth_mm(st + vec2<f32>(0.0, e), depth_mm) - wrinkle_depth_mm(st - vec2<f32>(0.0, e), depth_mm);
+            // height h = −depth; st.x grows with u, st.y falls with v
+            let dh_du = -ds / (2.0 * e * rect.z);
+            let dh_dv = dt / (2.0 * e * rect.z);
+            let n1 = out.normal.xyz;
+            let r1 = cross(dp_dy, n1);
+            let r2 = cross(n1, dp_dx);
+            let det = dot(dp_dx, r1);
+            if abs(det) > 1e-12 {
+                let grad_h = ((r1 * duv_dx.x + r2 * duv_dy.x) * dh_du + (r1 * duv_dx.y + r2 * duv_dy.y) * dh_dv) / det;
+                out.normal = vec4<f32>(normalize(n1 - grad_h), out.normal.w);
+            }
+        }
     }
 //#endif
 //#if THICKNESS

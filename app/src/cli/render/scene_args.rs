@@ -130,8 +130,9 @@ pub struct SceneArgs {
     /// Seed of the skin conditions' placement (the same seed, the same freckles).
     #[arg(long, default_value_t = 1)]
     pub skin_seed: u64,
-    /// Leave out the skin's microgeometry (pores, fine lines, the T-zone's shine), which comes
-    /// with the skin maps (docs/FINISHES.md; foundations with a levelling finish fill it).
+    /// Leave out the skin's microgeometry (pores, fine lines, the T-zone's shine, and the default
+    /// head's expression wrinkles and lip furrows), which comes with the skin maps
+    /// (docs/FINISHES.md; foundations with a levelling finish fill it).
     #[arg(long)]
     pub no_skin_detail: bool,
     /// Keep the skin maps' blood still whatever the --expression (by default it follows it: a
