@@ -410,6 +410,16 @@ fn explain_prints_the_frame_plan_and_what_is_skipped() {
     let o = rouge(&["render", "--explain", "--width", "64", "--height", "48"]);
     let s = stdout(&o);
     assert!(s.contains("sss horizontal") && s.contains("3 layer(s)"), "{s}");
+    // The mesh's parts, where the hairs are drawn, and the wrinkles of the pose.
+    assert!(s.contains("lashes 41536") && s.contains("no pass of their own") && s.contains("natural lashes"), "{s}");
+    assert!(s.contains("forehead 0.00 / 0.00") && s.contains("lip furrows 0.50 / 0.50"), "{s}");
+    let o = rouge(&["render", "--explain", "--width", "64", "--height", "48", "--expression", "browInnerUp=1"]);
+    let s = stdout(&o);
+    assert!(s.contains("forehead 1.00 / 1.00"), "{s}");
+    // Without skin detail there are no wrinkles to plan.
+    let o = rouge(&["render", "--explain", "--width", "64", "--height", "48", "--no-skin-detail"]);
+    let s = stdout(&o);
+    assert!(!s.contains("wrinkles (left") && s.contains("no skin detail is bound"), "{s}");
 }
 
 #[test]

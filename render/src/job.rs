@@ -244,6 +244,21 @@ impl RenderJob {
         self.prepare_on(loaded, Gpu::headless()?)
     }
 
+    /// How deep the default head's wrinkles are in the job's face ([`rouge_model::skin::wrinkles`]):
+    /// `None` without skin detail or on another mesh (the wrinkle map lies in the default head's
+    /// UVs).
+    ///
+    /// # Errors
+    /// Unknown Face Units or weights out of range, naming `--expression`.
+    pub fn wrinkle_weights(&self) -> Result<Option<rouge_model::skin::WrinkleWeights>> {
+        if !self.skin_detail || self.mesh.as_deref().is_some_and(|p| p.to_str() != Some("builtin:head")) {
+            return Ok(None);
+        }
+        let invalid = |e: TargetError| RenderError::Invalid(e.to_string());
+        let (units, _) = TargetSet::default_head().map_err(invalid)?.resolve(&self.face).map_err(invalid)?;
+        Ok(Some(rouge_model::skin::WrinkleWeights::of(&units)))
+    }
+
     /// [`RenderJob::prepare_loaded`] on a device already open (a long-lived renderer's: the
     /// Python package draws every frame on one).
     ///
@@ -261,13 +276,9 @@ impl RenderJob {
                 .ok_or_else(|| RenderError::Invalid("skin detail: the mesh has no UV area".into()))?;
             let (tile, regions) = default_skin_detail();
             renderer.set_skin_detail(Some((tile, regions, scale)))?;
-            // The default head's wrinkles, as deep as the face's pose makes them (their map lies
-            // in the default head's UVs: another mesh goes without).
-            if self.mesh.as_deref().is_none_or(|p| p.to_str() == Some("builtin:head")) {
-                let invalid = |e: TargetError| RenderError::Invalid(e.to_string());
-                let (units, _) = TargetSet::default_head().map_err(invalid)?.resolve(&self.face).map_err(invalid)?;
+            if let Some(weights) = self.wrinkle_weights()? {
                 renderer.set_wrinkle_map(Some(rouge_model::skin::WrinkleMap::default_head()))?;
-                renderer.set_wrinkle_weights(rouge_model::skin::WrinkleWeights::of(&units));
+                renderer.set_wrinkle_weights(weights);
             }
         }
         let mut thickness_bake = None;

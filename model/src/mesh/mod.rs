@@ -281,6 +281,22 @@ pub enum Part {
 }
 
 impl Part {
+    /// Every part, skin first.
+    pub const ALL: [Part; 7] = [Part::Skin, Part::Eye, Part::Mouth, Part::Teeth, Part::Tongue, Part::Lash, Part::Brow];
+
+    /// Its name in words (plural where the head has several).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Part::Skin => "skin",
+            Part::Eye => "eyes",
+            Part::Mouth => "mouth",
+            Part::Teeth => "teeth",
+            Part::Tongue => "tongue",
+            Part::Lash => "lashes",
+            Part::Brow => "brows",
+        }
+    }
+
     /// The part a group with this name and material is: the material names it when it is
     /// `eye`, `oral`, `teeth`, `tongue`, `lash` or `brow` (any case); otherwise a group whose name contains
     /// "eye" is an eye (meshes from other tools name their eyes so), and anything else skin.
@@ -342,6 +358,28 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// The triangles of each part the mesh has, in [`Part::ALL`]'s order (a mesh without groups
+    /// is all skin); parts without triangles are left out.
+    pub fn part_triangles(&self) -> Vec<(Part, usize)> {
+        let total = self.indices.len() / 3;
+        if self.groups.is_empty() {
+            return vec![(Part::Skin, total)];
+        }
+        Part::ALL
+            .into_iter()
+            .map(|part| {
+                let n = self
+                    .groups
+                    .iter()
+                    .filter(|g| g.part() == part)
+                    .map(|g| g.triangles.end.min(total).saturating_sub(g.triangles.start))
+                    .sum();
+                (part, n)
+            })
+            .filter(|(_, n)| *n > 0)
+            .collect()
+    }
+
     /// The mesh with only the triangles of the groups `keep` accepts, and those groups (their
     /// ranges renumbered); all vertices are kept, so values stay per vertex. A group's range
     /// past the indices counts as empty. A mesh without groups is returned whole.

@@ -127,6 +127,18 @@ impl WrinkleWeights {
     }
 }
 
+impl std::fmt::Display for WrinkleWeights {
+    /// `forehead 0.00 / 0.00, crow's feet ..., lip furrows 0.50 / 0.50` (left / right).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, family) in WrinkleFamily::ALL.into_iter().enumerate() {
+            let name = family.name().replace('_', " ").replace("crows", "crow's");
+            let sep = if i == 0 { "" } else { ", " };
+            write!(f, "{sep}{name} {:.2} / {:.2}", self.left[i], self.right[i])?;
+        }
+        Ok(())
+    }
+}
+
 /// Where the map lies in the head's UVs: the square from (u0, v0) with side `side`.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 pub struct UvRect {
@@ -231,6 +243,10 @@ mod tests {
         assert_eq!((brows.left[0], brows.right[0]), (0.5, 0.5));
         let pucker = WrinkleWeights::of(&units(&[("mouthPucker", 1.0)]));
         assert_eq!(pucker.left[3], 1.0);
+        assert_eq!(
+            rest.to_string(),
+            "forehead 0.00 / 0.00, crow's feet 0.00 / 0.00, nasolabial 0.30 / 0.30, lip furrows 0.50 / 0.50"
+        );
         // Bad values count as nothing.
         let bad = WrinkleWeights::of(&units(&[("browInnerUp", f32::NAN), ("mouthPucker", 7.0)]));
         assert_eq!((bad.left[0], bad.left[3]), (0.0, 1.0));

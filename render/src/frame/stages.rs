@@ -102,7 +102,7 @@ impl Planner {
         if variant.skin_detail {
             reads.push(Resource::SkinDetail);
         } else {
-            self.skip("skin detail (pores, fine lines, oiliness)", "no skin detail is bound");
+            self.skip("skin detail (pores, fine lines, oiliness, wrinkles)", "no skin detail is bound");
         }
         let mut writes = targets(&gbuffer::outputs(variant));
         writes.push(Resource::Target(Target::Depth));

@@ -173,6 +173,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 r.size_px
             ))?;
         }
+        crate::emit(&mesh_parts_line(&loaded_scene.mesh, job.mascara.or(loaded_scene.look.mascara)))?;
+        if let Some(w) = job.wrinkle_weights()? {
+            crate::emit(&format!("wrinkles (left / right, of each family's depth): {w}"))?;
+        }
     }
     let Some(out) = &args.out else {
         return Ok(());
@@ -206,4 +210,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         loaded.as_secs_f64()
     );
     Ok(())
+}
+
+/// The plan's line on the mesh: its triangles per part, where the hairs are drawn, the mascara.
+fn mesh_parts_line(
+    mesh: &rouge_model::mesh::TriangleMesh,
+    mascara: Option<rouge_model::mesh::lashes::Mascara>,
+) -> String {
+    use rouge_model::mesh::Part;
+    let parts = mesh.part_triangles();
+    let counts: Vec<String> = parts.iter().map(|(p, n)| format!("{} {n}", p.name())).collect();
+    let mut line = format!("mesh: {} triangles ({})", mesh.triangle_count(), counts.join(", "));
+    if parts.iter().any(|(p, _)| matches!(p, Part::Lash | Part::Brow)) {
+        line.push_str("; the lashes and brows are triangles of the shadow and G-buffer passes, no pass of their own");
+        match mascara.filter(|m| !m.is_none()) {
+            Some(m) => line.push_str(&format!(
+                "; mascara length {:.2}×, volume {:.2}×, curl {:.0}°",
+                m.length, m.volume, m.curl_deg
+            )),
+            None => line.push_str("; natural lashes (no mascara)"),
+        }
+    }
+    line
 }
