@@ -225,6 +225,22 @@ fn region_masks_line_up_with_the_default_head() {
     assert_eq!(at(Region::Cheeks, lip), 0.0);
     assert!(at(Region::Eyelids, left_lid) > 0.9);
     assert!(at(Region::Tzone, forehead) > 0.9);
+    // The brows' region lies under the brow hairs (whose UVs are the skin's under them), and
+    // nowhere near the lips or the cheeks.
+    let brow_uvs: Vec<glam::Vec2> = mesh
+        .groups
+        .iter()
+        .filter(|g| g.material.as_deref() == Some("brow"))
+        .flat_map(|g| mesh.faces[g.faces.clone()].iter())
+        .flat_map(|f| f.corners.iter())
+        .map(|c| mesh.uvs[c.uv as usize])
+        .collect();
+    assert!(brow_uvs.len() > 1000, "{} brow corners", brow_uvs.len());
+    let on_brow = brow_uvs.iter().filter(|uv| Region::Brows.mask().sample_uv(uv.x, uv.y) > 0.5).count();
+    assert!(on_brow as f64 > 0.9 * brow_uvs.len() as f64, "{on_brow} of {} hair corners in the mask", brow_uvs.len());
+    for p in [lip, left_cheek, forehead, left_lid] {
+        assert_eq!(at(Region::Brows, p), 0.0, "{p}");
+    }
     // The v convention matters: with v read downwards the cheek would miss.
     let uv = head_uvs_near(&mesh, left_cheek)[0];
     assert!(Region::Cheeks.mask().sample_uv(uv.x, 1.0 - uv.y) < 0.5);

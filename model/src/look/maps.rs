@@ -281,30 +281,35 @@ pub enum Region {
     Eyelids,
     /// Forehead and nose.
     Tzone,
+    /// Where the brows grow (from the brow hairs' roots and shafts, `python/gen_brow_mask.py`):
+    /// the skin a brow pencil, powder or gel fills.
+    Brows,
 }
 
-pub(super) const REGION_PNGS: [&[u8]; 4] = [
+pub(super) const REGION_PNGS: [&[u8]; 5] = [
     include_bytes!("../../../data/heads/masks/lips.png"),
     include_bytes!("../../../data/heads/masks/cheeks.png"),
     include_bytes!("../../../data/heads/masks/eyelids.png"),
     include_bytes!("../../../data/heads/masks/tzone.png"),
+    include_bytes!("../../../data/heads/masks/brows.png"),
 ];
 
-pub(super) static REGION_MASKS: [OnceLock<ThicknessMap>; 4] = [const { OnceLock::new() }; 4];
+pub(super) static REGION_MASKS: [OnceLock<ThicknessMap>; 5] = [const { OnceLock::new() }; 5];
 
 impl Region {
-    /// Every region, in the order lips, cheeks, eyelids, tzone.
-    pub const fn all() -> [Region; 4] {
-        [Region::Lips, Region::Cheeks, Region::Eyelids, Region::Tzone]
+    /// Every region, in the order lips, cheeks, eyelids, tzone, brows.
+    pub const fn all() -> [Region; 5] {
+        [Region::Lips, Region::Cheeks, Region::Eyelids, Region::Tzone, Region::Brows]
     }
 
-    /// The name used in look files: `lips`, `cheeks`, `eyelids`, `tzone`.
+    /// The name used in look files: `lips`, `cheeks`, `eyelids`, `tzone`, `brows`.
     pub const fn name(self) -> &'static str {
         match self {
             Region::Lips => "lips",
             Region::Cheeks => "cheeks",
             Region::Eyelids => "eyelids",
             Region::Tzone => "tzone",
+            Region::Brows => "brows",
         }
     }
 

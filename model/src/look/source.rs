@@ -95,8 +95,9 @@ impl TryFrom<ThicknessJson> for ThicknessSource {
         }
         if let Some(name) = j.region {
             no("scale_mm", j.scale_mm.is_some(), "region")?;
-            let region = Region::parse(&name)
-                .ok_or_else(|| format!("thickness: unknown region {name:?} (regions: lips, cheeks, eyelids, tzone)"))?;
+            let region = Region::parse(&name).ok_or_else(|| {
+                format!("thickness: unknown region {name:?} (regions: lips, cheeks, eyelids, tzone, brows)")
+            })?;
             return Ok(ThicknessSource::Region { region, mm: with_thickness("region")? });
         }
         if let Some(p) = j.mask {
