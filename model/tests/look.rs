@@ -230,7 +230,7 @@ fn region_masks_line_up_with_the_default_head() {
     let brow_uvs: Vec<glam::Vec2> = mesh
         .groups
         .iter()
-        .filter(|g| g.material.as_deref() == Some("brow"))
+        .filter(|g| g.part() == rouge_model::mesh::Part::Brow)
         .flat_map(|g| mesh.faces[g.faces.clone()].iter())
         .flat_map(|f| f.corners.iter())
         .map(|c| mesh.uvs[c.uv as usize])

@@ -114,7 +114,7 @@ fn mascara_lengthens_thickens_and_curls_every_lash() {
     let mut lash: Vec<u32> = base
         .groups
         .iter()
-        .filter(|g| g.material.as_deref() == Some("lash"))
+        .filter(|g| g.part() == rouge_model::mesh::Part::Lash)
         .flat_map(|g| base.faces[g.faces.clone()].iter().flat_map(|f| f.corners.iter().map(|c| c.position)))
         .collect();
     lash.sort_unstable();

@@ -106,6 +106,13 @@ pub struct Group {
     pub faces: Range<usize>,
 }
 
+impl Group {
+    /// What the group is ([`Part::of`] its name and material), as [`TriangleGroup::part`].
+    pub fn part(&self) -> Part {
+        Part::of(&self.name, self.material.as_deref())
+    }
+}
+
 /// Axis-aligned bounding box in millimetres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
