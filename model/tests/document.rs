@@ -449,7 +449,7 @@ fn a_looks_mascara_survives_the_project() {
     use rouge_model::mesh::lashes::Mascara;
     let dir = tempfile::tempdir().expect("tempdir");
     let mut look = Look::bare();
-    look.mascara = Some(Mascara { length: 1.3, volume: 2.0, curl_deg: 15.0 });
+    look.mascara = Some(Mascara { length: 1.3, volume: 2.0, curl_deg: 15.0, color: None });
     let mut doc = Document::from_look(&look);
     assert_eq!(doc.to_look().mascara, look.mascara);
     doc.save_project(dir.path()).expect("save");
@@ -462,7 +462,7 @@ fn a_mascara_is_one_undo_step_and_a_bad_one_changes_nothing() {
     use rouge_model::document::Change;
     use rouge_model::mesh::lashes::Mascara;
     let mut doc = Document::from_look(&Look::bare());
-    let m = Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0 };
+    let m = Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0, color: None };
     assert_eq!(doc.set_mascara(Some(m)).expect("valid"), Change::Mascara);
     assert!(doc.is_modified() && doc.can_undo());
     assert_eq!(doc.set_mascara(Some(m)).expect("valid"), Change::Nothing, "the same mascara is no step");

@@ -458,7 +458,7 @@ fn a_look_carries_its_mascara_and_checks_it() {
     let text = r#"{"schema": "rouge-look", "version": 1, "name": "Lashes", "layers": [],
         "mascara": {"length": 1.4, "volume": 2.5, "curl_deg": 20}}"#;
     let look = Look::from_json(text, path).expect("a look with a mascara");
-    assert_eq!(look.mascara, Some(Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0 }));
+    assert_eq!(look.mascara, Some(Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0, color: None }));
     let back = Look::from_json(&look.to_json(), path).expect("round trip");
     assert_eq!(back, look);
     // No mascara: none written.

@@ -156,7 +156,7 @@ fn mascara_lengthens_thickens_and_curls_every_lash() {
 fn mascara_specs_are_checked() {
     use rouge_model::mesh::lashes::Mascara;
     let m = Mascara::parse("length=1.4, volume=2.5,curl=20").expect("parse");
-    assert_eq!(m, Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0 });
+    assert_eq!(m, Mascara { length: 1.4, volume: 2.5, curl_deg: 20.0, color: None });
     for (bad, says) in [
         ("length=0.5", "length 0.5"),
         ("volume=nan", "volume NaN"),
@@ -164,10 +164,23 @@ fn mascara_specs_are_checked() {
         ("colour=1", "unknown `colour`"),
         ("length", "KEY=VALUE"),
         ("length=abc", "not a number"),
+        ("color=pink", "use black, brown, blue or R/G/B"),
+        ("color=0.1/0.2", "R/G/B"),
+        ("color=0.1/2/0.1", "each channel must be within 0..=1"),
     ] {
         let e = Mascara::parse(bad).expect_err(bad).to_string();
         assert!(e.contains(says), "{bad}: {e}");
     }
+    // A colour: a named shade or linear R/G/B; in a look's JSON as an array, left out without one.
+    assert_eq!(Mascara::parse("color=black").expect("black").color, Mascara::named_color("black"));
+    let blue = Mascara::parse("color=0.01/0.02/0.3").expect("rgb");
+    assert_eq!(blue.color, Some([0.01, 0.02, 0.3]));
+    assert!(!blue.is_none(), "a colour alone is a mascara");
+    let json = serde_json::to_string(&blue).expect("json");
+    assert!(json.contains("\"color\":[0.01,0.02,0.3]"), "{json}");
+    assert!(!serde_json::to_string(&m).expect("json").contains("color"), "no colour, no field");
+    let back: Mascara = serde_json::from_str(&json).expect("read back");
+    assert_eq!(back, blue);
 }
 
 #[test]

@@ -55,17 +55,23 @@ pub struct GpuMesh {
 }
 
 impl GpuMesh {
-    /// Uploads `mesh` (mm) with `skin_albedo` (linear sRGB) on skin vertices.
+    /// Uploads `mesh` (mm) with `skin_albedo` (linear sRGB) on skin vertices and `hair` on the
+    /// lashes and brows.
     ///
     /// # Errors
     /// [`RenderError::Invalid`] for a mesh without vertices or triangles.
-    pub fn upload(device: &wgpu::Device, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<GpuMesh> {
+    pub fn upload(
+        device: &wgpu::Device,
+        mesh: &TriangleMesh,
+        skin_albedo: [f32; 3],
+        hair: HairAlbedo,
+    ) -> Result<GpuMesh> {
         let bounds =
             Bounds::of(&mesh.positions).ok_or_else(|| RenderError::Invalid("the mesh has no vertices".into()))?;
         if mesh.indices.is_empty() {
             return Err(RenderError::Invalid("the mesh has no triangles".into()));
         }
-        let albedo = vertex_albedo(mesh, skin_albedo);
+        let albedo = vertex_albedo(mesh, skin_albedo, hair);
         let vertices: Vec<Vertex> = (0..mesh.positions.len())
             .map(|i| Vertex {
                 position: mesh.positions[i].to_array(),
@@ -122,6 +128,30 @@ pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
 /// enters it, so a black lash reflects a few percent, mostly at its surface. A stand-in for a
 /// fibre model (issue 27's hair shading), not a measurement.
 pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
+/// The hairs' linear albedo: the lashes' (a mascara's colour, or [`LASH_ALBEDO`]) and the
+/// brows' ([`BROW_ALBEDO`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HairAlbedo {
+    /// The lashes'.
+    pub lash: [f32; 3],
+    /// The brows'.
+    pub brow: [f32; 3],
+}
+
+impl Default for HairAlbedo {
+    fn default() -> HairAlbedo {
+        HairAlbedo { lash: LASH_ALBEDO, brow: BROW_ALBEDO }
+    }
+}
+
+impl HairAlbedo {
+    /// The natural hairs with `mascara`'s colour on the lashes, if it has one.
+    pub fn with_mascara(mascara: Option<&rouge_model::mesh::lashes::Mascara>) -> HairAlbedo {
+        let natural = HairAlbedo::default();
+        HairAlbedo { lash: mascara.and_then(|m| m.color).unwrap_or(natural.lash), ..natural }
+    }
+}
+
 /// Linear albedo of the eyebrow hairs: dark brown (the same stand-in as the lashes', a little
 /// lighter: brow hair carries less eumelanin than lash hair in most people).
 pub const BROW_ALBEDO: [f32; 3] = [0.055, 0.038, 0.027];
@@ -130,7 +160,7 @@ pub const BROW_ALBEDO: [f32; 3] = [0.055, 0.038, 0.027];
 /// groups; every other part ([`rouge_model::mesh::Part`]) does not scatter (a = 0): eyes get a
 /// sclera, iris and pupil by angle from the eye's forward axis (+Z), the mouth, teeth, tongue,
 /// lashes and brows their constant albedo.
-pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]> {
+pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3], hair: HairAlbedo) -> Vec<[f32; 4]> {
     use rouge_model::mesh::Part;
     let mut albedo = vec![[skin[0], skin[1], skin[2], 1.0]; mesh.positions.len()];
     for g in &mesh.groups {
@@ -140,8 +170,8 @@ pub(crate) fn vertex_albedo(mesh: &TriangleMesh, skin: [f32; 3]) -> Vec<[f32; 4]
             Part::Mouth => Some(MOUTH_ALBEDO),
             Part::Teeth => Some(TEETH_ALBEDO),
             Part::Tongue => Some(TONGUE_ALBEDO),
-            Part::Lash => Some(LASH_ALBEDO),
-            Part::Brow => Some(BROW_ALBEDO),
+            Part::Lash => Some(hair.lash),
+            Part::Brow => Some(hair.brow),
         };
         let mut verts: Vec<u32> = mesh.indices[g.triangles.start * 3..g.triangles.end * 3].to_vec();
         verts.sort_unstable();

@@ -268,6 +268,7 @@ impl RenderJob {
         let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
         let SkinTextureImages { albedo, normal } = self.skin_textures()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
+        renderer.set_hair_albedo(crate::gpu_mesh::HairAlbedo::with_mascara(look.mascara.as_ref()));
         renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
         renderer.set_look(look)?;
@@ -365,6 +366,9 @@ impl RenderJob {
                 ))
             })?,
         };
+        // The mascara drawn (the job's over the look's) is the look's from here on: its colour
+        // goes to the lashes' albedo and to exports.
+        let look = Look { mascara, ..look };
         Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
 }

@@ -54,6 +54,7 @@ pub(crate) mod wgpu_util;
 pub use directional_dipole::{DipoleKind, DipoleSettings};
 pub use error::{RenderError, Result};
 pub use gpu::Gpu;
+pub use gpu_mesh::HairAlbedo;
 pub use profiler::PassTiming;
 pub use renderer::Renderer;
 pub use scene::{Camera, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};

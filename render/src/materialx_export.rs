@@ -218,7 +218,7 @@ fn profile_mean_radius_mm(p: &DiffusionProfile) -> [f64; 3] {
 /// The mean of the renderer's per-vertex colours of the eyes (OBJ has no colour per vertex);
 /// zero without eyes.
 fn mean_eye_color(mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> [f32; 3] {
-    let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo);
+    let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo, Default::default());
     let mut seen = vec![false; mesh.positions.len()];
     let (mut sum, mut n) = ([0.0f32; 3], 0usize);
     for g in mesh.groups.iter().filter(|g| g.is_eye()) {

@@ -341,7 +341,7 @@ pub fn export(input: &ExportInput) -> Result<MitsubaScene> {
         "    <shape type=\"ply\" id=\"skin\">\n        <string name=\"filename\" value=\"skin.ply\"/>\n{body}    </shape>\n"
     );
     if !eyes.is_empty() {
-        let colours = vertex_albedo(mesh, skin.albedo);
+        let colours = vertex_albedo(mesh, skin.albedo, Default::default());
         files.push(("eyes.ply".to_string(), ply(mesh, &eyes, Some(&colours))));
         x.push_str(
             "    <shape type=\"ply\" id=\"eyes\">\n        <string name=\"filename\" value=\"eyes.ply\"/>\n        \

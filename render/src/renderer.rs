@@ -67,6 +67,8 @@ pub struct Renderer {
     mesh_generation: u64,
     /// How deep the wrinkle families are ([`Renderer::set_wrinkle_weights`]).
     wrinkle_weights: rouge_model::skin::WrinkleWeights,
+    /// The hairs' albedo of the next mesh upload ([`Renderer::set_hair_albedo`]).
+    hair_albedo: crate::HairAlbedo,
 }
 
 impl Renderer {
@@ -95,6 +97,7 @@ impl Renderer {
             atlas: AtlasResources::new(device, formats.min_array_layers),
             mesh_generation: 0,
             wrinkle_weights: Default::default(),
+            hair_albedo: Default::default(),
             shared,
         }
     }
@@ -104,13 +107,21 @@ impl Renderer {
         self.shared.formats
     }
 
-    /// Uploads a triangle mesh (mm) with the skin albedo per vertex.
+    /// The lashes' and brows' albedo of the meshes uploaded from now on ([`Renderer::set_mesh`]):
+    /// a mascara's colour on the lashes ([`crate::HairAlbedo::with_mascara`]).
+    pub fn set_hair_albedo(&mut self, hair: crate::HairAlbedo) {
+        self.hair_albedo = hair;
+    }
+
+    /// Uploads a triangle mesh (mm) with the skin albedo per vertex (and the hairs' of
+    /// [`Renderer::set_hair_albedo`]).
     ///
     /// # Errors
     /// [`RenderError::Invalid`] for an empty mesh.
     pub fn set_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
         let device = &self.shared.device;
-        self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo))?);
+        let hair = self.hair_albedo;
+        self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo, hair))?);
         self.mesh_generation += 1;
         // A posed copy of the mesh (the app's expressions) moves the edges found on it; another
         // mesh drops them, and they are found again when edge antialiasing is on.

@@ -98,8 +98,26 @@ fn mascara_darkens_and_lengthens_the_lash_line() {
         (px.len(), top)
     };
     let (bare, bare_top) = dark(&frame(None));
-    let (coated, coated_top) = dark(&frame(Some(Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0 })));
+    let (coated, coated_top) = dark(&frame(Some(Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0, color: None })));
     println!("dark pixels: natural lashes {bare} (top row {bare_top}), with mascara {coated} (top row {coated_top})");
     assert!(coated as f32 > 1.3 * bare as f32, "mascara darkens the lash line: {bare} -> {coated}");
     assert!(coated_top + 2 < bare_top, "mascara lengthens the upper lashes: top row {bare_top} -> {coated_top}");
+    // A coloured mascara colours the lashes: a bright red one, against the natural lashes, on
+    // the lash pixels of the natural frame (the dark ones).
+    let natural = frame(None);
+    let red = frame(Some(Mascara { color: Some([0.6, 0.02, 0.02]), ..Mascara::default() }));
+    let lash_px: Vec<usize> = (0..(SIZE * SIZE) as usize)
+        .filter(|&i| (SIZE as usize / 4..3 * SIZE as usize / 4).contains(&(i % SIZE as usize)))
+        .filter(|&i| i32::from(natural[4 * i]) < 40 && i32::from(natural[4 * i + 2]) < 40)
+        .collect();
+    let redness = |f: &[u8]| {
+        lash_px.iter().map(|&i| f64::from(f[4 * i]) - f64::from(f[4 * i + 1])).sum::<f64>() / lash_px.len() as f64
+    };
+    println!(
+        "red minus green on {} lash pixels: natural {:.1}, red mascara {:.1}",
+        lash_px.len(),
+        redness(&natural),
+        redness(&red)
+    );
+    assert!(redness(&red) > redness(&natural) + 5.0, "a red mascara reddens the lashes");
 }

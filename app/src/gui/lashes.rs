@@ -1,5 +1,5 @@
 //! The "Lashes" panel: a mascara on the default head's lashes ([`Mascara`]: length, volume,
-//! curl), shown live while a slider is dragged and kept as one undo step when the drag ends
+//! curl, colour), shown live while a slider is dragged and kept as one undo step when the drag ends
 //! (or at once for a click or a key), saved with the project's `look.json`.
 
 use super::*;
@@ -7,7 +7,7 @@ use rouge_model::mesh::lashes::Mascara;
 
 /// What the Mascara switch puts on natural lashes: a lengthening, volumising mascara with a
 /// little curl, inside every range and visible at the default framing.
-const DEFAULT_MASCARA: Mascara = Mascara { length: 1.3, volume: 2.5, curl_deg: 15.0 };
+const DEFAULT_MASCARA: Mascara = Mascara { length: 1.3, volume: 2.5, curl_deg: 15.0, color: None };
 
 impl RougeApp {
     /// The mascara panel (under the Face panel).
@@ -35,6 +35,18 @@ impl RougeApp {
             ];
             let mut commit = false;
             let mut preview = false;
+            let shades = [
+                (None, "natural"),
+                (Mascara::named_color("black"), "black"),
+                (Mascara::named_color("brown"), "brown"),
+                (Mascara::named_color("blue"), "blue"),
+            ];
+            let current = shades.iter().find(|(c, _)| *c == m.color).map_or("custom", |(_, n)| n);
+            egui::ComboBox::from_label("colour").selected_text(current).show_ui(ui, |ui| {
+                for (c, name) in shades {
+                    commit |= ui.selectable_value(&mut m.color, c, name).changed();
+                }
+            });
             for (value, (lo, hi), text, hover) in sliders {
                 let r = ui.add(egui::Slider::new(value, lo..=hi).text(text)).on_hover_text(hover);
                 preview |= r.dragged() && r.changed();

@@ -34,6 +34,10 @@ pub struct Mascara {
     /// upper lid and down on the lower), [`Mascara::CURL_DEG`].
     #[serde(default)]
     pub curl_deg: f32,
+    /// Linear albedo of the coated lashes, each channel in 0..=1 (`None`: the lashes keep their
+    /// own colour); [`Mascara::named_color`] gives the usual shades.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<[f32; 3]>,
 }
 
 fn one() -> f32 {
@@ -42,7 +46,7 @@ fn one() -> f32 {
 
 impl Default for Mascara {
     fn default() -> Mascara {
-        Mascara { length: 1.0, volume: 1.0, curl_deg: 0.0 }
+        Mascara { length: 1.0, volume: 1.0, curl_deg: 0.0, color: None }
     }
 }
 
@@ -53,6 +57,18 @@ impl Mascara {
     pub const VOLUME: (f32, f32) = (1.0, 5.0);
     /// Allowed extra curl, degrees.
     pub const CURL_DEG: (f32, f32) = (0.0, 60.0);
+
+    /// The linear albedo of a named mascara shade: `black` (iron oxide or carbon black in a wax
+    /// film: about 1 % diffuse reflectance), `brown` and `blue` (*choices* of the usual shades,
+    /// not measured products).
+    pub fn named_color(name: &str) -> Option<[f32; 3]> {
+        match name {
+            "black" => Some([0.010, 0.010, 0.011]),
+            "brown" => Some([0.045, 0.027, 0.016]),
+            "blue" => Some([0.012, 0.020, 0.060]),
+            _ => None,
+        }
+    }
 
     /// Whether it changes nothing.
     pub fn is_none(&self) -> bool {
@@ -73,10 +89,18 @@ impl Mascara {
                 return Err(ModelError::Invalid(format!("mascara {name} {v}: must be within {lo}..={hi}")));
             }
         }
+        if let Some(c) = self.color
+            && !c.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v))
+        {
+            return Err(ModelError::Invalid(format!(
+                "mascara color {c:?}: each channel must be within 0..=1 (linear albedo)"
+            )));
+        }
         Ok(())
     }
 
-    /// Parses `length=1.3,volume=2,curl=20` (any subset; `curl_deg` may be written `curl`).
+    /// Parses `length=1.3,volume=2,curl=20,color=black` (any subset; `curl_deg` may be written
+    /// `curl`; `color` is a [`Mascara::named_color`] or `R/G/B` linear albedo).
     ///
     /// # Errors
     /// An unknown key, a number that does not parse, or a value out of range, named.
@@ -86,6 +110,10 @@ impl Mascara {
             let (k, v) = item
                 .split_once('=')
                 .ok_or_else(|| ModelError::Invalid(format!("mascara `{item}`: expected KEY=VALUE")))?;
+            if k.trim() == "color" {
+                m.color = Some(parse_color(v.trim())?);
+                continue;
+            }
             let v: f32 =
                 v.trim().parse().map_err(|_| ModelError::Invalid(format!("mascara {k}: `{v}` is not a number")))?;
             match k.trim() {
@@ -93,13 +121,33 @@ impl Mascara {
                 "volume" => m.volume = v,
                 "curl" | "curl_deg" => m.curl_deg = v,
                 other => {
-                    return Err(ModelError::Invalid(format!("mascara: unknown `{other}` (use length, volume, curl)")));
+                    return Err(ModelError::Invalid(format!(
+                        "mascara: unknown `{other}` (use length, volume, curl, color)"
+                    )));
                 }
             }
         }
         m.validate()?;
         Ok(m)
     }
+}
+
+/// A mascara colour: a named shade or `R/G/B` linear albedo.
+fn parse_color(v: &str) -> Result<[f32; 3]> {
+    if let Some(c) = Mascara::named_color(v) {
+        return Ok(c);
+    }
+    let parts: Vec<&str> = v.split('/').collect();
+    let bad =
+        || ModelError::Invalid(format!("mascara color `{v}`: use black, brown, blue or R/G/B (linear albedo 0-1)"));
+    if parts.len() != 3 {
+        return Err(bad());
+    }
+    let mut c = [0.0f32; 3];
+    for (o, p) in c.iter_mut().zip(parts) {
+        *o = p.trim().parse().map_err(|_| bad())?;
+    }
+    Ok(c)
 }
 
 /// One lash strip: its rungs (the two vertices across the ribbon) from root to tip, and the

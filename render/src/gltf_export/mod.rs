@@ -49,6 +49,8 @@ pub struct GltfInput<'a> {
     pub texture_px: u32,
     /// The look's name (kept in `asset.extras`).
     pub look_name: &'a str,
+    /// The lashes' and brows' colour (a mascara's on the lashes).
+    pub hair: crate::HairAlbedo,
 }
 
 /// An exported asset, ready to write.
@@ -133,7 +135,7 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
         eye_material["extensions"] = json!({"KHR_materials_ior": ior});
     }
 
-    let primitives = primitives(&mesh, skin.albedo, input.normal_map.is_some());
+    let primitives = primitives(&mesh, skin.albedo, input.hair, input.normal_map.is_some());
     let triangles = primitives.iter().map(|p| p.indices.len() / 3).sum();
     // The eyes' material only with eyes (the skin's is material 0, the eyes' 1).
     let mut materials = vec![skin_material];
@@ -182,6 +184,7 @@ pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u3
         normal_map: images.normal.as_ref(),
         texture_px,
         look_name: &loaded.look.name,
+        hair: crate::gpu_mesh::HairAlbedo::with_mascara(loaded.look.mascara.as_ref()),
     })
 }
 
@@ -247,8 +250,13 @@ fn with_tangents(mesh: &TriangleMesh) -> Result<std::borrow::Cow<'_, TriangleMes
 /// glTF mesh a group, and the renderer places an eye's iris and pupil about its group's centre)
 /// and carries the renderer's colours per vertex (`gpu_mesh::vertex_albedo`); the skin its
 /// tangents when `with_tangents` (a normal texture uses them).
-fn primitives(mesh: &TriangleMesh, skin_albedo: [f32; 3], with_tangents: bool) -> Vec<Primitive> {
-    let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo);
+fn primitives(
+    mesh: &TriangleMesh,
+    skin_albedo: [f32; 3],
+    hair: crate::gpu_mesh::HairAlbedo,
+    with_tangents: bool,
+) -> Vec<Primitive> {
+    let albedo = crate::gpu_mesh::vertex_albedo(mesh, skin_albedo, hair);
     // Which primitive each triangle goes to: 0 the skin, i + 1 the i-th group of another part.
     let parts: Vec<_> = mesh.groups.iter().filter(|g| !g.is_skin()).collect();
     let mut part = vec![0usize; mesh.triangle_count()];

@@ -71,8 +71,9 @@ pub struct SceneArgs {
     #[arg(long, value_parser = parse_region)]
     pub close_up: Option<rouge_model::skin::AnatomyRegion>,
     /// A mascara on the default head's lashes, over the look's: length=X (1-2, × the natural
-    /// lash), volume=X (1-5, × its thickness), curl=DEG (0-60, extra curl at the tip); e.g.
-    /// `--mascara length=1.4,volume=2.5,curl=20`.
+    /// lash), volume=X (1-5, × its thickness), curl=DEG (0-60, extra curl at the tip),
+    /// color=black|brown|blue|R/G/B (linear albedo); e.g.
+    /// `--mascara length=1.4,volume=2.5,curl=20,color=black`.
     #[arg(long, value_parser = parse_mascara)]
     pub mascara: Option<rouge_model::mesh::lashes::Mascara>,
     /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
