@@ -128,8 +128,8 @@ pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
 /// enters it, so a black lash reflects a few percent, mostly at its surface. A stand-in for a
 /// fibre model (issue 27's hair shading), not a measurement.
 pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
-/// The hairs' linear albedo: the lashes' (a mascara's colour, or [`LASH_ALBEDO`]) and the
-/// brows' ([`BROW_ALBEDO`]).
+/// The hairs' linear albedo: the lashes' (a mascara's colour, or the natural lash's) and the
+/// brows' (constants in `render/src/gpu_mesh.rs`, cited there).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HairAlbedo {
     /// The lashes'.
