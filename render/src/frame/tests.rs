@@ -11,7 +11,7 @@ fn read(plan: &FramePlan, i: usize, r: Resource) -> bool {
 }
 
 fn settings() -> FrameSettings {
-    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, aa: EdgeAa::Off }
+    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, max_color_bytes: 32, aa: EdgeAa::Off }
 }
 
 fn steps(plan: &FramePlan) -> Vec<String> {
@@ -22,7 +22,14 @@ fn steps(plan: &FramePlan) -> Vec<String> {
 fn the_studio_frame_runs_every_pass() {
     let plan = FramePlan::new(
         &Scene::studio(),
-        Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
+        Uploaded {
+            layers: 3,
+            albedo_map: false,
+            normal_map: false,
+            local_thickness_map: false,
+            skin_detail: false,
+            glitter: 0,
+        },
         settings(),
     )
     .expect("plan");
@@ -39,7 +46,14 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     scene.skin.subsurface = SubsurfaceModel::None;
     let plan = FramePlan::new(
         &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
+        Uploaded {
+            layers: 0,
+            albedo_map: false,
+            normal_map: false,
+            local_thickness_map: false,
+            skin_detail: false,
+            glitter: 0,
+        },
         settings(),
     )
     .expect("plan");
@@ -56,7 +70,14 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     scene.sss.width = 0.0;
     let plan = FramePlan::new(
         &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
+        Uploaded {
+            layers: 0,
+            albedo_map: false,
+            normal_map: false,
+            local_thickness_map: false,
+            skin_detail: false,
+            glitter: 0,
+        },
         settings(),
     )
     .expect("plan");
@@ -66,8 +87,14 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
 #[test]
 fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     use crate::local_thickness::TranslucencyParams;
-    let up =
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true, skin_detail: false };
+    let up = Uploaded {
+        layers: 0,
+        albedo_map: false,
+        normal_map: false,
+        local_thickness_map: true,
+        skin_detail: false,
+        glitter: 0,
+    };
     let mut scene = Scene::rig(crate::scene::LightRig::Back);
     // Not used: neither the pass nor the target.
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
@@ -108,8 +135,14 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
 
 #[test]
 fn bad_requests_are_errors() {
-    let up =
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false };
+    let up = Uploaded {
+        layers: 0,
+        albedo_map: false,
+        normal_map: false,
+        local_thickness_map: false,
+        skin_detail: false,
+        glitter: 0,
+    };
     let scene = Scene::studio();
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());

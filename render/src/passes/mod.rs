@@ -150,6 +150,8 @@ pub struct Shared {
 
     /// A 1×1 Rgba16Float texture bound where a variant reads nothing.
     pub dummy: wgpu::TextureView,
+    /// A 1×1 texture of the glitter target's (unsigned integer) format, for the same.
+    pub dummy_uint: wgpu::TextureView,
 }
 
 impl Shared {
@@ -193,6 +195,15 @@ impl Shared {
             wgpu::TextureUsages::TEXTURE_BINDING,
             &[],
         );
+        let dummy_uint = texture(
+            device,
+            "Shared::dummy_uint",
+            (1, 1),
+            1,
+            crate::targets::GLITTER_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+            &[],
+        );
         Shared {
             device: device.clone(),
             queue: queue.clone(),
@@ -204,6 +215,7 @@ impl Shared {
             shadow_sampler,
             repeat_sampler,
             dummy: view(&dummy),
+            dummy_uint: view(&dummy_uint),
         }
     }
 
