@@ -113,6 +113,10 @@ def main() -> None:
         glitter_figure(a.rouge, folder, a.out)
 
 
+# The eye in the eyelids' close-up at 480x320.
+EYE = (80, 50, 400, 250)
+
+
 def glitter_figure(rouge: str, folder: Path, out: Path) -> None:
     finishes = Path(__file__).resolve().parent.parent / "data" / "finishes"
     lid = {"region": "eyelids", "thickness_mm": 0.015}
@@ -122,10 +126,10 @@ def glitter_figure(rouge: str, folder: Path, out: Path) -> None:
     for yaw in (15.0, 16.0, 17.0):
         img = render(rouge, folder / f"glitter{yaw}.png", "--look", str(glitter), "--close-up", "eyelids",
                      "--yaw", str(yaw), "--pitch", "20", "--width", "480", "--height", "320")
-        cells.append(label(img, f"bronze, gold glitter, yaw {yaw:g}"))
+        cells.append(label(img.crop(EYE), f"bronze, gold glitter, yaw {yaw:g}"))
     img = render(rouge, folder / "satin.png", "--look", str(satin), "--close-up", "eyelids",
                  "--yaw", "15", "--pitch", "20", "--width", "480", "--height", "320")
-    cells.append(label(img, "bronze satin, no glitter, yaw 15"))
+    cells.append(label(img.crop(EYE), "bronze satin, no glitter, yaw 15"))
     grid(cells, 2).save(out / "glitter_closeup.png")
 
 

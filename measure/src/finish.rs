@@ -110,7 +110,8 @@ pub struct Finish {
 pub struct Glitter {
     /// Edge of a flake, µm, 20-2000 (cosmetic glitters: 50-1000 µm).
     pub size_um: f64,
-    /// Flakes per mm² of the film's surface, in (0, 1/(2·size)²].
+    /// Flakes per mm² of the film's surface at the preset's thickness (a thinner film has
+    /// proportionally fewer), in (0, 1/(2·size)²].
     pub density_per_mm2: f64,
     /// Reflectance of a flake's face, linear sRGB, each channel in [0, 1].
     pub color: [f64; 3],

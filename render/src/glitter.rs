@@ -38,6 +38,11 @@
 //!   over the coarse cell. Between two levels the footprint's fractional level blends them
 //!   linearly (level 0 being the explicit flakes).
 //!
+//! In the lighting pass the probability of a flake per cell is scaled by the layer's thickness
+//! over its preset's (`min(1, t / thickness_mm)`: a film thinner than the product's holds
+//! proportionally fewer flakes), and the sparkle is a lobe of its layer ([`sparkle_lobe`] ×
+//! the layer's coverage, attenuated by the layers above it, as a shimmer's).
+//!
 //! *Approximations*: the footprint is the bounding box of the UV parallelogram (exact where the
 //! UV axes are aligned with the screen's, as on the study's turntable; larger, hence blurrier,
 //! elsewhere); a coarse level's flakes are not the fine level's (the blend hides the change

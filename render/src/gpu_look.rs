@@ -169,7 +169,9 @@ impl GpuLook {
             if let Some(g) = layer.preset.finish.and_then(|f| f.glitter) {
                 let field = crate::glitter::FlakeField::new(&g, i as u32);
                 params[i].glitter = [field.cell_mm, field.size_mm, field.p_flake, field.spread];
-                params[i].glitter_color = [g.color[0] as f32, g.color[1] as f32, g.color[2] as f32, 0.0];
+                // w: the preset's thickness, at which the glitter has its density.
+                params[i].glitter_color =
+                    [g.color[0] as f32, g.color[1] as f32, g.color[2] as f32, layer.preset.thickness_mm as f32];
                 glitter_layers |= 1 << i;
             }
         }

@@ -43,7 +43,8 @@ pub struct LayerUniform {
     /// The glitter's flake field (`crate::glitter::FlakeField`): cell edge (mm; 0 without
     /// glitter), flake edge (mm), probability of a flake in a cell, the flakes' spread.
     pub glitter: [f32; 4],
-    /// The flakes' reflectance (linear sRGB), unused.
+    /// The flakes' reflectance (linear sRGB), the preset's thickness (mm) at which the flakes
+    /// have their density (a thinner film has proportionally fewer).
     pub glitter_color: [f32; 4],
 }
 

@@ -186,24 +186,10 @@ impl Shared {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let dummy = texture(
-            device,
-            "Shared::dummy",
-            (1, 1),
-            1,
-            crate::targets::HDR_FORMAT,
-            wgpu::TextureUsages::TEXTURE_BINDING,
-            &[],
-        );
-        let dummy_uint = texture(
-            device,
-            "Shared::dummy_uint",
-            (1, 1),
-            1,
-            crate::targets::GLITTER_FORMAT,
-            wgpu::TextureUsages::TEXTURE_BINDING,
-            &[],
-        );
+        let dummy_of =
+            |label, format| texture(device, label, (1, 1), 1, format, wgpu::TextureUsages::TEXTURE_BINDING, &[]);
+        let dummy = dummy_of("Shared::dummy", crate::targets::HDR_FORMAT);
+        let dummy_uint = dummy_of("Shared::dummy_uint", crate::targets::GLITTER_FORMAT);
         Shared {
             device: device.clone(),
             queue: queue.clone(),

@@ -27,7 +27,8 @@ struct Layer {
     // The glitter's flake field (render/src/glitter.rs FlakeField): x cell edge (mm; 0 without
     // glitter), y flake edge (mm), z probability of a flake in a cell, w the flakes' spread.
     glitter: vec4<f32>,
-    // rgb: the flakes' reflectance (linear sRGB), w: unused.
+    // rgb: the flakes' reflectance (linear sRGB), w: the preset's thickness (mm) at which the
+    // flakes have their density (a thinner film has proportionally fewer).
     glitter_color: vec4<f32>,
 }
 

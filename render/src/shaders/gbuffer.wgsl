@@ -177,7 +177,7 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
     // made unit in the final normal's plane; the handedness is the sign of (n × t)·∇v. The
     // cotangent formula assumes (∂p/∂x × ∂p/∂y)·n > 0, as with GL's upward window y; WebGPU's
     // framebuffer y runs down, which turns both gradients around: `glitter_orient` turns them
-    // back (checked on a plane against the CPU twin, render/tests/glitter_gpu.rs).
+    // back (checked on a plane against the CPU twin, render/tests/specular_gpu.rs).
     let glitter_n = out.normal.xyz;
     let glitter_perp_y = cross(glitter_dp_dy, glitter_n);
     let glitter_perp_x = cross(glitter_n, glitter_dp_dx);

@@ -226,10 +226,13 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
                 // Glitter: the part of the footprint the layer's lit flakes cover × the light's
                 // radiance × the flakes' colour (render/src/glitter.rs `sparkle_lobe`).
                 let flakes = frame.layers[i].glitter;
-                if flakes.x > 0.0 {
+                if flakes.x > 0.0 && thickness[i] > 0.0 {
                     let hg = (l + v) * inverseSqrt(max(dot(l + v, l + v), 1e-12));
                     let h_t = vec3<f32>(dot(hg, glitter_t), dot(hg, glitter_b), dot(hg, n));
-                    let field = FlakeField(flakes.x, flakes.y, flakes.z, flakes.w, i);
+                    // A film thinner than the preset's holds proportionally fewer flakes.
+                    let nominal_mm = max(frame.layers[i].glitter_color.w, 1e-6);
+                    let p_flake = flakes.z * clamp(thickness[i] / nominal_mm, 0.0, 1.0);
+                    let field = FlakeField(flakes.x, flakes.y, p_flake, flakes.w, i);
                     let sparkle = pixel_sparkle(field, glitter_uv, glitter_half, h_t);
                     own += coverage * sparkle_lobe(sparkle, frame.layers[i].glitter_color.rgb, n_dot_l);
                 }
