@@ -14,11 +14,17 @@ binary under the studio lights:
                                     gold shimmer (70 nm TiO2 on mica) and the sapphire with a
                                     blue one (125 nm), from two directions (the interference
                                     colour moves with the angle)
+  docs/images/glitter_closeup.png   the eyelid with 15 um of the bronze eyeshadow with gold
+                                    glitter (data/finishes/eyeshadow_03_bronze_gold_glitter.json),
+                                    turned by 0, 1 and 2 degrees (the sparkles change, the
+                                    flakes stay where they are), and the satin eyeshadow
+                                    without glitter
 
 The finishes are the named ones of `rouge finish --kind` (rouge_measure::finish); the presets
 are written into a temporary folder, nothing in data/ changes.
 
 Usage: python python/finish_figure.py [--rouge target/release/rouge] [--out docs/images]
+       [--only glitter]
 (about a minute with the release binary on 2 cores, lavapipe).
 """
 
@@ -52,7 +58,12 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rouge", default="target/release/rouge")
     ap.add_argument("--out", type=Path, default=Path("docs/images"))
+    ap.add_argument("--only", choices=["glitter"], help="make only this figure")
     a = ap.parse_args()
+    if a.only == "glitter":
+        with tempfile.TemporaryDirectory() as tmp:
+            glitter_figure(a.rouge, Path(tmp), a.out)
+        return
     cheek = ["--close-up", "cheeks", "--yaw", "40", "--pitch", "5", "--width", "480", "--height", "320"]
     lips = ["--close-up", "lips", "--yaw", "15", "--pitch", "10", "--width", "480", "--height", "320"]
     with tempfile.TemporaryDirectory() as tmp:
@@ -99,6 +110,27 @@ def main() -> None:
                              "--yaw", str(yaw), "--pitch", str(pitch), "--width", "480", "--height", "320")
                 cells.append(label(img, f"{text}, yaw {yaw} pitch {pitch}"))
         grid(cells, 3).save(a.out / "shimmer_closeup.png")
+        glitter_figure(a.rouge, folder, a.out)
+
+
+# The eye in the eyelids' close-up at 480x320.
+EYE = (80, 50, 400, 250)
+
+
+def glitter_figure(rouge: str, folder: Path, out: Path) -> None:
+    finishes = Path(__file__).resolve().parent.parent / "data" / "finishes"
+    lid = {"region": "eyelids", "thickness_mm": 0.015}
+    glitter = look(folder, "lid_glitter", [(finishes / "eyeshadow_03_bronze_gold_glitter.json", lid)])
+    satin = look(folder, "lid_satin", [(finished(rouge, folder, "eyeshadow_03_bronze", "satin"), lid)])
+    cells = []
+    for yaw in (15.0, 16.0, 17.0):
+        img = render(rouge, folder / f"glitter{yaw}.png", "--look", str(glitter), "--close-up", "eyelids",
+                     "--yaw", str(yaw), "--pitch", "20", "--width", "480", "--height", "320")
+        cells.append(label(img.crop(EYE), f"bronze, gold glitter, yaw {yaw:g}"))
+    img = render(rouge, folder / "satin.png", "--look", str(satin), "--close-up", "eyelids",
+                 "--yaw", "15", "--pitch", "20", "--width", "480", "--height", "320")
+    cells.append(label(img.crop(EYE), "bronze satin, no glitter, yaw 15"))
+    grid(cells, 2).save(out / "glitter_closeup.png")
 
 
 if __name__ == "__main__":

@@ -208,6 +208,19 @@ fn close_ups_and_finishes_from_the_command_line() {
         assert!(!o.status.success() && stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
     }
     assert_eq!(std::fs::read(&preset).unwrap(), before, "a refused change writes nothing");
+    // Glitter: added, shown, refused naming the field, taken out.
+    let o = rouge(&["finish", p, "--glitter-size-um", "150", "--glitter-color", "0.9,0.8,0.4"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&preset).unwrap();
+    assert!(text.contains("\"glitter\"") && text.contains("\"size_um\": 150.0"), "{text}");
+    let shown = String::from_utf8_lossy(&rouge(&["finish", p]).stdout).into_owned();
+    assert!(shown.contains("glitter 150 µm flakes"), "{shown}");
+    let o = rouge(&["finish", p, "--glitter-density", "30"]);
+    assert!(!o.status.success() && stderr(&o).contains("glitter.density_per_mm2"), "{}", stderr(&o));
+    let o = rouge(&["finish", p, "--glitter-color", "1,2"]);
+    assert!(!o.status.success() && stderr(&o).contains("R,G,B"), "{}", stderr(&o));
+    let o = rouge(&["finish", p, "--no-glitter"]);
+    assert!(o.status.success() && !std::fs::read_to_string(&preset).unwrap().contains("glitter"));
     let o = rouge(&["finish", "builtin:lipstick_02_red", "--kind", "matte"]);
     assert!(!o.status.success() && stderr(&o).contains("--out"), "{}", stderr(&o));
     let o = rouge(&["finish", p, "--clear"]);

@@ -75,7 +75,7 @@ impl FinishKind {
             FinishKind::Dewy => (0.12, 1.48, 0.9, 0.8),
             FinishKind::Gloss => (0.04, 1.50, 1.0, 1.0),
         };
-        (Specular { roughness, ior }, Finish { kind: self, clarity, levelling, shimmer: None })
+        (Specular { roughness, ior }, Finish { kind: self, clarity, levelling, shimmer: None, glitter: None })
     }
 }
 
@@ -93,6 +93,58 @@ pub struct Finish {
     /// Pearlescent platelets in the film, if any (shimmer).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shimmer: Option<Shimmer>,
+    /// Glitter flakes in the film, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub glitter: Option<Glitter>,
+}
+
+/// Glitter: discrete mirror flakes in the film, each large enough to be seen on its own, so that
+/// the layer sparkles (a point of light wherever a flake's normal lies within a light's disc of
+/// the half vector) rather than shines. The flake field and its rendering are
+/// `rouge_render::glitter` (docs/FINISHES.md "Glitter").
+///
+/// *Choice*: flakes are squares of edge `size_um`, one candidate per grid cell of twice that
+/// edge, so they never overlap; hence `density_per_mm2` · (2 · size)² ≤ 1.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Glitter {
+    /// Edge of a flake, µm, 20-2000 (cosmetic glitters: 50-1000 µm).
+    pub size_um: f64,
+    /// Flakes per mm² of the film's surface at the preset's thickness (a thinner film has
+    /// proportionally fewer), in (0, 1/(2·size)²].
+    pub density_per_mm2: f64,
+    /// Reflectance of a flake's face, linear sRGB, each channel in [0, 1].
+    pub color: [f64; 3],
+    /// RMS slope of the flakes' normals about the surface normal (a Beckmann roughness: the
+    /// slopes are Gaussian, σ = spread/√2 per axis), in (0, 1].
+    pub spread: f64,
+}
+
+impl Glitter {
+    /// Checks the ranges; the message names the field.
+    ///
+    /// # Errors
+    /// A field outside its range (see the fields) or not finite.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(20.0..=2000.0).contains(&self.size_um) {
+            return Err(format!("`finish.glitter.size_um` = {} must be in [20, 2000]", self.size_um));
+        }
+        let cell_mm = 2.0 * self.size_um * 1e-3;
+        let most = 1.0 / (cell_mm * cell_mm);
+        if !(self.density_per_mm2 > 0.0 && self.density_per_mm2 <= most * (1.0 + 1e-9)) {
+            return Err(format!(
+                "`finish.glitter.density_per_mm2` = {} must be in (0, {most:.4}] (flakes of {} µm never overlap: at most one per {:.3} mm square)",
+                self.density_per_mm2, self.size_um, cell_mm
+            ));
+        }
+        if let Some(c) = self.color.iter().find(|c| !(0.0..=1.0).contains(*c)) {
+            return Err(format!("`finish.glitter.color` has {c}: each channel must be in [0, 1]"));
+        }
+        if !(self.spread > 0.0 && self.spread <= 1.0) {
+            return Err(format!("`finish.glitter.spread` = {} must be in (0, 1]", self.spread));
+        }
+        Ok(())
+    }
 }
 
 /// Pearlescent (shimmer) pigment in a film: mica platelets coated with rutile TiO₂
@@ -155,6 +207,9 @@ impl Finish {
             if !(s.spread > 0.0 && s.spread <= 1.0) {
                 return Err(format!("`finish.shimmer.spread` = {} must be in (0, 1]", s.spread));
             }
+        }
+        if let Some(g) = &self.glitter {
+            g.validate()?;
         }
         Ok(())
     }
@@ -416,6 +471,28 @@ mod tests {
         assert!(f.validate().unwrap_err().contains("shimmer.spread"));
         f.shimmer = Some(Shimmer { film_nm: 2000.0, ..gold });
         assert!(f.validate().unwrap_err().contains("shimmer.film_nm"));
+    }
+
+    #[test]
+    fn bad_glitter_names_the_field() {
+        let good = Glitter { size_um: 100.0, density_per_mm2: 10.0, color: [0.9, 0.8, 0.5], spread: 0.3 };
+        let mut f = FinishKind::Gloss.defaults().1;
+        f.glitter = Some(good);
+        assert!(f.validate().is_ok());
+        // 100 µm flakes: one per 0.2 mm square at most, 25 per mm².
+        assert!(Glitter { density_per_mm2: 25.0, ..good }.validate().is_ok());
+        for (bad, field) in [
+            (Glitter { size_um: 5.0, ..good }, "glitter.size_um"),
+            (Glitter { size_um: f64::NAN, ..good }, "glitter.size_um"),
+            (Glitter { density_per_mm2: 26.0, ..good }, "glitter.density_per_mm2"),
+            (Glitter { density_per_mm2: 0.0, ..good }, "glitter.density_per_mm2"),
+            (Glitter { color: [0.5, 1.5, 0.5], ..good }, "glitter.color"),
+            (Glitter { color: [0.5, f64::NAN, 0.5], ..good }, "glitter.color"),
+            (Glitter { spread: 0.0, ..good }, "glitter.spread"),
+        ] {
+            f.glitter = Some(bad);
+            assert!(f.validate().unwrap_err().contains(field), "{bad:?}");
+        }
     }
 
     #[test]

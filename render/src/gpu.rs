@@ -51,13 +51,20 @@ impl Gpu {
     /// [`RenderError::Gpu`] when the device cannot be opened.
     pub fn from_adapter(adapter: wgpu::Adapter) -> Result<Gpu> {
         let required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        // WebGPU's defaults, lowered where the adapter has less (wgpu's GL backend on Mesa has
+        // fewer storage buffers per stage, for instance); the texture sizes of the adapter, and
+        // its bytes of colour attachments per pixel (the G-buffer with glitter takes 40, over
+        // WebGPU's default 32; Vulkan, GL and DX12 adapters offer more).
+        let mut required_limits =
+            wgpu::Limits::default().using_resolution(adapter.limits()).or_worse_values_from(&adapter.limits());
+        required_limits.max_color_attachment_bytes_per_sample = adapter
+            .limits()
+            .max_color_attachment_bytes_per_sample
+            .max(required_limits.max_color_attachment_bytes_per_sample);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rouge"),
             required_features,
-            // WebGPU's defaults, lowered where the adapter has less (wgpu's GL backend on Mesa has
-            // fewer storage buffers per stage, for instance); the texture sizes of the adapter.
-            required_limits:
-                wgpu::Limits::default().using_resolution(adapter.limits()).or_worse_values_from(&adapter.limits()),
+            required_limits,
             ..Default::default()
         }))
         .map_err(|e| RenderError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;

@@ -41,6 +41,8 @@ pub struct GpuLook {
     pub tables: wgpu::Buffer,
     /// Specular parameters per layer.
     pub params: [LayerUniform; MAX_LAYERS],
+    /// The layers with glitter, bit i for layer i.
+    pub glitter: u8,
 }
 
 fn half_texels(mm: &[f32], multiplier: f32) -> Vec<u16> {
@@ -83,6 +85,7 @@ impl GpuLook {
             size: (1, 1),
             tables: buffer_init(device, "GpuLook::tables (none)", &[0u8; 16], wgpu::BufferUsages::STORAGE),
             params: [LayerUniform::default(); MAX_LAYERS],
+            glitter: 0,
         }
     }
 
@@ -122,6 +125,7 @@ impl GpuLook {
         let mut tables: Vec<[f32; 4]> = Vec::with_capacity(layers.len().max(1) * 3 * entries);
         let mut params = [LayerUniform::default(); MAX_LAYERS];
         let whole = TexelRect::whole(w, h);
+        let mut glitter_layers = 0u8;
         for (i, layer) in layers.iter().enumerate() {
             let texels = if (layer.map.width, layer.map.height) == (w, h) {
                 half_texels(&layer.map.mm, layer.multiplier)
@@ -159,7 +163,17 @@ impl GpuLook {
                     shimmer.map_or(1.0, |s| s.spread as f32),
                     0.0,
                 ],
+                ..LayerUniform::default()
             };
+            // The glitter's flake field, seeded by the layer's index (crate::glitter).
+            if let Some(g) = layer.preset.finish.and_then(|f| f.glitter) {
+                let field = crate::glitter::FlakeField::new(&g, i as u32);
+                params[i].glitter = [field.cell_mm, field.size_mm, field.p_flake, field.spread];
+                // w: the preset's thickness, at which the glitter has its density.
+                params[i].glitter_color =
+                    [g.color[0] as f32, g.color[1] as f32, g.color[2] as f32, layer.preset.thickness_mm as f32];
+                glitter_layers |= 1 << i;
+            }
         }
         if tables.is_empty() {
             tables.push([0.0; 4]);
@@ -171,6 +185,7 @@ impl GpuLook {
             size: (w, h),
             tables: buffer_init(device, "GpuLook::tables", bytemuck::cast_slice(&tables), wgpu::BufferUsages::STORAGE),
             params,
+            glitter: glitter_layers,
         })
     }
 

@@ -52,6 +52,10 @@ pub struct GpuMesh {
     pub bounds: Bounds,
     /// Whether the vertices carry tangents (a normal map needs them).
     pub has_tangents: bool,
+    /// The mesh's mean scale, mm per UV unit (the skin detail's,
+    /// [`rouge_model::skin::detail::tiles_per_uv`] × its tile): the glitter's flake fields lie
+    /// in UV × this. 0 for a mesh without UV area.
+    pub mm_per_uv: f32,
 }
 
 impl GpuMesh {
@@ -81,7 +85,10 @@ impl GpuMesh {
                 tangent: mesh.tangents.as_ref().and_then(|t| t.get(i)).map_or([0.0; 4], |t| t.to_array()),
             })
             .collect();
+        let mm_per_uv =
+            rouge_model::skin::detail::tiles_per_uv(mesh).map_or(0.0, |t| t * rouge_model::skin::detail::TILE_MM);
         Ok(GpuMesh {
+            mm_per_uv,
             vertices: buffer_init(
                 device,
                 "GpuMesh::vertices",

@@ -27,6 +27,8 @@ pub mod edges;
 pub mod env;
 pub mod error;
 pub mod frame;
+pub mod glitter;
+pub mod glitter_study;
 pub mod gltf_export;
 pub mod gpu;
 pub(crate) mod gpu_look;

@@ -324,9 +324,15 @@ impl Renderer {
             normal_map: self.textures.normal.is_some(),
             local_thickness_map: self.textures.local_thickness.is_some(),
             skin_detail: self.textures.detail.is_some(),
+            glitter: self.look.glitter,
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
-        FramePlan::new(scene, uploaded, FrameSettings { width, height, display, max_side, aa: self.edge_aa })
+        let max_color_bytes = self.shared.device.limits().max_color_attachment_bytes_per_sample;
+        FramePlan::new(
+            scene,
+            uploaded,
+            FrameSettings { width, height, display, max_side, max_color_bytes, aa: self.edge_aa },
+        )
     }
 
     /// Renders one frame of `scene` seen by `camera` at `width` × `height`: the tone-mapped
@@ -387,6 +393,7 @@ impl Renderer {
             let r = w.uv_rect;
             frame.wrinkles = [[r.u0, r.v0, r.side, 1.0 / w.side_px as f32], left, right];
         }
+        frame.surface[0] = if plan.variant.glitter { mesh.mm_per_uv } else { 0.0 };
         shared.write_frame(&frame);
 
         let profiler = if *profiling { profiler.as_mut() } else { None };

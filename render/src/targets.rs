@@ -20,6 +20,10 @@ pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSr
 /// 2-bit alpha for the translucency material id (0: none), so that the G-buffer stays within
 /// WebGPU's 32 bytes per sample with eight layers (\[BarreBrisebois2011\] packs it the same way).
 pub const LOCAL_THICKNESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgb10a2Unorm;
+/// The glitter's G-buffer target (gbuffer.wgsl): the UV in mm as f32 bits (x, y), the footprint's
+/// half extents log-coded as two snorm16 (z; the sign of the first is the UV frame's
+/// handedness), the UV tangent's octahedral code as two snorm16 (w).
+pub const GLITTER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 /// Format of radiance and thickness targets.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of depth buffers and shadow maps.
@@ -108,6 +112,8 @@ pub enum Target {
     ThicknessB,
     /// Local thickness of the thickness translucency (rgb, white = thin) and its material id (a).
     LocalThickness,
+    /// The glitter's flake-field coordinates: UV in mm, footprint, tangent frame (`GLITTER_FORMAT`).
+    Glitter,
     /// Depth buffer.
     Depth,
     /// Skin radiance before scattering.
@@ -135,6 +141,7 @@ impl Target {
             Target::ThicknessA => "thickness 0-3",
             Target::ThicknessB => "thickness 4-7",
             Target::LocalThickness => "local thickness",
+            Target::Glitter => "glitter footprint",
             Target::Depth => "depth",
             Target::Diffuse => "diffuse",
             Target::SssScratch => "sss scratch",
@@ -152,6 +159,7 @@ impl Target {
             Target::Normal => NORMAL_FORMAT,
             Target::Albedo => ALBEDO_FORMAT,
             Target::LocalThickness => LOCAL_THICKNESS_FORMAT,
+            Target::Glitter => GLITTER_FORMAT,
             Target::Depth => DEPTH_FORMAT,
             Target::Display => formats.display,
             Target::Linear => formats.linear,

@@ -40,6 +40,12 @@ pub struct LayerUniform {
     /// The finish's levelling (how much the film fills the skin's pores), its shimmer's strength
     /// and spread (0 and 1 without a shimmer), unused.
     pub film: [f32; 4],
+    /// The glitter's flake field (`crate::glitter::FlakeField`): cell edge (mm; 0 without
+    /// glitter), flake edge (mm), probability of a flake in a cell, the flakes' spread.
+    pub glitter: [f32; 4],
+    /// The flakes' reflectance (linear sRGB), the preset's thickness (mm) at which the flakes
+    /// have their density (a thinner film has proportionally fewer).
+    pub glitter_color: [f32; 4],
 }
 
 /// The per-frame uniform, as in WGSL `Frame` (shaders/common.wgsl).
@@ -75,6 +81,8 @@ pub struct FrameUniform {
     pub lights: [LightUniform; MAX_LIGHTS],
     /// Layers.
     pub layers: [LayerUniform; MAX_LAYERS],
+    /// The mesh's mm per UV unit (the glitter's flake field; 0 without glitter), unused ×3.
+    pub surface: [f32; 4],
 }
 
 /// The camera of one frame, as the passes and the picking need it.
@@ -160,6 +168,7 @@ impl FrameUniform {
             sh: constants.sh,
             lights: light_uniforms(&constants.lights, bounds),
             layers: layers.1,
+            surface: [0.0; 4],
         }
     }
 }

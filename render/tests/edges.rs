@@ -154,9 +154,16 @@ fn concave_edges_of_a_closed_mesh_are_never_drawn_and_boundaries_always_are() {
 
 #[test]
 fn the_overdraw_pass_exists_only_with_edge_antialiasing() {
-    let up =
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false };
-    let settings = |aa, display| FrameSettings { width: 64, height: 48, display, max_side: 8192, aa };
+    let up = Uploaded {
+        layers: 0,
+        albedo_map: false,
+        normal_map: false,
+        local_thickness_map: false,
+        skin_detail: false,
+        glitter: 0,
+    };
+    let settings =
+        |aa, display| FrameSettings { width: 64, height: 48, display, max_side: 8192, max_color_bytes: 32, aa };
     let has = |plan: &FramePlan| plan.passes.iter().any(|p| matches!(p.step, Step::EdgeOverdraw(_)));
     let scene = Scene::studio();
     let off = FramePlan::new(&scene, up, settings(EdgeAa::Off, true)).expect("plan");

@@ -7,6 +7,7 @@ pub mod atlas;
 pub mod deform;
 pub mod export;
 pub mod fit_thickness;
+pub mod glitter;
 pub mod recipe;
 pub mod report;
 pub mod skin;
@@ -66,6 +67,10 @@ pub enum BenchCommand {
     /// glTF export: seconds to bake the look and build the document, to write the .glb, and
     /// the file's size, per texture side (the scene options of `rouge export gltf`).
     Export(crate::bench::export::ExportBenchArgs),
+    /// Glitter: Rouge's sparkle estimator against explicit flakes supersampled 16×16 (and 2×2,
+    /// 4×4) on a slowly turning patch: flicker between frames and sparkles per frame, relative
+    /// to the 16×16 reference, at a few pixel sizes.
+    Glitter(crate::bench::glitter::GlitterBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -134,6 +139,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Skin(args) => crate::bench::skin::run(args),
         BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
         BenchCommand::Export(args) => crate::bench::export::run(args),
+        BenchCommand::Glitter(args) => crate::bench::glitter::run(args),
     }
 }
 

@@ -4,7 +4,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use rouge_measure::finish::{FinishKind, GlossGeometry, GlossReading, Shimmer, fit_gloss, gloss_units};
+use rouge_measure::finish::{FinishKind, Glitter, GlossGeometry, GlossReading, Shimmer, fit_gloss, gloss_units};
 use rouge_measure::preset::Specular;
 use rouge_model::look::load_preset_ref;
 use std::path::{Path, PathBuf};
@@ -44,8 +44,23 @@ pub struct FinishArgs {
     /// Take the shimmer out of the finish.
     #[arg(long, conflicts_with_all = ["shimmer_nm", "shimmer_strength", "shimmer_spread"])]
     pub no_shimmer: bool,
+    /// Glitter: flat mirror flakes this wide, µm (20-2000; cosmetic glitter 50-1000).
+    #[arg(long)]
+    pub glitter_size_um: Option<f64>,
+    /// The glitter's flakes per mm² of film (at most 1/(2·size)²; default: a quarter of that).
+    #[arg(long)]
+    pub glitter_density: Option<f64>,
+    /// The flakes' reflectance, linear sRGB R,G,B in 0-1 (default 0.9,0.9,0.9: silver).
+    #[arg(long, value_parser = parse_rgb)]
+    pub glitter_color: Option<[f64; 3]>,
+    /// The flakes' RMS tilt, a Beckmann roughness in (0, 1] (default 0.3).
+    #[arg(long)]
+    pub glitter_spread: Option<f64>,
+    /// Take the glitter out of the finish.
+    #[arg(long, conflicts_with_all = ["glitter_size_um", "glitter_density", "glitter_color", "glitter_spread"])]
+    pub no_glitter: bool,
     /// Remove the finish (the preset goes back to schema version 1).
-    #[arg(long, conflicts_with_all = ["kind", "gloss", "clarity", "levelling", "shimmer_nm", "shimmer_strength", "shimmer_spread"])]
+    #[arg(long, conflicts_with_all = ["kind", "gloss", "clarity", "levelling", "shimmer_nm", "shimmer_strength", "shimmer_spread", "glitter_size_um", "glitter_density", "glitter_color", "glitter_spread"])]
     pub clear: bool,
     /// Where to write the preset (default: over PRESET, atomically). Without a change nothing
     /// is written.
@@ -55,6 +70,15 @@ pub struct FinishArgs {
 
 fn parse_kind(s: &str) -> Result<FinishKind, String> {
     FinishKind::from_name(s).ok_or_else(|| format!("unknown finish {s:?}: use matte, satin, dewy or gloss"))
+}
+
+fn parse_rgb(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let [r, g, b] = parts.as_slice() else {
+        return Err(format!("{s:?}: write R,G,B, e.g. 0.9,0.8,0.5"));
+    };
+    let channel = |c: &str| c.trim().parse::<f64>().map_err(|_| format!("{s:?}: {c:?} is not a number"));
+    Ok([channel(r)?, channel(g)?, channel(b)?])
 }
 
 fn parse_reading(s: &str) -> Result<GlossReading, String> {
@@ -78,12 +102,18 @@ fn gloss_line(specular: Specular) -> String {
 pub fn run(args: &FinishArgs) -> Result<()> {
     let mut preset = load_preset_ref(&args.preset, Path::new("."))?;
     let shimmer_given = args.shimmer_nm.is_some() || args.shimmer_strength.is_some() || args.shimmer_spread.is_some();
+    let glitter_given = args.glitter_size_um.is_some()
+        || args.glitter_density.is_some()
+        || args.glitter_color.is_some()
+        || args.glitter_spread.is_some();
     let changes = args.kind.is_some()
         || !args.gloss.is_empty()
         || args.clarity.is_some()
         || args.levelling.is_some()
         || shimmer_given
         || args.no_shimmer
+        || glitter_given
+        || args.no_glitter
         || args.clear;
     let out = match (&args.out, args.preset.starts_with("builtin:")) {
         (Some(out), _) => out.clone(),
@@ -99,6 +129,7 @@ pub fn run(args: &FinishArgs) -> Result<()> {
             (Some(k), _) => k.defaults(),
             (None, Some(f)) => (preset.specular, f),
             (None, None) if !args.gloss.is_empty() || shimmer_given => FinishKind::Satin.defaults(),
+            (None, None) if glitter_given => FinishKind::Gloss.defaults(),
             (None, None) => bail!("--clarity/--levelling change a finish: give --kind (matte, satin, dewy, gloss) too"),
         };
         if !args.gloss.is_empty() {
@@ -127,19 +158,40 @@ pub fn run(args: &FinishArgs) -> Result<()> {
                 spread: args.shimmer_spread.or(before.map(|s| s.spread)).unwrap_or(0.25),
             });
         }
+        if args.no_glitter {
+            finish.glitter = None;
+        } else if glitter_given {
+            let before = finish.glitter.or(preset.finish.and_then(|f| f.glitter));
+            let Some(size_um) = args.glitter_size_um.or(before.map(|g| g.size_um)) else {
+                bail!(
+                    "--glitter-density/--glitter-color/--glitter-spread change a glitter: give --glitter-size-um too"
+                );
+            };
+            let most = 1.0 / (2.0 * size_um * 1e-3).powi(2);
+            finish.glitter = Some(Glitter {
+                size_um,
+                density_per_mm2: args.glitter_density.or(before.map(|g| g.density_per_mm2)).unwrap_or(0.25 * most),
+                color: args.glitter_color.or(before.map(|g| g.color)).unwrap_or([0.9; 3]),
+                spread: args.glitter_spread.or(before.map(|g| g.spread)).unwrap_or(0.3),
+            });
+        }
         finish.validate().map_err(anyhow::Error::msg)?;
         preset.set_finish(Some((specular, finish)));
     }
     let s = preset.specular;
     let film = match preset.finish {
         Some(f) => format!(
-            "{} (clarity {:.2}, levelling {:.2}{})",
+            "{} (clarity {:.2}, levelling {:.2}{}{})",
             f.kind.name(),
             f.clarity,
             f.levelling,
             f.shimmer.map_or(String::new(), |s| format!(
                 ", shimmer {} nm TiO₂ strength {:.2} spread {:.2}",
                 s.film_nm, s.strength, s.spread
+            )),
+            f.glitter.map_or(String::new(), |g| format!(
+                ", glitter {} µm flakes {:.1}/mm² colour {:.2},{:.2},{:.2} spread {:.2}",
+                g.size_um, g.density_per_mm2, g.color[0], g.color[1], g.color[2], g.spread
             ))
         ),
         None => "none (schema version 1: a clear film that follows the skin's relief)".into(),

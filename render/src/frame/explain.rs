@@ -22,6 +22,10 @@ impl Resource {
             Resource::NormalMap => "normal map".into(),
             Resource::LocalThicknessMap => "local-thickness map".into(),
             Resource::SkinDetail => "skin detail (relief tile, region map, wrinkle map)".into(),
+            Resource::Glitter(mask) => {
+                let layers: Vec<String> = (0..8).filter(|i| mask & (1 << i) != 0).map(|i| i.to_string()).collect();
+                format!("glitter of layer(s) {} (flake fields)", layers.join(", "))
+            }
             Resource::Environment => "SH environment".into(),
             Resource::LightGbuffer { .. } => "light G-buffer".into(),
             Resource::RadianceMaps { .. } => "radiance maps".into(),

@@ -46,6 +46,8 @@ pub struct Uploaded {
     pub local_thickness_map: bool,
     /// The skin's microgeometry is bound ([`crate::Renderer::set_skin_detail`]).
     pub skin_detail: bool,
+    /// The layers with glitter, one bit per layer index (`crate::gpu_look::GpuLook::glitter`).
+    pub glitter: u8,
 }
 
 /// The output of a frame.
@@ -59,6 +61,8 @@ pub struct FrameSettings {
     pub display: bool,
     /// The largest texture side the device takes.
     pub max_side: u32,
+    /// The most bytes of colour attachments per pixel the device takes (WebGPU's default: 32).
+    pub max_color_bytes: u32,
     /// Discontinuity edge overdraw (\[Sander2001\]).
     pub aa: EdgeAa,
 }
@@ -98,6 +102,8 @@ pub enum Resource {
     LocalThicknessMap,
     /// The skin's microgeometry: relief tile, region map and (on the default head) wrinkle map.
     SkinDetail,
+    /// The glitter of the layers in the mask (bit i: layer i), as flake fields.
+    Glitter(u8),
     /// The environment's spherical-harmonics irradiance.
     Environment,
     /// The dipole models' light G-buffer: light views and side, texels.
@@ -207,9 +213,23 @@ impl FramePlan {
             thickness: models.thickness_variant(),
             dipole: models.dipole.is_some() || models.atlas.is_some(),
             atlas: models.atlas.is_some(),
+            glitter: uploaded.glitter != 0 && uploaded.layers > 0 && scene.specular,
         };
+        let mut variant = variant;
+        let glitter_bytes = crate::passes::gbuffer::bytes_per_sample(variant);
+        if variant.glitter && glitter_bytes > settings.max_color_bytes {
+            variant.glitter = false;
+            plan.skip(
+                "glitter",
+                format!(
+                    "its G-buffer would take {glitter_bytes} bytes a pixel, the device takes {}",
+                    settings.max_color_bytes
+                ),
+            );
+        }
         plan.gbuffer(variant);
-        plan.lighting(variant);
+        plan.glitter(uploaded.glitter, scene.specular);
+        plan.lighting(variant, uploaded.glitter);
         plan.subsurface_passes(variant, models);
         let kernel = plan.screen_space(scene)?;
         plan.composite(variant, kernel.is_some());

@@ -52,7 +52,7 @@ impl Planner {
         self.passes.push(PlannedPass { step, reads, writes });
     }
 
-    fn skip(&mut self, what: impl Into<String>, why: impl Into<String>) {
+    pub fn skip(&mut self, what: impl Into<String>, why: impl Into<String>) {
         self.skipped.push(Skipped { what: what.into(), why: why.into() });
     }
 
@@ -114,11 +114,24 @@ impl Planner {
         }
     }
 
+    /// Says why no glitter is drawn, where none is (the lighting pass names the layers that
+    /// have it otherwise).
+    pub fn glitter(&mut self, layers: u8, specular: bool) {
+        if layers == 0 {
+            self.skip("glitter", "none in the look");
+        } else if !specular {
+            self.skip("glitter", "specular is off");
+        }
+    }
+
     /// Lighting through the cosmetic stack.
-    pub fn lighting(&mut self, variant: Variant) {
+    pub fn lighting(&mut self, variant: Variant, glitter: u8) {
         let mut reads = targets(&lighting::inputs(variant));
         if variant.layers > 0 {
             reads.push(Resource::LayerTables);
+        }
+        if variant.glitter {
+            reads.push(Resource::Glitter(glitter));
         }
         if variant.shadows {
             reads.push(Resource::ShadowMaps);

@@ -11,7 +11,19 @@ fn read(plan: &FramePlan, i: usize, r: Resource) -> bool {
 }
 
 fn settings() -> FrameSettings {
-    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, aa: EdgeAa::Off }
+    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, max_color_bytes: 32, aa: EdgeAa::Off }
+}
+
+/// What is uploaded: `layers` layers and nothing else.
+fn uploaded(layers: u32) -> Uploaded {
+    Uploaded {
+        layers,
+        albedo_map: false,
+        normal_map: false,
+        local_thickness_map: false,
+        skin_detail: false,
+        glitter: 0,
+    }
 }
 
 fn steps(plan: &FramePlan) -> Vec<String> {
@@ -20,12 +32,7 @@ fn steps(plan: &FramePlan) -> Vec<String> {
 
 #[test]
 fn the_studio_frame_runs_every_pass() {
-    let plan = FramePlan::new(
-        &Scene::studio(),
-        Uploaded { layers: 3, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
-        settings(),
-    )
-    .expect("plan");
+    let plan = FramePlan::new(&Scene::studio(), uploaded(3), settings()).expect("plan");
     assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "sss horizontal", "sss vertical", "composite"]);
     assert!(plan.targets.contains(&Target::ThicknessA) && !plan.targets.contains(&Target::ThicknessB));
     let text = plan.explain();
@@ -37,12 +44,7 @@ fn the_studio_frame_runs_every_pass() {
 fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     let mut scene = Scene::white_light(Vec3::Z);
     scene.skin.subsurface = SubsurfaceModel::None;
-    let plan = FramePlan::new(
-        &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
-        settings(),
-    )
-    .expect("plan");
+    let plan = FramePlan::new(&scene, uploaded(0), settings()).expect("plan");
     assert_eq!(steps(&plan), ["gbuffer", "lighting", "composite"]);
     assert_eq!(plan.passes[2].step, Step::Composite(Target::Diffuse));
     for t in [Target::ThicknessA, Target::ThicknessB, Target::SssScratch, Target::Scattered, Target::ExitT] {
@@ -54,20 +56,14 @@ fn what_the_scene_does_not_use_is_skipped_with_a_reason() {
     }
     scene.skin.subsurface = SubsurfaceModel::skin_screen_space();
     scene.sss.width = 0.0;
-    let plan = FramePlan::new(
-        &scene,
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false },
-        settings(),
-    )
-    .expect("plan");
+    let plan = FramePlan::new(&scene, uploaded(0), settings()).expect("plan");
     assert!(plan.explain().contains("the SSS width is 0"));
 }
 
 #[test]
 fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     use crate::local_thickness::TranslucencyParams;
-    let up =
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: true, skin_detail: false };
+    let up = Uploaded { local_thickness_map: true, ..uploaded(0) };
     let mut scene = Scene::rig(crate::scene::LightRig::Back);
     // Not used: neither the pass nor the target.
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
@@ -108,8 +104,7 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
 
 #[test]
 fn bad_requests_are_errors() {
-    let up =
-        Uploaded { layers: 0, albedo_map: false, normal_map: false, local_thickness_map: false, skin_detail: false };
+    let up = uploaded(0);
     let scene = Scene::studio();
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 0, ..settings() }).is_err());
     assert!(FramePlan::new(&scene, up, FrameSettings { width: 9000, ..settings() }).is_err());
@@ -122,4 +117,25 @@ fn bad_requests_are_errors() {
     let mut even = scene;
     even.sss.samples = 4;
     assert!(FramePlan::new(&even, up, settings()).is_err());
+}
+
+#[test]
+fn glitter_is_planned_only_where_a_layer_has_it_and_the_device_takes_its_target() {
+    let up = |glitter| Uploaded { glitter, ..uploaded(2) };
+    let roomy = FrameSettings { max_color_bytes: 128, ..settings() };
+    let plan = FramePlan::new(&Scene::studio(), up(0), roomy).expect("plan");
+    assert!(!plan.variant.glitter && !plan.targets.contains(&Target::Glitter));
+    assert!(plan.explain().contains("glitter: none in the look"), "{}", plan.explain());
+    let plan = FramePlan::new(&Scene::studio(), up(0b10), roomy).expect("plan");
+    assert!(plan.variant.glitter && plan.targets.contains(&Target::Glitter));
+    assert!(read(&plan, 2, Resource::Glitter(0b10)) && read(&plan, 2, Resource::Target(Target::Glitter)));
+    assert!(plan.explain().contains("glitter of layer(s) 1 (flake fields)"), "{}", plan.explain());
+    // The G-buffer with glitter takes 40 bytes a pixel: a device with WebGPU's 32 draws none.
+    let plan = FramePlan::new(&Scene::studio(), up(0b10), settings()).expect("plan");
+    assert!(!plan.variant.glitter && !plan.targets.contains(&Target::Glitter));
+    assert!(plan.explain().contains("40 bytes a pixel, the device takes 32"), "{}", plan.explain());
+    let mut dark = Scene::studio();
+    dark.specular = false;
+    let plan = FramePlan::new(&dark, up(1), roomy).expect("plan");
+    assert!(!plan.variant.glitter && plan.explain().contains("glitter: specular is off"), "{}", plan.explain());
 }

@@ -2,7 +2,8 @@
 //! thickness (mm) sampled from their maps, the local thickness and material id of the thickness
 //! translucency, and depth (shaders/gbuffer.wgsl). The thickness targets exist only in variants
 //! with layers: 0-3 with any layer, 4-7 with more than four; the local thickness only when a
-//! material uses the thickness model. Each target keeps its location (4 for the local thickness)
+//! material uses the thickness model; the glitter's flake-field coordinates only when a layer has
+//! glitter. Each target keeps its location (4 for the local thickness, 5 for the glitter's)
 //! whatever the others, so a left-out target leaves its location empty.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
@@ -26,11 +27,24 @@ pub fn slots(variant: Variant) -> Vec<Option<Target>> {
         (variant.layers > 0).then_some(Target::ThicknessA),
         (variant.layers > 4).then_some(Target::ThicknessB),
         (variant.thickness != ThicknessVariant::Off).then_some(Target::LocalThickness),
+        variant.glitter.then_some(Target::Glitter),
     ];
     while t.last() == Some(&None) {
         t.pop();
     }
     t
+}
+
+/// The bytes per pixel of the colour targets a variant writes, as WebGPU counts them against
+/// `maxColorAttachmentBytesPerSample` (each target's render-target byte cost after aligning to
+/// its component alignment, in location order).
+pub fn bytes_per_sample(variant: Variant) -> u32 {
+    let formats = crate::targets::Formats::for_backend(wgpu::Backend::Vulkan);
+    outputs(variant).into_iter().fold(0, |total, t| {
+        let f = t.format(formats);
+        let align = f.target_component_alignment().unwrap_or(1);
+        total.div_ceil(align) * align + f.target_pixel_byte_cost().unwrap_or(0)
+    })
 }
 
 /// The colour targets a variant writes, in location order.
@@ -46,6 +60,7 @@ impl FramePass for GbufferPass {
         normal_map: v.normal_map,
         skin_detail: v.skin_detail,
         thickness: v.thickness,
+        glitter: v.glitter,
         ..Variant::BARE
     });
 

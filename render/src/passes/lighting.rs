@@ -26,6 +26,9 @@ pub fn inputs(variant: Variant) -> Vec<Target> {
     if variant.layers > 4 {
         t.push(Target::ThicknessB);
     }
+    if variant.glitter {
+        t.push(Target::Glitter);
+    }
     t
 }
 
@@ -46,6 +49,7 @@ impl FramePass for LightingPass {
         env: v.env,
         dipole: v.dipole,
         atlas: v.atlas,
+        glitter: v.glitter,
         ..Variant::BARE
     });
 
@@ -63,6 +67,7 @@ impl FramePass for LightingPass {
                 storage_entry(5),
                 tex_entry(6, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
                 sampler_entry(7, wgpu::SamplerBindingType::Comparison),
+                tex_entry(8, wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
             ],
         );
         LightingPass { layout, pipelines: Pipelines::default() }
@@ -95,6 +100,7 @@ impl FramePass for LightingPass {
             (targets.view(Target::Normal)?, targets.view(Target::Albedo)?, targets.view(Target::Depth)?);
         let thickness_a = optional(key.layers > 0, Target::ThicknessA)?;
         let thickness_b = optional(key.layers > 4, Target::ThicknessB)?;
+        let glitter = optional(key.glitter, Target::Glitter)?;
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("LightingPass::group"),
             layout: &self.layout,
@@ -107,6 +113,7 @@ impl FramePass for LightingPass {
                 wgpu::BindGroupEntry { binding: 5, resource: rec.look.tables.as_entire_binding() },
                 tex(6, &rec.shadow_maps),
                 sampler(7, &shared.shadow_sampler),
+                tex(8, glitter.as_ref().unwrap_or(&shared.dummy_uint)),
             ],
         });
         let views = outs.iter().map(|&t| targets.view(t)).collect::<Result<Vec<_>>>()?;

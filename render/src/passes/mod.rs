@@ -150,6 +150,8 @@ pub struct Shared {
 
     /// A 1×1 Rgba16Float texture bound where a variant reads nothing.
     pub dummy: wgpu::TextureView,
+    /// A 1×1 texture of the glitter target's (unsigned integer) format, for the same.
+    pub dummy_uint: wgpu::TextureView,
 }
 
 impl Shared {
@@ -184,15 +186,10 @@ impl Shared {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let dummy = texture(
-            device,
-            "Shared::dummy",
-            (1, 1),
-            1,
-            crate::targets::HDR_FORMAT,
-            wgpu::TextureUsages::TEXTURE_BINDING,
-            &[],
-        );
+        let dummy_of =
+            |label, format| texture(device, label, (1, 1), 1, format, wgpu::TextureUsages::TEXTURE_BINDING, &[]);
+        let dummy = dummy_of("Shared::dummy", crate::targets::HDR_FORMAT);
+        let dummy_uint = dummy_of("Shared::dummy_uint", crate::targets::GLITTER_FORMAT);
         Shared {
             device: device.clone(),
             queue: queue.clone(),
@@ -204,6 +201,7 @@ impl Shared {
             shadow_sampler,
             repeat_sampler,
             dummy: view(&dummy),
+            dummy_uint: view(&dummy_uint),
         }
     }
 

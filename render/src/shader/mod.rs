@@ -45,6 +45,9 @@ pub struct Variant {
     pub dipole: bool,
     /// The cube atlas takes over the skin's environment light too (only with `dipole`).
     pub atlas: bool,
+    /// Some layer has glitter (only with layers): the G-buffer keeps the flake field's UVs and
+    /// footprint, the lighting pass adds the flakes' sparkle.
+    pub glitter: bool,
 }
 
 impl Variant {
@@ -60,14 +63,15 @@ impl Variant {
         thickness: ThicknessVariant::Off,
         dipole: false,
         atlas: false,
+        glitter: false,
     };
 
     /// Every variant, for validating all shader sources: the diffusion models' flags are
-    /// (dipole, atlas) ∈ {(off, off), (on, off), (on, on)}.
+    /// (dipole, atlas) ∈ {(off, off), (on, off), (on, on)}; glitter only with layers.
     pub fn all() -> impl Iterator<Item = Variant> {
         let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
         (0..=MAX_LAYERS as u32).flat_map(move |layers| {
-            (0..192u32).flat_map(move |bits| {
+            (0..384u32).flat_map(move |bits| {
                 thickness.into_iter().map(move |thickness| Variant {
                     layers,
                     shadows: bits & 1 != 0,
@@ -75,17 +79,18 @@ impl Variant {
                     display: bits & 4 != 0,
                     albedo_map: bits & 8 != 0,
                     normal_map: bits & 16 != 0,
-                    skin_detail: bits >= 96,
+                    skin_detail: bits % 192 >= 96,
                     thickness,
                     dipole: bits % 96 >= 32,
                     atlas: bits % 96 >= 64,
+                    glitter: bits >= 192 && layers > 0,
                 })
             })
         })
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 14] {
+    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 15] {
         [
             ("DIPOLE", self.dipole),
             ("ATLAS", self.atlas),
@@ -100,6 +105,7 @@ impl Variant {
             ("ALBEDO_MAP", self.albedo_map),
             ("NORMAL_MAP", self.normal_map),
             ("SKIN_DETAIL", self.skin_detail),
+            ("GLITTER", self.glitter),
             ("ENCODE_SRGB", encode_srgb),
         ]
     }
@@ -150,6 +156,7 @@ pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> 
     out.push_str(&rouge_measure::layer_table::wgsl_constants());
     out.push_str(&rouge_measure::compositing::CompositingBasis::get().wgsl_constants());
     out.push_str(&crate::specular::wgsl_constants());
+    out.push_str(&crate::glitter::wgsl_constants());
     out.push_str(&format!("const PORE_DEPTH_MM: f32 = {:?};\n", rouge_model::skin::detail::PORE_DEPTH_MM));
     out.push_str(include_str!("../shaders/common.wgsl"));
     out.push_str(&preprocess(pass.file, pass.source, &variant.flags(encode_srgb))?);
@@ -166,6 +173,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "atlas_common" => Some(include_str!("../shaders/atlas_common.wgsl")),
         "skin_pixel" => Some(include_str!("../shaders/skin_pixel.wgsl")),
         "layered_mesh" => Some(include_str!("../shaders/layered_mesh.wgsl")),
+        "glitter" => Some(include_str!("../shaders/glitter.wgsl")),
         _ => None,
     }
 }

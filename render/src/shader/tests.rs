@@ -60,12 +60,13 @@ fn every_shader_variant_validates() {
             }
         }
     }
-    assert_eq!(Variant::all().count(), 9 * 192 * 3);
-    // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants; thickness: 3;
-    // lighting: 9 × shadows × env × 3 (dipole, atlas); composite: 2 × display; shadow, SSS,
-    // depth copy, edge overdraw, the three dipole passes and the atlas gather: 1 each; the atlas
-    // irradiance: shadows × env.
-    let per_encoding = 9 * 8 * 3 + 3 + 9 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
+    assert_eq!(Variant::all().count(), 9 * 384 * 3);
+    // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants, and
+    // the 8 with layers again with glitter; thickness: 3; lighting: 9 × shadows × env × 3
+    // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display; shadow,
+    // SSS, depth copy, edge overdraw, the three dipole passes and the atlas gather: 1 each; the
+    // atlas irradiance: shadows × env.
+    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 3 + 9 * 12 + 8 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -87,6 +88,7 @@ fn variants_compile_only_what_the_scene_uses() {
         thickness: ThicknessVariant::Baked,
         dipole: false,
         atlas: false,
+        glitter: true,
     };
     let src = source(LIGHTING, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
@@ -96,6 +98,15 @@ fn variants_compile_only_what_the_scene_uses() {
     assert!(!source(GBUFFER, bare).contains("textureSampleLevel(normal_map"));
     assert!(source(GBUFFER, full).contains("detail_tile") && !source(GBUFFER, bare).contains("detail_tile"));
     assert!(!source(GBUFFER, bare).contains("textureSampleLevel(albedo_map"));
+    // Glitter: its code and its G-buffer target only in a look with glitter.
+    let plain = Variant { glitter: false, ..full };
+    assert!(
+        source(LIGHTING, full).contains("fn pixel_sparkle") && !source(LIGHTING, plain).contains("fn pixel_sparkle")
+    );
+    assert!(
+        source(GBUFFER, full).contains("@location(5) glitter")
+            && !source(GBUFFER, plain).contains("@location(5) glitter")
+    );
     // The display encoding: only the GL variant applies the sRGB curve in the shader.
     let encoded = shader_source(COMPOSITE, bare, true).expect("source");
     assert!(encoded.contains("0.0031308") && !source(COMPOSITE, bare).contains("0.0031308"));
@@ -125,6 +136,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
         thickness: ThicknessVariant::ShadowMap,
         dipole: true,
         atlas: true,
+        glitter: true,
     };
     // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
     let lighting = parse(LIGHTING, variant);
@@ -184,6 +196,7 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("sh", offset_of!(FrameUniform, sh)),
                 ("lights", offset_of!(FrameUniform, lights)),
                 ("layers", offset_of!(FrameUniform, layers)),
+                ("surface", offset_of!(FrameUniform, surface)),
             ],
         ),
         (
@@ -200,7 +213,12 @@ fn uniform_layouts() -> Vec<UniformLayout> {
         (
             "Layer",
             size_of::<LayerUniform>(),
-            vec![("params", offset_of!(LayerUniform, params)), ("film", offset_of!(LayerUniform, film))],
+            vec![
+                ("params", offset_of!(LayerUniform, params)),
+                ("film", offset_of!(LayerUniform, film)),
+                ("glitter", offset_of!(LayerUniform, glitter)),
+                ("glitter_color", offset_of!(LayerUniform, glitter_color)),
+            ],
         ),
         (
             "DipolePass",

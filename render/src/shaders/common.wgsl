@@ -24,6 +24,12 @@ struct Layer {
     // x: the finish's levelling (rouge_measure::finish::pore_relief), y: its shimmer's strength
     // (0 without one), z: the shimmer platelets' spread (Beckmann roughness), w: unused.
     film: vec4<f32>,
+    // The glitter's flake field (render/src/glitter.rs FlakeField): x cell edge (mm; 0 without
+    // glitter), y flake edge (mm), z probability of a flake in a cell, w the flakes' spread.
+    glitter: vec4<f32>,
+    // rgb: the flakes' reflectance (linear sRGB), w: the preset's thickness (mm) at which the
+    // flakes have their density (a thinner film has proportionally fewer).
+    glitter_color: vec4<f32>,
 }
 
 struct Frame {
@@ -51,6 +57,8 @@ struct Frame {
     sh: array<vec4<f32>, 9>,
     lights: array<Light, 4>,
     layers: array<Layer, 8>,
+    // x: the mesh's mm per UV unit (the glitter's flake field; 0 without glitter), yzw: unused
+    surface: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -79,7 +79,18 @@ struct GbufferOut {
     // light later), a: translucency material id / 3 (0: none, 1: skin)
     @location(4) local_thickness: vec4<f32>,
 //#endif
+//#if GLITTER
+    // The glitter's flake-field coordinates (targets::GLITTER_FORMAT): x, y the UV in mm as f32
+    // bits; z the footprint's half extents in mm, log-coded as two snorm16 (`footprint_encode`),
+    // the first signed by the UV frame's handedness; w the octahedral code of the unit UV
+    // tangent (+u) as two snorm16.
+    @location(5) glitter: vec4<u32>,
+//#endif
 }
+
+//#if GLITTER
+//#insert glitter
+//#endif
 
 // Thickness of layer `i` at `uv`. Maps are stored like textures: image row 0 is v = 1.
 fn layer_thickness(uv: vec2<f32>, i: u32) -> f32 {
@@ -100,6 +111,15 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
     let dp_dy = dpdy(in.world);
     let duv_dx = dpdx(in.uv);
     let duv_dy = dpdy(in.uv);
+//#endif
+//#if GLITTER
+    // The flake field lies in UV × the mesh's mm per UV unit (render/src/glitter.rs); its
+    // footprint and frame come from derivatives, taken here in uniform control flow.
+    let glitter_uv = in.uv * frame.surface.x;
+    let glitter_dx = dpdx(glitter_uv);
+    let glitter_dy = dpdy(glitter_uv);
+    let glitter_dp_dx = dpdx(in.world);
+    let glitter_dp_dy = dpdy(in.world);
 //#endif
 //#if NORMAL_MAP
     if dot(in.tangent.xyz, in.tangent.xyz) > 0.0 {
@@ -186,6 +206,29 @@ fn fs_gbuffer(in: VsOut, @builtin(front_facing) front: bool) -> GbufferOut {
             }
         }
     }
+//#endif
+//#if GLITTER
+    // The UV tangent: the surface gradient of u in the UVs' cotangent frame ([Schuler2013]),
+    // made unit in the final normal's plane; the handedness is the sign of (n × t)·∇v. The
+    // cotangent formula assumes (∂p/∂x × ∂p/∂y)·n > 0, as with GL's upward window y; WebGPU's
+    // framebuffer y runs down, which turns both gradients around: `glitter_orient` turns them
+    // back (checked on a plane against the CPU twin, render/tests/specular_gpu.rs).
+    let glitter_n = out.normal.xyz;
+    let glitter_perp_y = cross(glitter_dp_dy, glitter_n);
+    let glitter_perp_x = cross(glitter_n, glitter_dp_dx);
+    let glitter_orient = select(-1.0, 1.0, dot(cross(glitter_dp_dx, glitter_dp_dy), glitter_n) >= 0.0);
+    let glitter_gu = (glitter_perp_y * glitter_dx.x + glitter_perp_x * glitter_dy.x) * glitter_orient;
+    let glitter_gv = (glitter_perp_y * glitter_dx.y + glitter_perp_x * glitter_dy.y) * glitter_orient;
+    let glitter_tu = glitter_gu - glitter_n * dot(glitter_n, glitter_gu);
+    let glitter_t = glitter_tu * inverseSqrt(max(dot(glitter_tu, glitter_tu), 1e-30));
+    let glitter_hand = select(-1.0, 1.0, dot(cross(glitter_n, glitter_t), glitter_gv) >= 0.0);
+    let glitter_half = max(0.5 * (abs(glitter_dx) + abs(glitter_dy)), vec2<f32>(1e-4));
+    out.glitter = vec4<u32>(
+        bitcast<u32>(glitter_uv.x),
+        bitcast<u32>(glitter_uv.y),
+        pack2x16snorm(footprint_encode(glitter_half, glitter_hand)),
+        pack2x16snorm(oct_encode(glitter_t)),
+    );
 //#endif
 //#if THICKNESS
     let skin = select(0.0, 1.0, in.albedo.a > 0.5);

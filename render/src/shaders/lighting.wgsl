@@ -28,6 +28,11 @@
 @group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
+//#if GLITTER
+// The glitter's flake-field coordinates (gbuffer.wgsl `glitter`).
+@group(1) @binding(8) var gb_glitter: texture_2d<u32>;
+//#insert glitter
+//#endif
 
 // TABLE_X0_MM (mm), the X0 of the table parameterisation, is injected from its owner,
 // rouge_measure::layer_table, and BASIS_FROM_SRGB / BASIS_TO_SRGB from
@@ -134,6 +139,17 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     let depth = textureLoad(gb_depth, p, 0).r;
     let world = world_at(frag.xy, depth);
     let v = normalize(frame.camera_pos.xyz - world);
+//#if GLITTER
+    // The pixel's footprint on the flake fields and the UV frame about this normal.
+    let glitter_texel = textureLoad(gb_glitter, p, 0);
+    let glitter_uv = vec2<f32>(bitcast<f32>(glitter_texel.x), bitcast<f32>(glitter_texel.y));
+    let glitter_code = unpack2x16snorm(glitter_texel.z);
+    let glitter_half = footprint_decode(glitter_code);
+    let glitter_t0 = oct_decode(unpack2x16snorm(glitter_texel.w));
+    let glitter_tu = glitter_t0 - n * dot(n, glitter_t0);
+    let glitter_t = glitter_tu * inverseSqrt(max(dot(glitter_tu, glitter_tu), 1e-30));
+    let glitter_b = cross(n, glitter_t) * select(-1.0, 1.0, glitter_code.x >= 0.0);
+//#endif
 
     // Cosmetic stack, bottom to top: R seen from above, R seen from below (from the skin), T; in
     // the compositing basis.
@@ -205,6 +221,23 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
                     let c = select(0.0, dot(h_un, l) * inverseSqrt(max(dot(h_un, h_un), 1e-12)), dot(h_un, h_un) > 1e-8);
                     own += coverage * film.y * kelemen(n, l, v, film.z, 1.0) * interference(i, c);
                 }
+//#endif
+//#if GLITTER
+                // Glitter: the part of the footprint the layer's lit flakes cover × the light's
+                // radiance × the flakes' colour (render/src/glitter.rs `sparkle_lobe`).
+                let flakes = frame.layers[i].glitter;
+                if flakes.x > 0.0 && thickness[i] > 0.0 {
+                    let hg = (l + v) * inverseSqrt(max(dot(l + v, l + v), 1e-12));
+                    let h_t = vec3<f32>(dot(hg, glitter_t), dot(hg, glitter_b), dot(hg, n));
+                    // A film thinner than the preset's holds proportionally fewer flakes.
+                    let nominal_mm = max(frame.layers[i].glitter_color.w, 1e-6);
+                    let p_flake = flakes.z * clamp(thickness[i] / nominal_mm, 0.0, 1.0);
+                    let field = FlakeField(flakes.x, flakes.y, p_flake, flakes.w, i);
+                    let sparkle = pixel_sparkle(field, glitter_uv, glitter_half, h_t);
+                    own += coverage * sparkle_lobe(sparkle, frame.layers[i].glitter_color.rgb, n_dot_l);
+                }
+//#endif
+//#if LAYERS_A
                 lobes = lobes * (through * layer_t[i] * layer_t[i]) + own;
             }
 //#endif

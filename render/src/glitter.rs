@@ -1,0 +1,393 @@
+//! Glitter: a field of discrete mirror flakes on the surface (`rouge_measure::finish::Glitter`)
+//! and the real-time estimate of a pixel's sparkle from it. This module is the one definition of
+//! the flake field (the hash, the flake draw) and the CPU twin of what a shader draws from it;
+//! `glitter_study` renders the same field with explicit flakes, supersampled, as the reference.
+//!
+//! **The flake field.** On the surface's UV space scaled to millimetres (the skin detail's scale,
+//! `rouge_model::skin::detail::tiles_per_uv` × its tile's 8 mm), a square grid of cells of edge
+//! [`CELL_PER_FLAKE`] × the flake's edge. Each cell holds at most one flake, present with
+//! probability density × cell², centred at a point drawn uniformly where the flake stays inside
+//! its cell (so flakes never overlap), a square of the flake's edge aligned with the UV axes,
+//! with a normal whose slopes (p, q) are Gaussian of σ = spread/√2 per axis: flake normals follow
+//! the Beckmann distribution of roughness `spread` (\[Beckmann1963\]). The random numbers are
+//! `pcg4d` of the cell's integer coordinates, the level and a seed (\[Jarzynski2020\]'s `pcg4d`
+//! listing: a 4-D PCG-style permutation, exact in 32-bit integer arithmetic on every GPU), so a flake belongs
+//! to the surface: it moves with it and stays where it is from frame to frame.
+//!
+//! **A flake sparkles** when its normal lies within half the light's angular radius of the half
+//! vector h: then the flake mirrors the light's disc (angular radius δ, [`LIGHT_HALF_ANGLE_RAD`],
+//! a *choice*: a studio softbox) into the viewer (for small δ, v lies in the mirrored disc iff
+//! ∠(n_flake, h) < δ/2). A lit flake's radiance is its reflectance × the light's radiance,
+//! E⊥/(π sin²δ) for a uniform disc of irradiance E⊥; the pixel shows that × the part of its
+//! footprint the lit flakes cover ([`sparkle_lobe`]).
+//!
+//! **The estimator** ([`pixel_sparkle`]) is the box-filtered lit area over the pixel's footprint
+//! in the surface's UVs (the parallelogram of the UVs' screen derivatives, taken as its bounding
+//! box), on a hierarchy of grids in the spirit of \[Zirr2016\] (a pixel's flakes are counted over
+//! its footprint on the grid level whose cells match the footprint, the levels blended by the
+//! footprint's log size, so that the count is antialiased and stable) with the counts of the
+//! coarse levels drawn as binomial laws as \[Deliot2023\] does:
+//! - footprints up to [`EXPLICIT_CELLS`] cells across: the flakes themselves, each lit flake's
+//!   square intersected with the footprint exactly (no sampling: antialiased, and stable as the
+//!   footprint slides over the flakes);
+//! - larger footprints: level L ≥ 1 has cells of 2^L fine cells a side; in each, the number of
+//!   lit flakes is Binomial(4^L, p) with p = (density × cell²) × P(∠(n, h) < δ/2), the latter
+//!   D(h)(n·h) · 2π(1 − cos δ/2) for the Beckmann D (the cone's solid angle times the density
+//!   of normals in it: the small-cone limit), drawn by inverse CDF from one uniform number per
+//!   coarse cell (exact summation up to 64 flakes, a normal law above), and spread uniformly
+//!   over the coarse cell. Between two levels the footprint's fractional level blends them
+//!   linearly (level 0 being the explicit flakes).
+//!
+//! In the lighting pass the probability of a flake per cell is scaled by the layer's thickness
+//! over its preset's (`min(1, t / thickness_mm)`: a film thinner than the product's holds
+//! proportionally fewer flakes), and the sparkle is a lobe of its layer ([`sparkle_lobe`] ×
+//! the layer's coverage, attenuated by the layers above it, as a shimmer's).
+//!
+//! *Approximations*: the footprint is the bounding box of the UV parallelogram (exact where the
+//! UV axes are aligned with the screen's, as on the study's turntable; larger, hence blurrier,
+//! elsewhere); a coarse level's flakes are not the fine level's (the blend hides the change
+//! while the footprint grows, but a distant sparkle is a statistical one); the flakes' tilt is in
+//! the UVs' frame; a flake is lit over its whole face or not at all (no partial overlap of the
+//! cone and the disc); flakes cast no shadows and are not masked.
+
+use glam::{Vec2, Vec3};
+use rouge_measure::finish::Glitter;
+
+/// A grid cell's edge in flake edges: a flake is drawn where it stays inside its cell.
+pub const CELL_PER_FLAKE: f32 = 2.0;
+/// *Choice*: the angular radius of every light as the flakes see it (5°: a 17 cm softbox at
+/// 1 m). Sparkles are as many as flakes whose normal lies within half of it of h.
+pub const LIGHT_HALF_ANGLE_RAD: f32 = 0.087_266_46;
+/// cos(δ/2): a flake sparkles when n·h exceeds it.
+fn cos_half_cone() -> f32 {
+    (0.5 * LIGHT_HALF_ANGLE_RAD).cos()
+}
+/// Footprints up to this many cells across are drawn with their flakes; larger ones by counts.
+pub const EXPLICIT_CELLS: f32 = 2.0;
+/// The coarsest level (cells of 2^8 fine cells a side).
+pub const MAX_LEVEL: u32 = 8;
+/// Up to this many flakes a binomial count is drawn exactly; above, by its normal law.
+const EXACT_COUNT: u32 = 64;
+/// Most cells a footprint spans per axis beyond the first (bounds the shader's loops; only a
+/// footprint wider than 4 cells of the coarsest level, 200 mm for 100 µm flakes, is cut).
+pub const MAX_SPAN: i32 = 4;
+
+/// The constants of the glitter for WGSL (injected by `shader::shader_source`).
+pub fn wgsl_constants() -> String {
+    let cone = std::f32::consts::TAU * (1.0 - cos_half_cone());
+    let s = LIGHT_HALF_ANGLE_RAD.sin();
+    format!(
+        "const GLITTER_COS_HALF_CONE: f32 = {:?};\nconst GLITTER_CONE_SR: f32 = {cone:?};\nconst GLITTER_SIN2_LIGHT: f32 = {:?};\n\
+         const GLITTER_EXPLICIT_CELLS: f32 = {EXPLICIT_CELLS:?};\nconst GLITTER_MAX_LEVEL: u32 = {MAX_LEVEL}u;\n\
+         const GLITTER_EXACT_COUNT: u32 = {EXACT_COUNT}u;\nconst GLITTER_MAX_SPAN: i32 = {MAX_SPAN};\n",
+        cos_half_cone(),
+        s * s
+    )
+}
+
+/// \[Jarzynski2020\]'s `pcg4d`: four 32-bit words from four, in integer arithmetic that WGSL
+/// reproduces bit for bit (wrapping multiplications and additions, shifts).
+pub fn pcg4d(v: [u32; 4]) -> [u32; 4] {
+    let mut v = v.map(|x| x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223));
+    let mix = |v: &mut [u32; 4]| {
+        v[0] = v[0].wrapping_add(v[1].wrapping_mul(v[3]));
+        v[1] = v[1].wrapping_add(v[2].wrapping_mul(v[0]));
+        v[2] = v[2].wrapping_add(v[0].wrapping_mul(v[1]));
+        v[3] = v[3].wrapping_add(v[1].wrapping_mul(v[2]));
+    };
+    mix(&mut v);
+    v = v.map(|x| x ^ (x >> 16));
+    mix(&mut v);
+    v
+}
+
+/// A word as a uniform number in [0, 1): its top 24 bits, exact in f32.
+pub fn unit(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// The flake field of a layer's glitter, in f32 as the shader has it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlakeField {
+    /// Edge of a grid cell, mm.
+    pub cell_mm: f32,
+    /// Edge of a flake, mm.
+    pub size_mm: f32,
+    /// Probability that a cell holds a flake (density × cell²), in (0, 1].
+    pub p_flake: f32,
+    /// Beckmann roughness of the flakes' normals.
+    pub spread: f32,
+    /// Seed of the field (the layer's index: two layers' flakes differ).
+    pub seed: u32,
+}
+
+/// One flake: centre in the surface's mm UVs, normal in the UVs' tangent frame (x along +u,
+/// y along +v, z the surface normal).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flake {
+    /// Centre, mm.
+    pub centre_mm: Vec2,
+    /// Unit normal, tangent frame.
+    pub normal: Vec3,
+}
+
+impl FlakeField {
+    /// The field of `glitter` with `seed`.
+    pub fn new(glitter: &Glitter, seed: u32) -> FlakeField {
+        let size_mm = (glitter.size_um * 1e-3) as f32;
+        let cell_mm = CELL_PER_FLAKE * size_mm;
+        let p_flake = (glitter.density_per_mm2 as f32 * cell_mm * cell_mm).clamp(0.0, 1.0);
+        FlakeField { cell_mm, size_mm, p_flake, spread: glitter.spread as f32, seed }
+    }
+
+    /// The flake of cell (i, j), if the cell holds one.
+    pub fn flake(&self, cell: [i32; 2]) -> Option<Flake> {
+        let [a, b, c, d] = pcg4d([cell[0] as u32, cell[1] as u32, 0, self.seed]);
+        if unit(a) >= self.p_flake {
+            return None;
+        }
+        let room = self.cell_mm - self.size_mm;
+        let corner = Vec2::new(cell[0] as f32, cell[1] as f32) * self.cell_mm;
+        let centre_mm = corner + Vec2::splat(0.5 * self.size_mm) + Vec2::new(unit(b), unit(c)) * room;
+        // Box-Muller from d's two halves: Gaussian slopes of σ = spread/√2.
+        let (u1, u2) = ((d >> 16) as f32 * (1.0 / 65536.0), (d & 0xffff) as f32 * (1.0 / 65536.0));
+        let r = self.spread * std::f32::consts::FRAC_1_SQRT_2 * (-2.0 * (1.0 - u1).ln()).sqrt();
+        let angle = std::f32::consts::TAU * u2;
+        let normal = Vec3::new(-r * angle.cos(), -r * angle.sin(), 1.0).normalize();
+        Some(Flake { centre_mm, normal })
+    }
+
+    /// Whether a flake covers the point `uv_mm` and sparkles for the half vector `h` (unit,
+    /// tangent frame): the integrand the reference supersamples.
+    pub fn point_sparkle(&self, uv_mm: Vec2, h: Vec3) -> bool {
+        let cell = (uv_mm / self.cell_mm).floor();
+        self.flake([cell.x as i32, cell.y as i32]).is_some_and(|f| {
+            let d = (uv_mm - f.centre_mm).abs();
+            d.x <= 0.5 * self.size_mm && d.y <= 0.5 * self.size_mm && f.lit(h)
+        })
+    }
+
+    /// The probability that a cell holds a flake that sparkles for `h`: p_flake × D(h)(n·h) ·
+    /// 2π(1 − cos δ/2) (module doc), at most p_flake.
+    pub fn p_lit(&self, h: Vec3) -> f32 {
+        if h.z <= 0.0 {
+            return 0.0;
+        }
+        let cone = std::f32::consts::TAU * (1.0 - cos_half_cone());
+        let c2 = (h.z * h.z).max(1e-6);
+        let m2 = self.spread * self.spread;
+        let d = ((c2 - 1.0) / (m2 * c2)).exp() / (std::f32::consts::PI * m2 * c2 * c2);
+        self.p_flake * (d * h.z * cone).min(1.0)
+    }
+}
+
+impl Flake {
+    /// Whether the flake mirrors the light into the viewer: ∠(n, h) < δ/2.
+    pub fn lit(&self, h: Vec3) -> bool {
+        self.normal.dot(h) > cos_half_cone()
+    }
+}
+
+/// Length of the overlap of [a0, a1] and [b0, b1].
+fn overlap(a0: f32, a1: f32, b0: f32, b1: f32) -> f32 {
+    (a1.min(b1) - a0.max(b0)).max(0.0)
+}
+
+/// The pixel's footprint in the surface's mm UVs from the UVs' screen derivatives: the half
+/// extents of the bounding box of the parallelogram they span.
+pub fn footprint_half_mm(duv_dx_mm: Vec2, duv_dy_mm: Vec2) -> Vec2 {
+    0.5 * (duv_dx_mm.abs() + duv_dy_mm.abs())
+}
+
+/// The part of the footprint centred at `uv_mm` with half extents `half_mm` that lit flakes
+/// cover, for the half vector `h` (unit, tangent frame): the estimator of the module doc.
+pub fn pixel_sparkle(field: &FlakeField, uv_mm: Vec2, half_mm: Vec2, h: Vec3) -> f32 {
+    if h.z <= 0.0 {
+        return 0.0;
+    }
+    let half_mm = half_mm.max(Vec2::splat(1e-6 * field.cell_mm));
+    let across = 2.0 * half_mm.max_element() / field.cell_mm;
+    let lambda = (across / EXPLICIT_CELLS).log2().clamp(0.0, MAX_LEVEL as f32);
+    let level = lambda.floor() as u32;
+    let w = lambda - level as f32;
+    let fine = level_sparkle(field, level, uv_mm, half_mm, h);
+    if w <= 0.0 || level >= MAX_LEVEL {
+        return fine;
+    }
+    (1.0 - w) * fine + w * level_sparkle(field, level + 1, uv_mm, half_mm, h)
+}
+
+/// The lit part of the footprint at one level: the flakes themselves at level 0, binomial
+/// counts in cells of 2^level fine cells above.
+fn level_sparkle(field: &FlakeField, level: u32, uv_mm: Vec2, half_mm: Vec2, h: Vec3) -> f32 {
+    let cell_mm = field.cell_mm * (1u32 << level) as f32;
+    let (lo, hi) = (uv_mm - half_mm, uv_mm + half_mm);
+    let c0 = (lo / cell_mm).floor();
+    let c1 = (hi / cell_mm).floor().min(c0 + MAX_SPAN as f32);
+    let half_size = 0.5 * field.size_mm;
+    let n = (1u32 << level) * (1u32 << level);
+    let p = if level == 0 { 0.0 } else { field.p_lit(h) };
+    let mut lit = 0.0;
+    for j in c0.y as i32..=c1.y as i32 {
+        for i in c0.x as i32..=c1.x as i32 {
+            if level == 0 {
+                if let Some(f) = field.flake([i, j]).filter(|f| f.lit(h)) {
+                    let (a, b) = (f.centre_mm - half_size, f.centre_mm + half_size);
+                    lit += overlap(a.x, b.x, lo.x, hi.x) * overlap(a.y, b.y, lo.y, hi.y);
+                }
+            } else {
+                let u = unit(pcg4d([i as u32, j as u32, level, field.seed])[0]);
+                let count = binomial_quantile(n, p, u);
+                let corner = Vec2::new(i as f32, j as f32) * cell_mm;
+                let inside = overlap(corner.x, corner.x + cell_mm, lo.x, hi.x)
+                    * overlap(corner.y, corner.y + cell_mm, lo.y, hi.y)
+                    / (cell_mm * cell_mm);
+                lit += count * field.size_mm * field.size_mm * inside;
+            }
+        }
+    }
+    (lit / (4.0 * half_mm.x * half_mm.y)).min(1.0)
+}
+
+/// The `u`-quantile of Binomial(n, p): the smallest k with CDF(k) > u, summed exactly while the
+/// mean is below 32 (and k ≤ 64); above, the normal law's quantile, continuous and clamped to
+/// [0, n], with Φ⁻¹(u) taken as the logistic law's of the same variance, (√3/π) ln(u/(1 − u))
+/// (*approximation*: its tails are heavier than the normal's; its mean and variance are exact).
+pub fn binomial_quantile(n: u32, p: f32, u: f32) -> f32 {
+    if p <= 0.0 || n == 0 {
+        return 0.0;
+    }
+    let mean = n as f32 * p;
+    let q = 1.0 - p;
+    if mean < 0.5 * EXACT_COUNT as f32 && q > 0.0 {
+        // pmf(0) = q^n through exp(n ln q), then pmf(k+1) = pmf(k) (n − k)/(k + 1) p/q.
+        let mut pmf = (n as f32 * q.ln()).exp();
+        let mut cdf = pmf;
+        let mut k = 0u32;
+        while cdf <= u && k < EXACT_COUNT.min(n) {
+            pmf *= (n - k) as f32 / (k + 1) as f32 * p / q;
+            k += 1;
+            cdf += pmf;
+        }
+        return k as f32;
+    }
+    let u = u.clamp(1e-6, 1.0 - 1e-6);
+    let z = (u / (1.0 - u)).ln() * (3.0f32.sqrt() / std::f32::consts::PI);
+    (mean + (mean * q).sqrt() * z).clamp(0.0, n as f32)
+}
+
+/// The glitter's lobe per unit irradiance E·(n·l): a lit fraction `sparkle` of the footprint
+/// shows the light's radiance E⊥/(π sin²δ) × the flakes' reflectance, so the lobe is
+/// sparkle · colour / (π sin²δ (n·l)) (`n_dot_l` at least 1e-3).
+pub fn sparkle_lobe(sparkle: f32, color: [f32; 3], n_dot_l: f32) -> [f32; 3] {
+    let s = LIGHT_HALF_ANGLE_RAD.sin();
+    let k = sparkle / (std::f32::consts::PI * s * s * n_dot_l.max(1e-3));
+    color.map(|c| c * k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field() -> FlakeField {
+        FlakeField::new(&Glitter { size_um: 100.0, density_per_mm2: 16.0, color: [1.0; 3], spread: 0.3 }, 7)
+    }
+
+    #[test]
+    fn pcg4d_is_the_papers() {
+        // Jarzynski & Olano's pcg4d of (0, 0, 0, 0): every word 1013904223 after the LCG step,
+        // then the two mixing rounds and the xorshift, worked by hand in u64 arithmetic mod 2³².
+        let m = |a: u64, b: u64| (a * b) & 0xffff_ffff;
+        let s = |a: u64, b: u64| (a + b) & 0xffff_ffff;
+        let mut v = [1_013_904_223u64; 4];
+        let round = |v: &mut [u64; 4]| {
+            v[0] = s(v[0], m(v[1], v[3]));
+            v[1] = s(v[1], m(v[2], v[0]));
+            v[2] = s(v[2], m(v[0], v[1]));
+            v[3] = s(v[3], m(v[1], v[2]));
+        };
+        round(&mut v);
+        v = v.map(|x| x ^ (x >> 16));
+        round(&mut v);
+        assert_eq!(pcg4d([0; 4]), v.map(|x| x as u32));
+        assert_ne!(pcg4d([1, 0, 0, 0]), pcg4d([0, 1, 0, 0]));
+    }
+
+    #[test]
+    fn the_field_has_its_density_and_its_normals_their_spread() {
+        let f = field();
+        let (mut count, mut slope2) = (0usize, 0.0f64);
+        let cells = 200;
+        for j in -cells / 2..cells / 2 {
+            for i in -cells / 2..cells / 2 {
+                if let Some(flake) = f.flake([i, j]) {
+                    count += 1;
+                    // Inside its cell, whole.
+                    let lo = Vec2::new(i as f32, j as f32) * f.cell_mm;
+                    let d = flake.centre_mm - lo;
+                    assert!(
+                        d.min_element() >= 0.5 * f.size_mm - 1e-6
+                            && d.max_element() <= f.cell_mm - 0.5 * f.size_mm + 1e-6
+                    );
+                    let n = flake.normal;
+                    slope2 += ((n.x / n.z).powi(2) + (n.y / n.z).powi(2)) as f64;
+                }
+            }
+        }
+        let area_mm2 = (cells as f64 * f.cell_mm as f64).powi(2);
+        let density = count as f64 / area_mm2;
+        assert!((density / 16.0 - 1.0).abs() < 0.03, "{density} per mm²");
+        // Beckmann of roughness m: the mean squared slope is m².
+        let ms = slope2 / count as f64;
+        assert!((ms / 0.09 - 1.0).abs() < 0.05, "mean squared slope {ms}");
+    }
+
+    #[test]
+    fn the_estimate_is_the_lit_area_and_its_mean_the_expected_one() {
+        let f = field();
+        let h = Vec3::new(0.05, -0.03, 1.0).normalize();
+        // A footprint of one cell over many positions: the exact lit area, the mean over the
+        // surface tending to p_lit × (size/cell)².
+        let expected = f.p_lit(h) * (f.size_mm / f.cell_mm).powi(2);
+        let mut sum = 0.0f64;
+        let mut n = 0;
+        for j in 0..200 {
+            for i in 0..200 {
+                let uv = Vec2::new(i as f32, j as f32) * f.cell_mm + 0.37;
+                let s = pixel_sparkle(&f, uv, Vec2::splat(0.5 * f.cell_mm), h);
+                assert!((0.0..=1.0).contains(&s));
+                sum += s as f64;
+                n += 1;
+            }
+        }
+        let mean = sum / n as f64;
+        assert!((mean / expected as f64 - 1.0).abs() < 0.15, "{mean} against {expected}");
+        // The coarse levels have the same mean (binomial counts of the same p).
+        let mut coarse = 0.0f64;
+        for j in 0..40 {
+            for i in 0..40 {
+                let uv = Vec2::new(i as f32, j as f32) * 3.1;
+                coarse += pixel_sparkle(&f, uv, Vec2::splat(1.5), h) as f64;
+            }
+        }
+        let coarse = coarse / 1600.0;
+        assert!((coarse / expected as f64 - 1.0).abs() < 0.1, "{coarse} against {expected}");
+        // Nothing below the horizon, nothing NaN for degenerate footprints.
+        assert_eq!(pixel_sparkle(&f, Vec2::ZERO, Vec2::splat(0.1), Vec3::new(1.0, 0.0, -0.1)), 0.0);
+        assert!(pixel_sparkle(&f, Vec2::ZERO, Vec2::ZERO, h).is_finite());
+        assert!(pixel_sparkle(&f, Vec2::ZERO, Vec2::splat(1e9), h).is_finite());
+    }
+
+    #[test]
+    fn binomial_quantiles_have_the_laws_mean() {
+        for (n, p) in [(4u32, 0.02f32), (16, 0.1), (256, 0.05), (65536, 0.01)] {
+            let k = 4000;
+            let mean: f64 =
+                (0..k).map(|i| binomial_quantile(n, p, (i as f32 + 0.5) / k as f32) as f64).sum::<f64>() / k as f64;
+            let want = n as f64 * p as f64;
+            assert!((mean / want - 1.0).abs() < 0.03, "n {n}, p {p}: {mean} against {want}");
+        }
+        assert_eq!(binomial_quantile(10, 0.0, 0.99), 0.0);
+        assert_eq!(binomial_quantile(10, 1.0, 0.5), 10.0);
+    }
+}
