@@ -233,6 +233,31 @@ fn the_subdivision_plan_matches_a_fresh_subdivision() {
     assert!(got.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
 }
 
+/// The planned update runs its rules in gather form on several threads: on any number of them
+/// it is the serial fresh subdivision bit for bit (positions and the finest normals), at the
+/// level the app animates.
+#[test]
+fn the_threaded_plan_is_the_fresh_subdivision_bit_for_bit() {
+    let head = default_head().expect("head");
+    let moved = deformed(&pose(&[("mouthSmileLeft", 0.9), ("eyeBlinkRight", 0.6), ("jawOpen", 0.3)], &[]));
+    let plan = SubdivisionPlan::new(&head, 2);
+    let mut fresh = head.clone();
+    fresh.positions = moved.clone();
+    let fresh = fresh.catmull_clark(2).triangulate();
+    let mut first: Option<rouge_model::mesh::TriangleMesh> = None;
+    for threads in [1, 3, 8] {
+        let mut got = plan.rest().clone();
+        plan.update_on(&moved, &mut got, threads);
+        assert!(got.positions == fresh.positions, "positions on {threads} threads");
+        let unit = |n: &Vec3| n.try_normalize().unwrap_or(Vec3::Z);
+        assert!(got.normals == fresh.normals.iter().map(unit).collect::<Vec<_>>(), "normals on {threads} threads");
+        if let Some(f) = &first {
+            assert!(f == &got, "1 and {threads} threads differ");
+        }
+        first.get_or_insert(got);
+    }
+}
+
 #[test]
 fn the_face_is_saved_with_the_project() {
     use rouge_model::document::{Document, FACE_FILE, LOOK_FILE};

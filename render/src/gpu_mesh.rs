@@ -1,5 +1,6 @@
-//! The mesh on the GPU: one interleaved vertex buffer (position, normal, UV, albedo with the
-//! skin flag, tangent) and a 32-bit index buffer, with the vertex layouts the passes draw it with.
+//! The mesh on the GPU: two vertex streams, the moving one (position and normal: what a pose
+//! changes, rewritten in place by [`GpuMesh::move_to`]) and the fixed one (UV, albedo with the
+//! skin flag, tangent), and a 32-bit index buffer, with the vertex layouts the passes draw it with.
 
 use crate::error::{RenderError, Result};
 use crate::wgpu_util::buffer_init;
@@ -7,36 +8,51 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use rouge_model::mesh::{Bounds, TriangleMesh};
 
-/// One vertex, as the G-buffer and shadow passes read it.
+/// What a pose changes of a vertex (stream 0: the G-buffer and shadow passes read it).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct Vertex {
+struct MovingVertex {
     position: [f32; 3],
     normal: [f32; 3],
+}
+
+/// What a pose leaves alone (stream 1: the G-buffer pass reads it).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct FixedVertex {
     uv: [f32; 2],
     albedo: [f32; 4],
     tangent: [f32; 4],
 }
 
-/// Every attribute of [`Vertex`] (G-buffer pass).
-const FULL_ATTRIBUTES: [wgpu::VertexAttribute; 5] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4, 4 => Float32x4];
-/// The position only (shadow pass), same stride.
+/// Position and normal (locations 0 and 1).
+const MOVING_ATTRIBUTES: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+/// UV, albedo, tangent (locations 2-4).
+const FIXED_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+    wgpu::vertex_attr_array![2 => Float32x2, 3 => Float32x4, 4 => Float32x4];
+/// The position only (shadow pass), the moving stream's stride.
 const POSITION_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
 
-/// The vertex buffer layout with every attribute.
-pub fn full_layout() -> wgpu::VertexBufferLayout<'static> {
-    wgpu::VertexBufferLayout {
-        array_stride: std::mem::size_of::<Vertex>() as u64,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &FULL_ATTRIBUTES,
-    }
+/// The vertex buffer layouts with every attribute: the moving stream (slot 0), the fixed (slot 1).
+pub fn full_layouts() -> [wgpu::VertexBufferLayout<'static>; 2] {
+    [
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<MovingVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &MOVING_ATTRIBUTES,
+        },
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<FixedVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &FIXED_ATTRIBUTES,
+        },
+    ]
 }
 
-/// The vertex buffer layout with positions only.
+/// The vertex buffer layout with positions only (the moving stream, slot 0).
 pub fn position_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
-        array_stride: std::mem::size_of::<Vertex>() as u64,
+        array_stride: std::mem::size_of::<MovingVertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
         attributes: &POSITION_ATTRIBUTES,
     }
@@ -45,9 +61,14 @@ pub fn position_layout() -> wgpu::VertexBufferLayout<'static> {
 /// An uploaded triangle mesh.
 #[derive(Debug)]
 pub struct GpuMesh {
-    vertices: wgpu::Buffer,
+    moving: wgpu::Buffer,
+    fixed: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
+    vertex_count: usize,
+    /// The albedos the fixed stream was written with (a pose under other albedos is uploaded
+    /// afresh).
+    albedos: ([f32; 3], HairAlbedo),
     /// Bounds of the positions, mm.
     pub bounds: Bounds,
     /// Whether the vertices carry tangents (a normal map needs them).
@@ -56,6 +77,16 @@ pub struct GpuMesh {
     /// [`rouge_model::skin::detail::tiles_per_uv`] × its tile): the glitter's flake fields lie
     /// in UV × this. 0 for a mesh without UV area.
     pub mm_per_uv: f32,
+}
+
+/// The moving stream of `mesh`: positions and normals (+Z where a normal is missing).
+fn moving_vertices(mesh: &TriangleMesh) -> Vec<MovingVertex> {
+    (0..mesh.positions.len())
+        .map(|i| MovingVertex {
+            position: mesh.positions[i].to_array(),
+            normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
+        })
+        .collect()
 }
 
 impl GpuMesh {
@@ -76,10 +107,8 @@ impl GpuMesh {
             return Err(RenderError::Invalid("the mesh has no triangles".into()));
         }
         let albedo = vertex_albedo(mesh, skin_albedo, hair);
-        let vertices: Vec<Vertex> = (0..mesh.positions.len())
-            .map(|i| Vertex {
-                position: mesh.positions[i].to_array(),
-                normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
+        let fixed: Vec<FixedVertex> = (0..mesh.positions.len())
+            .map(|i| FixedVertex {
                 uv: mesh.uvs.get(i).map_or([0.0; 2], |uv| uv.to_array()),
                 albedo: albedo[i],
                 tangent: mesh.tangents.as_ref().and_then(|t| t.get(i)).map_or([0.0; 4], |t| t.to_array()),
@@ -87,14 +116,16 @@ impl GpuMesh {
             .collect();
         let mm_per_uv =
             rouge_model::skin::detail::tiles_per_uv(mesh).map_or(0.0, |t| t * rouge_model::skin::detail::TILE_MM);
+        let vertex = wgpu::BufferUsages::VERTEX;
         Ok(GpuMesh {
             mm_per_uv,
-            vertices: buffer_init(
+            moving: buffer_init(
                 device,
-                "GpuMesh::vertices",
-                bytemuck::cast_slice(&vertices),
-                wgpu::BufferUsages::VERTEX,
+                "GpuMesh::moving",
+                bytemuck::cast_slice(&moving_vertices(mesh)),
+                vertex | wgpu::BufferUsages::COPY_DST,
             ),
+            fixed: buffer_init(device, "GpuMesh::fixed", bytemuck::cast_slice(&fixed), vertex),
             indices: buffer_init(
                 device,
                 "GpuMesh::indices",
@@ -102,9 +133,34 @@ impl GpuMesh {
                 wgpu::BufferUsages::INDEX,
             ),
             index_count: mesh.indices.len() as u32,
+            vertex_count: mesh.positions.len(),
+            albedos: (skin_albedo, hair),
             bounds,
             has_tangents: mesh.tangents.is_some(),
         })
+    }
+
+    /// Moves the uploaded vertices to `mesh`'s positions and normals in place (the moving
+    /// stream rewritten, nothing allocated), when `mesh` is this mesh posed: as many vertices
+    /// and triangle corners, under the same albedos, and tangents only if the upload had them.
+    /// The triangles, UVs and albedos stay those of the upload (a posed mesh from
+    /// [`rouge_model::mesh::deform::SubdivisionPlan`] keeps them). Returns `false`, changing
+    /// nothing, for any other mesh (upload it afresh).
+    pub fn move_to(
+        &mut self,
+        queue: &wgpu::Queue,
+        mesh: &TriangleMesh,
+        skin_albedo: [f32; 3],
+        hair: HairAlbedo,
+    ) -> bool {
+        let same = mesh.positions.len() == self.vertex_count
+            && mesh.indices.len() == self.index_count as usize
+            && self.albedos == (skin_albedo, hair)
+            && (mesh.tangents.is_none() || self.has_tangents);
+        let Some(bounds) = Bounds::of(&mesh.positions).filter(|_| same) else { return false };
+        queue.write_buffer(&self.moving, 0, bytemuck::cast_slice(&moving_vertices(mesh)));
+        self.bounds = bounds;
+        true
     }
 
     /// Binds the buffers and draws every triangle.
@@ -112,10 +168,19 @@ impl GpuMesh {
         self.draw_instance(pass, 0);
     }
 
+    /// Binds the moving stream alone (a pipeline of [`position_layout`]) and draws every
+    /// triangle.
+    pub fn draw_positions(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.moving.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..1);
+    }
+
     /// Draws every triangle as instance `instance` (a shader's `instance_index` then selects a
     /// view, as the dipole passes' directions and lights do).
     pub fn draw_instance(&self, pass: &mut wgpu::RenderPass<'_>, instance: u32) {
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_vertex_buffer(0, self.moving.slice(..));
+        pass.set_vertex_buffer(1, self.fixed.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, instance..instance + 1);
     }

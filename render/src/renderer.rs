@@ -122,15 +122,38 @@ impl Renderer {
         let device = &self.shared.device;
         let hair = self.hair_albedo;
         self.mesh = Some(validated(device, "mesh upload", || GpuMesh::upload(device, mesh, skin_albedo, hair))?);
+        self.mesh_changed(mesh);
+        Ok(())
+    }
+
+    /// What follows a new or moved mesh: the dipole maps' key, and the edges (a posed copy of
+    /// the mesh moves the edges found on it; another mesh drops them, and they are found again
+    /// when edge antialiasing is on).
+    fn mesh_changed(&mut self, mesh: &TriangleMesh) {
         self.mesh_generation += 1;
-        // A posed copy of the mesh (the app's expressions) moves the edges found on it; another
-        // mesh drops them, and they are found again when edge antialiasing is on.
         if !self.edges.as_mut().is_some_and(|e| e.reposition(mesh)) {
             self.edges = None;
             if self.edge_aa != crate::aa::EdgeAa::Off {
                 self.prepare_edges(mesh);
             }
         }
+    }
+
+    /// Poses the uploaded mesh: `mesh` is it with new positions and normals (the app's
+    /// expressions, `rouge bench deform`: a [`rouge_model::mesh::deform::SubdivisionPlan`]
+    /// keeps the vertices, triangles and UVs), written into the existing vertex buffer
+    /// ([`GpuMesh::move_to`]: 24 of the 64 bytes a vertex, no allocation, no index upload).
+    /// Any other mesh, or other albedos, is uploaded afresh as [`Renderer::set_mesh`] does.
+    ///
+    /// # Errors
+    /// As [`Renderer::set_mesh`].
+    pub fn move_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
+        let hair = self.hair_albedo;
+        let moved = self.mesh.as_mut().is_some_and(|m| m.move_to(&self.shared.queue, mesh, skin_albedo, hair));
+        if !moved {
+            return self.set_mesh(mesh, skin_albedo);
+        }
+        self.mesh_changed(mesh);
         Ok(())
     }
 

@@ -1,7 +1,9 @@
 //! `rouge bench deform`: what a deforming frame costs on the default head (the app's animation
 //! and expression sliders): apply the targets, subdivide, re-upload the mesh, render. Per
 //! subdivision level, the planned path ([`SubdivisionPlan`]: topology once, positions per frame)
-//! against subdividing and triangulating afresh each frame.
+//! against subdividing and triangulating afresh each frame, and the upload in place
+//! ([`rouge_render::Renderer::move_mesh`]: positions and normals into the existing buffer) against
+//! a new mesh upload.
 
 use anyhow::Result;
 use clap::Args;
@@ -42,8 +44,11 @@ struct Row {
     plan_build_ms: f64,
     targets_ms: f64,
     subdivide_planned_ms: f64,
+    subdivide_one_thread_ms: f64,
+    threads: usize,
     subdivide_fresh_ms: f64,
     upload_ms: f64,
+    upload_fresh_ms: f64,
     render_ms: f64,
     frame_ms: f64,
     device: String,
@@ -77,13 +82,16 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
         let plan_build_ms = ms(t);
         let mut mesh = plan.rest().clone();
         let albedo = p.scene.skin.albedo;
-        let (mut tg, mut sp, mut sf, mut up, mut rd) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut tg, mut sp, mut s1, mut sf, mut up, mut uf, mut rd) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         for i in 0..args.frames {
             let pose = FacePose { expression: expression_cycle(i as f64 * 0.25), ..FacePose::default() };
             let t = Instant::now();
             let mut positions = base.positions.clone();
             targets.apply(&pose, &mut positions)?;
             tg += ms(t);
+            let t = Instant::now();
+            plan.update_on(&positions, &mut mesh, 1);
+            s1 += ms(t);
             let t = Instant::now();
             plan.update(&positions, &mut mesh);
             sp += ms(t);
@@ -94,6 +102,10 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
             sf += ms(t);
             let t = Instant::now();
             p.renderer.set_mesh(&mesh, albedo)?;
+            p.renderer.wait()?;
+            uf += ms(t);
+            let t = Instant::now();
+            p.renderer.move_mesh(&mesh, albedo)?;
             p.renderer.wait()?;
             up += ms(t);
             let t = Instant::now();
@@ -109,8 +121,11 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
             plan_build_ms,
             targets_ms: tg / n,
             subdivide_planned_ms: sp / n,
+            subdivide_one_thread_ms: s1 / n,
+            threads: SubdivisionPlan::threads(),
             subdivide_fresh_ms: sf / n,
             upload_ms: up / n,
+            upload_fresh_ms: uf / n,
             render_ms: rd / n,
             frame_ms: (tg + sp + up + rd) / n,
             device: p.gpu.describe(),
@@ -128,9 +143,11 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
         "triangles",
         "plan (once)",
         "targets",
-        "subdivide: planned",
+        "subdivide: planned, threads",
+        "subdivide: planned, 1 thread",
         "subdivide: afresh",
-        "upload",
+        "upload: in place",
+        "upload: afresh",
         "render + wait",
         "frame (planned)",
     ];
@@ -140,9 +157,11 @@ pub fn run(args: &DeformBenchArgs) -> Result<()> {
             r.triangles.to_string(),
             format!("{:.1} ms", r.plan_build_ms),
             format!("{:.2} ms", r.targets_ms),
-            format!("{:.2} ms", r.subdivide_planned_ms),
+            format!("{:.2} ms ({})", r.subdivide_planned_ms, r.threads),
+            format!("{:.2} ms", r.subdivide_one_thread_ms),
             format!("{:.1} ms", r.subdivide_fresh_ms),
             format!("{:.2} ms", r.upload_ms),
+            format!("{:.2} ms", r.upload_fresh_ms),
             format!("{:.1} ms", r.render_ms),
             format!("{:.1} ms", r.frame_ms),
         ]

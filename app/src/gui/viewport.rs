@@ -211,14 +211,18 @@ impl GpuState {
         Ok(())
     }
 
-    /// Uploads the posed head (same triangles and UVs as the mesh it replaces), keeping the
-    /// local thickness, which lies in UV space and so follows the skin.
+    /// Moves the uploaded head to its pose (same triangles and UVs as the mesh it replaces:
+    /// positions and normals written in place, [`Renderer::move_mesh`]), keeping the local
+    /// thickness, which lies in UV space and so follows the skin; the split's bare renderer
+    /// moves with it.
     ///
     /// # Errors
     /// As [`Renderer::set_mesh`]; the previous mesh stays.
     pub(super) fn set_posed_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
-        self.renderer.set_mesh(&mesh, skin_albedo)?;
-        self.bare = None;
+        self.renderer.move_mesh(&mesh, skin_albedo)?;
+        if self.bare.as_mut().is_some_and(|bare| bare.move_mesh(&mesh, skin_albedo).is_err()) {
+            self.bare = None;
+        }
         self.mesh = Some(mesh);
         Ok(())
     }

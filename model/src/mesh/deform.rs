@@ -4,8 +4,9 @@
 
 use glam::Vec3;
 
+use super::gather::{NormalGather, StepGather, par_fill, threads};
 use super::subdivide::StepTopology;
-use super::{Face, Mesh, TriangleMesh, vertex_normals};
+use super::{Face, Mesh, TriangleMesh};
 
 /// A base mesh's subdivision and triangulation with the positions left open: build once with
 /// [`SubdivisionPlan::new`], then [`SubdivisionPlan::mesh`] or [`SubdivisionPlan::update`] per
@@ -16,7 +17,9 @@ use super::{Face, Mesh, TriangleMesh, vertex_normals};
 /// positions and normals change.
 #[derive(Debug, Clone)]
 pub struct SubdivisionPlan {
-    steps: Vec<StepTopology>,
+    steps: Vec<(StepTopology, StepGather)>,
+    /// The finest faces' vertex lists (for the normals).
+    normals: NormalGather,
     /// The finest level's faces (for the normals).
     faces: Vec<Face>,
     /// Positions of the finest level.
@@ -38,13 +41,15 @@ impl SubdivisionPlan {
             let step = StepTopology::new(&mesh);
             let positions = step.positions(&mesh.positions);
             mesh = Mesh { positions, ..step.children(&mesh) };
-            steps.push(step);
+            let gather = StepGather::new(&step);
+            steps.push((step, gather));
         }
         if levels > 0 {
             mesh.recompute_normals();
         }
         let (rest, sources) = mesh.triangulate_with_sources();
         SubdivisionPlan {
+            normals: NormalGather::new(mesh.positions.len(), &mesh.faces),
             steps,
             fine_count: mesh.positions.len(),
             faces: mesh.faces,
@@ -73,24 +78,38 @@ impl SubdivisionPlan {
 
     /// Rewrites the positions and normals of `out` (a clone of [`SubdivisionPlan::rest`]) for
     /// base positions `base`: the subdivision's position rules level by level, area-weighted
-    /// normals of the finest faces, then one gather. Tangents, if any, are dropped (they would
-    /// be stale). At 0 levels the normals are recomputed too (the rest mesh keeps the file's).
+    /// normals of the finest faces, then one gather, each step on every core (at most 16) in
+    /// gather form ([`super::gather`]: the serial rules' result bit for bit). Tangents, if any,
+    /// are dropped (they would be stale). At 0 levels the normals are recomputed too (the rest
+    /// mesh keeps the file's).
     ///
     /// # Panics
     /// If `base` or `out` does not match the plan (a programming error, checked up front).
     pub fn update(&self, base: &[Vec3], out: &mut TriangleMesh) {
+        self.update_on(base, out, threads());
+    }
+
+    /// The threads [`SubdivisionPlan::update`] uses: the machine's cores, at most 16.
+    pub fn threads() -> usize {
+        threads()
+    }
+
+    /// [`SubdivisionPlan::update`] on `threads` threads (1: the calling thread alone).
+    ///
+    /// # Panics
+    /// As [`SubdivisionPlan::update`].
+    pub fn update_on(&self, base: &[Vec3], out: &mut TriangleMesh, threads: usize) {
         assert_eq!(base.len(), self.base_count, "SubdivisionPlan::update: base positions of another mesh");
         assert_eq!(out.positions.len(), self.sources.len(), "SubdivisionPlan::update: not this plan's mesh");
         let mut positions = base.to_vec();
-        for step in &self.steps {
-            positions = step.positions(&positions);
+        for (step, gather) in &self.steps {
+            positions = gather.positions(step, &positions, threads);
         }
         debug_assert_eq!(positions.len(), self.fine_count);
-        let normals = vertex_normals(&positions, &self.faces);
-        for (i, &s) in self.sources.iter().enumerate() {
-            out.positions[i] = positions[s as usize];
-            out.normals[i] = normals[s as usize].try_normalize().unwrap_or(Vec3::Z);
-        }
+        let normals = self.normals.normals(&positions, &self.faces, threads);
+        let sources = &self.sources;
+        par_fill(&mut out.positions, threads, |i| positions[sources[i] as usize]);
+        par_fill(&mut out.normals, threads, |i| normals[sources[i] as usize].try_normalize().unwrap_or(Vec3::Z));
         out.tangents = None;
     }
 }

@@ -5,6 +5,7 @@
 
 mod cap;
 pub mod deform;
+mod gather;
 mod gltf;
 pub mod lashes;
 mod load;

@@ -41,21 +41,55 @@ impl Mesh {
     }
 }
 
+/// The Catmull-Clark rule of a moved parent vertex at `p`: from the sum of the face points of
+/// its `face_count` faces, the sum of the midpoints of its `valence` edges, and the sum of the
+/// far ends of its `bnd_count` boundary edges (a crease: the cubic B-spline rule with two, fixed
+/// with another count; fixed where isolated).
+pub(crate) fn vertex_point(
+    p: Vec3,
+    face_sum: Vec3,
+    face_count: u32,
+    mid_sum: Vec3,
+    valence: u32,
+    bnd_sum: Vec3,
+    bnd_count: u32,
+) -> Vec3 {
+    if face_count == 0 || valence == 0 {
+        p
+    } else if bnd_count == 2 {
+        (p * 6.0 + bnd_sum) / 8.0
+    } else if bnd_count > 0 {
+        p
+    } else {
+        let n = valence as f32;
+        let f = face_sum / face_count as f32;
+        let r = mid_sum / valence as f32;
+        (f + 2.0 * r + (n - 3.0) * p) / n
+    }
+}
+
+/// The Catmull-Clark rule of the point of edge `pa`-`pb`: its midpoint on a boundary, else
+/// the mean of its ends and of its two faces' points (`face_sum`).
+pub(crate) fn edge_point(pa: Vec3, pb: Vec3, boundary: bool, face_sum: Vec3) -> Vec3 {
+    let mid = (pa + pb) * 0.5;
+    if boundary { mid } else { (mid * 2.0 + face_sum) * 0.25 }
+}
+
 /// The connectivity of one subdivision step: the parent's faces, edges and which faces each
 /// edge borders, in the order the position rules sum them.
 #[derive(Debug, Clone)]
 pub(crate) struct StepTopology {
     /// Parent vertex count.
-    nv: usize,
+    pub(crate) nv: usize,
     /// Parent faces' corner positions, flattened; face `f` is `corners[face_start[f]..face_start[f + 1]]`.
-    corners: Vec<u32>,
-    face_start: Vec<usize>,
+    pub(crate) corners: Vec<u32>,
+    pub(crate) face_start: Vec<usize>,
     /// Edge of each flattened corner: from that corner to the next one of its face.
-    corner_edge: Vec<u32>,
+    pub(crate) corner_edge: Vec<u32>,
     /// Edges (smaller position first), in the order first met.
-    edges: Vec<(u32, u32)>,
+    pub(crate) edges: Vec<(u32, u32)>,
     /// Faces bordering each edge.
-    edge_faces: Vec<u32>,
+    pub(crate) edge_faces: Vec<u32>,
 }
 
 impl StepTopology {
@@ -127,24 +161,13 @@ impl StepTopology {
             }
         }
         out.extend((0..nv).map(|v| {
-            let p = parent[v];
-            if face_count[v] == 0 || valence[v] == 0 {
-                p
-            } else if bnd_count[v] == 2 {
-                (p * 6.0 + bnd_sum[v]) / 8.0
-            } else if bnd_count[v] > 0 {
-                p
-            } else {
-                let n = valence[v] as f32;
-                let f = face_sum[v] / face_count[v] as f32;
-                let r = mid_sum[v] / valence[v] as f32;
-                (f + 2.0 * r + (n - 3.0) * p) / n
-            }
+            vertex_point(parent[v], face_sum[v], face_count[v], mid_sum[v], valence[v], bnd_sum[v], bnd_count[v])
         }));
-        out.extend(self.edges.iter().enumerate().map(|(e, &(a, b))| {
-            let mid = (parent[a as usize] + parent[b as usize]) * 0.5;
-            if is_boundary(e) { mid } else { (mid * 2.0 + edge_face_sum[e]) * 0.25 }
-        }));
+        out.extend(
+            self.edges.iter().enumerate().map(|(e, &(a, b))| {
+                edge_point(parent[a as usize], parent[b as usize], is_boundary(e), edge_face_sum[e])
+            }),
+        );
         out.extend_from_slice(&face_points);
         out
     }

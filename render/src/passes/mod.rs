@@ -266,7 +266,7 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
     });
     let buffers = match spec.vertices {
         Vertices::Fullscreen => vec![],
-        Vertices::Mesh => vec![Some(crate::gpu_mesh::full_layout())],
+        Vertices::Mesh => crate::gpu_mesh::full_layouts().map(Some).to_vec(),
         Vertices::MeshPositions => vec![Some(crate::gpu_mesh::position_layout())],
         Vertices::EdgeInstances => vec![Some(edge_overdraw::instance_layout())],
     };

@@ -84,7 +84,7 @@ impl FramePass for ShadowPass {
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &self.light_indices[step.light], &[]);
-        rec.mesh.draw(&mut pass);
+        rec.mesh.draw_positions(&mut pass);
         Ok(())
     }
 }

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The renderer's GPU figures on a lent NVIDIA machine (the workplace's `device` tool; see
+# docs/BENCHMARKS.md, "Renderer: frame time per pass"). Not part of CI: CI has no GPU.
+#
+# The device machine has no Rust toolchain and no Vulkan loader, so both travel:
+#   cargo build --release -p rouge-app && mkdir -p .devbin && cp target/release/rouge .devbin/
+#   (the loader debs into .gl/ as the device tool's README says), then run, from the repo root,
+#   bash tests/gpu_bench.sh            with `.gl` and `.devbin` carried.
+# Writes the JSON of every bench and a frame under $OUT (or ./gpu-bench-out) and prints the tables.
+set -uo pipefail
+OUT=${OUT:-gpu-bench-out}
+mkdir -p "$OUT"
+if compgen -G ".gl/*.deb" >/dev/null; then
+  for f in .gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+fi
+if [ -f /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json ]; then
+  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+fi
+# Paths compiled into the binary (CARGO_MANIFEST_DIR, the glitter bench's preset) point at the
+# checkout it was built in: make that path this checkout.
+SRC=${ROUGE_BUILT_IN:-/work/main}
+if [ ! -e "$SRC" ]; then mkdir -p "$(dirname "$SRC")" && ln -s "$PWD" "$SRC"; fi
+B=${ROUGE_BIN:-.devbin/rouge}
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv 2>&1 | tee "$OUT/gpu.txt"
+git log -1 --format='commit %h %s' 2>/dev/null | cut -c1-100 | tee -a "$OUT/gpu.txt"
+run() { echo "== $*" >&2; "$@"; }
+run "$B" render --out "$OUT/face.png" --explain 2>&1 | tail -n 25
+run "$B" bench render --no-sss-study --frames 100 --json "$OUT/render.json" 2>/dev/null
+run "$B" bench paint --dabs 200 --json "$OUT/paint.json" 2>/dev/null
+run "$B" bench deform --frames 60 --json "$OUT/deform.json" 2>/dev/null
+run "$B" bench glitter --pixel-mm 1 --frames 2 --size 32 --gpu-frames 50 2>/dev/null | tail -n 5
