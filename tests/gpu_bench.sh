@@ -24,10 +24,17 @@ SRC=${ROUGE_BUILT_IN:-/work/main}
 if [ ! -e "$SRC" ]; then mkdir -p "$(dirname "$SRC")" && ln -s "$PWD" "$SRC"; fi
 B=${ROUGE_BIN:-.devbin/rouge}
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv 2>&1 | tee "$OUT/gpu.txt"
-git log -1 --format='commit %h %s' 2>/dev/null | cut -c1-100 | tee -a "$OUT/gpu.txt"
 run() { echo "== $*" >&2; "$@"; }
+# The GPU's clocks while the benches run (an idle H200 sits at 345 MHz; the frames of a bench
+# are short and waited for one by one, so say what clock they ran at).
+nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,utilization.gpu --format=csv -lms 250 >"$OUT/clocks.csv" 2>&1 &
+CLOCKS=$!
 run "$B" render --out "$OUT/face.png" --explain 2>&1 | tail -n 25
-run "$B" bench render --no-sss-study --frames 100 --json "$OUT/render.json" 2>/dev/null
-run "$B" bench paint --dabs 200 --json "$OUT/paint.json" 2>/dev/null
 run "$B" bench deform --frames 60 --json "$OUT/deform.json" 2>/dev/null
+run "$B" bench render --no-sss-study --frames 300 --json "$OUT/render.json" 2>/dev/null
+run "$B" bench paint --dabs 200 --json "$OUT/paint.json" 2>/dev/null
 run "$B" bench glitter --pixel-mm 1 --frames 2 --size 32 --gpu-frames 50 2>/dev/null | tail -n 5
+# The same frame through wgpu's GL backend (NVIDIA's EGL), to tell the driver's path from the shaders.
+WGPU_BACKEND=gl run "$B" bench render --no-sss-study --frames 100 --json "$OUT/render_gl.json" 2>&1 | grep -E "^\|| on " | head -n 12
+kill $CLOCKS 2>/dev/null
+sort -t, -k2 "$OUT/clocks.csv" | awk -F, 'NR>1 {print $2}' | uniq -c | sort -rn | head -n 5

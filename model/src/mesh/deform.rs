@@ -4,9 +4,9 @@
 
 use glam::Vec3;
 
-use super::gather::{NormalGather, StepGather, par_fill, threads};
+use super::gather::{NormalGather, StepGather, par_fill_pair, threads};
 use super::subdivide::StepTopology;
-use super::{Face, Mesh, TriangleMesh};
+use super::{Mesh, TriangleMesh};
 
 /// A base mesh's subdivision and triangulation with the positions left open: build once with
 /// [`SubdivisionPlan::new`], then [`SubdivisionPlan::mesh`] or [`SubdivisionPlan::update`] per
@@ -20,8 +20,6 @@ pub struct SubdivisionPlan {
     steps: Vec<(StepTopology, StepGather)>,
     /// The finest faces' vertex lists (for the normals).
     normals: NormalGather,
-    /// The finest level's faces (for the normals).
-    faces: Vec<Face>,
     /// Positions of the finest level.
     fine_count: usize,
     /// The triangle mesh of the rest pose.
@@ -29,6 +27,19 @@ pub struct SubdivisionPlan {
     /// Finest-level position of each triangle-mesh vertex.
     sources: Vec<u32>,
     base_count: usize,
+    /// Each level's positions and the finest faces' vector areas, kept between updates so a
+    /// frame allocates nothing (fresh pages are most of the cost on a virtual machine).
+    scratch: Scratch,
+}
+
+/// [`SubdivisionPlan`]'s buffers between updates; a clone starts empty.
+#[derive(Debug, Default)]
+struct Scratch(std::sync::Mutex<(Vec<Vec<Vec3>>, Vec<Vec3>)>);
+
+impl Clone for Scratch {
+    fn clone(&self) -> Scratch {
+        Scratch::default()
+    }
 }
 
 impl SubdivisionPlan {
@@ -52,10 +63,10 @@ impl SubdivisionPlan {
             normals: NormalGather::new(mesh.positions.len(), &mesh.faces),
             steps,
             fine_count: mesh.positions.len(),
-            faces: mesh.faces,
             rest,
             sources,
             base_count: base.positions.len(),
+            scratch: Scratch::default(),
         }
     }
 
@@ -101,15 +112,22 @@ impl SubdivisionPlan {
     pub fn update_on(&self, base: &[Vec3], out: &mut TriangleMesh, threads: usize) {
         assert_eq!(base.len(), self.base_count, "SubdivisionPlan::update: base positions of another mesh");
         assert_eq!(out.positions.len(), self.sources.len(), "SubdivisionPlan::update: not this plan's mesh");
-        let mut positions = base.to_vec();
-        for (step, gather) in &self.steps {
-            positions = gather.positions(step, &positions, threads);
+        let mut guard = self.scratch.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let (levels, areas) = &mut *guard;
+        levels.resize_with(self.steps.len(), Vec::new);
+        for (i, (step, gather)) in self.steps.iter().enumerate() {
+            let (done, next) = levels.split_at_mut(i);
+            let parent = done.last().map_or(base, |p| p.as_slice());
+            gather.positions_into(step, parent, &mut next[0], threads);
         }
+        let positions = levels.last().map_or(base, |p| p.as_slice());
         debug_assert_eq!(positions.len(), self.fine_count);
-        let normals = self.normals.normals(&positions, &self.faces, threads);
-        let sources = &self.sources;
-        par_fill(&mut out.positions, threads, |i| positions[sources[i] as usize]);
-        par_fill(&mut out.normals, threads, |i| normals[sources[i] as usize].try_normalize().unwrap_or(Vec3::Z));
+        self.normals.areas_into(positions, areas, threads);
+        let (sources, areas) = (&self.sources, &*areas);
+        par_fill_pair(&mut out.positions, &mut out.normals, threads, |i| {
+            let s = sources[i] as usize;
+            (positions[s], self.normals.normal(s, areas).try_normalize().unwrap_or(Vec3::Z))
+        });
         out.tangents = None;
     }
 }

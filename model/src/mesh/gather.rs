@@ -6,12 +6,15 @@
 
 use glam::Vec3;
 
+use std::sync::{Mutex, PoisonError};
+
 use super::Face;
+use super::pool::Pool;
 use super::subdivide::{StepTopology, edge_point, vertex_point};
 
-/// Items below which a phase runs on the calling thread (a thread's start costs about as much
-/// as a few thousand of these sums).
-const SERIAL_BELOW: usize = 16_384;
+/// Items a chunk holds at least (handing a chunk to a worker costs about as much as a few
+/// thousand of these sums).
+const PER_CHUNK_MIN: usize = 8_192;
 
 /// Compressed lists: list `i` is `items[start[i]..start[i + 1]]`.
 #[derive(Debug, Clone, Default)]
@@ -44,17 +47,49 @@ impl Lists {
     }
 }
 
-/// Fills `out[i] = f(i)` on up to `threads` threads (contiguous chunks, one each).
+/// Fills `out[i] = f(i)` on up to `threads` threads of the [`Pool`] (contiguous chunks of at
+/// least [`PER_CHUNK_MIN`] items, two a thread so that a slow thread holds nobody up long).
 pub(crate) fn par_fill<T: Send>(out: &mut [T], threads: usize, f: impl Fn(usize) -> T + Sync) {
-    if threads <= 1 || out.len() < SERIAL_BELOW {
-        out.iter_mut().enumerate().for_each(|(i, o)| *o = f(i));
+    let size = chunk_size(out.len(), threads);
+    run_parts(out.chunks_mut(size).collect(), |c, part: &mut [T]| {
+        part.iter_mut().enumerate().for_each(|(i, o)| *o = f(c * size + i));
+    });
+}
+
+/// [`par_fill`] of two slices of one length at once: `(a[i], b[i]) = f(i)`.
+pub(crate) fn par_fill_pair<A: Send, B: Send>(
+    a: &mut [A],
+    b: &mut [B],
+    threads: usize,
+    f: impl Fn(usize) -> (A, B) + Sync,
+) {
+    assert_eq!(a.len(), b.len(), "par_fill_pair: slices of two lengths");
+    let size = chunk_size(a.len(), threads);
+    run_parts(a.chunks_mut(size).zip(b.chunks_mut(size)).collect(), |c, (pa, pb): (&mut [A], &mut [B])| {
+        for (i, (oa, ob)) in pa.iter_mut().zip(pb.iter_mut()).enumerate() {
+            (*oa, *ob) = f(c * size + i);
+        }
+    });
+}
+
+/// Items a chunk of `len` gets on up to `threads` threads of the pool (all of them when one
+/// thread does the work).
+fn chunk_size(len: usize, threads: usize) -> usize {
+    let threads = threads.min(Pool::global().threads());
+    let chunks = if threads <= 1 { 1 } else { (2 * threads).min(len / PER_CHUNK_MIN).max(1) };
+    len.div_ceil(chunks).max(1)
+}
+
+/// Calls `work(i, part)` for every part, on the pool when there are several.
+fn run_parts<P: Send>(parts: Vec<P>, work: impl Fn(usize, P) + Sync) {
+    if parts.len() <= 1 {
+        parts.into_iter().for_each(|p| work(0, p));
         return;
     }
-    let chunk = out.len().div_ceil(threads);
-    std::thread::scope(|s| {
-        for (c, part) in out.chunks_mut(chunk).enumerate() {
-            let f = &f;
-            s.spawn(move || part.iter_mut().enumerate().for_each(|(i, o)| *o = f(c * chunk + i)));
+    let parts: Vec<Mutex<Option<P>>> = parts.into_iter().map(|p| Mutex::new(Some(p))).collect();
+    Pool::global().run(parts.len(), &|c| {
+        if let Some(part) = parts[c].lock().unwrap_or_else(PoisonError::into_inner).take() {
+            work(c, part);
         }
     });
 }
@@ -84,12 +119,13 @@ impl StepGather {
         StepGather { vertex_faces, edge_faces, vertex_edges }
     }
 
-    /// [`StepTopology::positions`] of `parent`, gathered on `threads` threads.
-    pub(crate) fn positions(&self, t: &StepTopology, parent: &[Vec3], threads: usize) -> Vec<Vec3> {
+    /// [`StepTopology::positions`] of `parent` into `out` (resized; its allocation is kept
+    /// from frame to frame), gathered on `threads` threads: the face points, then the moved
+    /// vertices and the edge points together.
+    pub(crate) fn positions_into(&self, t: &StepTopology, parent: &[Vec3], out: &mut Vec<Vec3>, threads: usize) {
         let (nv, ne, nf) = (t.nv, t.edges.len(), t.face_start.len() - 1);
-        let mut out = vec![Vec3::ZERO; nv + ne + nf];
-        let (moved, rest) = out.split_at_mut(nv);
-        let (edge_points, face_points) = rest.split_at_mut(ne);
+        out.resize(nv + ne + nf, Vec3::ZERO);
+        let (moved_and_edges, face_points) = out.split_at_mut(nv + ne);
         par_fill(face_points, threads, |f| {
             let r = t.face_start[f]..t.face_start[f + 1];
             let k = r.len() as f32;
@@ -97,12 +133,14 @@ impl StepGather {
         });
         let face_points = &*face_points;
         let sum_faces = |faces: &[u32]| faces.iter().fold(Vec3::ZERO, |acc, &f| acc + face_points[f as usize]);
-        par_fill(edge_points, threads, |e| {
-            let (a, b) = t.edges[e];
-            let boundary = t.edge_faces[e] != 2;
-            edge_point(parent[a as usize], parent[b as usize], boundary, sum_faces(self.edge_faces.get(e)))
-        });
-        par_fill(moved, threads, |v| {
+        par_fill(moved_and_edges, threads, |i| {
+            if i >= nv {
+                let e = i - nv;
+                let (a, b) = t.edges[e];
+                let boundary = t.edge_faces[e] != 2;
+                return edge_point(parent[a as usize], parent[b as usize], boundary, sum_faces(self.edge_faces.get(e)));
+            }
+            let v = i;
             let (mut mid_sum, mut bnd_sum, mut bnd_count) = (Vec3::ZERO, Vec3::ZERO, 0u32);
             let edges = self.vertex_edges.get(v);
             // A loop edge (a = b) is listed twice, as the scatter visits it twice.
@@ -119,7 +157,6 @@ impl StepGather {
             let valence = edges.len() as u32;
             vertex_point(parent[v], sum_faces(faces), faces.len() as u32, mid_sum, valence, bnd_sum, bnd_count)
         });
-        out
     }
 }
 
@@ -127,24 +164,36 @@ impl StepGather {
 #[derive(Debug, Clone)]
 pub(crate) struct NormalGather {
     vertex_faces: Lists,
+    /// Each face's corner positions, in winding order.
+    face_corners: Lists,
 }
 
 impl NormalGather {
     pub(crate) fn new(vertex_count: usize, faces: &[Face]) -> NormalGather {
         let pairs =
             faces.iter().enumerate().flat_map(|(f, face)| face.corners.iter().map(move |c| (c.position, f as u32)));
-        NormalGather { vertex_faces: Lists::from_pairs(vertex_count, pairs) }
+        let corners =
+            faces.iter().enumerate().flat_map(|(f, face)| face.corners.iter().map(move |c| (f as u32, c.position)));
+        NormalGather {
+            vertex_faces: Lists::from_pairs(vertex_count, pairs),
+            face_corners: Lists::from_pairs(faces.len(), corners),
+        }
     }
 
-    /// [`super::vertex_normals`] of `positions` over `faces` (those this was made with).
-    pub(crate) fn normals(&self, positions: &[Vec3], faces: &[Face], threads: usize) -> Vec<Vec3> {
-        let mut areas = vec![Vec3::ZERO; faces.len()];
-        par_fill(&mut areas, threads, |f| super::polygon_vector_area(positions, &faces[f].corners));
-        let mut out = vec![Vec3::ZERO; positions.len()];
-        par_fill(&mut out, threads, |v| {
-            let acc = self.vertex_faces.get(v).iter().map(|&f| areas[f as usize]).filter(|n| n.is_finite());
-            acc.fold(Vec3::ZERO, |a, n| a + n).try_normalize().unwrap_or(Vec3::Z)
+    /// The faces' vector areas ([`super::newell_area`]) into
+    /// `areas` (resized, its allocation kept).
+    pub(crate) fn areas_into(&self, positions: &[Vec3], areas: &mut Vec<Vec3>, threads: usize) {
+        areas.resize(self.face_corners.start.len() - 1, Vec3::ZERO);
+        par_fill(areas, threads, |f| {
+            let c = self.face_corners.get(f);
+            super::newell_area(positions, c.len(), |i| c[i])
         });
-        out
+    }
+
+    /// The unit normal of vertex `v` from the faces' vector `areas` ([`super::vertex_normals`]'s
+    /// for that vertex, bit for bit).
+    pub(crate) fn normal(&self, v: usize, areas: &[Vec3]) -> Vec3 {
+        let acc = self.vertex_faces.get(v).iter().map(|&f| areas[f as usize]).filter(|n| n.is_finite());
+        acc.fold(Vec3::ZERO, |a, n| a + n).try_normalize().unwrap_or(Vec3::Z)
     }
 }

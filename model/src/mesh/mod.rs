@@ -10,6 +10,7 @@ mod gltf;
 pub mod lashes;
 mod load;
 mod obj;
+mod pool;
 pub mod shapes;
 mod subdivide;
 mod tangents;
@@ -453,11 +454,15 @@ pub(crate) fn vertex_normals(positions: &[Vec3], faces: &[Face]) -> Vec<Vec3> {
 
 /// Newell's vector area of a polygon: its direction is the normal, its length twice the area.
 pub(crate) fn polygon_vector_area(positions: &[Vec3], corners: &[Corner]) -> Vec3 {
-    let n = corners.len();
+    newell_area(positions, corners.len(), |i| corners[i].position)
+}
+
+/// Newell's vector area of the polygon of `n` corners whose `i`-th is at `positions[corner(i)]`.
+pub(crate) fn newell_area(positions: &[Vec3], n: usize, corner: impl Fn(usize) -> u32) -> Vec3 {
     let mut acc = Vec3::ZERO;
     for i in 0..n {
-        let a = positions[corners[i].position as usize];
-        let b = positions[corners[(i + 1) % n].position as usize];
+        let a = positions[corner(i) as usize];
+        let b = positions[corner((i + 1) % n) as usize];
         acc += a.cross(b);
     }
     acc
