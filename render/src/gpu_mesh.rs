@@ -62,6 +62,10 @@ pub fn position_layout() -> wgpu::VertexBufferLayout<'static> {
 #[derive(Debug)]
 pub struct GpuMesh {
     moving: wgpu::Buffer,
+    /// Mapped memory kept for [`GpuMesh::move_to`]'s writes: a new staging buffer each frame
+    /// (`Queue::write_buffer`'s) cost the H200's frame 12 ms at 3 MB, the mapping of fresh
+    /// host memory in its virtual machine.
+    belt: wgpu::util::StagingBelt,
     fixed: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
@@ -79,14 +83,12 @@ pub struct GpuMesh {
     pub mm_per_uv: f32,
 }
 
-/// The moving stream of `mesh`: positions and normals (+Z where a normal is missing).
-fn moving_vertices(mesh: &TriangleMesh) -> Vec<MovingVertex> {
-    (0..mesh.positions.len())
-        .map(|i| MovingVertex {
-            position: mesh.positions[i].to_array(),
-            normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
-        })
-        .collect()
+/// Vertex `i` of the moving stream of `mesh` (+Z where a normal is missing).
+fn moving_vertex(mesh: &TriangleMesh, i: usize) -> MovingVertex {
+    MovingVertex {
+        position: mesh.positions[i].to_array(),
+        normal: mesh.normals.get(i).copied().unwrap_or(Vec3::Z).to_array(),
+    }
 }
 
 impl GpuMesh {
@@ -117,14 +119,12 @@ impl GpuMesh {
         let mm_per_uv =
             rouge_model::skin::detail::tiles_per_uv(mesh).map_or(0.0, |t| t * rouge_model::skin::detail::TILE_MM);
         let vertex = wgpu::BufferUsages::VERTEX;
+        let moving: Vec<MovingVertex> = (0..mesh.positions.len()).map(|i| moving_vertex(mesh, i)).collect();
+        let moving_bytes: &[u8] = bytemuck::cast_slice(&moving);
         Ok(GpuMesh {
             mm_per_uv,
-            moving: buffer_init(
-                device,
-                "GpuMesh::moving",
-                bytemuck::cast_slice(&moving_vertices(mesh)),
-                vertex | wgpu::BufferUsages::COPY_DST,
-            ),
+            moving: buffer_init(device, "GpuMesh::moving", moving_bytes, vertex | wgpu::BufferUsages::COPY_DST),
+            belt: wgpu::util::StagingBelt::new(device.clone(), moving_bytes.len() as u64),
             fixed: buffer_init(device, "GpuMesh::fixed", bytemuck::cast_slice(&fixed), vertex),
             indices: buffer_init(
                 device,
@@ -141,14 +141,14 @@ impl GpuMesh {
     }
 
     /// Moves the uploaded vertices to `mesh`'s positions and normals in place (the moving
-    /// stream rewritten, nothing allocated), when `mesh` is this mesh posed: as many vertices
-    /// and triangle corners, under the same albedos, and tangents only if the upload had them.
-    /// The triangles, UVs and albedos stay those of the upload (a posed mesh from
-    /// [`rouge_model::mesh::deform::SubdivisionPlan`] keeps them). Returns `false`, changing
-    /// nothing, for any other mesh (upload it afresh).
+    /// stream rewritten through kept staging memory, submitted at once; nothing allocated),
+    /// when `mesh` is this mesh posed: as many vertices and triangle corners, under the same
+    /// albedos, and tangents only if the upload had them. The triangles, UVs and albedos stay
+    /// those of the upload (a posed mesh from [`rouge_model::mesh::deform::SubdivisionPlan`]
+    /// keeps them). Returns `false`, changing nothing, for any other mesh (upload it afresh).
     pub fn move_to(
         &mut self,
-        queue: &wgpu::Queue,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         mesh: &TriangleMesh,
         skin_albedo: [f32; 3],
         hair: HairAlbedo,
@@ -158,7 +158,25 @@ impl GpuMesh {
             && self.albedos == (skin_albedo, hair)
             && (mesh.tangents.is_none() || self.has_tangents);
         let Some(bounds) = Bounds::of(&mesh.positions).filter(|_| same) else { return false };
-        queue.write_buffer(&self.moving, 0, bytemuck::cast_slice(&moving_vertices(mesh)));
+        let stride = std::mem::size_of::<MovingVertex>();
+        let Some(size) = wgpu::BufferSize::new((self.vertex_count * stride) as u64) else { return false };
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("GpuMesh::move_to") });
+        {
+            let mut view = self.belt.write_buffer(&mut encoder, &self.moving, 0, size);
+            // In batches: the mapping is write-only (and write-combined on a discrete GPU).
+            const BATCH: usize = 4096;
+            let mut batch = Vec::with_capacity(BATCH.min(self.vertex_count));
+            for first in (0..self.vertex_count).step_by(BATCH) {
+                let end = (first + BATCH).min(self.vertex_count);
+                batch.clear();
+                batch.extend((first..end).map(|i| moving_vertex(mesh, i)));
+                view.slice(first * stride..end * stride).copy_from_slice(bytemuck::cast_slice(&batch));
+            }
+        }
+        self.belt.finish();
+        queue.submit([encoder.finish()]);
+        self.belt.recall();
         self.bounds = bounds;
         true
     }

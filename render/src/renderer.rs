@@ -142,14 +142,16 @@ impl Renderer {
     /// Poses the uploaded mesh: `mesh` is it with new positions and normals (the app's
     /// expressions, `rouge bench deform`: a [`rouge_model::mesh::deform::SubdivisionPlan`]
     /// keeps the vertices, triangles and UVs), written into the existing vertex buffer
-    /// ([`GpuMesh::move_to`]: 24 of the 64 bytes a vertex, no allocation, no index upload).
+    /// ([`GpuMesh::move_to`]: 24 of the 64 bytes a vertex through kept staging memory, no
+    /// allocation, no index upload).
     /// Any other mesh, or other albedos, is uploaded afresh as [`Renderer::set_mesh`] does.
     ///
     /// # Errors
     /// As [`Renderer::set_mesh`].
     pub fn move_mesh(&mut self, mesh: &TriangleMesh, skin_albedo: [f32; 3]) -> Result<()> {
         let hair = self.hair_albedo;
-        let moved = self.mesh.as_mut().is_some_and(|m| m.move_to(&self.shared.queue, mesh, skin_albedo, hair));
+        let gpu = (&self.shared.device, &self.shared.queue);
+        let moved = self.mesh.as_mut().is_some_and(|m| m.move_to(gpu, mesh, skin_albedo, hair));
         if !moved {
             return self.set_mesh(mesh, skin_albedo);
         }
