@@ -10,6 +10,7 @@ pub mod fit_thickness;
 pub mod glitter;
 pub mod recipe;
 pub mod report;
+pub mod shading;
 pub mod skin;
 pub mod translucency;
 
@@ -71,6 +72,10 @@ pub enum BenchCommand {
     /// 4×4) on a slowly turning patch: flicker between frames and sparkles per frame, relative
     /// to the 16×16 reference, at a few pixel sizes.
     Glitter(crate::bench::glitter::GlitterBenchArgs),
+    /// The same per-pixel work (an 11-tap blur, a chain of arithmetic) as a full-screen render
+    /// pass and as a compute pass on this device: whether the frame's passes are slow for their
+    /// work or for the device's graphics pipeline.
+    Shading(crate::bench::shading::ShadingBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -140,6 +145,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
         BenchCommand::Export(args) => crate::bench::export::run(args),
         BenchCommand::Glitter(args) => crate::bench::glitter::run(args),
+        BenchCommand::Shading(args) => crate::bench::shading::run(args),
     }
 }
 
