@@ -63,16 +63,32 @@ impl Profiler {
     /// Timestamp writes for the next pass, labelled `label`; `None` once the frame has
     /// [`MAX_TIMED_PASSES`] passes.
     pub fn timestamp_writes(&mut self, label: &str) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+        let (begin, end) = self.next_pair(label)?;
+        Some(wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(begin),
+            end_of_pass_write_index: Some(end),
+        })
+    }
+
+    /// [`Profiler::timestamp_writes`] for a compute pass.
+    pub fn compute_timestamp_writes(&mut self, label: &str) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        let (begin, end) = self.next_pair(label)?;
+        Some(wgpu::ComputePassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(begin),
+            end_of_pass_write_index: Some(end),
+        })
+    }
+
+    /// The query indices of the next timed pass, named `label` (none past the last).
+    fn next_pair(&mut self, label: &str) -> Option<(u32, u32)> {
         let i = self.labels.len() as u32;
         if i >= MAX_TIMED_PASSES {
             return None;
         }
         self.labels.push(label.to_string());
-        Some(wgpu::RenderPassTimestampWrites {
-            query_set: &self.queries,
-            beginning_of_pass_write_index: Some(2 * i),
-            end_of_pass_write_index: Some(2 * i + 1),
-        })
+        Some((2 * i, 2 * i + 1))
     }
 
     /// Records the copy of this frame's timestamps into the readback buffer.

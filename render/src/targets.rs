@@ -198,11 +198,19 @@ impl TargetPool {
     /// Creates `targets` that do not exist yet at the current size.
     pub fn ensure(&mut self, device: &wgpu::Device, targets: impl IntoIterator<Item = Target>) {
         use wgpu::TextureUsages as U;
-        let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
         for target in targets {
             let (size, formats) = (self.size, self.formats);
             self.textures.entry(target).or_insert_with(|| {
                 let format = target.format(formats);
+                // The compute passes' outputs are also storage textures.
+                let storage = matches!(
+                    target,
+                    Target::SssScratch | Target::Scattered | Target::Diffuse | Target::Surface | Target::ExitT
+                );
+                let usage = U::RENDER_ATTACHMENT
+                    | U::TEXTURE_BINDING
+                    | U::COPY_SRC
+                    | if storage { U::STORAGE_BINDING } else { U::empty() };
                 let label = format!("Target::{}", target.name());
                 // The sRGB display target is also viewable as plain RGBA8, the encoded bytes as
                 // they are, for egui.

@@ -4,17 +4,20 @@
 //! (\[Huang2013\] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
 //! radiance leaving at the surface, and, with layers, the stack's exit transmittance.
 
-use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use super::{FramePass, Pipelines, Recording, Shared};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::{HDR_FORMAT, Target};
-use crate::wgpu_util::{color, float_tex, layout, sampler, sampler_entry, storage_entry, tex, tex_entry};
+use crate::wgpu_util::{
+    float_tex, layout, sampler, sampler_entry, storage_entry, storage_texture_entry, tex, tex_entry,
+};
 
 /// The lighting pass.
 #[derive(Debug)]
 pub struct LightingPass {
-    layout: wgpu::BindGroupLayout,
-    pipelines: Pipelines,
+    /// Without and with the exit transmittance's output.
+    layouts: [wgpu::BindGroupLayout; 2],
+    pipelines: Pipelines<wgpu::ComputePipeline>,
 }
 
 /// The G-buffer targets a variant reads.
@@ -54,23 +57,26 @@ impl FramePass for LightingPass {
     });
 
     fn new(shared: &Shared) -> LightingPass {
-        let layout = layout(
-            &shared.device,
-            "LightingPass::layout",
-            &[
-                float_tex(0, false),
-                float_tex(1, false),
-                // Depth read as unfilterable float (see lighting.wgsl).
-                float_tex(2, false),
-                float_tex(3, false),
-                float_tex(4, false),
-                storage_entry(5),
-                tex_entry(6, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
-                sampler_entry(7, wgpu::SamplerBindingType::Comparison),
-                tex_entry(8, wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
-            ],
-        );
-        LightingPass { layout, pipelines: Pipelines::default() }
+        let inputs = [
+            float_tex(0, false),
+            float_tex(1, false),
+            // Depth read as unfilterable float (see lighting.wgsl).
+            float_tex(2, false),
+            float_tex(3, false),
+            float_tex(4, false),
+            storage_entry(5),
+            tex_entry(6, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+            sampler_entry(7, wgpu::SamplerBindingType::Comparison),
+            tex_entry(8, wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
+        ]
+        .map(|e| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::COMPUTE, ..e });
+        // The outputs: diffuse and surface, and the exit transmittance with layers.
+        let layouts = [2, 3].map(|outs: u32| {
+            let mut entries = inputs.to_vec();
+            entries.extend((0..outs).map(|i| storage_texture_entry(9 + i, HDR_FORMAT)));
+            layout(&shared.device, "LightingPass::layout", &entries)
+        });
+        LightingPass { layouts, pipelines: Pipelines::default() }
     }
 
     fn name(_: &()) -> String {
@@ -82,17 +88,8 @@ impl FramePass for LightingPass {
         let (shared, targets) = (rec.shared, rec.targets);
         let key = rec.key(&Self::SHADER);
         let outs = outputs(key);
-        let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
-            shader: &Self::SHADER,
-            variant: key,
-            layout: &self.layout,
-            vertices: Vertices::Fullscreen,
-            vs: "vs_fullscreen",
-            fs: Some("fs_lighting"),
-            targets: vec![Some(HDR_FORMAT); outs.len()],
-            blend: None,
-            depth: None,
-        })?;
+        let layout = &self.layouts[outs.len() - 2];
+        let pipeline = self.pipelines.get_or_build_compute(shared, (&Self::SHADER, key), layout, "cs_lighting")?;
         let optional = |wanted: bool, t: Target| -> Result<Option<wgpu::TextureView>> {
             if wanted { targets.view(t).map(Some) } else { Ok(None) }
         };
@@ -101,33 +98,31 @@ impl FramePass for LightingPass {
         let thickness_a = optional(key.layers > 0, Target::ThicknessA)?;
         let thickness_b = optional(key.layers > 4, Target::ThicknessB)?;
         let glitter = optional(key.glitter, Target::Glitter)?;
+        let views = outs.iter().map(|&t| targets.view(t)).collect::<Result<Vec<_>>>()?;
+        let mut entries = vec![
+            tex(0, &normal),
+            tex(1, &albedo),
+            tex(2, &depth),
+            tex(3, thickness_a.as_ref().unwrap_or(&shared.dummy)),
+            tex(4, thickness_b.as_ref().unwrap_or(&shared.dummy)),
+            wgpu::BindGroupEntry { binding: 5, resource: rec.look.tables.as_entire_binding() },
+            tex(6, &rec.shadow_maps),
+            sampler(7, &shared.shadow_sampler),
+            tex(8, glitter.as_ref().unwrap_or(&shared.dummy_uint)),
+        ];
+        entries.extend(views.iter().enumerate().map(|(i, v)| tex(9 + i as u32, v)));
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("LightingPass::group"),
-            layout: &self.layout,
-            entries: &[
-                tex(0, &normal),
-                tex(1, &albedo),
-                tex(2, &depth),
-                tex(3, thickness_a.as_ref().unwrap_or(&shared.dummy)),
-                tex(4, thickness_b.as_ref().unwrap_or(&shared.dummy)),
-                wgpu::BindGroupEntry { binding: 5, resource: rec.look.tables.as_entire_binding() },
-                tex(6, &rec.shadow_maps),
-                sampler(7, &shared.shadow_sampler),
-                tex(8, glitter.as_ref().unwrap_or(&shared.dummy_uint)),
-            ],
+            layout,
+            entries: &entries,
         });
-        let views = outs.iter().map(|&t| targets.view(t)).collect::<Result<Vec<_>>>()?;
-        // The exit transmittance clears to 1 (no stack) where nothing is drawn.
-        let attachments: Vec<_> = outs
-            .iter()
-            .zip(&views)
-            .map(|(&t, v)| color(v, if t == Target::ExitT { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT }))
-            .collect();
-        let mut pass = rec.enc.begin("lighting", &attachments, None);
+        // Every pixel is written (zeros and an exit transmittance of 1 where nothing is drawn).
+        let (width, height) = targets.size();
+        let mut pass = rec.enc.begin_compute("lighting");
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);
-        pass.draw(0..3, 0..1);
+        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
         Ok(())
     }
 }

@@ -157,7 +157,11 @@ pub struct Shared {
 impl Shared {
     /// The shared objects on `device`.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, formats: Formats) -> Shared {
-        let frame_layout = layout(device, "Shared::frame", &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)]);
+        let frame_layout = layout(
+            device,
+            "Shared::frame",
+            &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE)],
+        );
         let frame_buffer = uniform_buffer(device, "Shared::frame", std::mem::size_of::<FrameUniform>());
         let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("Shared::frame"),
@@ -385,6 +389,12 @@ impl FrameEncoder<'_> {
 }
 
 impl FrameEncoder<'_> {
+    /// Begins a compute pass named `label` (timed like [`FrameEncoder::begin`]'s).
+    pub fn begin_compute(&mut self, label: &str) -> wgpu::ComputePass<'_> {
+        let timestamp_writes = self.profiler.as_mut().and_then(|p| p.compute_timestamp_writes(label));
+        self.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes })
+    }
+
     /// Draws `mesh` once per layer `0..layers` of the array textures `colours` and `depth`, each
     /// layer cleared (transparent, far) and drawn as instance `layer`, so that the vertex shader
     /// (`vs_layer`, shaders/layered_mesh.wgsl) picks the layer's view: the dipoles' light
@@ -412,9 +422,26 @@ impl FrameEncoder<'_> {
     }
 }
 
-/// A pipeline cache keyed by the pass's reduced variant.
-#[derive(Debug, Default)]
-pub struct Pipelines(std::collections::HashMap<Variant, wgpu::RenderPipeline>);
+/// A pipeline cache keyed by the pass's reduced variant (render pipelines, or compute ones).
+#[derive(Debug)]
+pub struct Pipelines<P = wgpu::RenderPipeline>(std::collections::HashMap<Variant, P>);
+
+impl<P> Default for Pipelines<P> {
+    fn default() -> Self {
+        Pipelines(Default::default())
+    }
+}
+
+impl<P> Pipelines<P> {
+    /// The pipeline for `variant`, built by `build` on first use.
+    fn get_or_insert(&mut self, variant: Variant, build: impl FnOnce() -> Result<P>) -> Result<&P> {
+        use std::collections::hash_map::Entry;
+        match self.0.entry(variant) {
+            Entry::Occupied(e) => Ok(e.into_mut()),
+            Entry::Vacant(e) => Ok(e.insert(build()?)),
+        }
+    }
+}
 
 impl Pipelines {
     /// The pipeline for `variant`, built with `spec` on first use.
@@ -427,10 +454,44 @@ impl Pipelines {
         variant: Variant,
         spec: impl FnOnce() -> PipelineSpec<'s>,
     ) -> Result<&wgpu::RenderPipeline> {
-        use std::collections::hash_map::Entry;
-        match self.0.entry(variant) {
-            Entry::Occupied(e) => Ok(e.into_mut()),
-            Entry::Vacant(e) => Ok(e.insert(build_pipeline(shared, &spec())?)),
-        }
+        self.get_or_insert(variant, || build_pipeline(shared, &spec()))
+    }
+}
+
+impl Pipelines<wgpu::ComputePipeline> {
+    /// The compute pipeline of entry point `entry` of `shader` for `variant` (group 0 the
+    /// frame's, group 1 `layout`), built on first use.
+    ///
+    /// # Errors
+    /// [`crate::RenderError::Shader`] when the shader source breaks a preprocessor rule.
+    pub fn get_or_build_compute(
+        &mut self,
+        shared: &Shared,
+        (shader, variant): (&PassShader, Variant),
+        layout: &wgpu::BindGroupLayout,
+        entry: &str,
+    ) -> Result<&wgpu::ComputePipeline> {
+        self.get_or_insert(variant, || {
+            let device = &shared.device;
+            let label = format!("{}::compute {variant:?}", shader.owner);
+            let source = shader_source(shader, variant, shared.formats.encode_srgb_in_shader)?;
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(&label),
+                bind_group_layouts: &[Some(&shared.frame_layout), Some(layout)],
+                immediate_size: 0,
+            });
+            Ok(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&label),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            }))
+        })
     }
 }

@@ -3,12 +3,14 @@
 //! It runs for materials whose subsurface model is
 //! [`crate::scene::SubsurfaceModel::ScreenSpace`].
 
-use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use super::{FramePass, Pipelines, Recording, Shared};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::sss::{MAX_SAMPLES, SeparableKernel};
 use crate::targets::{HDR_FORMAT, Target};
-use crate::wgpu_util::{buf, color, float_tex, layout, sampler, sampler_entry, tex, uniform_buffer, uniform_entry};
+use crate::wgpu_util::{
+    buf, float_tex, layout, sampler, sampler_entry, storage_texture_entry, tex, uniform_buffer, uniform_entry,
+};
 use bytemuck::{Pod, Zeroable};
 
 /// One SSS pass's uniform, as in WGSL `SssPass`.
@@ -61,7 +63,7 @@ impl Direction {
 #[derive(Debug)]
 pub struct SssPass {
     layout: wgpu::BindGroupLayout,
-    pipelines: Pipelines,
+    pipelines: Pipelines<wgpu::ComputePipeline>,
     uniforms: [wgpu::Buffer; 2],
 }
 
@@ -93,15 +95,18 @@ impl FramePass for SssPass {
     /// The passes on `shared`'s device.
     fn new(shared: &Shared) -> SssPass {
         let device = &shared.device;
+        let compute =
+            |e: wgpu::BindGroupLayoutEntry| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::COMPUTE, ..e };
         let layout = layout(
             device,
             "SssPass::layout",
             &[
-                uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
-                float_tex(1, true),
+                uniform_entry(0, wgpu::ShaderStages::COMPUTE),
+                compute(float_tex(1, true)),
                 // Depth read as unfilterable float (see sss.wgsl).
-                float_tex(2, false),
-                sampler_entry(3, wgpu::SamplerBindingType::Filtering),
+                compute(float_tex(2, false)),
+                compute(sampler_entry(3, wgpu::SamplerBindingType::Filtering)),
+                storage_texture_entry(4, HDR_FORMAT),
             ],
         );
         let size = std::mem::size_of::<SssUniform>();
@@ -119,17 +124,8 @@ impl FramePass for SssPass {
         let (shared, targets, direction) = (rec.shared, rec.targets, step.direction);
         let buffer = &self.uniforms[direction.index()];
         shared.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&step.uniform));
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            shader: &Self::SHADER,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::Fullscreen,
-            vs: "vs_fullscreen",
-            fs: Some("fs_sss"),
-            targets: vec![Some(HDR_FORMAT)],
-            blend: None,
-            depth: None,
-        })?;
+        let pipeline =
+            self.pipelines.get_or_build_compute(shared, (&Self::SHADER, Variant::BARE), &self.layout, "cs_sss")?;
         let (src, dst) = direction.targets();
         let (src, dst, depth) = (targets.view(src)?, targets.view(dst)?, targets.view(Target::Depth)?);
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -140,13 +136,15 @@ impl FramePass for SssPass {
                 tex(1, &src),
                 tex(2, &depth),
                 sampler(3, &shared.linear_sampler),
+                tex(4, &dst),
             ],
         });
-        let mut pass = rec.enc.begin(direction.label(), &[color(&dst, wgpu::Color::TRANSPARENT)], None);
+        let (width, height) = targets.size();
+        let mut pass = rec.enc.begin_compute(direction.label());
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);
-        pass.draw(0..3, 0..1);
+        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
         Ok(())
     }
 }

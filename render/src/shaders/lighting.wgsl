@@ -28,6 +28,14 @@
 @group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
+// The outputs (`LightingOut`): the pass is a compute pass, one invocation a pixel (on GPUs whose
+// graphics pipeline runs on a few of their SMs, such as the H100/H200, a full-screen fragment pass
+// took ten to thirty times as long: docs/BENCHMARKS.md, `rouge bench shading`).
+@group(1) @binding(9) var out_diffuse: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(10) var out_surface: texture_storage_2d<rgba16float, write>;
+//#if LAYERS_A
+@group(1) @binding(11) var out_exit_t: texture_storage_2d<rgba16float, write>;
+//#endif
 //#if GLITTER
 // The glitter's flake-field coordinates (gbuffer.wgsl `glitter`).
 @group(1) @binding(8) var gb_glitter: texture_2d<u32>;
@@ -40,12 +48,12 @@
 
 struct LightingOut {
     // rgb: skin radiance before scattering, a: 1 on skin
-    @location(0) diffuse: vec4<f32>,
+    diffuse: vec4<f32>,
     // rgb: radiance that leaves at the surface (stack reflectance, specular, non-skin diffuse)
-    @location(1) surface: vec4<f32>,
+    surface: vec4<f32>,
 //#if LAYERS_A
     // rgb: T of the stack, for the scattered light on its way out
-    @location(2) exit_t: vec4<f32>,
+    exit_t: vec4<f32>,
 //#endif
 }
 
@@ -119,9 +127,23 @@ fn interference(layer: u32, c: f32) -> vec3<f32> {
 //#insert sh_eval
 //#endif
 
-@fragment
-fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
-    let p = vec2<i32>(frag.xy);
+@compute @workgroup_size(8, 8)
+fn cs_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(out_diffuse)) {
+        return;
+    }
+    let p = vec2<i32>(id.xy);
+    // The pixel's centre, as a fragment's position.
+    let out = lighting_at(vec2<f32>(id.xy) + 0.5);
+    textureStore(out_diffuse, p, out.diffuse);
+    textureStore(out_surface, p, out.surface);
+//#if LAYERS_A
+    textureStore(out_exit_t, p, out.exit_t);
+//#endif
+}
+
+fn lighting_at(frag: vec2<f32>) -> LightingOut {
+    let p = vec2<i32>(frag);
     var out: LightingOut;
     let nd = textureLoad(gb_normal, p, 0);
     if nd.w == 0.0 {
@@ -137,7 +159,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> LightingOut {
     let albedo = albedo_skin.rgb;
     let is_skin = albedo_skin.a > 0.5;
     let depth = textureLoad(gb_depth, p, 0).r;
-    let world = world_at(frag.xy, depth);
+    let world = world_at(frag, depth);
     let v = normalize(frame.camera_pos.xyz - world);
 //#if GLITTER
     // The pixel's footprint on the flake fields and the UV frame about this normal.

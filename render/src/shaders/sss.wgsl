@@ -1,6 +1,8 @@
 // Separable screen-space subsurface scattering ([Huang2013] figure 1, step 4; [Jimenez2015]), one
-// direction per pass. Kernel and rules: see the Rust module `sss` (its `separable_pass_cpu` is
-// this shader on the CPU).
+// direction per pass, as a compute pass (one invocation a pixel, writing `dst`: on GPUs whose
+// graphics pipeline runs on a few of their SMs, such as the H100/H200, a full-screen fragment
+// pass took ten times as long; docs/BENCHMARKS.md, `rouge bench shading`). Kernel and rules: see
+// the Rust module `sss` (its `separable_pass_cpu` is this shader on the CPU).
 
 struct SssPass {
     // xy: direction in pixels (1, 0) or (0, 1); z: width (profile scale); w: depth follow (mm)
@@ -16,10 +18,19 @@ struct SssPass {
 // The depth buffer as an unfilterable float texture (GLSL cannot read it as a depth texture).
 @group(1) @binding(2) var src_depth: texture_2d<f32>;
 @group(1) @binding(3) var linear_sampler: sampler;
+@group(1) @binding(4) var dst: texture_storage_2d<rgba16float, write>;
 
-@fragment
-fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(frag.xy);
+@compute @workgroup_size(8, 8)
+fn cs_sss(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(dst)) {
+        return;
+    }
+    // The pixel's centre, as a fragment's position.
+    textureStore(dst, vec2<i32>(id.xy), sss_at(vec2<f32>(id.xy) + 0.5));
+}
+
+fn sss_at(frag: vec2<f32>) -> vec4<f32> {
+    let p = vec2<i32>(frag);
     let centre = textureLoad(src, p, 0);
     if centre.a < 0.5 {
         return centre;
@@ -40,7 +51,7 @@ fn fs_sss(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             sum += centre.rgb * k.yzw;
             continue;
         }
-        let pos = frag.xy + dir * o;
+        let pos = frag + dir * o;
         let c = textureSampleLevel(src, linear_sampler, pos / size, 0.0);
         var s = c.rgb + (1.0 - c.a) * centre.rgb;
         let q = clamp(vec2<i32>(floor(pos)), vec2<i32>(0), max_p);
