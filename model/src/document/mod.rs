@@ -13,12 +13,14 @@
 //! The history has a memory budget
 //! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
 //!
-//! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
-//! `maps/` (one OpenEXR map per layer, raw painted millimetres, and the skin maps' EXR),
-//! `presets/` (the presets that are not built in), `face.json` and, with skin maps, `skin.json`. docs/FORMATS.md ("Project folders") describes them. Map and preset file
-//! names carry a hash of their contents, so a save never overwrites a file the previous
-//! `look.json` refers to: until the new `look.json` replaces the old one (an atomic rename) the
-//! previous project is intact, and a map that did not change is not written again.
+//! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads,
+//! with a `project` part naming the face and skin files), `maps/` (one OpenEXR map per layer, raw
+//! painted millimetres, and the skin maps' EXR), `presets/` (the presets that are not built in),
+//! the face file and, with skin maps, the skin file. docs/FORMATS.md ("Project folders")
+//! describes them. Every file but `look.json` is named by its contents, so a save never
+//! overwrites a file the previous `look.json` refers to: replacing `look.json` (an atomic rename)
+//! is the save's one commit point, before which the folder opens as the previous project and
+//! after which as the new one, and a file that did not change is not written again.
 
 mod history;
 mod project;
@@ -46,8 +48,9 @@ pub const HISTORY_BUDGET_BYTES: usize = 1 << 30;
 /// The look document of a project folder.
 pub const LOOK_FILE: &str = "look.json";
 
-/// The project file holding the face's expression and shape ([`FacePose`], `rouge-face` v1);
-/// projects without it open with the neutral head.
+/// The file that held the face's expression and shape ([`FacePose`], `rouge-face` v1) in projects
+/// saved before the content-named `face-<hash>.json` that `look.json` names (read from such
+/// projects; without it they open with the neutral head).
 pub const FACE_FILE: &str = "face.json";
 /// The folder of a project's thickness maps.
 pub const MAPS_DIR: &str = "maps";
