@@ -4,11 +4,12 @@
 //! projects saved before the commit point (`face.json`, `skin.json`) still open.
 //!
 //! The kill harness runs this test binary again as the child that saves (the same test, with
-//! [`CHILD_ENV`] set): it saves the states 0, 1, 2, ... of [`state`] into one folder and says
-//! `saved K` after each, until the parent kills it after a random delay. The parent then opens
-//! the folder: it must be the state last said saved or the one after it, whole (every layer, the
-//! presets, the face, the skin maps and edits, the name), and the next child saves over what the
-//! kill left. `ROUGE_KILL_ROUNDS` (default 24) sets the number of kills, `ROUGE_KILL_SEED` the
+//! [`CHILD_ENV`] set): it saves (every other state by an autosave) the states 0, 1, 2, ... of
+//! [`state`] into one folder and says `saved K` after each, until the parent kills it after a
+//! random delay. The parent then opens the folder: it must be the state last said saved or the
+//! one after it, whole (every layer, the presets, the face, the skin maps and edits, the
+//! subsurface model, the name), and the next child saves over what the kill left.
+//! `ROUGE_KILL_ROUNDS` (default 24) sets the number of kills, `ROUGE_KILL_SEED` the
 //! random delays; the figures of a long run are in docs/BENCHMARKS.md.
 
 use std::collections::BTreeSet;
@@ -18,7 +19,7 @@ use std::process::{Command, Stdio};
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use rouge_model::document::{Document, MAP_SIZE, PaintLayer, TexelRect};
+use rouge_model::document::{Document, MAP_SIZE, PaintLayer, SubsurfaceChoice, TexelRect, UNTITLED};
 use rouge_model::look::{Look, ProjectPart, ThicknessMap, ThicknessSource, builtin_preset};
 use rouge_model::skin::edits::EditChannel;
 use rouge_model::skin::{ProjectSkin, SkinEdits, SkinRecipe};
@@ -83,6 +84,7 @@ fn state(k: u64) -> Document {
         paint(&mut doc, 1, at(5), 0.002 + k as f32 * 1e-6);
     }
     doc.face.expression.insert("smile".into(), (k % 11) as f32 / 10.0);
+    doc.subsurface = SubsurfaceChoice::ALL[(k % 6) as usize];
     doc.skin = match k % 3 {
         0 => None,
         i => Some(Arc::clone(&skins()[i as usize - 1])),
@@ -113,6 +115,9 @@ fn which_state(dir: &Path) -> Result<u64, String> {
     }
     if doc.skin != want.skin {
         return Err(format!("state {k}'s name with other skin maps"));
+    }
+    if doc.subsurface != want.subsurface {
+        return Err(format!("state {k}'s name with the subsurface model {:?}", doc.subsurface));
     }
     Ok(k)
 }
@@ -192,12 +197,16 @@ fn env_u64(name: &str) -> Option<u64> {
     std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
-/// The child: saves states `from`, `from + 1`, ... into `dir` until killed.
+/// The child: saves states `from`, `from + 1`, ... into `dir` until killed, odd states by an
+/// autosave (the same writer, as the app's recovery folder gets it).
 fn save_until_killed(dir: &Path, from: u64) -> ! {
     let _ = skins();
     for k in from.. {
         let mut doc = state(k);
-        doc.save_project(dir).expect("save");
+        match k % 2 {
+            0 => doc.save_project(dir).expect("save"),
+            _ => doc.autosave(dir).expect("autosave"),
+        }
         println!("saved {k}");
     }
     unreachable!("the states do not run out")
@@ -447,4 +456,43 @@ fn a_project_part_naming_a_file_outside_the_folder_is_refused() {
     std::fs::write(&look_path, text.replace("\"face\":", "\"fase\":")).expect("write");
     let e = Document::open_project(&dir).expect_err("unknown field").to_string();
     assert!(e.contains("look.json") && e.contains("fase"), "{e}");
+}
+
+#[test]
+fn the_subsurface_model_and_the_name_are_saved_with_the_project() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let dir = tmp.path().join("p");
+    let mut doc = Document::default_project();
+    assert_eq!(
+        (doc.name.as_str(), doc.subsurface, doc.is_modified()),
+        (UNTITLED, SubsurfaceChoice::ScreenSpace, false)
+    );
+    doc.subsurface = SubsurfaceChoice::DirectionalDipole;
+    assert!(doc.is_modified(), "another subsurface model is unsaved work");
+    doc.save_project(&dir).expect("save");
+    assert!(!doc.is_modified());
+    doc.name = "Evening for Ana".into();
+    assert!(doc.is_modified(), "another name is unsaved work");
+    doc.save_project(&dir).expect("save");
+    let opened = Document::open_project(&dir).expect("open");
+    assert_eq!((opened.name.as_str(), opened.subsurface), ("Evening for Ana", SubsurfaceChoice::DirectionalDipole));
+    assert!(!opened.is_modified());
+    // Every model has its name in the file.
+    for choice in SubsurfaceChoice::ALL {
+        doc.subsurface = choice;
+        doc.save_project(&dir).expect("save");
+        let text = std::fs::read_to_string(dir.join("look.json")).expect("look.json");
+        assert!(text.contains(&format!("\"subsurface\": \"{}\"", choice.name())), "{text}");
+        assert_eq!(Document::open_project(&dir).expect("open").subsurface, choice);
+    }
+    // An unknown one is an error naming the file and the models there are.
+    let text = std::fs::read_to_string(dir.join("look.json")).expect("look.json");
+    std::fs::write(dir.join("look.json"), text.replace("\"none\"", "\"jensen\"")).expect("write");
+    let e = Document::open_project(&dir).expect_err("an unknown model").to_string();
+    assert!(e.contains("look.json") && e.contains("jensen") && e.contains("cube-atlas"), "{e}");
+    // A project saved before either opens with the default model and its look's name.
+    let old = tmp.path().join("old");
+    project_before_commit_point(&old);
+    let doc = Document::open_project(&old).expect("open");
+    assert_eq!((doc.name.as_str(), doc.subsurface), ("Saved before the commit point", SubsurfaceChoice::ScreenSpace));
 }

@@ -11,6 +11,7 @@ pub mod glitter;
 pub mod recipe;
 pub mod report;
 pub mod skin;
+pub mod soak;
 pub mod translucency;
 
 use anyhow::{Context, Result, bail};
@@ -71,6 +72,7 @@ pub enum BenchCommand {
     /// 4×4) on a slowly turning patch: flicker between frames and sparkles per frame, relative
     /// to the 16×16 reference, at a few pixel sizes.
     Glitter(crate::bench::glitter::GlitterBenchArgs),
+    Soak(crate::bench::soak::SoakBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -140,6 +142,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
         BenchCommand::Export(args) => crate::bench::export::run(args),
         BenchCommand::Glitter(args) => crate::bench::glitter::run(args),
+        BenchCommand::Soak(args) => crate::bench::soak::run(args),
     }
 }
 

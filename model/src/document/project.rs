@@ -28,15 +28,18 @@ impl Document {
         self.history.saved_id = Some(self.history.state_id());
         self.saved_face = self.face.clone();
         self.saved_skin = self.skin.clone();
+        self.saved_name = self.name.clone();
+        self.saved_subsurface = self.subsurface;
         Ok(())
     }
 
     /// Opens a project folder: `dir/look.json` by [`Look::from_project_json`], then
     /// [`Document::from_look`], with the painted maps read back unscaled (bit for bit) and each
     /// layer's multiplier from its `scale_mm`, the face and the skin maps (bit for bit) from the
-    /// files its `project` part names. A project saved before that part (without it) takes
-    /// them from `face.json` and `skin.json`: neutral without the one, no skin maps without the
-    /// other. Errors name the file at fault.
+    /// files its `project` part names, and the subsurface model it gives. A project saved before
+    /// that part (without it) takes them from `face.json` and `skin.json`: neutral without the
+    /// one, no skin maps without the other, and the default subsurface model. Errors name the
+    /// file at fault.
     pub fn open_project(dir: &Path) -> Result<Document> {
         let look_path = dir.join(LOOK_FILE);
         let text = std::fs::read_to_string(&look_path).map_err(|e| ModelError::file(&look_path, e))?;
@@ -56,6 +59,8 @@ impl Document {
             None => None,
         };
         doc.saved_skin = doc.skin.clone();
+        doc.subsurface = part.as_ref().and_then(|p| p.subsurface).unwrap_or_default();
+        doc.saved_subsurface = doc.subsurface;
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
@@ -413,7 +418,7 @@ fn write_project_files(doc: &Document, dir: &Path, look_path: &Path, new: &mut N
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
     let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara };
-    let part = ProjectPart { face, skin, subsurface: None };
+    let part = ProjectPart { face, skin, subsurface: Some(doc.subsurface) };
     write_atomic(look_path, look.to_project_json(Some(&part)).as_bytes())
         .map_err(|e| ModelError::file(look_path, e))?;
     sync_dir(dir);

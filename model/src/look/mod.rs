@@ -173,10 +173,10 @@ pub struct ProjectPart {
     /// without skin maps.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub skin: Option<String>,
-    /// The viewport's subsurface model (`screen-space`, `thickness-baked`, ...) as the app
-    /// names it; `None`: the app's default.
+    /// The viewport's subsurface model (`screen-space`, `thickness-baked`, ...); `None`: the
+    /// default (projects saved before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub subsurface: Option<String>,
+    pub subsurface: Option<crate::document::SubsurfaceChoice>,
 }
 
 fn yes() -> bool {
