@@ -579,7 +579,8 @@ fn a_named_skin_tone_sets_the_skin_colour() {
 
 /// Issue 30: non-finite camera angles and mesh scales rendered an empty frame with exit 0 over the
 /// previous image; a negative size got clap's "unexpected argument". Each is now an error that
-/// names the option, and the previous output is left as it was.
+/// names the option and quotes the value as typed (`--yaw 1e308` was reported as `inf`), and the
+/// previous output is left as it was.
 #[test]
 fn bad_camera_and_scale_values_are_named_and_keep_the_old_image() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -590,14 +591,18 @@ fn bad_camera_and_scale_values_are_named_and_keep_the_old_image() {
         (&["--yaw", "nan"][..], "--yaw"),
         (&["--yaw", "inf"][..], "--yaw"),
         (&["--yaw", "1e308"][..], "--yaw"),
+        (&["--yaw", "-1e30"][..], "--yaw"),
         (&["--pitch", "nan"][..], "--pitch"),
+        (&["--pitch", "3600.5"][..], "--pitch"),
         (&["--mesh-scale", "nan"][..], "--mesh-scale"),
         (&["--mesh-scale", "0"][..], "--mesh-scale"),
+        (&["--mesh-scale", "1e39"][..], "--mesh-scale"),
         (&["--width", "-5"][..], "--width"),
     ] {
         let o = rouge(&[&["render", "--out", out_s][..], bad].concat());
         assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(says), "{bad:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(bad[1]), "{bad:?}: the value as typed: {}", stderr(&o));
         assert_eq!(std::fs::read(&out).expect("read"), b"the previous image", "{bad:?}");
     }
 }

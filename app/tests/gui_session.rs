@@ -4,7 +4,9 @@
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use rouge_app::gui::{Options, RougeApp};
+use egui_kittest::wgpu::{WgpuTestRenderer, default_wgpu_setup};
+use egui_wgpu::WgpuSetup;
+use rouge_app::gui::{Options, RougeApp, SubsurfaceChoice, with_timestamp_queries};
 use rouge_model::document::Document;
 use std::path::{Path, PathBuf};
 
@@ -12,8 +14,14 @@ mod common;
 use common::beside_nose_tip;
 
 fn app(data_dir: &Path, project: Option<PathBuf>, autosave: bool) -> Harness<'static, RougeApp> {
+    app_on(default_wgpu_setup(), data_dir, project, autosave)
+}
+
+/// The app on a device made by `setup`.
+fn app_on(setup: WgpuSetup, data_dir: &Path, project: Option<PathBuf>, autosave: bool) -> Harness<'static, RougeApp> {
     let data_dir = data_dir.to_owned();
-    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
+    let renderer = WgpuTestRenderer::from_setup(setup);
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).renderer(renderer).build_eframe(move |cc| {
         RougeApp::new(cc, Options { data_dir, project, autosave, mesh: None, window_screenshot: None })
             .expect("the app opens")
     });
@@ -51,8 +59,14 @@ fn a_project_that_cannot_be_opened_at_start_is_said_in_a_dialog_in_the_apps_word
     let data = tempfile::tempdir().expect("tempdir");
     let project = data.path().join("bad");
     Document::default_project().save_project(&project).expect("save");
-    std::fs::write(project.join("face.json"), r#"{"format": "rouge-face", "version": 1, "expression": {"smle": 1}}"#)
-        .expect("write");
+    // The face file that look.json names (`face-<hash>.json`).
+    let face = std::fs::read_dir(&project)
+        .expect("the project folder")
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("face-")))
+        .expect("the face file");
+    std::fs::write(face, r#"{"format": "rouge-face", "version": 1, "expression": {"smle": 1}}"#).expect("write");
     let mut h = app(data.path(), Some(project.clone()), false);
     let text = h.state().error_dialog().expect("a dialog").to_string();
     assert!(text.contains(&project.display().to_string()) && text.contains("smle"), "{text}");
@@ -91,4 +105,49 @@ fn the_viewport_keeps_its_size_as_the_status_line_changes_and_no_plane_is_drawn(
     let centre = image.enumerate_pixels().filter(|(x, y, _)| (400..800).contains(x) && (80..680).contains(y));
     let cyan = centre.filter(|(_, _, p)| p[0] < 160 && p[1] > 190 && p[2] > 230).count();
     assert_eq!(cyan, 0, "{cyan} cyan pixels on the face: the symmetry plane is drawn by default");
+}
+
+#[test]
+fn the_view_menu_reads_the_frame_rate_and_the_gpu_time_or_says_na() {
+    let data = tempfile::tempdir().expect("tempdir");
+    // A device with timestamp queries (lavapipe has them): the last frame's GPU time in ms.
+    let mut h = app_on(with_timestamp_queries(default_wgpu_setup()), data.path(), None, false);
+    h.state_mut().set_split(false, 0.5); // a fresh frame
+    h.run_steps(2);
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    let readout = h.state().frame_readout();
+    assert!(h.query_by_label_contains("frames/s · GPU").is_some(), "no readout in the View menu ({readout})");
+    let gpu_ms = h.state().gpu_frame_ms().expect("lavapipe has timestamp queries");
+    assert!(gpu_ms > 0.0 && readout.contains(&format!("GPU {gpu_ms:.1} ms")), "{readout}");
+    // The switch puts it in the viewport's corner too.
+    h.get_by_label("Frame rate and GPU time in the viewport").click();
+    h.run_steps(2);
+
+    // Without timestamp queries (the default test device asks for none): n/a.
+    let mut h = app(data.path(), None, false);
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("frames/s · GPU n/a").is_some(), "{}", h.state().frame_readout());
+    assert_eq!(h.state().gpu_frame_ms(), None);
+}
+
+#[test]
+fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let project = data.path().join("Evening look");
+    let mut h = app(data.path(), None, false);
+    assert_eq!(h.state().document().name, "Untitled");
+    h.state_mut().set_subsurface(SubsurfaceChoice::None);
+    assert!(h.state().document().is_modified(), "another subsurface model is unsaved work");
+    h.state_mut().save_project_to(&project).expect("save");
+    assert_eq!(h.state().document().name, "Evening look", "a new project takes its folder's name");
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("Evening look —").is_some(), "the title names the project");
+
+    let mut h = app(data.path(), Some(project.clone()), false);
+    h.run_steps(2);
+    let doc = h.state().document();
+    assert_eq!((doc.name.as_str(), doc.subsurface, doc.is_modified()), ("Evening look", SubsurfaceChoice::None, false));
+    assert_eq!(h.state().subsurface_in_use().0, "none", "the viewport draws the saved model");
 }

@@ -12,9 +12,7 @@ use rouge_model::document::{Change, Document, MAP_SIZE};
 use rouge_model::mesh::TriangleMesh;
 use rouge_model::paint::{Brush, SurfaceMap};
 use rouge_model::skin::edits::{EditChannel, MAX_LN_FACTOR, apply_skin_dab};
-use rouge_model::skin::{
-    ProjectSkin, SKIN_FILE, SkinBrush, SkinBrushKind, SkinChannel, SkinEdits, SkinMaps, SkinRecipe,
-};
+use rouge_model::skin::{ProjectSkin, SkinBrush, SkinBrushKind, SkinChannel, SkinEdits, SkinMaps, SkinRecipe};
 
 fn skin(tone: &str, seed: u64) -> ProjectSkin {
     let recipe = SkinRecipe::from_tone(tone, "freckles=0.5".parse().expect("conditions"), seed, 128).expect("recipe");
@@ -204,6 +202,18 @@ fn painted_document() -> Document {
     doc
 }
 
+/// The file a project's `look.json` names in its `project` part: `face` or `skin`.
+fn project_file(dir: &Path, which: &str) -> std::path::PathBuf {
+    let path = dir.join("look.json");
+    let text = std::fs::read_to_string(&path).expect("look.json");
+    let (_, part) = rouge_model::look::Look::from_project_json(&text, &path).expect("look.json loads");
+    let part = part.expect("a project part");
+    dir.join(match which {
+        "face" => part.face,
+        _ => part.skin.expect("a skin file"),
+    })
+}
+
 fn assert_same_skin(a: &ProjectSkin, b: &ProjectSkin) {
     assert_eq!(a.recipe, b.recipe);
     assert_same_maps(&a.maps, &b.maps);
@@ -217,7 +227,7 @@ fn skin_edits_survive_save_reopen_and_recovery_bit_for_bit() {
     let mut doc = painted_document();
     doc.save_project(&dir).expect("save");
     assert!(!doc.is_modified());
-    let text = std::fs::read_to_string(dir.join(SKIN_FILE)).expect("skin.json");
+    let text = std::fs::read_to_string(project_file(&dir, "skin")).expect("the skin file");
     assert!(text.contains("\"edits\": \"maps/skin-edits-"), "{text}");
     let opened = Document::open_project(&dir).expect("open");
     assert_same_skin(doc.skin.as_ref().unwrap(), opened.skin.as_ref().unwrap());

@@ -17,6 +17,18 @@ fn files_in(dir: &Path) -> BTreeSet<String> {
         .unwrap_or_default()
 }
 
+/// The file a project's `look.json` names in its `project` part: `face` or `skin`.
+fn project_file(dir: &Path, which: &str) -> std::path::PathBuf {
+    let path = dir.join("look.json");
+    let text = std::fs::read_to_string(&path).expect("look.json");
+    let (_, part) = rouge_model::look::Look::from_project_json(&text, &path).expect("look.json loads");
+    let part = part.expect("a project part");
+    dir.join(match which {
+        "face" => part.face,
+        _ => part.skin.expect("a skin file"),
+    })
+}
+
 fn skin_files(dir: &Path) -> BTreeSet<String> {
     files_in(&dir.join("maps")).into_iter().filter(|f| f.starts_with("skin-")).collect()
 }
@@ -46,7 +58,7 @@ fn skin_maps_save_and_reopen_bit_for_bit_with_their_recipe() {
     assert!(doc.is_modified(), "new skin maps modify the document");
     doc.save_project(&dir).expect("save");
     assert!(!doc.is_modified());
-    assert!(dir.join(SKIN_FILE).is_file());
+    assert!(project_file(&dir, "skin").is_file() && !dir.join(SKIN_FILE).exists());
     assert_eq!(skin_files(&dir).len(), 1);
 
     let opened = Document::open_project(&dir).expect("open");
@@ -74,7 +86,7 @@ fn skin_maps_save_and_reopen_bit_for_bit_with_their_recipe() {
     doc.skin = None;
     assert!(doc.is_modified());
     doc.save_project(&dir).expect("save without skin");
-    assert!(!dir.join(SKIN_FILE).exists() && skin_files(&dir).is_empty());
+    assert!(skin_files(&dir).is_empty() && !files_in(&dir).iter().any(|f| f.starts_with("skin")));
     assert!(Document::open_project(&dir).unwrap().skin.is_none());
     // The painted layers are untouched by all this.
     assert_eq!(files_in(&dir.join("maps")).len(), doc.layers.len());
@@ -93,7 +105,7 @@ fn autosave_and_recovery_carry_the_skin_maps() {
     let recovered = Document::open_project(&recovery).expect("recover");
     assert_same_bits(&recovered.skin.unwrap().maps, &doc.skin.as_ref().unwrap().maps);
     Document::clear_recovery(&recovery).expect("clear");
-    assert!(!recovery.join(SKIN_FILE).exists() && !recovery.join("maps").exists(), "{:?}", files_in(&recovery));
+    assert!(files_in(&recovery).is_empty(), "{:?}", files_in(&recovery));
 }
 
 /// Writes the project that `Document::save_project` wrote before skin maps existed:
@@ -130,7 +142,7 @@ fn a_project_saved_before_skin_maps_opens_as_before_and_takes_them() {
     // Saved again without skin maps it is the same project (no skin file, the same map).
     let mut doc = doc;
     doc.save_project(&dir).expect("save");
-    assert!(!dir.join(SKIN_FILE).exists());
+    assert!(!files_in(&dir).iter().any(|f| f.starts_with("skin")), "{:?}", files_in(&dir));
     assert_eq!(files_in(&dir.join("maps")).len(), 1);
     // And it takes skin maps like any project.
     doc.skin = Some(skin("freckles=0.3", 2));
@@ -145,18 +157,19 @@ fn bad_skin_files_are_errors_naming_the_file_and_the_fault() {
     let mut doc = Document::default_project();
     doc.skin = Some(skin("redness=0.2", 3));
     doc.save_project(&dir).expect("save");
-    let json_path = dir.join(SKIN_FILE);
-    let good = std::fs::read_to_string(&json_path).expect("skin.json");
+    let json_path = project_file(&dir, "skin");
+    let json_name = json_path.file_name().expect("a name").to_string_lossy().into_owned();
+    let good = std::fs::read_to_string(&json_path).expect("the skin file");
     let open_err = |text: &str| {
         std::fs::write(&json_path, text).expect("write");
         Document::open_project(&dir).expect_err("a bad skin.json").to_string()
     };
     let e = open_err(&good.replace("\"redness\": 0.2", "\"redness\": 2.0"));
-    assert!(e.contains("skin.json") && e.contains("`redness` = 2"), "{e}");
+    assert!(e.contains(&json_name) && e.contains("`redness` = 2"), "{e}");
     let e = open_err(&good.replace("\"redness\"", "\"blush\""));
-    assert!(e.contains("skin.json") && e.contains("`blush`") && e.contains("freckles"), "{e}");
+    assert!(e.contains(&json_name) && e.contains("`blush`") && e.contains("freckles"), "{e}");
     let e = open_err(&good.replace("\"blood_fraction\": ", "\"blood_fraction\": 9"));
-    assert!(e.contains("skin.json") && e.contains("blood_fraction"), "{e}");
+    assert!(e.contains(&json_name) && e.contains("blood_fraction"), "{e}");
     let e = open_err(&good.replace("\"version\": 1", "\"version\": 2"));
     assert!(e.contains("rouge-skin") && e.contains("version 2"), "{e}");
     let e = open_err(&good.replace("\"seed\"", "\"sed\""));

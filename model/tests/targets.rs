@@ -278,9 +278,20 @@ fn the_face_is_saved_with_the_project() {
     let back = Document::open_project(dir.path()).expect("open");
     assert_eq!(back.face, doc.face);
     assert!(!back.is_modified());
-    // A project saved before faces (no face.json) opens with the neutral head.
-    std::fs::remove_file(dir.path().join(FACE_FILE)).expect("remove");
+    // The face file is the one `look.json` names, named by its contents.
+    let look_path = dir.path().join(LOOK_FILE);
+    let (_, part) =
+        rouge_model::look::Look::from_project_json(&std::fs::read_to_string(&look_path).expect("read"), &look_path)
+            .expect("look.json");
+    let path = dir.path().join(part.expect("a project part").face);
+    assert!(!dir.path().join(FACE_FILE).exists(), "face.json is the name of projects saved before");
+    // A project saved before faces (look.json without a project part, no face.json) opens with
+    // the neutral head; one saved before content-named faces reads face.json.
+    let look = rouge_model::look::Look::load(&look_path).expect("look");
+    std::fs::write(&look_path, look.to_json()).expect("an old look.json");
     assert!(Document::open_project(dir.path()).expect("old project").face.is_neutral());
+    std::fs::copy(&path, dir.path().join(FACE_FILE)).expect("an old face.json");
+    assert_eq!(Document::open_project(dir.path()).expect("old project").face, doc.face);
     // A bad face file is named, with the line or the unknown target.
     let path = dir.path().join(FACE_FILE);
     std::fs::write(&path, "{\"format\": \"rouge-face\", \"version\": 1, \"expression\": {\"smle\": 1}}").expect("w");

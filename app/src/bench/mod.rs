@@ -12,6 +12,7 @@ pub mod recipe;
 pub mod report;
 pub mod shading;
 pub mod skin;
+pub mod soak;
 pub mod translucency;
 
 use anyhow::{Context, Result, bail};
@@ -76,6 +77,9 @@ pub enum BenchCommand {
     /// pass and as a compute pass on this device: whether the frame's passes are slow for their
     /// work or for the device's graphics pipeline.
     Shading(crate::bench::shading::ShadingBenchArgs),
+    /// A scripted hour of editing through the editor core (dabs, undo/redo, layer edits, poses,
+    /// saves, autosaves): memory and ms per dab per tenth of the run, and the project reopened.
+    Soak(crate::bench::soak::SoakBenchArgs),
 }
 
 #[derive(Debug, Args)]
@@ -146,6 +150,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Export(args) => crate::bench::export::run(args),
         BenchCommand::Glitter(args) => crate::bench::glitter::run(args),
         BenchCommand::Shading(args) => crate::bench::shading::run(args),
+        BenchCommand::Soak(args) => crate::bench::soak::run(args),
     }
 }
 

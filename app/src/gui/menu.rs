@@ -129,6 +129,8 @@ impl RougeApp {
                         self.view.needs_render = true;
                     }
                 }
+                ui.separator();
+                self.frame_stats_menu(ui);
             });
             ui.separator();
             let modified = if self.editor.document().is_modified() { " •" } else { "" };

@@ -20,6 +20,8 @@ mod brush;
 mod edit;
 mod expression;
 mod face;
+mod frame_stats;
+pub use frame_stats::with_timestamp_queries;
 mod lashes;
 mod layers;
 mod looks_panel;
@@ -121,6 +123,8 @@ pub struct RougeApp {
     skin: skin_view::SkinView,
     /// The Skin panel's settings ([`skin_panel`]).
     skin_panel: skin_panel::SkinPanel,
+    /// The frame-rate and GPU-time readout ([`frame_stats`]).
+    frames: frame_stats::FrameStats,
 }
 
 /// What the panels keep between frames that is neither document nor view.
@@ -193,6 +197,7 @@ impl RougeApp {
             look_thumbnails: Vec::new(),
             skin: Default::default(),
             skin_panel: Default::default(),
+            frames: Default::default(),
             options,
         };
         match app.options.mesh.clone() {
@@ -238,9 +243,10 @@ impl RougeApp {
         self.view.needs_render = true;
     }
 
-    /// Chooses the skin's subsurface model in the viewport (the Subsurface panel's choice).
+    /// Chooses the skin's subsurface model in the viewport (the Subsurface panel's choice), the
+    /// document's: saved with the project, and unsaved work until then.
     pub fn set_subsurface(&mut self, choice: SubsurfaceChoice) {
-        self.view.subsurface = choice;
+        self.editor.document_mut().subsurface = choice;
         self.view.needs_render = true;
     }
 
@@ -309,6 +315,14 @@ impl RougeApp {
     /// # Errors
     /// As [`Document::save_project`].
     pub fn save_project_to(&mut self, dir: &Path) -> Result<()> {
+        // A new (or unnamed) project takes its folder's name (the title said "Untitled" for ever).
+        let doc = self.editor.document_mut();
+        if (doc.name == rouge_model::document::UNTITLED || doc.name.trim().is_empty())
+            && let Some(folder) = dir.file_name().map(|n| n.to_string_lossy().trim().to_string())
+            && !folder.is_empty()
+        {
+            doc.name = folder;
+        }
         self.editor.document_mut().save_project(dir)?;
         self.options.project = Some(dir.to_owned());
         self.ui.project_path = dir.display().to_string();
@@ -477,6 +491,10 @@ pub fn run(options: Options) -> Result<()> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default().with_inner_size([1440.0, 900.0]).with_title("Rouge"),
         renderer: eframe::Renderer::Wgpu,
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: with_timestamp_queries(egui_wgpu::WgpuSetup::without_display_handle()),
+            ..Default::default()
+        },
         ..Default::default()
     };
     eframe::run_native("Rouge", native, Box::new(move |cc| Ok(Box::new(RougeApp::new(cc, options)?))))

@@ -263,6 +263,11 @@ impl RougeApp {
     pub(super) fn project_folder_panel(&mut self, ui: &mut egui::Ui) {
         let open = std::mem::take(&mut self.ui.show_project_folder).then_some(true);
         egui::CollapsingHeader::new("Project folder").default_open(false).open(open).show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("Name");
+                // The document's name, saved with the project (a new one takes its folder's).
+                ui.text_edit_singleline(&mut self.editor.document_mut().name);
+            });
             ui.label("Typed path, for machines without a file dialog");
             ui.text_edit_singleline(&mut self.ui.project_path);
             ui.horizontal(|ui| {

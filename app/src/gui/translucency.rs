@@ -16,22 +16,8 @@ use rouge_render::SubsurfaceModel;
 use rouge_render::job::bake_thickness_map;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 
-/// The subsurface models the viewport offers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SubsurfaceChoice {
-    /// d'Eon's skin profile through the separable kernel.
-    ScreenSpace,
-    /// Thickness translucency with the baked local thickness.
-    ThicknessBaked,
-    /// Thickness translucency with the per-light shadow-map thickness (follows deformation).
-    ThicknessPerLight,
-    /// The directional dipole of skin1 (\[Frisvad2014\]), accumulated over frames while still.
-    DirectionalDipole,
-    /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame (\[Benmounah2009\]).
-    CubeAtlas,
-    /// No subsurface scattering.
-    None,
-}
+/// The subsurface models the viewport offers: the document's choice, saved with the project.
+pub use rouge_model::document::SubsurfaceChoice;
 
 /// The paper's deformation test in the viewport: the mesh morphed toward its bounding sphere.
 #[derive(Debug, Default)]
@@ -46,25 +32,15 @@ pub(super) struct MorphPreview {
     base: Option<TriangleMesh>,
 }
 
-impl SubsurfaceChoice {
-    const ALL: [SubsurfaceChoice; 6] = [
-        SubsurfaceChoice::ScreenSpace,
-        SubsurfaceChoice::ThicknessBaked,
-        SubsurfaceChoice::ThicknessPerLight,
-        SubsurfaceChoice::DirectionalDipole,
-        SubsurfaceChoice::CubeAtlas,
-        SubsurfaceChoice::None,
-    ];
-
-    fn label(self) -> &'static str {
-        match self {
-            SubsurfaceChoice::ScreenSpace => "Screen-space scattering",
-            SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
-            SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
-            SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
-            SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
-            SubsurfaceChoice::None => "None",
-        }
+/// What the Subsurface panel calls `choice`.
+fn label(choice: SubsurfaceChoice) -> &'static str {
+    match choice {
+        SubsurfaceChoice::ScreenSpace => "Screen-space scattering",
+        SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
+        SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
+        SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
+        SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
+        SubsurfaceChoice::None => "None",
     }
 }
 
@@ -112,7 +88,7 @@ impl RougeApp {
             };
             self.view.needs_render = true;
         }
-        let choice = self.view.subsurface;
+        let choice = self.editor.document().subsurface;
         if choice == SubsurfaceChoice::ThicknessBaked
             && matches!(self.gpu.local_thickness, LocalThicknessState::Missing)
             && let Some(mesh) = self.gpu.mesh_for_bake()
@@ -151,18 +127,20 @@ impl RougeApp {
     /// repainting: 32 frames of samples, then it rests).
     pub(super) fn baking(&self) -> bool {
         matches!(self.gpu.local_thickness, LocalThicknessState::Baking(_))
-            || (self.view.subsurface == SubsurfaceChoice::DirectionalDipole && self.gpu.renderer.dipole_frames() < 32)
+            || (self.editor.document().subsurface == SubsurfaceChoice::DirectionalDipole
+                && self.gpu.renderer.dipole_frames() < 32)
     }
 
     /// The Subsurface panel (left panel, under the light).
     pub(super) fn subsurface_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("Subsurface");
-        let before = self.view.subsurface;
+        let before = self.editor.document().subsurface;
+        let mut chosen = before;
         egui::ComboBox::from_id_salt("subsurface")
-            .selected_text(before.label())
+            .selected_text(label(before))
             .show_ui(ui, |ui| {
                 for c in SubsurfaceChoice::ALL {
-                    ui.selectable_value(&mut self.view.subsurface, c, c.label());
+                    ui.selectable_value(&mut chosen, c, label(c));
                 }
             })
             .response
@@ -171,15 +149,15 @@ impl RougeApp {
                  [Barré-Brisebois 2011], with skin1's parameters fitted to a path tracer. Baked: \
                  the thickness of the mesh at rest; per light: from the light's shadow map.",
             );
-        if self.view.subsurface != before {
-            self.view.needs_render = true;
+        if chosen != before {
+            self.set_subsurface(chosen);
         }
-        if self.view.subsurface == SubsurfaceChoice::CubeAtlas {
+        if chosen == SubsurfaceChoice::CubeAtlas {
             self.morph_controls(ui);
         } else if self.view.morph.t != 0.0 {
             self.set_morph(0.0);
         }
-        match (&self.gpu.local_thickness, self.view.subsurface) {
+        match (&self.gpu.local_thickness, chosen) {
             (LocalThicknessState::Baking(_), SubsurfaceChoice::ThicknessBaked) => {
                 ui.horizontal(|ui| {
                     ui.spinner();
@@ -258,7 +236,7 @@ impl RougeApp {
     /// Advances the morph's animation: t = (1 − cos)/2 over four seconds.
     pub(super) fn animate_morph(&mut self, ctx: &egui::Context) {
         let m = &mut self.view.morph;
-        if !m.animate || self.view.subsurface != SubsurfaceChoice::CubeAtlas {
+        if !m.animate || self.editor.document().subsurface != SubsurfaceChoice::CubeAtlas {
             m.last_tick = None;
             return;
         }

@@ -1,7 +1,7 @@
 //! The viewport: orbit camera, lights, picking on the GPU depth buffer, frames into egui
 //! native textures (with the bare-skin half of the before/after split), input and overlays.
 
-use super::translucency::{LocalThicknessState, SubsurfaceChoice};
+use super::translucency::LocalThicknessState;
 use super::*;
 use rouge_model::paint::PaintView;
 
@@ -28,8 +28,6 @@ pub(super) struct ViewState {
     /// The studio scene with the key light below applied ([`ViewState::update_lights`]) and
     /// the subsurface model ([`RougeApp::apply_subsurface`]).
     pub(super) scene: Scene,
-    /// The skin's subsurface model in the viewport.
-    pub(super) subsurface: SubsurfaceChoice,
     /// The cube atlas's deformation test (the mesh morphed toward its bounding sphere).
     pub(super) morph: super::translucency::MorphPreview,
     pub(super) light_yaw_deg: f32,
@@ -60,7 +58,6 @@ impl Default for ViewState {
         ViewState {
             orbit: Orbit::default(),
             scene: Scene::studio(),
-            subsurface: SubsurfaceChoice::ScreenSpace,
             morph: Default::default(),
             light_yaw_deg: -34.0,
             light_pitch_deg: 27.0,
@@ -182,6 +179,8 @@ impl GpuState {
     pub(super) fn new(rs: &egui_wgpu::RenderState) -> GpuState {
         let mut renderer = Renderer::new(&rs.device, &rs.queue);
         renderer.set_edge_aa(DEFAULT_EDGE_AA);
+        // Per-pass GPU times for the frame readout (nothing without timestamp queries).
+        renderer.set_profiling(true);
         GpuState {
             renderer,
             device: rs.device.clone(),
@@ -375,8 +374,9 @@ impl RougeApp {
         let start = Instant::now();
         self.view.update_lights();
         self.apply_subsurface();
-        if let Err(e) = self.gpu.render(&self.view.scene, &camera, size) {
-            self.ui.message = Some((false, e.to_string()));
+        match self.gpu.render(&self.view.scene, &camera, size) {
+            Ok(()) => self.note_frame(),
+            Err(e) => self.ui.message = Some((false, e.to_string())),
         }
         if self.view.split {
             self.gpu.render_bare(&self.view.scene, &camera, size);
@@ -557,13 +557,14 @@ impl RougeApp {
             let px = self.editor.brush.radius_mm * c.focal_px(self.gpu.frame_size.1) / dist / ppp;
             ui.painter().circle_stroke(hover, px, egui::Stroke::new(1.0, Color32::from_white_alpha(180)));
         }
+        let timing = match self.frames.in_viewport {
+            true => self.frame_readout(),
+            false => format!("frame submitted in {:.0} ms", self.gpu.last_frame_ms),
+        };
         ui.painter().text(
             rect.left_bottom() + Vec2::new(8.0, -8.0),
             egui::Align2::LEFT_BOTTOM,
-            format!(
-                "frame submitted in {:.0} ms · {}×{}",
-                self.gpu.last_frame_ms, self.gpu.frame_size.0, self.gpu.frame_size.1
-            ),
+            format!("{timing} · {}×{}", self.gpu.frame_size.0, self.gpu.frame_size.1),
             egui::FontId::monospace(11.0),
             Color32::from_white_alpha(150),
         );

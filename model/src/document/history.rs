@@ -323,6 +323,8 @@ impl Document {
             || self.stroke.as_ref().is_some_and(|s| s.rect.is_some())
             || self.skin_stroke.as_ref().is_some_and(|s| s.rect.is_some())
             || self.face != self.saved_face
+            || self.name != self.saved_name
+            || self.subsurface != self.saved_subsurface
             || !same_skin
     }
 }

@@ -13,12 +13,14 @@
 //! The history has a memory budget
 //! ([`HISTORY_BUDGET_BYTES`] by default); past it the oldest steps are dropped.
 //!
-//! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads),
-//! `maps/` (one OpenEXR map per layer, raw painted millimetres, and the skin maps' EXR),
-//! `presets/` (the presets that are not built in), `face.json` and, with skin maps, `skin.json`. docs/FORMATS.md ("Project folders") describes them. Map and preset file
-//! names carry a hash of their contents, so a save never overwrites a file the previous
-//! `look.json` refers to: until the new `look.json` replaces the old one (an atomic rename) the
-//! previous project is intact, and a map that did not change is not written again.
+//! **Projects** are folders: `look.json` (a `rouge-look` v1 document that [`Look::load`] reads,
+//! with a `project` part naming the face and skin files), `maps/` (one OpenEXR map per layer, raw
+//! painted millimetres, and the skin maps' EXR), `presets/` (the presets that are not built in),
+//! the face file and, with skin maps, the skin file. docs/FORMATS.md ("Project folders")
+//! describes them. Every file but `look.json` is named by its contents, so a save never
+//! overwrites a file the previous `look.json` refers to: replacing `look.json` (an atomic rename)
+//! is the save's one commit point, before which the folder opens as the previous project and
+//! after which as the new one, and a file that did not change is not written again.
 
 mod history;
 mod project;
@@ -43,11 +45,14 @@ pub const MAP_SIZE: u32 = 2048;
 pub const MAX_MULTIPLIER: f32 = 10.0;
 /// Default memory budget of the undo history, bytes (1 GiB).
 pub const HISTORY_BUDGET_BYTES: usize = 1 << 30;
+/// The name of a new project ([`Document::default_project`]).
+pub const UNTITLED: &str = "Untitled";
 /// The look document of a project folder.
 pub const LOOK_FILE: &str = "look.json";
 
-/// The project file holding the face's expression and shape ([`FacePose`], `rouge-face` v1);
-/// projects without it open with the neutral head.
+/// The file that held the face's expression and shape ([`FacePose`], `rouge-face` v1) in projects
+/// saved before the content-named `face-<hash>.json` that `look.json` names (read from such
+/// projects; without it they open with the neutral head).
 pub const FACE_FILE: &str = "face.json";
 /// The folder of a project's thickness maps.
 pub const MAPS_DIR: &str = "maps";
@@ -212,11 +217,65 @@ struct OpenSkinStroke {
 // ------------------------------------------------------------------------------------------
 // The document
 
+/// The viewport's subsurface model, chosen in the app's Subsurface panel and saved with the
+/// project (`look.json`'s `project.subsurface`, by [`SubsurfaceChoice::name`]); the renderer's
+/// models behind them are `rouge_render::SubsurfaceModel`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SubsurfaceChoice {
+    /// d'Eon's skin profile through the separable screen-space kernel (the default).
+    #[default]
+    ScreenSpace,
+    /// Thickness translucency with the baked local thickness.
+    ThicknessBaked,
+    /// Thickness translucency with the per-light shadow-map thickness (follows deformation).
+    ThicknessPerLight,
+    /// The directional dipole of skin1 (\[Frisvad2014\]), accumulated over frames while still.
+    DirectionalDipole,
+    /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame (\[Benmounah2009\]).
+    CubeAtlas,
+    /// No subsurface scattering.
+    None,
+}
+
+impl SubsurfaceChoice {
+    /// Every choice, in the order the app lists them.
+    pub const ALL: [SubsurfaceChoice; 6] = [
+        SubsurfaceChoice::ScreenSpace,
+        SubsurfaceChoice::ThicknessBaked,
+        SubsurfaceChoice::ThicknessPerLight,
+        SubsurfaceChoice::DirectionalDipole,
+        SubsurfaceChoice::CubeAtlas,
+        SubsurfaceChoice::None,
+    ];
+
+    /// The name a project file gives it (`screen-space`, `thickness-baked`, `thickness-per-light`,
+    /// `directional-dipole`, `cube-atlas`, `none`).
+    pub fn name(self) -> &'static str {
+        match self {
+            SubsurfaceChoice::ScreenSpace => "screen-space",
+            SubsurfaceChoice::ThicknessBaked => "thickness-baked",
+            SubsurfaceChoice::ThicknessPerLight => "thickness-per-light",
+            SubsurfaceChoice::DirectionalDipole => "directional-dipole",
+            SubsurfaceChoice::CubeAtlas => "cube-atlas",
+            SubsurfaceChoice::None => "none",
+        }
+    }
+}
+
 /// The painting app's document. Edit the layers through the methods, which record undo steps;
 /// changing [`Document::layers`] directly bypasses the history.
 pub struct Document {
-    /// Display name.
+    /// Display name, saved as the project's `look.json` `name` (not part of the undo history, but
+    /// a change makes the document modified).
     pub name: String,
+    /// The name as last saved (or opened), for [`Document::is_modified`].
+    saved_name: String,
+    /// The viewport's subsurface model, saved with the project (not part of the undo history,
+    /// but a change makes the document modified); projects saved before it open with the default.
+    pub subsurface: SubsurfaceChoice,
+    /// The subsurface model as last saved (or opened), for [`Document::is_modified`].
+    saved_subsurface: SubsurfaceChoice,
     /// Layers, bottom (on the skin) to top.
     pub layers: Vec<PaintLayer>,
     /// The default head's expression and face shape the look is shown on (saved in the
@@ -262,6 +321,9 @@ impl Document {
     pub fn from_look(look: &Look) -> Document {
         Document {
             name: look.name.clone(),
+            saved_name: look.name.clone(),
+            subsurface: SubsurfaceChoice::default(),
+            saved_subsurface: SubsurfaceChoice::default(),
             layers: paint_layers(look),
             face: FacePose::default(),
             saved_face: FacePose::default(),
@@ -274,10 +336,11 @@ impl Document {
         }
     }
 
-    /// A new project: the default look ([`Look::default_look`]), named "Untitled".
+    /// A new project: the default look ([`Look::default_look`]), named [`UNTITLED`].
     pub fn default_project() -> Document {
         let mut doc = Document::from_look(&Look::default_look());
-        doc.name = "Untitled".into();
+        doc.name = UNTITLED.into();
+        doc.saved_name = UNTITLED.into();
         doc
     }
 

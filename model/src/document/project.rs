@@ -1,43 +1,66 @@
 //! Project folders, exports and recovery of the [`Document`] (docs/FORMATS.md, "Project
-//! folders"): content-hashed file names, atomic writes, stale files removed after `look.json`.
+//! folders"): every file but `look.json` named by its contents and written before it, so that
+//! replacing `look.json` (one atomic rename) is the save's one commit point; files no
+//! `look.json` refers to are removed after it.
 
 use super::*;
+use crate::look::ProjectPart;
 use crate::mesh::targets::TargetSet;
 use crate::skin::SKIN_FILE;
-use crate::skin::file::{is_maps_file_name, read_project_skin, write_project_skin};
+use crate::skin::file::{is_maps_file_name, project_skin_files, read_project_skin};
 
 impl Document {
     // --------------------------------------------------------------------------------------
     // Projects
 
     /// Saves the project into the folder `dir` (created if missing), ending an open stroke
-    /// first: the maps, then the presets, then `look.json`, each atomically (temporary file,
-    /// then rename). Files are named by their contents, so nothing the previous `look.json`
-    /// refers to is overwritten, and unchanged maps are not written again; map and preset files
-    /// that the new `look.json` does not refer to are deleted after it is written. On error
-    /// (naming the file) the previous project is left as it was. Marks the document unmodified.
+    /// first: the maps, the presets, the face and the skin files, then `look.json`, which names
+    /// them all, each atomically (temporary file, then rename). Every file but `look.json` is
+    /// named by its contents, so nothing the previous `look.json` refers to is overwritten and
+    /// unchanged files are not written again: until `look.json` is replaced the folder opens as
+    /// the previous project, after it as the new one, whenever the process dies. Files that the
+    /// new `look.json` does not refer to are deleted after it is written. On error (naming the
+    /// file) the previous project is left as it was, and the files this save wrote are deleted.
+    /// Marks the document unmodified.
     pub fn save_project(&mut self, dir: &Path) -> Result<()> {
         self.finish_stroke();
         write_project(self, dir)?;
         self.history.saved_id = Some(self.history.state_id());
         self.saved_face = self.face.clone();
         self.saved_skin = self.skin.clone();
+        self.saved_name = self.name.clone();
+        self.saved_subsurface = self.subsurface;
         Ok(())
     }
 
-    /// Opens a project folder: `dir/look.json` by [`Look::load`], then [`Document::from_look`],
-    /// with the painted maps read back unscaled (bit for bit) and each layer's multiplier from
-    /// its `scale_mm`, the face from `face.json` and the skin maps from `skin.json` and their EXR
-    /// (bit for bit; none without `skin.json`, as in projects saved before skin maps). Errors
-    /// name the file at fault.
+    /// Opens a project folder: `dir/look.json` by [`Look::from_project_json`], then
+    /// [`Document::from_look`], with the painted maps read back unscaled (bit for bit) and each
+    /// layer's multiplier from its `scale_mm`, the face and the skin maps (bit for bit) from the
+    /// files its `project` part names, and the subsurface model it gives. A project saved before
+    /// that part (without it) takes them from `face.json` and `skin.json`: neutral without the
+    /// one, no skin maps without the other, and the default subsurface model. Errors name the
+    /// file at fault.
     pub fn open_project(dir: &Path) -> Result<Document> {
         let look_path = dir.join(LOOK_FILE);
-        let look = Look::load(&look_path)?;
+        let text = std::fs::read_to_string(&look_path).map_err(|e| ModelError::file(&look_path, e))?;
+        let (look, part) = Look::from_project_json(&text, &look_path)?;
+        let (face_path, skin_path) = match &part {
+            Some(part) => {
+                let skin = part.skin.as_deref().map(|s| project_file(dir, &look_path, "skin", s)).transpose()?;
+                (project_file(dir, &look_path, "face", &part.face)?, skin)
+            }
+            None => (dir.join(FACE_FILE), Some(dir.join(SKIN_FILE))),
+        };
         let mut doc = Document::from_look(&look);
-        doc.face = read_face(&dir.join(FACE_FILE))?;
+        doc.face = read_face(&face_path)?;
         doc.saved_face = doc.face.clone();
-        doc.skin = read_project_skin(dir, &dir.join(SKIN_FILE))?.map(Arc::new);
+        doc.skin = match skin_path {
+            Some(path) => read_project_skin(dir, &path)?.map(Arc::new),
+            None => None,
+        };
         doc.saved_skin = doc.skin.clone();
+        doc.subsurface = part.as_ref().and_then(|p| p.subsurface).unwrap_or_default();
+        doc.saved_subsurface = doc.subsurface;
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
@@ -121,9 +144,9 @@ impl Document {
     }
 
     /// Deletes the autosave in `dir`: `look.json` first (so that a partial clear is no longer
-    /// offered for recovery), then the project's map and preset files (the skin maps' EXR
-    /// included), then their folders if empty, and the face and skin files. Nothing to delete is
-    /// not an error.
+    /// offered for recovery), then the project's map, preset, face and skin files (the skin
+    /// maps' EXR included) and what interrupted saves left, then the two folders if empty.
+    /// Nothing to delete is not an error.
     pub fn clear_recovery(dir: &Path) -> Result<()> {
         let look = dir.join(LOOK_FILE);
         match std::fs::remove_file(&look) {
@@ -132,8 +155,6 @@ impl Document {
             Err(e) => return Err(ModelError::file(&look, e)),
         }
         remove_unreferenced(dir, &HashSet::new())?;
-        let _ = std::fs::remove_file(dir.join(FACE_FILE));
-        let _ = std::fs::remove_file(dir.join(SKIN_FILE));
         for sub in [MAPS_DIR, PRESETS_DIR] {
             // Only if empty: files that are not Rouge's stay, and so does their folder.
             let _ = std::fs::remove_dir(dir.join(sub));
@@ -304,53 +325,142 @@ pub(super) fn check_layers(doc: &Document, look_path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Writes `doc` as a project into `dir`: maps, presets, `face.json`, the skin maps and
-/// `skin.json`, `look.json`, then deletes files of earlier saves that it no longer refers to
-/// (`skin.json` too when the document has no skin maps).
+/// Writes `doc` as a project into `dir`: the maps, presets, face file, skin maps and skin file
+/// that are not there yet (all named by content), then `look.json`, which names them (the
+/// commit point), then deletes the files no longer referred to and what interrupted saves left
+/// (`face.json` and `skin.json` of projects saved before content-named ones included). On an
+/// error before the commit, the files this save wrote are deleted again (a full disk gets its
+/// space back) and the previous project is as it was.
 pub(super) fn write_project(doc: &Document, dir: &Path) -> Result<()> {
     let look_path = dir.join(LOOK_FILE);
     check_layers(doc, &look_path)?;
     create_dir(dir)?;
+    let mut new_files = NewFiles::default();
+    let result = write_project_files(doc, dir, &look_path, &mut new_files);
+    let keep = match result {
+        Ok(keep) => keep,
+        Err(e) => {
+            new_files.remove();
+            return Err(e);
+        }
+    };
+    // The project is saved; a file that cannot be deleted now is deleted by a later save.
+    let _ = remove_unreferenced(dir, &keep);
+    Ok(())
+}
+
+/// The files a save wrote that were not there before it (deleted again if it fails).
+#[derive(Default)]
+struct NewFiles(Vec<PathBuf>);
+
+impl NewFiles {
+    /// Writes `path` atomically with `bytes()` unless it exists (content-named: an existing
+    /// file already holds these bytes).
+    fn write(&mut self, path: &Path, bytes: impl FnOnce() -> Result<Vec<u8>>) -> Result<()> {
+        if path.is_file() {
+            return Ok(());
+        }
+        write_atomic(path, &bytes()?).map_err(|e| ModelError::file(path, e))?;
+        self.0.push(path.to_owned());
+        Ok(())
+    }
+
+    fn remove(&self) {
+        for path in &self.0 {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
+/// Everything of [`write_project`] up to and including the commit; returns the files the new
+/// `look.json` refers to (relative to `dir`).
+fn write_project_files(doc: &Document, dir: &Path, look_path: &Path, new: &mut NewFiles) -> Result<HashSet<PathBuf>> {
     let maps_dir = dir.join(MAPS_DIR);
     create_dir(&maps_dir)?;
     let files: Vec<LayerFiles> = doc.layers.iter().enumerate().map(|(i, l)| layer_files(i, l)).collect();
     let mut keep = HashSet::new();
     for (layer, files) in doc.layers.iter().zip(&files) {
         let path = maps_dir.join(&files.map);
-        // Named by content: an existing file already holds these values.
-        if !path.is_file() {
-            layer.map.save_exr(&path)?;
-        }
+        new.write(&path, || layer.map.exr_bytes(&path))?;
         keep.insert(PathBuf::from(MAPS_DIR).join(&files.map));
     }
+    let presets_dir = dir.join(PRESETS_DIR);
     for files in &files {
         if let PresetFile::File { file, json } = &files.preset {
-            let presets_dir = dir.join(PRESETS_DIR);
             create_dir(&presets_dir)?;
-            let path = presets_dir.join(file);
-            if !path.is_file() {
-                write_atomic(&path, json.as_bytes()).map_err(|e| ModelError::file(&path, e))?;
-            }
+            new.write(&presets_dir.join(file), || Ok(json.clone().into_bytes()))?;
             keep.insert(PathBuf::from(PRESETS_DIR).join(file));
         }
     }
-    write_face(&doc.face, &dir.join(FACE_FILE))?;
-    let skin_path = dir.join(SKIN_FILE);
-    if let Some(skin) = &doc.skin {
-        for name in write_project_skin(skin, &maps_dir, MAPS_DIR, &skin_path)? {
-            keep.insert(PathBuf::from(MAPS_DIR).join(name));
+    let face_text = face_json(&doc.face, &dir.join(FACE_FILE))?;
+    let face = content_name(FACE_PREFIX, &face_text);
+    new.write(&dir.join(&face), || Ok(face_text.into_bytes()))?;
+    keep.insert(PathBuf::from(&face));
+    let skin = match &doc.skin {
+        Some(skin) => {
+            let files = project_skin_files(skin, MAPS_DIR).map_err(|e| ModelError::file(dir, e))?;
+            for (name, exr) in &files.exrs {
+                let path = maps_dir.join(name);
+                new.write(&path, || exr.bytes().map_err(|e| ModelError::file(&path, e)))?;
+                keep.insert(PathBuf::from(MAPS_DIR).join(name));
+            }
+            let name = content_name(SKIN_PREFIX, &files.json);
+            new.write(&dir.join(&name), || Ok(files.json.into_bytes()))?;
+            keep.insert(PathBuf::from(&name));
+            Some(name)
         }
+        None => None,
+    };
+    // What the new look.json names must be on disk before it: the renames above, then it.
+    for d in [&maps_dir, &presets_dir, dir] {
+        sync_dir(d);
     }
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
     let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara };
-    look.save(&look_path)?;
-    // The project is saved; a file that cannot be deleted now is deleted by a later save.
-    if doc.skin.is_none() {
-        let _ = std::fs::remove_file(&skin_path);
+    let part = ProjectPart { face, skin, subsurface: Some(doc.subsurface) };
+    write_atomic(look_path, look.to_project_json(Some(&part)).as_bytes())
+        .map_err(|e| ModelError::file(look_path, e))?;
+    sync_dir(dir);
+    Ok(keep)
+}
+
+/// Makes a folder's entries (renames into it) durable, as far as the file system lets it:
+/// best effort, since some refuse to sync a folder.
+fn sync_dir(dir: &Path) {
+    if let Ok(d) = std::fs::File::open(dir) {
+        let _ = d.sync_all();
     }
-    let _ = remove_unreferenced(dir, &keep);
-    Ok(())
+}
+
+/// The prefix of a project's content-named face files.
+const FACE_PREFIX: &str = "face-";
+/// The prefix of a project's content-named skin files (`skin.json`'s contents).
+const SKIN_PREFIX: &str = "skin-";
+
+/// `<prefix><hash>.json`: a project's face or skin file, named by its contents.
+fn content_name(prefix: &str, text: &str) -> String {
+    format!("{prefix}{:016x}.json", bytes_hash(text.as_bytes()))
+}
+
+/// Whether `file` is named as [`content_name`] names files with `prefix`.
+fn is_content_name(file: &str, prefix: &str) -> bool {
+    file.strip_prefix(prefix)
+        .and_then(|s| s.strip_suffix(".json"))
+        .is_some_and(|h| h.len() == HASH_DIGITS && h.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b)))
+}
+
+/// The project file that `look.json`'s `project.<field>` names: a file name in `dir`, nothing
+/// else (no folder, no `..`).
+fn project_file(dir: &Path, look_path: &Path, field: &str, name: &str) -> Result<PathBuf> {
+    let plain = !name.is_empty() && name != "." && name != ".." && !name.contains(['/', '\\']);
+    if !plain {
+        return Err(ModelError::file(
+            look_path,
+            format!("`project.{field}` is {name:?}: expected the name of a file in the project folder"),
+        ));
+    }
+    Ok(dir.join(name))
 }
 
 /// The face file's schema: `{"format": "rouge-face", "version": 1, "expression": {NAME: W},
@@ -365,11 +475,11 @@ struct FaceFile {
 
 const FACE_FORMAT: &str = "rouge-face";
 
-/// Writes the face atomically (also when neutral, so a reopened project says so).
-fn write_face(face: &FacePose, path: &Path) -> Result<()> {
+/// The face file's text (also when neutral, so a reopened project says so); `path` names it
+/// in an error.
+fn face_json(face: &FacePose, path: &Path) -> Result<String> {
     let file = FaceFile { format: FACE_FORMAT.into(), version: 1, face: face.clone() };
-    let text = serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(path, e))? + "\n";
-    write_atomic(path, text.as_bytes()).map_err(|e| ModelError::file(path, e))
+    Ok(serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(path, e))? + "\n")
 }
 
 /// Reads a project's face: neutral when the file is absent (projects saved before faces);
@@ -408,17 +518,20 @@ pub(crate) fn read_versioned<T: serde::de::DeserializeOwned>(
     Ok(Some(file))
 }
 
-/// Deletes the map and preset files of the project in `dir` (named as Rouge names them: a
-/// layer's map or preset, or the skin maps' `skin-<hash>.exr`) that are not in `keep` (paths
-/// relative to `dir`). Returns the first error, after trying all.
+/// Deletes the files of the project in `dir` that are not in `keep` (paths relative to `dir`)
+/// and are named as Rouge names them: a layer's map or preset, the skin maps' and skin edits'
+/// EXR, the content-named face and skin files, `face.json` and `skin.json` (projects saved
+/// before content-named ones), and the temporary files of interrupted atomic writes of any of
+/// these or of `look.json`. Other files are left alone. Returns the first error, after trying
+/// all.
 pub(super) fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result<()> {
     let mut first_error = None;
-    for (sub, ext) in [(MAPS_DIR, "exr"), (PRESETS_DIR, "json")] {
+    for sub in ["", MAPS_DIR, PRESETS_DIR] {
         let Ok(entries) = std::fs::read_dir(dir.join(sub)) else { continue };
         for entry in entries.flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             let rel = PathBuf::from(sub).join(&name);
-            let ours = is_hashed_name(&name, ext) || (sub == MAPS_DIR && is_maps_file_name(&name));
+            let ours = is_project_file(sub, &name) || interrupted_write(&name).is_some_and(|n| is_temp_target(sub, n));
             if !ours || keep.contains(&rel) || !entry.path().is_file() {
                 continue;
             }
@@ -428,6 +541,32 @@ pub(super) fn remove_unreferenced(dir: &Path, keep: &HashSet<PathBuf>) -> Result
         }
     }
     first_error.map_or(Ok(()), Err)
+}
+
+/// Whether `name` in the project's folder `sub` (`""`: the project folder) is a file a save
+/// writes and a later one may delete.
+fn is_project_file(sub: &str, name: &str) -> bool {
+    match sub {
+        MAPS_DIR => is_hashed_name(name, "exr") || is_maps_file_name(name),
+        PRESETS_DIR => is_hashed_name(name, "json"),
+        _ => {
+            name == FACE_FILE
+                || name == SKIN_FILE
+                || is_content_name(name, FACE_PREFIX)
+                || is_content_name(name, SKIN_PREFIX)
+        }
+    }
+}
+
+/// Whether an interrupted write's temporary file for `target` in `sub` is Rouge's to delete.
+fn is_temp_target(sub: &str, target: &str) -> bool {
+    is_project_file(sub, target) || (sub.is_empty() && target == LOOK_FILE)
+}
+
+/// The file an atomic write's temporary file `.NAME.tmp-PID` (`write_atomic`'s) was for.
+fn interrupted_write(file: &str) -> Option<&str> {
+    let (head, pid) = file.strip_prefix('.')?.rsplit_once(".tmp-")?;
+    (!pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit())).then_some(head)
 }
 
 /// `map` as a 16-bit grey PNG: round(value / max_mm · 65535), all 0 when `max_mm` is 0.

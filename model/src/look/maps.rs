@@ -90,6 +90,12 @@ impl ThicknessMap {
     /// Writes the map as a single-channel (`Y`, 32-bit float) OpenEXR file in millimetres, the
     /// form a look's `"map"` reads back exactly; atomic (temporary file, then rename).
     pub fn save_exr(&self, path: &Path) -> Result<()> {
+        let bytes = self.exr_bytes(path)?;
+        write_atomic(path, &bytes).map_err(|e| ModelError::file(path, e))
+    }
+
+    /// The bytes [`ThicknessMap::save_exr`] writes; `path` names the file in an error.
+    pub fn exr_bytes(&self, path: &Path) -> Result<Vec<u8>> {
         use exr::prelude::{AnyChannel, AnyChannels, FlatSamples, Image, SmallVec, WritableImage};
         let n = self.width as usize * self.height as usize;
         if n == 0 || self.mm.len() != n {
@@ -103,7 +109,7 @@ impl ThicknessMap {
         let image = Image::from_channels((self.width as usize, self.height as usize), channels);
         let mut bytes = std::io::Cursor::new(Vec::new());
         image.write().to_buffered(&mut bytes).map_err(|e| ModelError::file(path, format!("OpenEXR: {e}")))?;
-        write_atomic(path, bytes.get_ref()).map_err(|e| ModelError::file(path, e))
+        Ok(bytes.into_inner())
     }
 }
 

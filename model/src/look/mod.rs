@@ -156,6 +156,27 @@ struct LookIn<L> {
     layers: Vec<L>,
     #[serde(default)]
     mascara: Option<crate::mesh::lashes::Mascara>,
+    #[serde(default)]
+    project: Option<ProjectPart>,
+}
+
+/// What a project folder's `look.json` adds to its look (docs/FORMATS.md 5.1, "project"): the
+/// project's other files, named by their contents, so that replacing `look.json` (one atomic
+/// rename) commits the whole project at once, and the app's settings saved with the project.
+/// Looks outside projects have none, and [`Look::load`] reads a project's look without it.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProjectPart {
+    /// The face file (`rouge-face` v1), `face-<hash>.json`, in the project folder.
+    pub face: String,
+    /// The skin file (`rouge-skin` v1), `skin-<hash>.json`, in the project folder; `None`
+    /// without skin maps.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub skin: Option<String>,
+    /// The viewport's subsurface model (`screen-space`, `thickness-baked`, ...); `None`: the
+    /// default (projects saved before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subsurface: Option<crate::document::SubsurfaceChoice>,
 }
 
 fn yes() -> bool {
@@ -183,6 +204,8 @@ struct LookOut<'a> {
     layers: Vec<LayerOut<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     mascara: Option<crate::mesh::lashes::Mascara>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    project: Option<&'a ProjectPart>,
 }
 
 fn is_true(b: &bool) -> bool {
@@ -258,6 +281,12 @@ impl Look {
     /// Parses and resolves look JSON. `path` names the document in messages, and its folder is
     /// where relative presets, masks and maps are looked up.
     pub fn from_json(text: &str, path: &Path) -> Result<Look> {
+        Look::from_project_json(text, path).map(|(look, _)| look)
+    }
+
+    /// [`Look::from_json`], with the [`ProjectPart`] a project's `look.json` has (`None` in a
+    /// look outside a project, or in a project saved before the part existed).
+    pub fn from_project_json(text: &str, path: &Path) -> Result<(Look, Option<ProjectPart>)> {
         let err = |m: String| ModelError::file(path, m);
         let value: serde_json::Value = serde_json::from_str(text).map_err(|e| err(e.to_string()))?;
         let Some(obj) = value.as_object() else {
@@ -315,13 +344,18 @@ impl Look {
         if let Some(m) = &doc.mascara {
             m.validate().map_err(|e| err(e.to_string()))?;
         }
-        Ok(Look { name, layers, mascara: doc.mascara })
+        Ok((Look { name, layers, mascara: doc.mascara }, doc.project))
     }
 
     /// Pretty JSON that [`Look::from_json`] reads back to an equal look (from the same folder:
     /// presets, masks and maps stay references, as written). A layer's name is written only
     /// where it differs from its preset's name, `visible` only where false, `locked` only where true.
     pub fn to_json(&self) -> String {
+        self.to_project_json(None)
+    }
+
+    /// [`Look::to_json`] with a project's part (read back by [`Look::from_project_json`]).
+    pub fn to_project_json(&self, project: Option<&ProjectPart>) -> String {
         let doc = LookOut {
             schema: SCHEMA,
             version: VERSION,
@@ -338,6 +372,7 @@ impl Look {
                 })
                 .collect(),
             mascara: self.mascara,
+            project,
         };
         serde_json::to_string_pretty(&doc).map(|s| s + "\n").unwrap_or_default()
     }

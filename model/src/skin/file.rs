@@ -7,12 +7,12 @@ use super::{SkinChannel, SkinConditions, SkinMaps};
 use crate::document::read_versioned;
 use crate::error::{ModelError, Result};
 use crate::look::read_exr_channels;
-use rouge_measure::preset::write_atomic;
 use rouge_measure::skin::{SkinParams, skin_tone};
 use std::path::Path;
 use std::sync::Arc;
 
-/// The project file that holds the skin maps' recipe and names their EXR.
+/// The file that held the skin maps' recipe and named their EXR in projects saved before the
+/// content-named `skin-<hash>.json` that `look.json` names (read from such projects).
 pub const SKIN_FILE: &str = "skin.json";
 /// The `format` of [`SKIN_FILE`].
 pub const SKIN_FORMAT: &str = "rouge-skin";
@@ -163,42 +163,52 @@ pub(crate) fn is_maps_file_name(file: &str) -> bool {
         .is_some_and(|h| h.len() == 16 && h.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b)))
 }
 
-/// Writes `skin`'s EXR into `maps_dir` (unless a file of that name, hence those values, is
-/// there), the edits' EXR likewise when there are edits, and then `skin.json` at `json_path`,
-/// each atomically. Returns the EXR files' names.
-pub(crate) fn write_project_skin(
-    skin: &ProjectSkin,
-    maps_dir: &Path,
-    maps_rel: &str,
-    json_path: &Path,
-) -> Result<Vec<String>> {
-    let write_new = |name: &str, bytes: &dyn Fn() -> std::result::Result<Vec<u8>, String>| -> Result<()> {
-        let path = maps_dir.join(name);
-        if !path.is_file() {
-            let bytes = bytes().map_err(|e| ModelError::file(&path, e))?;
-            write_atomic(&path, &bytes).map_err(|e| ModelError::file(&path, e))?;
+/// An EXR of a project's skin: the maps or the edits.
+pub(crate) enum SkinExr<'a> {
+    Maps(&'a SkinMaps),
+    Edits(&'a SkinEdits),
+}
+
+impl SkinExr<'_> {
+    /// The file's bytes.
+    pub(crate) fn bytes(&self) -> std::result::Result<Vec<u8>, String> {
+        match self {
+            SkinExr::Maps(m) => m.to_exr_bytes(),
+            SkinExr::Edits(e) => e.to_exr_bytes(),
         }
-        Ok(())
-    };
+    }
+}
+
+/// A project's skin files: the EXRs by name (in the maps folder) and the skin file's text,
+/// which names them.
+pub(crate) struct SkinFiles<'a> {
+    pub(crate) exrs: Vec<(String, SkinExr<'a>)>,
+    pub(crate) json: String,
+}
+
+/// The files that hold `skin` in a project whose maps folder is `maps_rel`: the maps' EXR, the
+/// edits' EXR when there are edits, and the skin file (`rouge-skin` v1) naming them. Nothing is
+/// encoded until [`SkinExr::bytes`] (a file of that name already holds those values).
+pub(crate) fn project_skin_files<'a>(
+    skin: &'a ProjectSkin,
+    maps_rel: &str,
+) -> std::result::Result<SkinFiles<'a>, String> {
     let name = maps_file_name(&skin.maps);
-    write_new(&name, &|| skin.maps.to_exr_bytes())?;
-    let mut names = vec![name.clone()];
+    let mut exrs = vec![(name.clone(), SkinExr::Maps(&skin.maps))];
     let edits = skin.edits.as_deref().filter(|e| !e.is_empty());
-    if let Some(edits) = edits {
-        let edits_name = edits_file_name(edits);
-        write_new(&edits_name, &|| edits.to_exr_bytes())?;
-        names.push(edits_name);
+    let edits_name = edits.map(|e| (edits_file_name(e), e));
+    if let Some((n, e)) = &edits_name {
+        exrs.push((n.clone(), SkinExr::Edits(e)));
     }
     let file = SkinFile {
         format: SKIN_FORMAT.into(),
         version: 1,
         maps: format!("{maps_rel}/{name}"),
-        edits: names.get(1).map(|n| format!("{maps_rel}/{n}")),
+        edits: edits_name.map(|(n, _)| format!("{maps_rel}/{n}")),
         recipe: skin.recipe.clone(),
     };
-    let text = serde_json::to_string_pretty(&file).map_err(|e| ModelError::file(json_path, e))? + "\n";
-    write_atomic(json_path, text.as_bytes()).map_err(|e| ModelError::file(json_path, e))?;
-    Ok(names)
+    let json = serde_json::to_string_pretty(&file).map_err(|e| format!("the skin file: {e}"))? + "\n";
+    Ok(SkinFiles { exrs, json })
 }
 
 /// Reads a project's skin: `None` when `skin.json` is absent (projects saved before skin maps,

@@ -25,7 +25,7 @@ pub struct SceneArgs {
     #[arg(long)]
     pub mesh: Option<PathBuf>,
     /// Millimetres per mesh unit (scans come in metres, centimetres or arbitrary units).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = parse_mesh_scale)]
     pub mesh_scale: f32,
     /// Catmull-Clark subdivision levels applied to the mesh (0-3).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=3))]
@@ -60,10 +60,10 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 720, allow_negative_numbers = true)]
     pub height: u32,
     /// Camera yaw around the head, degrees (positive: from the head's left).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_angle_deg)]
     pub yaw: f32,
     /// Camera pitch, degrees (positive: from above).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_angle_deg)]
     pub pitch: f32,
     /// A close-up of one region of the default head instead of the whole face, about 60 mm
     /// across the image's height (12 px/mm at 720 px): cheeks, lips, eyelids, nose, forehead,
@@ -381,6 +381,29 @@ impl SceneArgs {
         }
         Ok(())
     }
+}
+
+/// Largest camera angle, degrees either way (ten turns: anything past it is a typo).
+const MAX_ANGLE_DEG: f64 = 3600.0;
+
+/// A camera angle in degrees, -3600 to 3600. Read as f64 and checked before it becomes an f32,
+/// so the message quotes what was typed (`1e308` was reported as `inf`).
+fn parse_angle_deg(s: &str) -> Result<f32, String> {
+    let deg: f64 = s.trim().parse().map_err(|e| format!("{s:?} is not a number: {e}"))?;
+    if !(deg.is_finite() && deg.abs() <= MAX_ANGLE_DEG) {
+        return Err(format!("{s:?} is not a finite angle in degrees, -{MAX_ANGLE_DEG} to {MAX_ANGLE_DEG}"));
+    }
+    Ok(deg as f32)
+}
+
+/// Millimetres per mesh unit: finite, above 0, within f32 (checked as typed, like the angles).
+fn parse_mesh_scale(s: &str) -> Result<f32, String> {
+    let mm: f64 = s.trim().parse().map_err(|e| format!("{s:?} is not a number: {e}"))?;
+    let scale = mm as f32;
+    if !(mm.is_finite() && scale.is_finite() && scale > 0.0) {
+        return Err(format!("{s:?} is not a finite number of millimetres per unit above 0"));
+    }
+    Ok(scale)
 }
 
 fn parse_region(s: &str) -> Result<rouge_model::skin::AnatomyRegion, String> {
