@@ -142,7 +142,7 @@ impl Renderer {
     /// Poses the uploaded mesh: `mesh` is it with new positions and normals (the app's
     /// expressions, `rouge bench deform`: a [`rouge_model::mesh::deform::SubdivisionPlan`]
     /// keeps the vertices, triangles and UVs), written into the existing vertex buffer
-    /// ([`GpuMesh::move_to`]: 24 of the 64 bytes a vertex through kept staging memory, no
+    /// (`GpuMesh::move_to`: 24 of the 64 bytes a vertex through kept staging memory, no
     /// allocation, no index upload).
     /// Any other mesh, or other albedos, is uploaded afresh as [`Renderer::set_mesh`] does.
     ///

@@ -90,7 +90,7 @@ impl SubdivisionPlan {
     /// Rewrites the positions and normals of `out` (a clone of [`SubdivisionPlan::rest`]) for
     /// base positions `base`: the subdivision's position rules level by level, area-weighted
     /// normals of the finest faces, then one gather, each step on every core (at most 16) in
-    /// gather form ([`super::gather`]: the serial rules' result bit for bit). Tangents, if any,
+    /// gather form (`model/src/mesh/gather.rs`: the serial rules' result bit for bit). Tangents, if any,
     /// are dropped (they would be stale). At 0 levels the normals are recomputed too (the rest
     /// mesh keeps the file's).
     ///
