@@ -4,6 +4,10 @@
 //! bit; a project saved with skin maps but before skin edits opens without them.
 
 use std::path::Path;
+
+#[path = "common/project.rs"]
+mod project;
+use project::project_file;
 use std::sync::Arc;
 
 use glam::Vec3;
@@ -200,18 +204,6 @@ fn painted_document() -> Document {
     doc.note_dirty(rect);
     doc.end_stroke();
     doc
-}
-
-/// The file a project's `look.json` names in its `project` part: `face` or `skin`.
-fn project_file(dir: &Path, which: &str) -> std::path::PathBuf {
-    let path = dir.join("look.json");
-    let text = std::fs::read_to_string(&path).expect("look.json");
-    let (_, part) = rouge_model::look::Look::from_project_json(&text, &path).expect("look.json loads");
-    let part = part.expect("a project part");
-    dir.join(match which {
-        "face" => part.face,
-        _ => part.skin.expect("a skin file"),
-    })
 }
 
 fn assert_same_skin(a: &ProjectSkin, b: &ProjectSkin) {

@@ -5,6 +5,10 @@
 
 use std::collections::BTreeSet;
 use std::path::Path;
+
+#[path = "common/project.rs"]
+mod project;
+use project::project_file;
 use std::sync::Arc;
 
 use rouge_model::document::{Document, MAP_SIZE};
@@ -15,18 +19,6 @@ fn files_in(dir: &Path) -> BTreeSet<String> {
     std::fs::read_dir(dir)
         .map(|d| d.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect())
         .unwrap_or_default()
-}
-
-/// The file a project's `look.json` names in its `project` part: `face` or `skin`.
-fn project_file(dir: &Path, which: &str) -> std::path::PathBuf {
-    let path = dir.join("look.json");
-    let text = std::fs::read_to_string(&path).expect("look.json");
-    let (_, part) = rouge_model::look::Look::from_project_json(&text, &path).expect("look.json loads");
-    let part = part.expect("a project part");
-    dir.join(match which {
-        "face" => part.face,
-        _ => part.skin.expect("a skin file"),
-    })
 }
 
 fn skin_files(dir: &Path) -> BTreeSet<String> {
