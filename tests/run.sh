@@ -10,9 +10,8 @@
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
 #      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
-#      error (citations are written \[Key\], not intra-doc links), and the doc tests of
-#      rouge-measure on their own (its public functions carry examples that must run and pass),
-#      then the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
+#      error (citations are written \[Key\], not intra-doc links), then the golden frames again
+#      on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
 #   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure) into .venv;
 #   5. runs the Python cross-checks against colour-science and 50-digit mpmath references,
 #      driving the real `rouge` binary and the `rouge` package.
@@ -20,7 +19,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-step() { printf '\n==> %s\n' "$*"; }
+# Each step prints the seconds since the start, so a CI log shows where the time goes.
+step() { printf '\n==> [%ss] %s\n' "$SECONDS" "$*"; }
 
 step "System packages: Mesa Vulkan (lavapipe) and EGL/GL (llvmpipe) drivers, Vulkan loader, Xvfb, Chromium"
 # chromium: `rouge export web`'s page opened from disk in headless Chromium (about 30 s to fetch
@@ -68,9 +68,11 @@ cargo clippy --workspace --all-targets --locked -- -D warnings
 step "cargo test (workspace)"
 cargo test --workspace --locked
 
-step "Documentation: cargo doc with rustdoc warnings as errors, rouge-measure's doc tests"
+# rouge-measure's doc tests (its public functions carry examples that must run and pass) ran in
+# the workspace step above; `cargo test --doc -p rouge-measure` again would resolve features for
+# that crate alone and rebuild its dependencies for nothing.
+step "Documentation: cargo doc with rustdoc warnings as errors"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
-cargo test --doc -p rouge-measure --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 # The workspace step has built these test executables already. Selecting the targets again with
@@ -111,4 +113,5 @@ step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into
 # target/debug/rouge; a separate `cargo build` would rebuild everything in the dev profile.
 test -x target/debug/rouge || cargo build -p rouge-app --locked
-ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q
+ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q --durations=15
+step "done"
