@@ -493,6 +493,7 @@ pub fn skin_of_tone(
         let spectrum = params.reflectance().map_err(|e| invalid(&e))?;
         scene.skin = crate::scene::Skin {
             subsurface: scene.skin.subsurface.clone(),
+            diffuse: scene.skin.diffuse,
             ..crate::scene::Skin::from_spectrum(&spectrum)
         };
     }

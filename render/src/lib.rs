@@ -9,7 +9,8 @@
 //! - [`job`]: headless renders to PNG/EXR, the `rouge render` path; [`gltf_export`]: the scene as
 //!   glTF 2.0 with the look baked into textures (`rouge export gltf`).
 //! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
-//!   [`diffusion`], [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
+//!   [`diffusion`], [`half_space`] (the exact half-space under the diffusion profiles),
+//!   [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
 //!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
 //!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
 //! - Studies and references: [`study`], [`translucency`], [`aa_study`], [`mitsuba`],
@@ -33,6 +34,7 @@ pub mod gltf_export;
 pub mod gpu;
 pub(crate) mod gpu_look;
 pub(crate) mod gpu_mesh;
+pub mod half_space;
 pub mod job;
 pub mod local_thickness;
 pub mod materialx_export;
@@ -59,6 +61,6 @@ pub use gpu::Gpu;
 pub use gpu_mesh::HairAlbedo;
 pub use profiler::PassTiming;
 pub use renderer::Renderer;
-pub use scene::{Camera, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};
+pub use scene::{Camera, DiffuseLaw, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};
 pub use shader::{MAX_LAYERS, ThicknessVariant, Variant};
 pub use uniforms::{MAX_LIGHTS, SceneConstants};

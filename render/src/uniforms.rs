@@ -66,7 +66,7 @@ pub struct FrameUniform {
     pub projection: [f32; 4],
     /// Skin roughness, F0, specular on, skin detail tiles per UV unit (0 without detail).
     pub skin: [f32; 4],
-    /// SSS width, follow (mm), sample count, unused.
+    /// SSS width, follow (mm), sample count, the skin's diffuse law (0 Lambert, 1 half-space).
     pub sss: [f32; 4],
     /// Background.
     pub background: [f32; 4],
@@ -118,7 +118,7 @@ pub struct SceneConstants {
     pub exposure: f32,
     /// Skin roughness, F0, specular on, unused.
     pub skin: [f32; 4],
-    /// SSS width, follow (mm), sample count, unused.
+    /// SSS width, follow (mm), sample count, the skin's diffuse law (0 Lambert, 1 half-space).
     pub sss: [f32; 4],
     /// Background.
     pub background: [f32; 4],
@@ -134,7 +134,12 @@ impl SceneConstants {
             lights: scene.lights.clone(),
             exposure: scene.exposure,
             skin: [scene.skin.roughness, scene.skin.f0(), if scene.specular { 1.0 } else { 0.0 }, 0.0],
-            sss: [scene.sss.width, scene.sss.follow_mm, scene.sss.samples as f32, 0.0],
+            sss: [
+                scene.sss.width,
+                scene.sss.follow_mm,
+                scene.sss.samples as f32,
+                if scene.skin.diffuse == crate::scene::DiffuseLaw::HalfSpace { 1.0 } else { 0.0 },
+            ],
             background: [r, g, b, 0.0],
             sh: scene.environment.map_or([[0.0; 4]; 9], |sh| sh.to_gpu()),
         }

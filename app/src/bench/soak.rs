@@ -110,6 +110,8 @@ pub struct SoakReport {
     /// The project saved at the end reopens equal to the document (layers bit for bit, name,
     /// face, mascara, subsurface model), and so does the last autosave.
     pub reopened_identical: bool,
+    /// What differs where the project or the autosave did not reopen identical.
+    pub reopen_difference: Option<String>,
     pub wall_s: f64,
 }
 
@@ -221,6 +223,7 @@ pub fn soak(mesh: &TriangleMesh, surface: Arc<SurfaceMap>, s: &SoakSettings, dir
         history_budget_mib: s.history_budget_bytes as f64 / (1 << 20) as f64,
         rss_start_mib,
         reopened_identical: false,
+        reopen_difference: None,
         wall_s: 0.0,
     };
     let (mut save_ms, mut autosave_ms) = (0.0, 0.0);
@@ -299,32 +302,53 @@ pub fn soak(mesh: &TriangleMesh, surface: Arc<SurfaceMap>, s: &SoakSettings, dir
     e.document_mut().save_project(&project).context("the last save")?;
     let opened = Document::open_project(&project).context("reopening the project")?;
     let recovered = Document::open_recovery(&recovery).context("recovering the autosave")?;
-    r.reopened_identical = same_document(e.document(), &opened) && same_document(e.document(), &recovered);
+    r.reopen_difference = document_difference(e.document(), &opened)
+        .map(|d| format!("the saved project: {d}"))
+        .or_else(|| document_difference(e.document(), &recovered).map(|d| format!("the autosave: {d}")));
+    r.reopened_identical = r.reopen_difference.is_none();
     r.wall_s = start.elapsed().as_secs_f64();
     Ok(r)
 }
 
-/// Whether `b` holds what `a` holds: the layers (maps bit for bit), the name, the face, the
-/// mascara, the skin and the subsurface model.
-pub fn same_document(a: &Document, b: &Document) -> bool {
-    let bits = |d: &Document| -> Vec<Vec<u32>> {
-        d.layers.iter().map(|l| l.map.mm.iter().map(|v| v.to_bits()).collect()).collect()
-    };
-    let rest = |d: &Document| -> Vec<(String, String, bool, bool, u32)> {
-        d.layers
-            .iter()
-            .map(|l| (l.name.clone(), l.preset_ref.clone(), l.visible, l.locked, l.multiplier.to_bits()))
-            .collect()
-    };
-    let presets = a.layers.iter().zip(&b.layers).all(|(x, y)| x.preset == y.preset);
-    rest(a) == rest(b)
-        && presets
-        && bits(a) == bits(b)
-        && a.name == b.name
-        && a.face == b.face
-        && a.mascara == b.mascara
-        && a.skin == b.skin
-        && a.subsurface == b.subsurface
+/// What `b` holds that `a` does not, in words, or `None` when `b` holds what `a` holds: the
+/// layers (maps bit for bit, the first differing texel named), the name, the face, the mascara,
+/// the skin and the subsurface model.
+pub fn document_difference(a: &Document, b: &Document) -> Option<String> {
+    if a.layers.len() != b.layers.len() {
+        return Some(format!("{} layers against {}", a.layers.len(), b.layers.len()));
+    }
+    for (i, (x, y)) in a.layers.iter().zip(&b.layers).enumerate() {
+        let what = (&x.name, &x.preset_ref, x.visible, x.locked, x.multiplier.to_bits());
+        if what != (&y.name, &y.preset_ref, y.visible, y.locked, y.multiplier.to_bits()) {
+            return Some(format!("layer {i} ({}): name, preset, visibility, lock or multiplier", x.name));
+        }
+        if x.preset != y.preset {
+            return Some(format!("layer {i} ({}): the preset's contents", x.name));
+        }
+        if x.map.mm.len() != y.map.mm.len() {
+            return Some(format!(
+                "layer {i} ({}): map of {} texels against {}",
+                x.name,
+                x.map.mm.len(),
+                y.map.mm.len()
+            ));
+        }
+        if let Some(t) = x.map.mm.iter().zip(&y.map.mm).position(|(p, q)| p.to_bits() != q.to_bits()) {
+            let count = x.map.mm.iter().zip(&y.map.mm).filter(|(p, q)| p.to_bits() != q.to_bits()).count();
+            return Some(format!(
+                "layer {i} ({}): {count} texels differ, the first {t}: {:?} mm against {:?} mm",
+                x.name, x.map.mm[t], y.map.mm[t]
+            ));
+        }
+    }
+    let parts = [
+        (a.name != b.name, "the project name"),
+        (a.face != b.face, "the face (shape, pose or parts)"),
+        (a.mascara != b.mascara, "the mascara"),
+        (a.skin != b.skin, "the skin"),
+        (a.subsurface != b.subsurface, "the subsurface model"),
+    ];
+    parts.iter().find(|(differs, _)| *differs).map(|(_, what)| what.to_string())
 }
 
 /// What happens between two strokes: now and then an undo burst (and redoing part of it), a
@@ -461,7 +485,10 @@ pub fn run(args: &SoakBenchArgs) -> Result<()> {
     );
     emit_with_json(&table, &r, args.json.as_deref())?;
     if !r.reopened_identical {
-        bail!("the project reopened differs from the document in memory");
+        bail!(
+            "the project reopened differs from the document in memory: {}",
+            r.reopen_difference.as_deref().unwrap_or("?")
+        );
     }
     Ok(())
 }

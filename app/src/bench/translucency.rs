@@ -3,7 +3,7 @@
 //! ../shared/DESIGN.md's benchmark table.
 
 use crate::bench::fit_thickness::{Fit, Scene};
-use crate::cli::render::scene_args::{Profile, SceneArgs};
+use crate::cli::render::scene_args::{Diffuse, Profile, SceneArgs};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser};
 use rouge_model::medium::Medium;
@@ -34,6 +34,10 @@ pub struct TranslucencyBenchArgs {
     /// Profiles the screen-space kernel is built from.
     #[arg(long, value_delimiter = ',', value_enum, default_values_t = [Profile::Dipole, Profile::BetterDipole, Profile::Burley])]
     pub profiles: Vec<Profile>,
+    /// Diffuse laws of the screen-space rows and of `none`: Lambert with the profile's total as
+    /// albedo, and the exact half-space of the medium (Chandrasekhar's H-function).
+    #[arg(long, value_delimiter = ',', value_enum, default_values_t = [Diffuse::Lambert, Diffuse::HalfSpace])]
+    pub diffuse: Vec<Diffuse>,
     /// Frames timed per configuration (after two warm-up frames).
     #[arg(long, default_value_t = 3)]
     pub frames: u32,
@@ -215,17 +219,26 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         }
         let mut configs: Vec<Config> = Vec::new();
         let plain = |model, params, skin, samples| Config { model, params, skin, samples, map: ThicknessMap::None };
-        configs.push(plain(
-            "none",
-            json!({"albedo": "better-dipole"}),
-            Skin { subsurface: SubsurfaceModel::None, ..better.clone() },
-            0,
-        ));
-        for &profile in &args.profiles {
-            let (skin, fit) = Skin::from_medium(&medium, profile.model());
-            for &n in &args.samples {
-                let params = json!({"profile": fit.model.name(), "samples": n, "fit_error": fit.fit_error});
-                configs.push(plain("screen-space", params, skin.clone(), n));
+        for &law in &args.diffuse {
+            let half = law == Diffuse::HalfSpace;
+            let with_law = |skin: Skin| if half { skin.half_space() } else { skin };
+            let albedo = if half { "half-space" } else { "better-dipole" };
+            configs.push(plain(
+                "none",
+                json!({"albedo": albedo}),
+                with_law(Skin { subsurface: SubsurfaceModel::None, ..better.clone() }),
+                0,
+            ));
+            for &profile in &args.profiles {
+                let (skin, fit) = Skin::from_medium(&medium, profile.model());
+                let skin = with_law(skin);
+                for &n in &args.samples {
+                    let mut params = json!({"profile": fit.model.name(), "samples": n, "fit_error": fit.fit_error});
+                    if half {
+                        params["diffuse"] = json!("half-space");
+                    }
+                    configs.push(plain("screen-space", params, skin.clone(), n));
+                }
             }
         }
         if medium.name.starts_with("skin") {
@@ -445,7 +458,7 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     scenes.dedup();
     let timed = rows.iter().all(|r| r.gpu_ms.is_some());
     let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
-    let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189]];
+    let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189], [23, 190, 207], [140, 86, 75]];
     // One colour per thickness or dipole configuration in every chart.
     let mut thickness_labels: Vec<String> = Vec::new();
     for label in rows.iter().filter_map(square_label) {
@@ -472,16 +485,20 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
             let mut series: Vec<Series> = Vec::new();
             for r in &in_scene {
                 let profile = r.params.get("profile").and_then(|p| p.as_str());
+                let half = r.params.get("diffuse").and_then(|p| p.as_str()) == Some("half-space")
+                    || r.params.get("albedo").and_then(|p| p.as_str()) == Some("half-space");
+                let law = if half { " + half-space" } else { "" };
                 let (label, marker, line) = match (r.model.as_str(), profile) {
-                    ("none", _) => ("none".to_string(), Marker::Cross, false),
+                    ("none", _) => (format!("none{law}"), Marker::Cross, false),
                     _ if square_label(r).is_some() => (square_label(r).unwrap_or_default(), Marker::Square, false),
                     (_, Some("deon-skin")) => ("today's skin".to_string(), Marker::Diamond, false),
-                    (_, Some(p)) => (p.to_string(), Marker::Dot, true),
+                    (_, Some(p)) => (format!("{p}{law}"), Marker::Dot, true),
                     (m, None) => (m.to_string(), Marker::Dot, true),
                 };
                 let samples = r.params.get("samples").and_then(|n| n.as_u64()).map(|n| n.to_string());
                 let index = series.iter().position(|s| s.label == label).unwrap_or_else(|| {
                     let rgb = match marker {
+                        Marker::Cross if half => [31, 119, 180],
                         Marker::Cross => [0, 0, 0],
                         Marker::Diamond => [214, 39, 40],
                         Marker::Square => {

@@ -2,7 +2,7 @@
 //! is skipped and why, and the skin material.
 
 use super::{Access, FramePlan, Resource};
-use crate::scene::{Skin, SubsurfaceModel};
+use crate::scene::{DiffuseLaw, Skin, SubsurfaceModel};
 use std::fmt::{self, Write as _};
 
 impl Resource {
@@ -112,8 +112,12 @@ pub(super) fn material(skin: &Skin) -> String {
     let profile = skin.subsurface.profile().map_or(String::new(), |p| {
         format!(", a profile of {} Gaussians up to σ = {:.2} mm", p.gaussians.len(), p.max_sigma_mm())
     });
+    let law = match skin.diffuse {
+        DiffuseLaw::Lambert => "diffuse law lambert",
+        DiffuseLaw::HalfSpace => "diffuse law half-space (Chandrasekhar's H by Hapke's eq. 13 in the lighting pass)",
+    };
     let mut out = format!(
-        "skin: {medium}, albedo {:.3}, {:.3}, {:.3}; subsurface {}{profile}",
+        "skin: {medium}, albedo {:.3}, {:.3}, {:.3}, {law}; subsurface {}{profile}",
         skin.albedo[0],
         skin.albedo[1],
         skin.albedo[2],

@@ -44,7 +44,8 @@ struct Frame {
     // x: skin Beckmann roughness, y: skin F0, z: 1 when specular is on, w: skin detail tiles per
     // UV unit (render/src/gpu_look.rs SkinDetailTextures; 0 without detail)
     skin: vec4<f32>,
-    // x: SSS width (profile scale), y: depth follow (mm), z: sample count, w: unused
+    // x: SSS width (profile scale), y: depth follow (mm), z: sample count, w: the skin's diffuse
+    // law (0 Lambert, 1 half-space: render/src/half_space.rs, lighting.wgsl)
     sss: vec4<f32>,
     // rgb: background at the top, w: unused
     background: vec4<f32>,

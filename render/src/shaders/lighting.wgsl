@@ -142,6 +142,17 @@ fn cs_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
 //#endif
 }
 
+// The half-space diffuse law (render/src/half_space.rs): Chandrasekhar's H-function of an
+// isotropic half-space of single-scattering albedo w per channel, by [Hapke2002] eq. 13 with
+// r0 = (1 − γ)/(1 + γ), γ = √(1 − w) (within 1% of the exact H; 1 at x = 0).
+fn half_space_h(w: vec3<f32>, r0: vec3<f32>, x: f32) -> vec3<f32> {
+    if x <= 0.0 {
+        return vec3<f32>(1.0);
+    }
+    let l = log((1.0 + x) / x);
+    return 1.0 / (1.0 - w * x * (r0 + 0.5 * (1.0 - 2.0 * r0 * x) * l));
+}
+
 fn lighting_at(frag: vec2<f32>) -> LightingOut {
     let p = vec2<i32>(frag);
     var out: LightingOut;
@@ -207,6 +218,21 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     }
 //#endif
 
+    // The half-space law reads the albedo as Hapke's r0 and recovers w = 1 − γ², γ = (1 − r0)/(1 + r0);
+    // it weighs each light's irradiance by πf = wH(μ)H(μ₀)/(4(μ + μ₀)) and the environment's by
+    // R(μ) = 1 − γH(μ) (μ: the view's cosine, μ₀: the light's).
+    let half_space = frame.sss.w > 0.5 && is_skin;
+    let hs_r0 = clamp(albedo, vec3<f32>(0.0), vec3<f32>(1.0));
+    let hs_gamma = (1.0 - hs_r0) / (1.0 + hs_r0);
+    let hs_w = 1.0 - hs_gamma * hs_gamma;
+    let hs_mu = clamp(dot(n, v), 0.0, 1.0);
+    var hs_h_mu = vec3<f32>(1.0);
+    if half_space {
+        hs_h_mu = half_space_h(hs_w, hs_r0, hs_mu);
+    }
+    // Σ over lights of irradiance × πf (used only by the half-space law).
+    var weighted = vec3<f32>(0.0);
+
     // Irradiance and specular of every light.
     var irradiance = vec3<f32>(0.0);
     var specular = vec3<f32>(0.0);
@@ -225,6 +251,10 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
 //#endif
         let e_n = e * (n_dot_l * visible);
         irradiance += e_n;
+        if half_space {
+            let mu0 = min(n_dot_l, 1.0);
+            weighted += e_n * hs_w * hs_h_mu * half_space_h(hs_w, hs_r0, mu0) / (4.0 * max(hs_mu + mu0, 1e-6));
+        }
         if frame.skin.z > 0.0 {
             // The skin's lobes × its specular scale (the G-buffer normal's w: cavity × oiliness).
             var lobes = vec3<f32>(skin_lobes(n, l, v, frame.skin.x, frame.skin.y) * nd.w);
@@ -268,8 +298,10 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     }
     // The skin's diffuse light: a dipole model (render/src/passes/dipole) takes over the lights'.
     var skin_irradiance = irradiance;
+    var skin_weighted = weighted;
 //#if DIPOLE
     skin_irradiance = vec3<f32>(0.0);
+    skin_weighted = vec3<f32>(0.0);
 //#endif
     // The cube atlas takes the environment's light into the skin too (through its Fresnel).
     var skin_env = 1.0;
@@ -280,18 +312,26 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     let env_e = max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
     irradiance += env_e;
     skin_irradiance += env_e * skin_env;
+    skin_weighted += env_e * skin_env * (1.0 - hs_gamma * hs_h_mu);
 //#endif
+    // The albedo the skin's light enters with: under the half-space law, the irradiance-weighted
+    // mean of πf over the lights and R(μ) for the environment, so that the stack below composes
+    // it exactly as it composes a Lambertian albedo.
+    var skin_albedo = albedo;
+    if half_space {
+        skin_albedo = select(vec3<f32>(0.0), skin_weighted / max(skin_irradiance, vec3<f32>(1e-30)), skin_irradiance > vec3<f32>(0.0));
+    }
 
     // Light into the skin per unit irradiance, albedo·T / (1 − R_below·albedo), and what crosses the
     // stack again on its way out, × T; without layers simply the albedo and T = 1.
-    var skin_in = albedo;
+    var skin_in = skin_albedo;
     var exit_t = vec3<f32>(1.0);
 //#if LAYERS_A
     // Composed in the basis, then back in linear sRGB. The way out is applied after scattering
     // (the composite, or a diffusion model's gather) as a factor: the ratio of the two products
     // rebuilds the basis's albedo·T² / (1 − R_below·albedo) exactly where nothing scatters.
     if covered {
-        let a = BASIS_FROM_SRGB * albedo;
+        let a = BASIS_FROM_SRGB * skin_albedo;
         let once = a * t / (1.0 - r_below * a);
         skin_in = max(BASIS_TO_SRGB * once, vec3<f32>(0.0));
         let twice = max(BASIS_TO_SRGB * (once * t), vec3<f32>(0.0));

@@ -97,6 +97,13 @@ pub struct SceneArgs {
     /// diffusion [Christensen2015]. docs/BENCHMARKS.md says which matches the path tracer best.
     #[arg(long, value_enum, default_value_t = Profile::BetterDipole)]
     pub profile: Profile,
+    /// How the skin's light depends on the light's and the viewer's directions: `lambert`
+    /// (the albedo in every direction; with a medium, the profile's total), or `half-space`, the
+    /// exact transport of an isotropic half-space at an index-matched boundary from
+    /// Chandrasekhar's H-function (every albedo, single scattering included; with a medium its
+    /// reduced albedo, else the skin's albedo read as Hapke's diffusive reflectance r0).
+    #[arg(long, value_enum, default_value_t = Diffuse::Lambert)]
+    pub diffuse: Diffuse,
     /// Skin reflectance for the skin's colour: a CSV table (`wavelength_nm` or `wavelength` and
     /// one column per skin, or one skin per row) or a CGATS file, e.g. a measured skin of your
     /// own or one of python/skin_gamut.py's skins; the first skin unless --skin-sample names one.
@@ -187,6 +194,15 @@ pub enum Profile {
     BetterDipole,
     /// Burley's normalized diffusion ([Christensen2015]).
     Burley,
+}
+
+/// `--diffuse` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Diffuse {
+    /// Lambert: the albedo in every direction.
+    Lambert,
+    /// The exact isotropic half-space (Chandrasekhar's H-function).
+    HalfSpace,
 }
 
 impl Profile {
@@ -297,6 +313,9 @@ impl SceneArgs {
             let (skin, fitted) = Skin::from_medium(&medium, self.profile.model());
             scene.skin = skin;
             fit = Some(fitted);
+        }
+        if self.diffuse == Diffuse::HalfSpace {
+            scene.skin = scene.skin.clone().half_space();
         }
         let job = RenderJob {
             mesh: self.mesh.clone(),

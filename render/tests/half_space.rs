@@ -1,0 +1,199 @@
+//! The exact half-space (render/src/half_space.rs) against references nobody here wrote: 50-digit
+//! values of Chandrasekhar's H-function from its closed integral (python/gen_h_function_reference.py)
+//! and Mitsuba 3's radiance from a half-space (python/gen_slab_reference.py); its identities; the
+//! GPU's closed form; and the lighting pass's half-space law on a real wgpu device.
+
+use rouge_model::look::Look;
+use rouge_model::medium::Medium;
+use rouge_model::mesh::load_mesh;
+use rouge_render::diffusion::ProfileModel;
+use rouge_render::half_space::{HalfSpace, albedo_from_r0, h_hapke, r0_from_albedo};
+use rouge_render::{Camera, DiffuseLaw, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
+use serde_json::Value;
+use std::path::Path;
+
+fn reference(file: &str) -> Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/reference").join(file);
+    serde_json::from_str(&std::fs::read_to_string(&path).expect("reference file")).expect("JSON")
+}
+
+fn number(v: &Value) -> f64 {
+    v.as_str().map_or_else(|| v.as_f64().expect("a number"), |s| s.parse().expect("a decimal"))
+}
+
+#[test]
+fn h_matches_fifty_digit_values_of_the_closed_integral() {
+    let r = reference("h_function.json");
+    let mus: Vec<f64> = r["mu"].as_array().expect("mu").iter().map(number).collect();
+    let mut worst: f64 = 0.0;
+    for row in r["rows"].as_array().expect("rows") {
+        let w = number(&row["albedo"]);
+        let hs = HalfSpace::new(w);
+        for (k, &mu) in mus.iter().enumerate() {
+            let exact = number(&row["h"][k]);
+            let rel = (hs.h(mu) - exact).abs() / exact;
+            worst = worst.max(rel);
+            assert!(rel < 1e-11, "H({mu}) at ϖ = {w}: {} against {exact}", hs.h(mu));
+            let refl = number(&row["directional_reflectance"][k]);
+            assert!((hs.directional_reflectance(mu) - refl).abs() < 1e-11, "R({mu}) at ϖ = {w}");
+        }
+        let normal = number(&row["pi_brdf_normal"]);
+        assert!((hs.pi_brdf(1.0, 1.0) - normal).abs() < 1e-11 * normal.max(1e-3), "πf(1, 1) at ϖ = {w}");
+    }
+    assert!(worst > 0.0, "the comparison ran");
+}
+
+#[test]
+fn pi_brdf_at_normal_incidence_is_mitsubas_half_space_within_its_noise() {
+    let r = reference("slab_albedo.json");
+    let media = r["media"].as_object().expect("media");
+    assert_eq!(media.len(), 4);
+    for (name, m) in media {
+        for c in 0..3 {
+            let (sa, ss) = (number(&m["sigma_a_per_mm"][c]), number(&m["sigma_s_prime_per_mm"][c]));
+            let (mitsuba, se) = (number(&m["reflectance"][c]), number(&m["standard_error"][c]));
+            let ours = HalfSpace::new(ss / (sa + ss)).pi_brdf(1.0, 1.0);
+            // Three standard errors, and 2e-5 for the channels whose error reads 0.0 in the file.
+            assert!(
+                (ours - mitsuba).abs() <= 3.0 * se + 2e-5,
+                "{name} channel {c}: πf(1, 1) = {ours:.5}, Mitsuba {mitsuba:.5} ± {se:.5}"
+            );
+        }
+    }
+}
+
+/// Composite Simpson of `f` over [0, 1] on `n` panels (even).
+fn simpson(f: impl Fn(f64) -> f64, n: usize) -> f64 {
+    let h = 1.0 / n as f64;
+    let inner: f64 = (1..n).map(|k| f(k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 }).sum();
+    (f(0.0) + f(1.0) + inner) * h / 3.0
+}
+
+#[test]
+fn the_brdf_integrates_to_the_directional_reflectance_and_is_reciprocal() {
+    for w in [0.0, 0.2, 0.68, 0.96, 0.999, 1.0] {
+        let hs = HalfSpace::new(w);
+        for mu0 in [0.05, 0.3, 0.7, 1.0] {
+            // ∫ f μ dω over the exit hemisphere = 2 ∫₀¹ πf(μ, μ₀) μ dμ.
+            let returned = 2.0 * simpson(|mu| hs.pi_brdf(mu, mu0) * mu, 4000);
+            let r = hs.directional_reflectance(mu0);
+            assert!((returned - r).abs() < 1e-6, "ϖ = {w}, μ₀ = {mu0}: ∫ = {returned}, R = {r}");
+            assert!((hs.pi_brdf(0.4, mu0) - hs.pi_brdf(mu0, 0.4)).abs() < 1e-15);
+        }
+        let white = 2.0 * simpson(|mu| hs.directional_reflectance(mu) * mu, 4000);
+        assert!((white - hs.white_sky_albedo()).abs() < 1e-6, "ϖ = {w}: white-sky {white}");
+    }
+    // The edges: nothing scatters, everything does.
+    let black = HalfSpace::new(0.0);
+    assert_eq!(black.pi_brdf(1.0, 1.0), 0.0);
+    assert_eq!(black.directional_reflectance(0.5), 0.0);
+    let white = HalfSpace::new(1.0);
+    assert!((white.directional_reflectance(0.3) - 1.0).abs() < 1e-12);
+    assert!((white.white_sky_albedo() - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn out_of_domain_arguments_are_clamped_never_nan() {
+    for w in [f64::NAN, -1.0, 2.0, f64::INFINITY] {
+        let hs = HalfSpace::new(w);
+        for mu in [f64::NAN, -0.5, 0.0, 1.5, f64::INFINITY] {
+            for v in [hs.h(mu), hs.pi_brdf(mu, mu), hs.directional_reflectance(mu), h_hapke(w.min(1.0), mu)] {
+                assert!(v.is_finite(), "ϖ = {w}, μ = {mu}: {v}");
+            }
+        }
+        assert!(albedo_from_r0(w).is_finite() && r0_from_albedo(w.min(1.0).max(0.0)).is_finite());
+    }
+    assert_eq!(HalfSpace::new(0.5).pi_brdf(0.0, 0.0), 0.0);
+}
+
+#[test]
+fn hapkes_closed_form_is_within_one_percent_and_r0_inverts_exactly() {
+    let mut worst: f64 = 0.0;
+    for i in 0..=100 {
+        let w = 1.0 - (i as f64 / 100.0).powi(3);
+        let hs = HalfSpace::new(w);
+        for j in 0..=50 {
+            let mu = j as f64 / 50.0;
+            worst = worst.max((h_hapke(w, mu) / hs.h(mu) - 1.0).abs());
+        }
+        let back = albedo_from_r0(r0_from_albedo(w));
+        assert!((back - w).abs() < 1e-12, "ϖ = {w}: r0 round trip {back}");
+    }
+    assert!(worst < 0.01, "Hapke's H is {worst:.4} from the exact H somewhere");
+    assert!(worst > 1e-3, "the comparison measured nothing ({worst})");
+}
+
+/// The sphere's skin radiance before scattering, lit and seen from the front, against the exact
+/// half-space per pixel: E·πf(μ, μ₀)/π with E = π, μ and μ₀ from the sphere's normal at the point
+/// the pixel sees. Returns the worst relative error over pixels with μ₀ > 0.3, per channel.
+fn sphere_error(skin: Skin, expected: impl Fn(usize, f64, f64) -> f64) -> f64 {
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&mesh, skin.albedo).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    let mut scene = Scene::rig(LightRig::Front);
+    scene.lights[0].shadows = false;
+    scene.specular = false;
+    scene.skin = skin;
+    let bounds = r.mesh_bounds().expect("bounds");
+    let camera = Camera::framing(&bounds, 0.0, 0.0);
+    let size = 96u32;
+    r.render(&scene, &camera, size, size, false).expect("render");
+    let cap = r.capture().expect("capture");
+    let centre = bounds.center();
+    let inv_view = camera.view().inverse();
+    let light = glam::Vec3::Z;
+    let mut worst: f64 = 0.0;
+    let mut counted = 0;
+    for py in 0..size as usize {
+        for px in 0..size as usize {
+            let i = py * size as usize + px;
+            let d = cap.diffuse[i];
+            if d[3] < 0.5 {
+                continue;
+            }
+            let depth = cap.depth_mm[i];
+            let half = size as f32 / 2.0;
+            let view = glam::Vec3::new(
+                (px as f32 + 0.5 - half) / cap.focal_px * depth,
+                -(py as f32 + 0.5 - half) / cap.focal_px * depth,
+                -depth,
+            );
+            let p = inv_view.transform_point3(view);
+            let n = (p - centre).normalize();
+            let (mu, mu0) = (f64::from(n.dot((camera.position() - p).normalize())), f64::from(n.dot(light)));
+            if mu0 < 0.3 {
+                continue;
+            }
+            counted += 1;
+            for c in 0..3 {
+                let want = expected(c, mu, mu0);
+                worst = worst.max((f64::from(d[c]) / want - 1.0).abs());
+            }
+        }
+    }
+    assert!(counted > 1000, "only {counted} pixels on the sphere");
+    worst
+}
+
+#[test]
+fn the_lighting_pass_renders_the_half_space_law() {
+    let medium = Medium::builtin("skin1").expect("skin1").with_eta(1.0).expect("η = 1");
+    let (skin, fit) = Skin::from_medium(&medium, ProfileModel::BetterDipole);
+    let skin = Skin { subsurface: SubsurfaceModel::None, ..skin };
+    let exact: Vec<HalfSpace> = (0..3)
+        .map(|c| {
+            let (sa, ss) = (medium.sigma_a_per_mm[c], medium.sigma_s_prime_per_mm[c]);
+            HalfSpace::new(ss / (sa + ss))
+        })
+        .collect();
+    let half = skin.clone().half_space();
+    assert_eq!(half.diffuse, DiffuseLaw::HalfSpace);
+    let err = sphere_error(half, |c, mu, mu0| exact[c].pi_brdf(mu, mu0) * mu0);
+    // Hapke's H (≤ 1% each, two factors), f32 and the sphere's tessellated normals.
+    assert!(err < 0.035, "half-space law: {err:.4} from the exact half-space");
+    // Lambert with the dipole's total is far from it (the test can fail).
+    let lambert = sphere_error(skin, |c, mu, mu0| exact[c].pi_brdf(mu, mu0) * mu0);
+    assert!(lambert > 0.1, "Lambert with the dipole's total {:?}: only {lambert:.4} off", fit.total);
+}
