@@ -126,7 +126,8 @@ impl HalfSpace {
     /// π f(μ, μ₀) = ϖ H(μ) H(μ₀) / (4 (μ + μ₀)): the radiance leaving towards `mu` per unit
     /// irradiance from `mu0`, times π. 0 when both cosines are 0.
     pub fn pi_brdf(&self, mu: f64, mu0: f64) -> f64 {
-        let (mu, mu0) = (mu.clamp(0.0, 1.0), mu0.clamp(0.0, 1.0));
+        let unit = |c: f64| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+        let (mu, mu0) = (unit(mu), unit(mu0));
         if mu + mu0 <= 0.0 {
             return 0.0;
         }
@@ -149,7 +150,8 @@ impl HalfSpace {
 /// Hapke's diffusive reflectance r₀ = (1 − γ)/(1 + γ), γ = √(1 − ϖ) (\[Hapke2002\] eq. 14): the
 /// material albedo the GPU's half-space law reads for single-scattering albedo `albedo`.
 pub fn r0_from_albedo(albedo: f64) -> f64 {
-    let gamma = (1.0 - albedo.clamp(0.0, 1.0)).sqrt();
+    let albedo = if albedo.is_nan() { 0.0 } else { albedo.clamp(0.0, 1.0) };
+    let gamma = (1.0 - albedo).sqrt();
     (1.0 - gamma) / (1.0 + gamma)
 }
 
@@ -163,8 +165,8 @@ pub fn albedo_from_r0(r0: f64) -> f64 {
 /// \[Hapke2002\] eq. 13: H(x) ≈ 1 / (1 − ϖx (r₀ + (1 − 2r₀x)/2 · ln((1 + x)/x))), the closed
 /// form `lighting.wgsl` evaluates (`half_space_h`). 1 at x = 0.
 pub fn h_hapke(albedo: f64, mu: f64) -> f64 {
-    let albedo = albedo.clamp(0.0, 1.0);
-    let x = mu.clamp(0.0, 1.0);
+    let albedo = if albedo.is_nan() { 0.0 } else { albedo.clamp(0.0, 1.0) };
+    let x = if mu.is_nan() { 0.0 } else { mu.clamp(0.0, 1.0) };
     if x <= 0.0 {
         return 1.0;
     }

@@ -97,11 +97,11 @@ fn out_of_domain_arguments_are_clamped_never_nan() {
     for w in [f64::NAN, -1.0, 2.0, f64::INFINITY] {
         let hs = HalfSpace::new(w);
         for mu in [f64::NAN, -0.5, 0.0, 1.5, f64::INFINITY] {
-            for v in [hs.h(mu), hs.pi_brdf(mu, mu), hs.directional_reflectance(mu), h_hapke(w.min(1.0), mu)] {
+            for v in [hs.h(mu), hs.pi_brdf(mu, mu), hs.directional_reflectance(mu), h_hapke(w, mu)] {
                 assert!(v.is_finite(), "ϖ = {w}, μ = {mu}: {v}");
             }
         }
-        assert!(albedo_from_r0(w).is_finite() && r0_from_albedo(w.min(1.0).max(0.0)).is_finite());
+        assert!(albedo_from_r0(w).is_finite() && r0_from_albedo(w).is_finite());
     }
     assert_eq!(HalfSpace::new(0.5).pi_brdf(0.0, 0.0), 0.0);
 }
@@ -167,9 +167,8 @@ fn sphere_error(skin: Skin, expected: impl Fn(usize, f64, f64) -> f64) -> f64 {
                 continue;
             }
             counted += 1;
-            for c in 0..3 {
-                let want = expected(c, mu, mu0);
-                worst = worst.max((f64::from(d[c]) / want - 1.0).abs());
+            for (c, &got) in d[..3].iter().enumerate() {
+                worst = worst.max((f64::from(got) / expected(c, mu, mu0) - 1.0).abs());
             }
         }
     }
@@ -195,5 +194,6 @@ fn the_lighting_pass_renders_the_half_space_law() {
     assert!(err < 0.035, "half-space law: {err:.4} from the exact half-space");
     // Lambert with the dipole's total is far from it (the test can fail).
     let lambert = sphere_error(skin, |c, mu, mu0| exact[c].pi_brdf(mu, mu0) * mu0);
+    eprintln!("worst relative error per pixel: half-space law {err:.4}, Lambert with the dipole's total {lambert:.4}");
     assert!(lambert > 0.1, "Lambert with the dipole's total {:?}: only {lambert:.4} off", fit.total);
 }
