@@ -241,3 +241,39 @@ fn a_close_up_of_the_lips_fills_the_viewport_and_home_goes_back() {
     h.run_steps(2);
     assert!((measure(h.state()).0 - whole_scale).abs() < 1e-3 * whole_scale, "Home frames the whole face again");
 }
+
+/// Issue 30: a long layer name widened the left panel (its row of buttons after the name) until
+/// the viewport was a sliver. The viewport keeps its width whatever the names, and every row's
+/// buttons (Up, Down, Dup, Del) lie inside the panel, left of the viewport.
+#[test]
+fn a_long_layer_name_neither_widens_the_panel_nor_pushes_the_buttons_out() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let before = h.state().viewport_rect();
+    h.state_mut().rename_layer(0, "A foundation with a very long name indeed, as users write them");
+    h.run_steps(3);
+    if let Ok(path) = std::env::var("ROUGE_SHOT") {
+        h.render().expect("render").save(path).expect("save");
+    }
+    let after = h.state().viewport_rect();
+    assert!(
+        (after.width() - before.width()).abs() < 1.0,
+        "the viewport went from {:.0} to {:.0} points wide",
+        before.width(),
+        after.width()
+    );
+    let layers = h.state().document().layers.len();
+    for label in ["Up", "Down", "Dup", "Del"] {
+        let nodes: Vec<_> = h.query_all_by_label(label).collect();
+        assert_eq!(nodes.len(), layers, "one {label} button a layer");
+        for n in nodes {
+            let r = n.rect();
+            assert!(
+                r.max.x <= after.min.x + 0.5,
+                "{label} ends at x = {:.1}, past the panel's edge at {:.1}",
+                r.max.x,
+                after.min.x
+            );
+        }
+    }
+}

@@ -28,21 +28,26 @@ impl RougeApp {
                     action = Some(Box::new(move |d: &mut Document| d.set_locked(i, locked)));
                 }
                 materials::swatch(ui, &l.preset, 14.0);
-                if ui.selectable_label(active == i, &l.name).clicked() {
-                    select = Some(i);
-                }
-                if ui.small_button("Up").on_hover_text("move up").clicked() && i + 1 < n {
-                    action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i + 1)));
-                }
-                if ui.small_button("Down").on_hover_text("move down").clicked() && i > 0 {
-                    action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i - 1)));
-                }
-                if ui.small_button("Dup").on_hover_text("duplicate above (one undo step)").clicked() {
-                    action = Some(Box::new(move |d: &mut Document| d.duplicate_layer(i)));
-                }
-                if ui.small_button("Del").on_hover_text("remove").clicked() {
-                    action = Some(Box::new(move |d: &mut Document| d.remove_layer(i)));
-                }
+                // The buttons from the right edge, the name in what is left, cut short with "…"
+                // (whole on hover): a long name once widened the panel over the viewport.
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    if ui.small_button("Del").on_hover_text("remove").clicked() {
+                        action = Some(Box::new(move |d: &mut Document| d.remove_layer(i)));
+                    }
+                    if ui.small_button("Dup").on_hover_text("duplicate above (one undo step)").clicked() {
+                        action = Some(Box::new(move |d: &mut Document| d.duplicate_layer(i)));
+                    }
+                    if ui.small_button("Down").on_hover_text("move down").clicked() && i > 0 {
+                        action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i - 1)));
+                    }
+                    if ui.small_button("Up").on_hover_text("move up").clicked() && i + 1 < n {
+                        action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i + 1)));
+                    }
+                    let name = egui::Button::selectable(active == i, l.name.as_str()).truncate();
+                    if ui.add(name).on_hover_text(l.name.as_str()).clicked() {
+                        select = Some(i);
+                    }
+                });
             });
         }
         if let Some(i) = select {
@@ -67,8 +72,7 @@ impl RougeApp {
                 ui.text_edit_singleline(&mut self.ui.rename_buffer);
                 if ui.button("Rename").clicked() && !self.ui.rename_buffer.trim().is_empty() {
                     let name = self.ui.rename_buffer.trim().to_string();
-                    let c = self.editor.edit(|d| d.rename_layer(i, &name));
-                    self.apply_change(c);
+                    self.rename_layer(i, &name);
                 }
             });
             if ui.button("Clear layer").on_hover_text("set the whole map to 0 mm (one undo step)").clicked() {

@@ -361,6 +361,12 @@ impl RougeApp {
         self.view.rect.size()
     }
 
+    /// Renames layer `i` (one undo step), as the Rename button does.
+    pub fn rename_layer(&mut self, i: usize, name: &str) {
+        let c = self.editor.edit(|d| d.rename_layer(i, name));
+        self.apply_change(c);
+    }
+
     /// The status line's message, on one line (cut short with "…"; the whole text on hover).
     fn status_message(&self, ui: &mut egui::Ui) {
         let (colour, text) = match &self.ui.message {
