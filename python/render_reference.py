@@ -39,66 +39,50 @@ SIZE = ["--width", "256", "--height", "256"]
 # terms are checked against 50-digit references instead (python/test_profile_reference.py).
 BARE = ["--look", "bare", "--eta", "1"]
 
+HEAD, HAND, SPHERE, WEDGE = "builtin:head", "data/hands/hm08_hand.obj", "builtin:sphere", "builtin:wedge"
+
+
+def scene(mesh: str, lights: str, medium: str, size: list[str], spp: int, description: str, *extra: str):
+    """One reference scene: its `rouge render` / `rouge export mitsuba` options, samples per pixel
+    and description."""
+    return (["--mesh", mesh, *BARE, "--lights", lights, "--medium", medium, *extra, *size], spp, description)
+
+
 # name -> (options for `rouge render` / `rouge export mitsuba`, samples per pixel, description)
 SCENES: dict[str, tuple[list[str], int, str]] = {
-    "head-skin1-front-left": (
-        ["--mesh", "builtin:head", *BARE, "--lights", "front-left", "--medium", "skin1", *SIZE],
-        4096,
-        "the default head (hm08) in skin1, one white key light from the front left",
-    ),
-    "head-skin1-back": (
-        ["--mesh", "builtin:head", *BARE, "--lights", "back", "--medium", "skin1", *SIZE],
-        4096,
-        "the default head in skin1 lit from behind: ears, nose and lips glow",
-    ),
+    "head-skin1-front-left": scene(HEAD, "front-left", "skin1", SIZE, 4096,
+                                   "the default head (hm08) in skin1, one white key light from the front left"),
+    "head-skin1-back": scene(HEAD, "back", "skin1", SIZE, 4096,
+                             "the default head in skin1 lit from behind: ears, nose and lips glow"),
+    "hand-skin1-back": scene(HAND, "back", "skin1", SIZE, 4096,
+                             "the hm08 left hand (python/gen_hand.py) in skin1, lit from behind: the fingers glow"),
+    # The backlit head deformed (a morph toward its bounding sphere, `--morph`): what a local
+    # thickness baked on the rest pose gets wrong (paper 004's caveat), rendered on a CPU at 128².
+    "head-skin1-back-morph": scene(
+        HEAD, "back", "skin1", ["--width", "128", "--height", "128"], 512,
+        "the backlit head of head-skin1-back morphed 30% toward its bounding sphere (a deformation)",
+        "--morph", "0.3"),
 }
-SCENES["hand-skin1-back"] = (
-    ["--mesh", "data/hands/hm08_hand.obj", *BARE, "--lights", "back", "--medium", "skin1", *SIZE],
-    4096,
-    "the hm08 left hand (python/gen_hand.py) in skin1, lit from behind: the fingers glow",
-)
-# The backlit head deformed (a morph toward its bounding sphere, `--morph`): what a local
-# thickness baked on the rest pose gets wrong (paper 004's caveat), rendered on a CPU at 128².
-SCENES["head-skin1-back-morph"] = (
-    ["--mesh", "builtin:head", *BARE, "--lights", "back", "--medium", "skin1", "--morph", "0.3",
-     "--width", "128", "--height", "128"],
-    512,
-    "the backlit head of head-skin1-back morphed 30% toward its bounding sphere (a deformation)",
-)
 for medium in ("marble", "skimmilk", "ketchup"):
-    SCENES[f"sphere-{medium}"] = (
-        ["--mesh", "builtin:sphere", *BARE, "--lights", "front-left", "--medium", medium, *SIZE],
-        4096,
-        f"a 25 mm sphere of {medium}, key light from the front left",
-    )
-    SCENES[f"wedge-{medium}"] = (
-        ["--mesh", "builtin:wedge", *BARE, "--lights", "back", "--medium", medium, *SIZE],
-        4096,
-        f"a wedge of {medium} 1 to 15 mm thick, lit from behind",
-    )
+    SCENES[f"sphere-{medium}"] = scene(SPHERE, "front-left", medium, SIZE, 4096,
+                                       f"a 25 mm sphere of {medium}, key light from the front left")
+    SCENES[f"wedge-{medium}"] = scene(WEDGE, "back", medium, SIZE, 4096,
+                                      f"a wedge of {medium} 1 to 15 mm thick, lit from behind")
 
 # Scenes the half-space law (issue 31) was not developed on, rendered after it was fixed and
 # reported without re-fitting: another medium and mesh or light than the scenes above, small
 # enough for this machine's CPU (`--set unseen`, into data/reference/translucency-unseen/).
 SMALL = ["--width", "96", "--height", "96"]
 UNSEEN: dict[str, tuple[list[str], int, str]] = {
-    "sphere-apple-front": (
-        ["--mesh", "builtin:sphere", *BARE, "--lights", "front", "--medium", "apple", *SMALL],
-        256,
-        "a 25 mm sphere of apple, lit from the camera's side (medium and light unseen)",
-    ),
-    "head-skin2-front-left": (
-        ["--mesh", "builtin:head", *BARE, "--lights", "front-left", "--medium", "skin2", *SMALL],
-        256,
-        "the default head in skin2 (Jensen et al.'s second skin sample), key light from the front left",
-    ),
-    "hand-skin2-front-left": (
-        ["--mesh", "data/hands/hm08_hand.obj", *BARE, "--lights", "front-left", "--medium", "skin2", *SMALL],
-        256,
-        "the hm08 hand in skin2, lit from the front left (mesh, medium and light together unseen)",
-    ),
+    "sphere-apple-front": scene(SPHERE, "front", "apple", SMALL, 256,
+                                "a 25 mm sphere of apple, lit from the camera's side (medium and light unseen)"),
+    "head-skin2-front-left": scene(
+        HEAD, "front-left", "skin2", SMALL, 256,
+        "the default head in skin2 (Jensen et al.'s second skin sample), key light from the front left"),
+    "hand-skin2-front-left": scene(
+        HAND, "front-left", "skin2", SMALL, 256,
+        "the hm08 hand in skin2, lit from the front left (mesh, medium and light together unseen)"),
 }
-
 
 def do_export(rouge: str, scenes_dir: Path, names: list[str], scenes: dict = SCENES) -> None:
     for name in names:
