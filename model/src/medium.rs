@@ -257,4 +257,14 @@ impl Medium {
         let (s, t) = (self.sigma_s_per_mm(), self.sigma_t_per_mm());
         std::array::from_fn(|c| s[c] / t[c])
     }
+
+    /// Reduced albedo α′ = σs′ / (σa + σs′) per channel: the single-scattering albedo of the
+    /// isotropic medium the similarity relation makes of this one (0 where σt′ = 0, which a
+    /// validated medium never has).
+    pub fn reduced_albedo(&self) -> [f64; 3] {
+        std::array::from_fn(|c| {
+            let sigma_t_prime = self.sigma_a_per_mm[c] + self.sigma_s_prime_per_mm[c];
+            if sigma_t_prime > 0.0 { self.sigma_s_prime_per_mm[c] / sigma_t_prime } else { 0.0 }
+        })
+    }
 }

@@ -38,6 +38,11 @@ const PANELS: [(f64, f64); 5] = [(0.0, 1e-3), (1e-3, 1e-2), (1e-2, 0.1), (0.1, 0
 /// Gauss-Legendre nodes per panel.
 const NODES_PER_PANEL: usize = 16;
 
+/// `x` clamped to [0, 1], NaN read as 0 (`f64::clamp` keeps a NaN): the module's domain.
+fn unit_interval(x: f64) -> f64 {
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
+}
+
 /// The nodes and weights of an n-point Gauss-Legendre rule on [−1, 1] (Newton on Pₙ from the
 /// Chebyshev guesses; |Δx| < 1e-15 within a few steps for n ≤ 64).
 fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
@@ -77,7 +82,7 @@ pub struct HalfSpace {
 impl HalfSpace {
     /// Solves the H-equation for single-scattering albedo `albedo` (clamped to [0, 1]).
     pub fn new(albedo: f64) -> HalfSpace {
-        let albedo = if albedo.is_nan() { 0.0 } else { albedo.clamp(0.0, 1.0) };
+        let albedo = unit_interval(albedo);
         let gamma = (1.0 - albedo).sqrt();
         let rule = gauss_legendre(NODES_PER_PANEL);
         let mut nodes: Vec<(f64, f64, f64)> = PANELS
@@ -116,7 +121,7 @@ impl HalfSpace {
 
     /// H(μ) for `mu` ∈ [0, 1] (clamped).
     pub fn h(&self, mu: f64) -> f64 {
-        let mu = if mu.is_nan() { 0.0 } else { mu.clamp(0.0, 1.0) };
+        let mu = unit_interval(mu);
         if mu == 0.0 {
             return 1.0;
         }
@@ -126,8 +131,7 @@ impl HalfSpace {
     /// π f(μ, μ₀) = ϖ H(μ) H(μ₀) / (4 (μ + μ₀)): the radiance leaving towards `mu` per unit
     /// irradiance from `mu0`, times π. 0 when both cosines are 0.
     pub fn pi_brdf(&self, mu: f64, mu0: f64) -> f64 {
-        let unit = |c: f64| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
-        let (mu, mu0) = (unit(mu), unit(mu0));
+        let (mu, mu0) = (unit_interval(mu), unit_interval(mu0));
         if mu + mu0 <= 0.0 {
             return 0.0;
         }
@@ -150,14 +154,13 @@ impl HalfSpace {
 /// Hapke's diffusive reflectance r₀ = (1 − γ)/(1 + γ), γ = √(1 − ϖ) (\[Hapke2002\] eq. 14): the
 /// material albedo the GPU's half-space law reads for single-scattering albedo `albedo`.
 pub fn r0_from_albedo(albedo: f64) -> f64 {
-    let albedo = if albedo.is_nan() { 0.0 } else { albedo.clamp(0.0, 1.0) };
-    let gamma = (1.0 - albedo).sqrt();
+    let gamma = (1.0 - unit_interval(albedo)).sqrt();
     (1.0 - gamma) / (1.0 + gamma)
 }
 
 /// The inverse of [`r0_from_albedo`]: γ = (1 − r₀)/(1 + r₀), ϖ = 1 − γ², for r₀ ∈ [0, 1].
 pub fn albedo_from_r0(r0: f64) -> f64 {
-    let r0 = if r0.is_nan() { 0.0 } else { r0.clamp(0.0, 1.0) };
+    let r0 = unit_interval(r0);
     let gamma = (1.0 - r0) / (1.0 + r0);
     1.0 - gamma * gamma
 }
@@ -165,8 +168,7 @@ pub fn albedo_from_r0(r0: f64) -> f64 {
 /// \[Hapke2002\] eq. 13: H(x) ≈ 1 / (1 − ϖx (r₀ + (1 − 2r₀x)/2 · ln((1 + x)/x))), the closed
 /// form `lighting.wgsl` evaluates (`half_space_h`). 1 at x = 0.
 pub fn h_hapke(albedo: f64, mu: f64) -> f64 {
-    let albedo = if albedo.is_nan() { 0.0 } else { albedo.clamp(0.0, 1.0) };
-    let x = if mu.is_nan() { 0.0 } else { mu.clamp(0.0, 1.0) };
+    let (albedo, x) = (unit_interval(albedo), unit_interval(mu));
     if x <= 0.0 {
         return 1.0;
     }

@@ -284,11 +284,7 @@ impl Skin {
     /// the lighting pass recovers α′ exactly; without one, the albedo is read as r₀ as it is.
     pub fn half_space(self) -> Skin {
         let albedo = match &self.medium {
-            Some(m) => std::array::from_fn(|c| {
-                let sigma_t = m.sigma_a_per_mm[c] + m.sigma_s_prime_per_mm[c];
-                let alpha = if sigma_t > 0.0 { m.sigma_s_prime_per_mm[c] / sigma_t } else { 0.0 };
-                crate::half_space::r0_from_albedo(alpha) as f32
-            }),
+            Some(m) => m.reduced_albedo().map(|alpha| crate::half_space::r0_from_albedo(alpha) as f32),
             None => self.albedo,
         };
         Skin { albedo, diffuse: DiffuseLaw::HalfSpace, ..self }

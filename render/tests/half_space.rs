@@ -181,12 +181,7 @@ fn the_lighting_pass_renders_the_half_space_law() {
     let medium = Medium::builtin("skin1").expect("skin1").with_eta(1.0).expect("η = 1");
     let (skin, fit) = Skin::from_medium(&medium, ProfileModel::BetterDipole);
     let skin = Skin { subsurface: SubsurfaceModel::None, ..skin };
-    let exact: Vec<HalfSpace> = (0..3)
-        .map(|c| {
-            let (sa, ss) = (medium.sigma_a_per_mm[c], medium.sigma_s_prime_per_mm[c]);
-            HalfSpace::new(ss / (sa + ss))
-        })
-        .collect();
+    let exact = medium.reduced_albedo().map(HalfSpace::new);
     let half = skin.clone().half_space();
     assert_eq!(half.diffuse, DiffuseLaw::HalfSpace);
     let err = sphere_error(half, |c, mu, mu0| exact[c].pi_brdf(mu, mu0) * mu0);

@@ -112,10 +112,11 @@ pub(super) fn material(skin: &Skin) -> String {
     let profile = skin.subsurface.profile().map_or(String::new(), |p| {
         format!(", a profile of {} Gaussians up to σ = {:.2} mm", p.gaussians.len(), p.max_sigma_mm())
     });
-    let law = match skin.diffuse {
-        DiffuseLaw::Lambert => "diffuse law lambert",
-        DiffuseLaw::HalfSpace => "diffuse law half-space (Chandrasekhar's H by Hapke's eq. 13 in the lighting pass)",
+    let how = match skin.diffuse {
+        DiffuseLaw::Lambert => "",
+        DiffuseLaw::HalfSpace => " (Chandrasekhar's H by Hapke's eq. 13 in the lighting pass)",
     };
+    let law = format!("diffuse law {}{how}", skin.diffuse.name());
     let mut out = format!(
         "skin: {medium}, albedo {:.3}, {:.3}, {:.3}, {law}; subsurface {}{profile}",
         skin.albedo[0],
