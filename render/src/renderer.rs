@@ -11,6 +11,7 @@ use crate::passes::cube_atlas::AtlasResources;
 use crate::passes::depth_copy::DepthCopyPass;
 use crate::passes::dipole::DipoleResources;
 use crate::passes::edge_overdraw::GpuEdges;
+use crate::passes::shadow::{ShadowKey, shadow_keys};
 use crate::passes::{FrameEncoder, Passes, Recording, Shared};
 use crate::profiler::{PassTiming, Profiler};
 use crate::scene::{Camera, Scene};
@@ -69,6 +70,8 @@ pub struct Renderer {
     wrinkle_weights: rouge_model::skin::WrinkleWeights,
     /// The hairs' albedo of the next mesh upload ([`Renderer::set_hair_albedo`]).
     hair_albedo: crate::HairAlbedo,
+    /// Keep current shadow maps between frames ([`Renderer::set_keep_shadow_maps`]).
+    keep_shadow_maps: bool,
 }
 
 impl Renderer {
@@ -98,6 +101,7 @@ impl Renderer {
             mesh_generation: 0,
             wrinkle_weights: Default::default(),
             hair_albedo: Default::default(),
+            keep_shadow_maps: true,
             shared,
         }
     }
@@ -338,6 +342,23 @@ impl Renderer {
         self.last.as_ref().map(|l| l.variant)
     }
 
+    /// The key of each shadow map a frame of `scene` draws, by layer.
+    fn shadow_keys(&self, scene: &Scene) -> [Option<ShadowKey>; crate::uniforms::MAX_LIGHTS] {
+        match &self.mesh {
+            Some(m) => {
+                let lights = crate::uniforms::light_uniforms(&scene.lights, &m.bounds);
+                shadow_keys(&lights[..scene.lights.len().min(lights.len())], self.mesh_generation)
+            }
+            None => [None; crate::uniforms::MAX_LIGHTS],
+        }
+    }
+
+    /// Whether frames keep a shadow map that is current (the default) or draw every shadow map
+    /// every frame (to price the shadow pass of a moving light, `rouge bench render`).
+    pub fn set_keep_shadow_maps(&mut self, keep: bool) {
+        self.keep_shadow_maps = keep;
+    }
+
     /// The plan of a frame of `scene` at `width` × `height` with what is uploaded now.
     ///
     /// # Errors
@@ -350,6 +371,11 @@ impl Renderer {
             local_thickness_map: self.textures.local_thickness.is_some(),
             skin_detail: self.textures.detail.is_some(),
             glitter: self.look.glitter,
+            shadow_maps_kept: if self.keep_shadow_maps {
+                self.passes.shadow.current_layers(&self.shadow_keys(scene))
+            } else {
+                0
+            },
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
         let max_color_bytes = self.shared.device.limits().max_color_attachment_bytes_per_sample;
@@ -377,7 +403,18 @@ impl Renderer {
     ) -> Result<wgpu::Texture> {
         let plan = self.plan(scene, width, height, display)?;
         let device = self.shared.device.clone();
-        validated(&device, "frame", || self.record_and_submit(&plan, camera))
+        let frame = validated(&device, "frame", || self.record_and_submit(&plan, camera));
+        if frame.is_ok() {
+            let keys = self.shadow_keys(scene);
+            for planned in &plan.passes {
+                if let crate::passes::Step::Shadow(s) = planned.step {
+                    self.passes.shadow.set_drawn(s.layer, keys[s.layer as usize]);
+                }
+            }
+        } else {
+            self.passes.shadow.forget();
+        }
+        frame
     }
 
     /// Records the passes of `plan` in order and submits them: the plan carries what the frame

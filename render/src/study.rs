@@ -78,11 +78,12 @@ pub fn frame_times(p: &mut Prepared, frames: u32) -> Result<FrameTimes> {
         let ms = t.elapsed().as_secs_f64() * 1e3;
         wall += ms;
         wall_min = wall_min.min(ms);
-        for (i, t) in p.renderer.timings().iter().enumerate() {
-            if sums.len() <= i {
-                sums.push((t.pass.clone(), 0.0));
+        // By name: a pass that runs in some frames only (a shadow map kept) counts in those.
+        for t in p.renderer.timings() {
+            match sums.iter_mut().find(|(name, _)| *name == t.pass) {
+                Some(sum) => sum.1 += t.ms,
+                None => sums.push((t.pass.clone(), t.ms)),
             }
-            sums[i].1 += t.ms;
         }
     }
     let n = frames.max(1) as f64;

@@ -26,18 +26,21 @@ pub const LOCAL_THICKNESS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgb
 pub const GLITTER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 /// Format of radiance and thickness targets.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Format of the display target's texture: plain RGBA8, a storage texture the composite pass
+/// writes sRGB-encoded bytes into (sRGB formats cannot be storage textures).
+pub const DISPLAY_STORAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Format of depth buffers and shadow maps.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// Formats that depend on what the adapter can do (its downlevel capabilities).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Formats {
-    /// Format of the tone-mapped output: Rgba8UnormSrgb where the texture can also be viewed as
-    /// Rgba8Unorm (for egui, which wants the encoded bytes), else Rgba8Unorm with the sRGB
-    /// encoding done in the composite shader. Either way the texture holds sRGB-encoded bytes.
+    /// The format the tone-mapped output is drawn through (the edge overdraw pass blends into
+    /// it): Rgba8UnormSrgb where an Rgba8Unorm texture can also be viewed as sRGB (so blending
+    /// is linear), else Rgba8Unorm. The texture itself is [`DISPLAY_STORAGE_FORMAT`], written by
+    /// the composite compute pass, which encodes sRGB (\[IEC61966\]) in the shader; either way it
+    /// holds sRGB-encoded bytes, as egui wants them ([`egui_view`]).
     pub display: wgpu::TextureFormat,
-    /// Whether the composite shader encodes sRGB itself.
-    pub encode_srgb_in_shader: bool,
     /// Format of the linear output: Rgba32Float, or Rgba16Float on GL, where 32-bit float
     /// textures cannot be render targets (a downlevel restriction); EXRs from GL are half floats.
     pub linear: wgpu::TextureFormat,
@@ -52,6 +55,11 @@ pub struct Formats {
 }
 
 impl Formats {
+    /// Whether the linear output is half floats (the shaders' `HALF_LINEAR` flag).
+    pub fn half_linear(self) -> bool {
+        self.linear == wgpu::TextureFormat::Rgba16Float
+    }
+
     /// The formats for `device`. wgpu's GL backend is the native backend without
     /// `DownlevelFlags::VIEW_FORMATS` (Vulkan, Metal and DX12 always have it), so it gets the
     /// plain display format and the shader's sRGB encoding.
@@ -64,14 +72,12 @@ impl Formats {
         match backend {
             wgpu::Backend::Gl | wgpu::Backend::BrowserWebGpu | wgpu::Backend::Noop => Formats {
                 display: wgpu::TextureFormat::Rgba8Unorm,
-                encode_srgb_in_shader: true,
                 linear: wgpu::TextureFormat::Rgba16Float,
                 min_array_layers: 2,
                 copy_depth: false,
             },
             wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => Formats {
                 display: wgpu::TextureFormat::Rgba8UnormSrgb,
-                encode_srgb_in_shader: false,
                 linear: wgpu::TextureFormat::Rgba32Float,
                 min_array_layers: 1,
                 copy_depth: true,
@@ -153,7 +159,8 @@ impl Target {
         }
     }
 
-    /// Its format on a device with `formats`.
+    /// Its format on a device with `formats`, as passes sample it or draw into it (the display
+    /// target's texture is [`DISPLAY_STORAGE_FORMAT`], viewed in this format).
     pub fn format(self, formats: Formats) -> wgpu::TextureFormat {
         match self {
             Target::Normal => NORMAL_FORMAT,
@@ -205,17 +212,26 @@ impl TargetPool {
                 // The compute passes' outputs are also storage textures.
                 let storage = matches!(
                     target,
-                    Target::SssScratch | Target::Scattered | Target::Diffuse | Target::Surface | Target::ExitT
+                    Target::SssScratch
+                        | Target::Scattered
+                        | Target::Diffuse
+                        | Target::Surface
+                        | Target::ExitT
+                        | Target::Display
+                        | Target::Linear
                 );
                 let usage = U::RENDER_ATTACHMENT
                     | U::TEXTURE_BINDING
                     | U::COPY_SRC
                     | if storage { U::STORAGE_BINDING } else { U::empty() };
                 let label = format!("Target::{}", target.name());
-                // The sRGB display target is also viewable as plain RGBA8, the encoded bytes as
-                // they are, for egui.
-                let srgb_display = target == Target::Display && format == wgpu::TextureFormat::Rgba8UnormSrgb;
-                let views: &[wgpu::TextureFormat] = if srgb_display { &[wgpu::TextureFormat::Rgba8Unorm] } else { &[] };
+                // The display texture is plain RGBA8 (a storage texture), viewed as sRGB for the
+                // edge overdraw's blending where the backend has view formats.
+                let (format, views): (_, &[wgpu::TextureFormat]) = match target {
+                    Target::Display if format != DISPLAY_STORAGE_FORMAT => (DISPLAY_STORAGE_FORMAT, &[format]),
+                    Target::Display => (DISPLAY_STORAGE_FORMAT, &[]),
+                    _ => (format, &[]),
+                };
                 texture(device, &label, size, 1, format, usage, views)
             });
         }
@@ -231,8 +247,26 @@ impl TargetPool {
     /// # Errors
     /// [`RenderError::Gpu`] when it was not created (a planning bug, reported rather than a panic).
     pub fn view(&self, target: Target) -> Result<wgpu::TextureView> {
+        let format = target.format(self.formats);
+        self.texture(target).map(|t| {
+            // A view in another format than the texture's (the display's sRGB view) is drawn
+            // into, never stored to: sRGB formats cannot be storage textures.
+            let usage = (t.format() != format).then(|| t.usage() - wgpu::TextureUsages::STORAGE_BINDING);
+            t.create_view(&wgpu::TextureViewDescriptor { format: Some(format), usage, ..Default::default() })
+        })
+    }
+
+    /// The view a compute pass writes a target through: the texture's own format (for the
+    /// display target, [`DISPLAY_STORAGE_FORMAT`]).
+    ///
+    /// # Errors
+    /// As [`TargetPool::view`].
+    pub fn storage_view(&self, target: Target) -> Result<wgpu::TextureView> {
+        self.texture(target).map(crate::wgpu_util::view)
+    }
+
+    fn texture(&self, target: Target) -> Result<&wgpu::Texture> {
         self.get(target)
-            .map(crate::wgpu_util::view)
             .ok_or_else(|| RenderError::Gpu(format!("target {} was not created by the frame plan", target.name())))
     }
 }

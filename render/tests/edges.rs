@@ -161,6 +161,7 @@ fn the_overdraw_pass_exists_only_with_edge_antialiasing() {
         local_thickness_map: false,
         skin_detail: false,
         glitter: 0,
+        shadow_maps_kept: 0,
     };
     let settings =
         |aa, display| FrameSettings { width: 64, height: 48, display, max_side: 8192, max_color_bytes: 32, aa };

@@ -390,3 +390,49 @@ fn picking_and_captures_read_depth_on_every_backend() {
     let expected = (hit - cam.position()).dot((cam.target - cam.position()).normalize());
     assert!((z - expected).abs() < 0.5, "view depth {z} mm vs {expected} mm");
 }
+
+#[test]
+fn a_still_frame_keeps_its_shadow_map_and_a_moved_light_or_mesh_draws_it_again() {
+    use rouge_render::frame::Step;
+    use rouge_render::scene::LightKind;
+    let (w, h) = (96, 72);
+    let scene = Scene::studio();
+    let bare = Look::bare();
+    let (_gpu, mut r) = renderer(head(), &bare, &scene);
+    let cam = camera(&r);
+    let shadow_passes = |r: &Renderer, scene: &Scene| {
+        let plan = r.plan(scene, w, h, true).expect("plan");
+        plan.passes.iter().filter(|p| matches!(p.step, Step::Shadow(_))).count()
+    };
+    let mut frame = |r: &mut Renderer, scene: &Scene| {
+        r.render(scene, &cam, w, h, true).expect("render");
+        r.read_display().expect("read")
+    };
+    assert_eq!(shadow_passes(&r, &scene), 1, "the first frame draws the studio's shadow map");
+    let first = frame(&mut r, &scene);
+    assert_eq!(shadow_passes(&r, &scene), 0, "a still frame keeps it");
+    let explained = r.plan(&scene, w, h, true).expect("plan").explain();
+    assert!(explained.contains("shadow map 0 is kept"), "{explained}");
+    assert_eq!(frame(&mut r, &scene), first, "a kept shadow map gives the same frame");
+
+    // Another light direction: drawn again, and the frame is a fresh renderer's.
+    let mut turned = scene.clone();
+    turned.lights[0].kind = LightKind::Directional { toward: Vec3::new(0.5, 0.45, 0.75).normalize() };
+    assert_eq!(shadow_passes(&r, &turned), 1);
+    let after_turn = frame(&mut r, &turned);
+    assert_eq!(after_turn, render_display(head(), &bare, &turned, w, h), "the moved light's shadow is current");
+    assert_ne!(after_turn, first, "the shadow moved");
+    // Back to the first light: drawn again (the map holds the turned light's depths).
+    assert_eq!(shadow_passes(&r, &scene), 1);
+    assert_eq!(frame(&mut r, &scene), first);
+
+    // A moved mesh (the app's expressions): drawn again, also at the same positions.
+    r.move_mesh(head(), scene.skin.albedo).expect("move");
+    assert_eq!(shadow_passes(&r, &scene), 1, "a posed mesh draws its shadow map");
+    assert_eq!(frame(&mut r, &scene), first);
+
+    // Told to redraw every frame (`rouge bench render`'s moving-light row).
+    r.set_keep_shadow_maps(false);
+    assert_eq!(shadow_passes(&r, &scene), 1);
+    assert_eq!(frame(&mut r, &scene), first);
+}

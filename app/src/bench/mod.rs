@@ -270,10 +270,14 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
         Nothing,
         Parts,
         Wrinkles,
+        /// Nothing left out, but every shadow map drawn every frame, as under a moving light
+        /// (a still frame keeps its shadow maps: `Renderer::set_keep_shadow_maps`).
+        KeptShadowMaps,
     }
     for (label, look, skin_maps, skin_detail, left_out) in [
         ("bare", LookChoice::Bare, None, false, LeftOut::Nothing),
         ("default look (3 layers)", LookChoice::Default, None, false, LeftOut::Nothing),
+        ("default look, shadow map drawn every frame", LookChoice::Default, None, false, LeftOut::KeptShadowMaps),
         ("default look, no lashes, brows, teeth or tongue", LookChoice::Default, None, false, LeftOut::Parts),
         ("default look over skin maps", LookChoice::Default, Some(skin_maps.clone()), false, LeftOut::Nothing),
         (
@@ -297,7 +301,9 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
             RenderJob { look, width: args.width, height: args.height, skin_maps, skin_detail, ..RenderJob::default() };
         let loaded = job.load()?;
         let mut p = job.prepare_loaded(&loaded)?;
-        if left_out == LeftOut::Wrinkles {
+        if left_out == LeftOut::KeptShadowMaps {
+            p.renderer.set_keep_shadow_maps(false);
+        } else if left_out == LeftOut::Wrinkles {
             p.renderer.set_wrinkle_map(None)?;
         } else if left_out == LeftOut::Parts {
             use rouge_model::mesh::Part;

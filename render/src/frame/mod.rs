@@ -48,6 +48,10 @@ pub struct Uploaded {
     pub skin_detail: bool,
     /// The layers with glitter, one bit per layer index (`crate::gpu_look::GpuLook::glitter`).
     pub glitter: u8,
+    /// The shadow maps kept from an earlier frame and current for this one (bit i: layer i):
+    /// neither the mesh nor the light has moved since they were drawn
+    /// (`crate::passes::shadow::ShadowKey`).
+    pub shadow_maps_kept: u8,
 }
 
 /// The output of a frame.
@@ -200,7 +204,7 @@ impl FramePlan {
     pub fn new(scene: &Scene, uploaded: Uploaded, settings: FrameSettings) -> Result<FramePlan> {
         validate(scene, settings)?;
         let mut plan = stages::Planner::default();
-        let shadow_maps = plan.shadows(scene);
+        let shadow_maps = plan.shadows(scene, uploaded.shadow_maps_kept);
         let models = plan.subsurface_models(scene, uploaded, shadow_maps)?;
         let variant = Variant {
             layers: uploaded.layers,

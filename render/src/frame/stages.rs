@@ -56,12 +56,19 @@ impl Planner {
         self.skipped.push(Skipped { what: what.into(), why: why.into() });
     }
 
-    /// One shadow map per shadowing light, in scene order; returns how many.
-    pub fn shadows(&mut self, scene: &Scene) -> u32 {
+    /// One shadow map per shadowing light, in scene order; returns how many. The pass of a map
+    /// in `kept` (bit i: layer i) does not run: the map is current.
+    pub fn shadows(&mut self, scene: &Scene, kept: u8) -> u32 {
         let mut layer = 0;
         for (light, l) in scene.lights.iter().enumerate() {
             let kind = light_kind(l.kind);
-            if l.shadows {
+            if l.shadows && kept & (1 << layer) != 0 {
+                self.skip(
+                    format!("shadow pass for light {light} ({kind})"),
+                    format!("shadow map {layer} is kept from an earlier frame: neither the mesh nor the light has moved"),
+                );
+                layer += 1;
+            } else if l.shadows {
                 self.push(
                     Step::Shadow(ShadowStep { light, layer }),
                     vec![Resource::Mesh, Resource::Light { index: light, kind }],

@@ -23,6 +23,7 @@ fn uploaded(layers: u32) -> Uploaded {
         local_thickness_map: false,
         skin_detail: false,
         glitter: 0,
+        shadow_maps_kept: 0,
     }
 }
 

@@ -258,7 +258,7 @@ pub struct PipelineSpec<'a> {
 pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::RenderPipeline> {
     let device = &shared.device;
     let label = format!("{}::pipeline {:?}", spec.shader.owner, spec.variant);
-    let source = shader_source(spec.shader, spec.variant, shared.formats.encode_srgb_in_shader)?;
+    let source = shader_source(spec.shader, spec.variant, shared.formats.half_linear())?;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -474,7 +474,7 @@ impl Pipelines<wgpu::ComputePipeline> {
         self.get_or_insert(variant, || {
             let device = &shared.device;
             let label = format!("{}::compute {variant:?}", shader.owner);
-            let source = shader_source(shader, variant, shared.formats.encode_srgb_in_shader)?;
+            let source = shader_source(shader, variant, shared.formats.half_linear())?;
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(&label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),

@@ -6,7 +6,7 @@ use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::targets::DEPTH_FORMAT;
-use crate::uniforms::{MAX_LIGHTS, SHADOW_MAP_SIZE};
+use crate::uniforms::{LightUniform, MAX_LIGHTS, SHADOW_MAP_SIZE};
 use crate::wgpu_util::{buf, buffer_init, depth_clear, layout, texture, uniform_entry};
 
 /// The shadow pass: its layout, pipeline, one uniform per light slot and the shadow-map array.
@@ -17,6 +17,34 @@ pub struct ShadowPass {
     /// `ShadowPass` uniforms (WGSL: `index: vec4<u32>`), one per light slot.
     light_indices: Vec<wgpu::BindGroup>,
     maps: wgpu::Texture,
+    /// What each layer of `maps` holds ([`ShadowKey`]), `None` where nothing drawn is current.
+    drawn: [Option<ShadowKey>; MAX_LIGHTS],
+}
+
+/// What a shadow map's depths depend on: the mesh's positions (the renderer's count of mesh
+/// uploads and moves) and the light's view-projection (its direction or position, and the
+/// mesh's bounds, which frame it). A map drawn under the same key holds the same depths, so a
+/// frame whose key matches keeps it instead of drawing it again: a still face, or a brush stroke,
+/// draws no shadow pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowKey {
+    /// The renderer's mesh generation.
+    pub mesh_generation: u64,
+    /// The light's shadow view-projection, column-major.
+    pub view_proj: [[f32; 4]; 4],
+}
+
+/// The key of each shadow-map layer the scene's `lights` draw, by layer (only the scene's
+/// lights: the frame uniform's unused slots are zeros, which would read as layer 0).
+pub fn shadow_keys(lights: &[LightUniform], mesh_generation: u64) -> [Option<ShadowKey>; MAX_LIGHTS] {
+    let mut keys = [None; MAX_LIGHTS];
+    for l in lights {
+        // `LightUniform::shadow[0]` is the light's layer, −1 for a light without a shadow map.
+        if l.shadow[0] >= 0.0 && (l.shadow[0] as usize) < MAX_LIGHTS {
+            keys[l.shadow[0] as usize] = Some(ShadowKey { mesh_generation, view_proj: l.shadow_view_proj });
+        }
+    }
+    keys
 }
 
 /// One shadow map: the light (its index in the scene) and its layer of the shadow-map array.
@@ -52,7 +80,7 @@ impl FramePass for ShadowPass {
             })
             .collect();
         let maps = Self::create_maps(device, (1, 1), shared.formats.min_array_layers, "ShadowPass::maps (none)");
-        ShadowPass { layout, pipelines: Pipelines::default(), light_indices, maps }
+        ShadowPass { layout, pipelines: Pipelines::default(), light_indices, maps, drawn: [None; MAX_LIGHTS] }
     }
 
     fn name(step: &ShadowStep) -> String {
@@ -97,11 +125,46 @@ impl ShadowPass {
 
     /// Makes room for `count` shadow maps of [`SHADOW_MAP_SIZE`]² (kept while large enough).
     pub fn ensure_maps(&mut self, shared: &Shared, count: u32) {
-        if count == 0 || self.maps.depth_or_array_layers() >= count && self.maps.width() == SHADOW_MAP_SIZE {
+        if !self.must_reallocate(count) {
             return;
         }
         let layers = crate::targets::array_layers(count, shared.formats.min_array_layers);
         self.maps = Self::create_maps(&shared.device, (SHADOW_MAP_SIZE, SHADOW_MAP_SIZE), layers, "ShadowPass::maps");
+        self.drawn = [None; MAX_LIGHTS];
+    }
+
+    /// Whether `count` maps need a new array (none yet, too few layers).
+    fn must_reallocate(&self, count: u32) -> bool {
+        count > 0 && (self.maps.depth_or_array_layers() < count || self.maps.width() != SHADOW_MAP_SIZE)
+    }
+
+    /// The layers (bit i: layer i) whose map is current for `keys`: drawn under the same key, and
+    /// the array kept for as many maps as `keys` has.
+    pub fn current_layers(&self, keys: &[Option<ShadowKey>; MAX_LIGHTS]) -> u8 {
+        let count = keys.iter().flatten().count() as u32;
+        if self.must_reallocate(count) {
+            return 0;
+        }
+        let mut bits = 0u8;
+        for (layer, (key, drawn)) in keys.iter().zip(&self.drawn).enumerate() {
+            if key.is_some() && key == drawn {
+                bits |= 1 << layer;
+            }
+        }
+        bits
+    }
+
+    /// Notes that `layer` now holds the depths of `key` (after a frame that drew it was
+    /// submitted), or nothing current (`None`).
+    pub fn set_drawn(&mut self, layer: u32, key: Option<ShadowKey>) {
+        if let Some(slot) = self.drawn.get_mut(layer as usize) {
+            *slot = key;
+        }
+    }
+
+    /// Forgets what every layer holds, so the next frame draws every shadow map.
+    pub fn forget(&mut self) {
+        self.drawn = [None; MAX_LIGHTS];
     }
 
     /// The shadow-map array as the lighting pass samples it.

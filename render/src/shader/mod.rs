@@ -90,7 +90,7 @@ impl Variant {
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, encode_srgb: bool) -> [(&'static str, bool); 15] {
+    fn flags(self, half_linear: bool) -> [(&'static str, bool); 15] {
         [
             ("DIPOLE", self.dipole),
             ("ATLAS", self.atlas),
@@ -106,7 +106,7 @@ impl Variant {
             ("NORMAL_MAP", self.normal_map),
             ("SKIN_DETAIL", self.skin_detail),
             ("GLITTER", self.glitter),
-            ("ENCODE_SRGB", encode_srgb),
+            ("HALF_LINEAR", half_linear),
         ]
     }
 }
@@ -145,13 +145,13 @@ pub fn bare(_: Variant) -> Variant {
     Variant::BARE
 }
 
-/// The WGSL source of `pass` specialised for `variant`, for a display target that stores sRGB
-/// in hardware (`encode_srgb` false) or one that needs the shader to encode it (`encode_srgb`
-/// true: backends without view formats, see [`crate::targets::Formats`]).
+/// The WGSL source of `pass` specialised for `variant`, on a device whose linear output is
+/// Rgba32Float (`half_linear` false) or Rgba16Float (`half_linear` true: wgpu's GL backend, see
+/// [`crate::targets::Formats::linear`]).
 ///
 /// # Errors
 /// [`RenderError::Shader`] when the pass file breaks a preprocessor rule.
-pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> Result<String> {
+pub fn shader_source(pass: &PassShader, variant: Variant, half_linear: bool) -> Result<String> {
     let mut out = format!("const LAYERS: u32 = {}u;\n", variant.layers);
     out.push_str(&rouge_measure::layer_table::wgsl_constants());
     out.push_str(&rouge_measure::compositing::CompositingBasis::get().wgsl_constants());
@@ -159,7 +159,7 @@ pub fn shader_source(pass: &PassShader, variant: Variant, encode_srgb: bool) -> 
     out.push_str(&crate::glitter::wgsl_constants());
     out.push_str(&format!("const PORE_DEPTH_MM: f32 = {:?};\n", rouge_model::skin::detail::PORE_DEPTH_MM));
     out.push_str(include_str!("../shaders/common.wgsl"));
-    out.push_str(&preprocess(pass.file, pass.source, &variant.flags(encode_srgb))?);
+    out.push_str(&preprocess(pass.file, pass.source, &variant.flags(half_linear))?);
     Ok(out)
 }
 

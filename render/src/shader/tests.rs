@@ -41,21 +41,21 @@ fn every_shader_variant_validates() {
     // source once, for both display encodings (the hardware's on Vulkan, Metal, DX12, the
     // shader's on GL).
     let mut seen = std::collections::HashSet::new();
-    for encode_srgb in [false, true] {
+    for half_linear in [false, true] {
         for variant in Variant::all() {
             for pass in crate::passes::SHADERS {
-                let key = (pass.owner, (pass.reduce)(variant), encode_srgb);
+                let key = (pass.owner, (pass.reduce)(variant), half_linear);
                 if !seen.insert(key) {
                     continue;
                 }
-                let src = shader_source(pass, key.1, encode_srgb).unwrap_or_else(|e| panic!("{}: {e}", pass.owner));
+                let src = shader_source(pass, key.1, half_linear).unwrap_or_else(|e| panic!("{}: {e}", pass.owner));
                 let module = parse_source(pass, key.1, &src);
                 let mut validator = naga::valid::Validator::new(
                     naga::valid::ValidationFlags::all(),
                     naga::valid::Capabilities::default(),
                 );
                 if let Err(e) = validator.validate(&module) {
-                    panic!("{} {:?} encode_srgb {encode_srgb}: {}", pass.owner, key.1, e.emit_to_string(&src));
+                    panic!("{} {:?} half_linear {half_linear}: {}", pass.owner, key.1, e.emit_to_string(&src));
                 }
             }
         }
@@ -107,9 +107,13 @@ fn variants_compile_only_what_the_scene_uses() {
         source(GBUFFER, full).contains("@location(5) glitter")
             && !source(GBUFFER, plain).contains("@location(5) glitter")
     );
-    // The display encoding: only the GL variant applies the sRGB curve in the shader.
-    let encoded = shader_source(COMPOSITE, bare, true).expect("source");
-    assert!(encoded.contains("0.0031308") && !source(COMPOSITE, bare).contains("0.0031308"));
+    // The output image: RGBA8 for display, else the backend's linear format (half floats on GL).
+    let linear = Variant { display: false, ..bare };
+    assert!(source(COMPOSITE, bare).contains("var out_image: texture_storage_2d<rgba8unorm, write>"));
+    assert!(source(COMPOSITE, linear).contains("var out_image: LinearImage"));
+    let half = shader_source(COMPOSITE, linear, true).expect("source");
+    assert!(half.contains("<rgba16float, write>") && !half.contains("<rgba32float, write>"));
+    assert!(source(COMPOSITE, linear).contains("<rgba32float, write>"));
     // The thickness translucency: a G-buffer target and a pass only when a material uses it; the
     // shadow-map source's code only with that source.
     assert!(!source(GBUFFER, bare).contains("local_thickness:"));

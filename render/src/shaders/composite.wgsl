@@ -29,28 +29,37 @@ fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
     return mix(color, vec3<f32>(new_peak), g);
 }
 
-// The display target's encoding. Where the backend can view an sRGB texture as plain RGBA8
-// (Vulkan, Metal, DX12), the target is Rgba8UnormSrgb and the hardware encodes; where it cannot
-// (wgpu's GL backend has no view formats), the target is Rgba8Unorm and the shader applies the
-// sRGB transfer function ([IEC61966]) itself, so both hold the same encoded bytes.
-//#if ENCODE_SRGB
+// The display target is a plain RGBA8 storage texture (sRGB formats cannot be storage
+// textures), so the shader applies the sRGB transfer function ([IEC61966]) itself; the linear
+// output is Rgba32Float, or Rgba16Float on wgpu's GL backend.
+//#if HALF_LINEAR
+alias LinearImage = texture_storage_2d<rgba16float, write>;
+//#else
+alias LinearImage = texture_storage_2d<rgba32float, write>;
+//#endif
+//#if DISPLAY
+@group(1) @binding(4) var out_image: texture_storage_2d<rgba8unorm, write>;
+//#else
+@group(1) @binding(4) var out_image: LinearImage;
+//#endif
+
 fn display_encode(c: vec3<f32>) -> vec3<f32> {
     let lo = c * 12.92;
     let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
     return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
-//#else
-fn display_encode(c: vec3<f32>) -> vec3<f32> {
-    return c;
-}
-//#endif
 
-@fragment
-fn fs_composite(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(frag.xy);
+@compute @workgroup_size(8, 8)
+fn cs_composite(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(out_image);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let p = vec2<i32>(id.xy);
     var c: vec3<f32>;
     if textureLoad(coverage, p, 0).w == 0.0 {
-        let y = frag.y * frame.viewport.w;
+        // The pixel centre's height, 0 at the top and 1 at the bottom.
+        let y = (f32(id.y) + 0.5) * frame.viewport.w;
         c = frame.background.rgb * (1.0 - 0.6 * y);
     } else {
         var t = vec3<f32>(1.0);
@@ -60,8 +69,8 @@ fn fs_composite(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         c = textureLoad(diffuse, p, 0).rgb * t + textureLoad(surface, p, 0).rgb;
     }
 //#if DISPLAY
-    return vec4<f32>(display_encode(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0)))), 1.0);
+    textureStore(out_image, p, vec4<f32>(display_encode(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0)))), 1.0));
 //#else
-    return vec4<f32>(c, 1.0);
+    textureStore(out_image, p, vec4<f32>(c, 1.0));
 //#endif
 }
