@@ -102,6 +102,16 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
     }
 }
 
+/// Writes an output file (a JSON report, a plot, a map) through a temporary file beside it and a
+/// rename: a failed write (a full disk, a kill) leaves the previous file whole, never a partial one.
+///
+/// # Errors
+/// The write's error, naming `path`.
+pub fn write_output(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
+    use anyhow::Context as _;
+    rouge_measure::preset::write_atomic(path, bytes.as_ref()).with_context(|| format!("cannot write {}", path.display()))
+}
+
 fn main() -> ExitCode {
     // RUST_LOG=info shows the adapter and wgpu's warnings. By default only errors, and none from
     // wgpu-hal, whose loader messages (a Vulkan loader without drivers, say) would bury the one

@@ -284,3 +284,41 @@ fn import_reads_the_repeatability_per_wavelength_from_a_file() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("short.csv"), "{e}");
 }
+
+#[path = "../../model/tests/support/tmpfs.rs"]
+mod tmpfs;
+
+#[test]
+fn an_output_that_does_not_fit_on_the_disk_fails_naming_it_and_keeps_the_previous_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mount = dir.path().join("small disk");
+    let _disk = match tmpfs::Tmpfs::mount(&mount, "1m") {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("SKIPPED: the full-disk test needs to mount a tmpfs (root): {e}");
+            return;
+        }
+    };
+    let (png, json) = (mount.join("coverage.png"), mount.join("coverage.json"));
+    std::fs::write(&png, b"the previous plot").unwrap();
+    std::fs::write(&json, b"{\"previous\": true}").unwrap();
+    // Fill the disk.
+    {
+        use std::io::Write;
+        let mut filler = std::fs::File::create(mount.join("filler")).unwrap();
+        while filler.write_all(&[0u8; 4096]).is_ok() {}
+    }
+    for (flag, path) in [("--plot", &png), ("--json", &json)] {
+        let before = std::fs::read(path).unwrap();
+        let o = rouge(&["analyze", "coverage", "builtin:foundation_02_ivory", flag, path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{flag} onto a full disk succeeded");
+        assert!(err.contains(&path.display().to_string()) && err.contains("No space left"), "{err}");
+        let after = std::fs::read(path).unwrap();
+        assert!(after == before, "{flag}: the previous file is not kept whole ({} bytes now)", after.len());
+    }
+    let mut names: Vec<String> =
+        std::fs::read_dir(&mount).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["coverage.json", "coverage.png", "filler"], "no temporary file is left");
+}

@@ -14,10 +14,14 @@
 
 use std::collections::BTreeSet;
 use std::io::BufRead;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
+
+#[path = "support/tmpfs.rs"]
+mod tmpfs;
+use tmpfs::Tmpfs;
 
 use rouge_model::document::{Document, MAP_SIZE, PaintLayer, SubsurfaceChoice, TexelRect, UNTITLED};
 use rouge_model::look::{Look, ProjectPart, ThicknessMap, ThicknessSource, builtin_preset};
@@ -293,30 +297,6 @@ fn sigkill_at_any_moment_of_a_save_leaves_the_old_or_the_new_project() {
 
 // ------------------------------------------------------------------------------------------
 // Full disks
-
-/// A tmpfs of `size` mounted on `dir` while it lives.
-struct Tmpfs(PathBuf);
-
-impl Tmpfs {
-    fn mount(dir: &Path, size: &str) -> Result<Tmpfs, String> {
-        std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
-        let out = Command::new("mount")
-            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
-            .arg(dir)
-            .output()
-            .map_err(|e| format!("cannot run mount: {e}"))?;
-        if !out.status.success() {
-            return Err(String::from_utf8_lossy(&out.stderr).trim().to_string());
-        }
-        Ok(Tmpfs(dir.to_owned()))
-    }
-}
-
-impl Drop for Tmpfs {
-    fn drop(&mut self) {
-        let _ = Command::new("umount").arg(&self.0).status();
-    }
-}
 
 /// A layer of values that do not compress (a few MB of EXR).
 fn noisy_layer(doc: &mut Document, side: u32) {

@@ -404,7 +404,7 @@ fn a_still_frame_keeps_its_shadow_map_and_a_moved_light_or_mesh_draws_it_again()
         let plan = r.plan(scene, w, h, true).expect("plan");
         plan.passes.iter().filter(|p| matches!(p.step, Step::Shadow(_))).count()
     };
-    let mut frame = |r: &mut Renderer, scene: &Scene| {
+    let frame = |r: &mut Renderer, scene: &Scene| {
         r.render(scene, &cam, w, h, true).expect("render");
         r.read_display().expect("read")
     };

@@ -151,12 +151,11 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
             "reference_k": args.reference,
             "meshes": results,
         });
-        std::fs::write(path, serde_json::to_string_pretty(&json)?)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {
         let png = plot(&results, &device)?;
-        std::fs::write(path, png).with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, &png)?;
     }
     Ok(())
 }

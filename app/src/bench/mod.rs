@@ -234,8 +234,7 @@ fn compositing(args: &CompositingArgs) -> Result<()> {
             "spectral_cpu_ns_per_pixel": spectral_ns,
             "methods": rows,
         }))?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, text.as_bytes())?;
     }
     Ok(())
 }
@@ -252,7 +251,7 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     use rouge_render::study;
     let dir = tempfile_dir()?;
     let four = dir.join("four-layers.json");
-    std::fs::write(&four, FOUR_LAYERS).with_context(|| format!("cannot write {}", four.display()))?;
+    crate::write_output(&four, FOUR_LAYERS)?;
     let mut json = serde_json::Map::new();
     let mut out = String::new();
     let mut frame_rows = Vec::new();
@@ -387,8 +386,7 @@ fn render(args: &RenderBenchArgs) -> Result<()> {
     crate::emit(out.trim_end())?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, text.as_bytes())?;
     }
     let _ = std::fs::remove_dir_all(&dir);
     Ok(())
@@ -427,8 +425,7 @@ fn paint(args: &PaintBenchArgs) -> Result<()> {
     crate::emit(&out)?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&t)?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, text.as_bytes())?;
     }
     Ok(())
 }

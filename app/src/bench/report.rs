@@ -1,7 +1,7 @@
 //! How the benches report: a Markdown table for docs/BENCHMARKS.md on stdout and, when asked, the
 //! rows as JSON.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::Path;
 
 /// A Markdown table: `caption` on its own line, the header, the alignment row (the first `left`
@@ -28,8 +28,7 @@ pub fn emit_with_json<T: serde::Serialize>(table: &str, rows: &T, json: Option<&
     crate::emit(table.trim_end())?;
     if let Some(path) = json {
         let text = serde_json::to_string_pretty(rows)?;
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, text.as_bytes())?;
     }
     Ok(())
 }

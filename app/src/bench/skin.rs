@@ -181,7 +181,7 @@ pub fn run(args: &SkinBenchArgs) -> Result<()> {
     let coverage = markdown_table(&caption, &header, 3, cells);
     if let Some(path) = &args.plot {
         let png = coverage_plot(&cases, &device)?;
-        rouge_measure::preset::write_atomic(path, &png).with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, &png)?;
     }
     emit_with_json(
         &format!("{accuracy}\n\n{coverage}"),

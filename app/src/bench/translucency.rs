@@ -302,19 +302,17 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         }
         let text = serde_json::to_string_pretty(&fits)?;
         if let Some(path) = &args.json {
-            rouge_measure::preset::write_atomic(path, text.as_bytes())
-                .with_context(|| format!("{}: cannot write", path.display()))?;
+            crate::write_output(path, text.as_bytes())?;
         }
         return crate::emit(&text);
     }
     if let Some(path) = &args.plot {
         let png = plot(&rows)?;
-        rouge_measure::preset::write_atomic(path, &png).with_context(|| format!("{}: cannot write", path.display()))?;
+        crate::write_output(path, &png)?;
     }
     let text = serde_json::to_string_pretty(&rows)?;
     if let Some(path) = &args.json {
-        rouge_measure::preset::write_atomic(path, text.as_bytes())
-            .with_context(|| format!("{}: cannot write", path.display()))?;
+        crate::write_output(path, text.as_bytes())?;
     }
     crate::emit(&text)
 }

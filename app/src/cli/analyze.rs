@@ -211,13 +211,13 @@ pub(crate) fn viewing(common: &CommonArgs) -> Viewing {
 
 pub(crate) fn write_json(path: &Option<PathBuf>, value: &serde_json::Value) -> Result<()> {
     if let Some(p) = path {
-        std::fs::write(p, format!("{value:#}\n")).with_context(|| format!("cannot write {}", p.display()))?;
+        crate::write_output(p, format!("{value:#}\n"))?;
     }
     Ok(())
 }
 
 fn write_png(path: &Path, bytes: &[u8]) -> Result<()> {
-    std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+    crate::write_output(path, bytes)
 }
 
 fn um(mm: f64) -> String {

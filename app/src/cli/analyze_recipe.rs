@@ -293,7 +293,7 @@ pub fn run(args: &RecipeArgs) -> Result<()> {
             .collect::<Result<Vec<_>>>()?;
         let lights: Vec<String> = search.viewings.iter().map(|v| v.viewing.illuminant.name().to_string()).collect();
         let png = crate::cli::analyze_plot::recipes(&target_name, &target, &found, &lights)?;
-        std::fs::write(path, png).with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, png)?;
     }
     Ok(())
 }

@@ -48,8 +48,7 @@ pub fn run(args: &WebArgs) -> Result<()> {
     let (bare_png, bare_roughness) = bare_skin_texture(&loaded, &images, texture_px)?;
     let data = page_data(&loaded, (job.width, job.height), bare_roughness, texture_px)?;
     let html = share_page(&data, &export.document.glb_bytes(), &bare_png, job.width as f32 / job.height as f32);
-    rouge_measure::preset::write_atomic(&page_path, html.as_bytes())
-        .with_context(|| format!("{}: cannot write", page_path.display()))?;
+    crate::write_output(&page_path, html.as_bytes())?;
     eprintln!(
         "rouge: wrote {} ({} triangles, {} products, textures of {texture_px}², {:.1} MB, {:.2} s)",
         page_path.display(),

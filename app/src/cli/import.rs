@@ -186,8 +186,7 @@ fn convert(m: &Measurement, common: &CommonArgs, out: Option<&Path>) -> Result<(
         let title = format!("{} ({}, measured at D = {} mm)", preset.name, preset.kind.name(), preset.thickness_mm);
         let swatch = rouge_app::material_plots::hex_rgb(&preset.derived.r_inf_srgb_hex);
         let png = crate::plot_png::render_panels(&title, swatch, &panels)?;
-        rouge_measure::preset::write_atomic(path, &png)
-            .with_context(|| format!("cannot write the plot {}", path.display()))?;
+        crate::write_output(path, &png)?;
     }
     if common.json {
         let v = serde_json::json!({

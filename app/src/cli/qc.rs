@@ -6,7 +6,7 @@ use crate::cli::analyze::{load_layer, write_json};
 use crate::cli::analyze_metamerism::{read_one_spectrum, split_pick};
 use crate::cli::analyze_plot::{QcPoint, qc_report};
 use crate::cli::color::{parse_illuminant, parse_observer};
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
 use rouge_measure::analysis::lab_of;
 use rouge_measure::analysis::qc::{Metric, judge};
@@ -147,7 +147,7 @@ pub fn run(args: &QcArgs) -> Result<()> {
             c.viewing()
         );
         let png = qc_report(&title, std_lab, &points, metric, args.tolerance)?;
-        std::fs::write(path, png).with_context(|| format!("cannot write {}", path.display()))?;
+        crate::write_output(path, png)?;
     }
     Ok(())
 }

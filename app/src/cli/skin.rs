@@ -2,7 +2,7 @@
 //! command line (docs/SKIN.md).
 
 use crate::plot_png::{Chart, Marker, Series, render};
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use clap::{Args, Subcommand};
 use rouge_measure::analysis::skin::read_sampled_skins;
 use rouge_measure::colorimetry::{Colorimeter, Viewing};
@@ -11,7 +11,7 @@ use rouge_measure::skin::optics::{SkinOptics, rgb_medium};
 use rouge_measure::skin::{FitOptions, SkinFit, SkinParams, Specular, ita_deg, skin_tones};
 use rouge_measure::spectrum::{Extrapolation, Spectrum, working_wavelength_nm};
 use serde_json::json;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(Debug, Subcommand)]
@@ -148,12 +148,6 @@ pub fn run(cmd: &SkinCommand) -> Result<()> {
     }
 }
 
-/// Writes `bytes` atomically ([`rouge_measure::preset::write_atomic`]): a failed write leaves the
-/// previous file whole.
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    rouge_measure::preset::write_atomic(path, bytes).with_context(|| format!("cannot write {}", path.display()))
-}
-
 fn percentile(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() {
         return f64::NAN;
@@ -270,10 +264,10 @@ fn fit(a: &FitArgs) -> Result<()> {
                 })
             })
             .collect();
-        write_atomic(path, serde_json::to_string_pretty(&rows)?.as_bytes())?;
+        crate::write_output(path, serde_json::to_string_pretty(&rows)?.as_bytes())?;
     }
     if let Some(path) = &a.plot {
-        write_atomic(path, &fit_plot(&skins.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), &fits)?)?;
+        crate::write_output(path, &fit_plot(&skins.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), &fits)?)?;
     }
     Ok(())
 }
@@ -351,7 +345,7 @@ fn spectrum(a: &SpectrumArgs) -> Result<()> {
             "layers": layers,
             "rgb_medium": medium,
         });
-        write_atomic(path, serde_json::to_string_pretty(&v)?.as_bytes())?;
+        crate::write_output(path, serde_json::to_string_pretty(&v)?.as_bytes())?;
     }
     if let Some(path) = &a.medium {
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("skin");
@@ -367,7 +361,7 @@ fn spectrum(a: &SpectrumArgs) -> Result<()> {
             "source": "rouge_measure::skin::optics::rgb_medium (docs/SKIN.md)",
             "notes": format!("parameters: {}", serde_json::to_string(&p)?),
         });
-        write_atomic(path, serde_json::to_string_pretty(&v)?.as_bytes())?;
+        crate::write_output(path, serde_json::to_string_pretty(&v)?.as_bytes())?;
     }
     Ok(())
 }
@@ -447,7 +441,7 @@ fn tones(a: &TonesArgs) -> Result<()> {
     }
     crate::emit(out.trim_end())?;
     if let Some(path) = &a.json {
-        write_atomic(path, serde_json::to_string_pretty(&rows)?.as_bytes())?;
+        crate::write_output(path, serde_json::to_string_pretty(&rows)?.as_bytes())?;
     }
     if let Some(path) = &a.plot {
         let spectra_chart = Chart {
@@ -480,7 +474,7 @@ fn tones(a: &TonesArgs) -> Result<()> {
                 })
                 .collect(),
         };
-        write_atomic(
+        crate::write_output(
             path,
             &render(
                 "Rouge's skin tones, very light to very deep",

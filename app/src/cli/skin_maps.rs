@@ -5,7 +5,6 @@
 
 use anyhow::{Context, Result};
 use clap::Args;
-use rouge_measure::preset::write_atomic;
 use rouge_measure::skin::skin_tone_or_ita;
 use rouge_model::skin::generate::conditions_mask;
 use rouge_model::skin::{SkinConditions, SkinMaps};
@@ -44,7 +43,7 @@ pub struct MapsArgs {
 fn write_png(path: &Path, image: image::DynamicImage) -> Result<()> {
     let mut bytes = std::io::Cursor::new(Vec::new());
     image.write_to(&mut bytes, image::ImageFormat::Png).with_context(|| format!("cannot encode {}", path.display()))?;
-    write_atomic(path, bytes.get_ref()).with_context(|| format!("cannot write {}", path.display()))
+    crate::write_output(path, bytes.get_ref())
 }
 
 pub fn run(args: &MapsArgs) -> Result<()> {
@@ -56,7 +55,7 @@ pub fn run(args: &MapsArgs) -> Result<()> {
         let maps = SkinMaps::generate(&base, &args.conditions, args.seed, args.size_px)?;
         if let Some(path) = &args.out {
             let bytes = maps.to_exr_bytes().map_err(anyhow::Error::msg).context("skin maps")?;
-            write_atomic(path, &bytes).with_context(|| format!("cannot write {}", path.display()))?;
+            crate::write_output(path, &bytes)?;
             eprintln!("rouge: skin maps {0}×{0} → {1}", args.size_px, path.display());
         }
         if let Some(path) = &args.albedo {
