@@ -21,15 +21,14 @@
 //! Foundation, 2024.
 
 use crate::error::Result;
-use crate::gltf_export::bake::{SurfaceMaps, bake_surface, layer_coverage};
+use crate::gltf_export::bake::{SurfaceMaps, bake_surface};
+use crate::gltf_export::coat::split_coat;
 use crate::gltf_export::document::{encode_png, write_file};
 use crate::gltf_export::{base_color_texels, checked, gltf_roughness, layer_input, skin_surface};
 use crate::job::{Loaded, SkinTextureImages};
 use crate::renderer::LayerInput;
 use crate::scene::{Skin, SubsurfaceModel, fresnel_f0};
 use crate::sss::DiffusionProfile;
-use rouge_measure::finish::FinishKind;
-use rouge_model::look::LookLayer;
 use rouge_model::mesh::TriangleMesh;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -67,11 +66,6 @@ impl MaterialxExport {
     }
 }
 
-/// Whether a layer is a gloss (its finish's kind), which OpenPBR's coat stands for.
-fn is_coat(layer: &LookLayer) -> bool {
-    layer.preset.finish.is_some_and(|f| f.kind == FinishKind::Gloss)
-}
-
 /// The scene `loaded` (its mesh, look and skin, with the skin textures `images`) as an OBJ and an
 /// OpenPBR material with textures of `texture_px`² texels.
 ///
@@ -80,17 +74,11 @@ fn is_coat(layer: &LookLayer) -> bool {
 pub fn export_materialx(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<MaterialxExport> {
     let mesh = checked(&loaded.mesh)?;
     let skin = skin_surface(loaded, images);
-    let visible: Vec<&LookLayer> = loaded.look.visible_layers().collect();
-    let all: Vec<LayerInput<'_>> = visible.iter().copied().map(layer_input).collect();
+    let all: Vec<LayerInput<'_>> = loaded.look.visible_layers().map(layer_input).collect();
     let surface = bake_surface(&skin, &all, texture_px)?;
-    let coats: Vec<&LookLayer> = visible.iter().copied().filter(|l| is_coat(l)).collect();
+    let (under, coat) = split_coat(&all, texture_px);
     // The specular lobe below the coat: every layer but the glosses.
-    let below = if coats.is_empty() {
-        None
-    } else {
-        let under: Vec<LayerInput<'_>> = visible.iter().copied().filter(|l| !is_coat(l)).map(layer_input).collect();
-        Some(bake_surface(&skin, &under, texture_px)?)
-    };
+    let below = if coat.is_some() { Some(bake_surface(&skin, &under, texture_px)?) } else { None };
     let lobe = below.as_ref().unwrap_or(&surface);
     let side = (texture_px, texture_px);
 
@@ -112,20 +100,12 @@ pub fn export_materialx(loaded: &Loaded, images: &SkinTextureImages, texture_px:
     skin_inputs.push(("subsurface_weight", "float", Source::Value("1".into())));
     skin_inputs.push(("subsurface_radius", "float", Source::Distance(num(radius_mm))));
     skin_inputs.push(("subsurface_radius_scale", "color3", Source::Value(color(scale))));
-    if let Some(top) = coats.last() {
-        let mut weight = vec![0.0f32; (texture_px * texture_px) as usize];
-        for l in &coats {
-            for (w, &mm) in weight.iter_mut().zip(&l.map.resized(texture_px, texture_px).mm) {
-                *w = w.max(layer_coverage(mm));
-            }
-        }
-        let texels: Vec<u8> = weight.iter().map(|&w| unit_u8(w)).collect();
-        files.push(("skin_coat_weight.png".to_string(), encode_png(side, &texels, 1)?));
+    if let Some(coat) = &coat {
+        files.push(("skin_coat_weight.png".to_string(), encode_png(side, &coat.texels(), 1)?));
         skin_inputs.push(("coat_weight", "float", Source::Image("skin_coat_weight.png", "", None)));
         skin_inputs.push(("coat_color", "color3", Source::Value("1, 1, 1".into())));
-        let spec = top.preset.specular;
-        skin_inputs.push(("coat_roughness", "float", Source::Value(num(gltf_roughness(spec.roughness as f32)))));
-        skin_inputs.push(("coat_ior", "float", Source::Value(num(spec.ior as f32))));
+        skin_inputs.push(("coat_roughness", "float", Source::Value(num(gltf_roughness(coat.beckmann_roughness)))));
+        skin_inputs.push(("coat_ior", "float", Source::Value(num(coat.ior))));
     } else {
         skin_inputs.push(("coat_weight", "float", Source::Value("0".into())));
     }
@@ -148,7 +128,7 @@ pub fn export_materialx(loaded: &Loaded, images: &SkinTextureImages, texture_px:
     files.push((OBJ_FILE.to_string(), obj.into_bytes()));
     let mtlx = mtlx_text(&loaded.look.name, &skin_inputs, has_eyes.then_some(&eye_inputs[..]));
     files.push((MTLX_FILE.to_string(), mtlx.into_bytes()));
-    Ok(MaterialxExport { files, triangles, coat: !coats.is_empty() })
+    Ok(MaterialxExport { files, triangles, coat: coat.is_some() })
 }
 
 /// Where an OpenPBR input's value comes from.

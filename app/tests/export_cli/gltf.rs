@@ -178,3 +178,54 @@ fn bad_textures_and_unwritable_paths_fail_naming_them_and_leave_no_file() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("no/such/face"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_gloss_layer_becomes_a_clearcoat_over_the_lobe_of_the_layers_under_it() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let gloss = root().join("data/finishes/lipstick_02_red_gloss.json");
+    let look = dir.path().join("gloss.json");
+    let text = format!(
+        r#"{{"schema": "rouge-look", "version": 1, "name": "gloss", "layers": [
+            {{"preset": "builtin:foundation_02_ivory", "thickness": {{"uniform_mm": 0.015}}}},
+            {{"preset": {:?}, "thickness": {{"region": "lips", "thickness_mm": 0.01}}}}]}}"#,
+        gloss.to_str().expect("utf-8")
+    );
+    std::fs::write(&look, text).expect("look");
+    let glb = dir.path().join("gloss.glb");
+    let mut args = vec!["export", "gltf", "--look", look.to_str().expect("utf-8")];
+    args.extend(SCENE);
+    args.push(glb.to_str().expect("utf-8"));
+    let o = rouge(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&glb).expect("glb");
+    let (json, bin) = glb_chunks(&bytes);
+    assert!(json["extensionsUsed"].as_array().is_some_and(|e| e.iter().any(|x| x == "KHR_materials_clearcoat")));
+    let coat = &json["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    let preset = rouge_measure::preset::Preset::load(&gloss).expect("the gloss preset");
+    let want = (preset.specular.roughness as f32).sqrt();
+    assert!((coat["clearcoatRoughnessFactor"].as_f64().expect("roughness") as f32 - want).abs() < 1e-6, "{coat}");
+    let image = |name: &str| {
+        let images = json["images"].as_array().expect("images");
+        let i = images.iter().find(|i| i["name"] == name).unwrap_or_else(|| panic!("no {name} image"));
+        let view = &json["bufferViews"][i["bufferView"].as_u64().expect("view") as usize];
+        let at = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+        let len = view["byteLength"].as_u64().expect("length") as usize;
+        image::load_from_memory(&bin[at..at + len]).expect("PNG").to_rgb8()
+    };
+    let index = coat["clearcoatTexture"]["index"].as_u64().expect("texture") as usize;
+    assert_eq!(json["images"][index]["name"], "clearcoat");
+    // Full where the gloss covers, none outside the lips; the lobe under it is the foundation's,
+    // not the gloss's.
+    let (weight, rough) = (image("clearcoat"), image("metallic_roughness"));
+    let lips = rouge_model::look::Region::Lips.mask().resized(256, 256);
+    let coated: Vec<(u32, u32, u8)> = weight.enumerate_pixels().map(|(x, y, p)| (x, y, p.0[0])).filter(|c| c.2 > 0).collect();
+    assert!(coated.iter().filter(|c| c.2 == 255).count() > 20, "the coat covers the lips: {} texels", coated.len());
+    assert!(coated.iter().all(|&(x, y, _)| lips.mm[(y * 256 + x) as usize] > 0.0), "a coat outside the lips");
+    let foundation = rouge_model::look::builtin_preset("foundation_02_ivory").expect("foundation");
+    let under = (foundation.specular.roughness as f32).sqrt();
+    for &(x, y, _) in coated.iter().filter(|c| c.2 == 255) {
+        let got = f32::from(rough.get_pixel(x, y).0[1]) / 255.0;
+        assert!((got - under).abs() < 0.01, "base roughness {got} at ({x}, {y}): the foundation's is {under}, the gloss's {want}");
+    }
+    validate(&[&glb]);
+}

@@ -10,11 +10,14 @@
 //! Materials: the skin's base colour is the baked diffuse reflectance; its metallic-roughness
 //! texture holds the roughness of the one lobe standing for the renderer's stack of Kelemen
 //! lobes (metallic 0); `KHR_materials_ior` carries the skin's IOR where it is not glTF's 1.5, and
-//! `KHR_materials_specular` the F0 the layers add (a texture of F0 relative to the skin's). The
+//! `KHR_materials_specular` the F0 the layers add (a texture of F0 relative to the skin's), and
+//! `KHR_materials_clearcoat` a gloss layer (finish `gloss`, [`coat`]): its coverage as the coat's
+//! texture and its roughness, the lobe under it baked without it (glTF's coat has index 1.5). The
 //! eyes keep the renderer's per-vertex sclera, iris and pupil as `COLOR_0`. Subsurface
 //! scattering has no ratified extension: the baked albedo stands in for it.
 
 pub mod bake;
+pub mod coat;
 pub mod document;
 
 pub use bake::{SkinSurface, SurfaceMaps, TEXTURE_PX_RANGE, TexelSurface, bake_surface};
@@ -83,13 +86,17 @@ pub fn gltf_roughness(beckmann_m: f32) -> f32 {
 /// or what [`bake_surface`] refuses.
 pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
     let surface = bake_surface(&input.skin, input.layers, input.texture_px)?;
+    // A gloss is the clear coat; the lobe under it is baked from the other layers.
+    let (under, coat) = coat::split_coat(input.layers, input.texture_px);
+    let below = if coat.is_some() { Some(bake_surface(&input.skin, &under, input.texture_px)?) } else { None };
+    let lobe = below.as_ref().unwrap_or(&surface);
     // Tangents only where a normal texture uses them.
     let mesh = if input.normal_map.is_some() { with_tangents(input.mesh)? } else { checked(input.mesh)? };
     let skin = input.skin;
 
     let mut images = vec![
         Image { name: "base_color", png: encode_png(side(&surface), &base_color_texels(&surface), 3)? },
-        Image { name: "metallic_roughness", png: encode_png(side(&surface), &roughness_texels(&surface), 3)? },
+        Image { name: "metallic_roughness", png: encode_png(side(&surface), &roughness_texels(lobe), 3)? },
     ];
     let texture = |i: usize| json!({"index": i});
     let mut skin_material = json!({
@@ -108,13 +115,25 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
         skin_ext.insert("KHR_materials_ior".into(), ior.clone());
         extensions_used.push("KHR_materials_ior");
     }
-    if let Some((texels, color_factor)) = specular_texels(&surface, skin.ior) {
+    if let Some((texels, color_factor)) = specular_texels(lobe, skin.ior) {
         images.push(Image { name: "specular", png: encode_png(side(&surface), &texels, 4)? });
         skin_ext.insert(
             "KHR_materials_specular".into(),
             json!({"specularTexture": texture(images.len() - 1), "specularColorFactor": [num(color_factor), num(color_factor), num(color_factor)]}),
         );
         extensions_used.push("KHR_materials_specular");
+    }
+    if let Some(coat) = &coat {
+        images.push(Image { name: "clearcoat", png: encode_png(side(&surface), &coat.texels(), 1)? });
+        skin_ext.insert(
+            "KHR_materials_clearcoat".into(),
+            json!({
+                "clearcoatFactor": 1.0,
+                "clearcoatTexture": texture(images.len() - 1),
+                "clearcoatRoughnessFactor": num(gltf_roughness(coat.beckmann_roughness)),
+            }),
+        );
+        extensions_used.push("KHR_materials_clearcoat");
     }
     if let Some(n) = input.normal_map {
         images.push(Image { name: "normal", png: encode_png(n.dimensions(), n.as_raw(), 4)? });
