@@ -117,7 +117,8 @@ def test_schema(path: Path):
     assert len({f["source"] for f in fits}) == len(fits), "one fit per source"
     for f in fits:
         assert set(f) == {"source", "distortion", "power", "scale", "ambient", "fitted_on"}, f
-        assert f["source"] in ("baked", "shadow-map"), f
+        # `+kernel`: fitted under the screen-space kernel (`--subsurface screen-space-thickness`).
+        assert f["source"] in ("baked", "shadow-map", "baked+kernel", "shadow-map+kernel"), f
         assert all(math.isfinite(f[k]) for k in ("distortion", "power", "scale", "ambient")), f
         assert f["power"] > 0 and 0 <= f["scale"] <= 100 and f["ambient"] >= 0, f
         assert "RMSE" in f["fitted_on"] and "--fit-thickness" in f["fitted_on"], f

@@ -28,7 +28,7 @@
 
 use crate::error::{RenderError, Result};
 use glam::Vec3;
-use rouge_model::medium::Medium;
+use rouge_model::medium::{FittedTranslucency, Medium};
 use rouge_model::thickness::{BakeSettings, Falloff};
 
 /// The per-material parameters of \[BarreBrisebois2011\] (slides "fLTAmbient", "iLTPower",
@@ -75,21 +75,42 @@ impl TranslucencyParams {
         Ok(())
     }
 
-    /// The parameters fitted to the path tracer for `medium` and the local-thickness `source`
-    /// (`baked`, `shadow-map`) when its file carries them (`translucency` in `rouge-medium`),
-    /// else the three.js defaults; with the word for which.
-    pub fn for_medium(medium: Option<&Medium>, source: &str) -> (TranslucencyParams, &'static str) {
-        match medium.and_then(|m| m.translucency.iter().find(|t| t.source == source)) {
-            Some(t) => (
-                TranslucencyParams {
-                    distortion: t.distortion as f32,
-                    power: t.power as f32,
-                    scale: t.scale as f32,
-                    ambient: t.ambient as f32,
-                },
-                "fitted to the path tracer",
-            ),
+    /// The key of parameters fitted for the local-thickness `source` (`baked`, `shadow-map`),
+    /// with `+kernel` when fitted under the screen-space kernel (`screen-space+thickness`).
+    pub fn fit_key(source: &str, kernel: bool) -> String {
+        if kernel { format!("{source}+kernel") } else { source.to_string() }
+    }
+
+    /// The parameters fitted to the path tracer for `medium` and `key` ([`TranslucencyParams::fit_key`])
+    /// when its file carries them (`translucency` in `rouge-medium`), else the three.js defaults;
+    /// with the word for which.
+    pub fn for_medium(medium: Option<&Medium>, key: &str) -> (TranslucencyParams, &'static str) {
+        match medium.and_then(|m| own_fit(m, key)) {
+            Some(t) => (TranslucencyParams::from(t), "fitted to the path tracer"),
             None => (TranslucencyParams::THREE_JS, "three.js defaults"),
+        }
+    }
+
+    /// The parameters of the thickness term of `source` (`baked`, `shadow-map`) alone or under a
+    /// screen-space `kernel`, with the words for where they come from, the first that exists of:
+    /// those fitted for `medium` (under the kernel if asked: `SOURCE+kernel`); under a kernel,
+    /// those fitted for `medium` alone; those fitted for the built-in medium nearest to `medium`
+    /// ([`nearest_fitted`]: a medium nobody fitted gets a measured neighbour's); the three.js
+    /// defaults.
+    pub fn fitted(medium: Option<&Medium>, source: &str, kernel: bool) -> (TranslucencyParams, FitOrigin) {
+        let key = Self::fit_key(source, kernel);
+        let Some(m) = medium else {
+            return (TranslucencyParams::THREE_JS, FitOrigin::Defaults);
+        };
+        if let Some(t) = own_fit(m, &key) {
+            return (TranslucencyParams::from(t), FitOrigin::Fitted);
+        }
+        if let Some(t) = own_fit(m, source).filter(|_| kernel) {
+            return (TranslucencyParams::from(t), FitOrigin::FittedAlone);
+        }
+        match nearest_fitted(m, &key) {
+            Some((name, p)) => (p, FitOrigin::Nearest(name)),
+            None => (TranslucencyParams::THREE_JS, FitOrigin::Defaults),
         }
     }
 
@@ -153,6 +174,73 @@ impl ThicknessSource {
 /// σ_tr = √(3 σa (σa + σs′)) per channel, mm⁻¹: the diffusion approximation's effective
 /// transport coefficient (\[Jensen2001\] eq. 5 context; the decay rate of the fluence far from a
 /// source). Valid where scattering dominates (σs′ ≫ σa); elsewhere it still decreases with depth
+/// Where [`TranslucencyParams::fitted`]'s parameters come from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum FitOrigin {
+    /// Fitted for the medium (under the kernel, when one was asked for).
+    Fitted,
+    /// Fitted for the medium, for the thickness model alone (asked under a kernel).
+    FittedAlone,
+    /// Fitted for this built-in medium, the nearest to the one asked for.
+    Nearest(String),
+    /// The three.js defaults ([`TranslucencyParams::THREE_JS`]).
+    Defaults,
+}
+
+impl FitOrigin {
+    /// A short label: `fitted`, `fitted alone`, `nearest (NAME)`, `three.js`.
+    pub fn label(&self) -> String {
+        match self {
+            FitOrigin::Fitted => "fitted".into(),
+            FitOrigin::FittedAlone => "fitted alone".into(),
+            FitOrigin::Nearest(name) => format!("nearest ({name})"),
+            FitOrigin::Defaults => "three.js".into(),
+        }
+    }
+}
+
+/// `medium`'s own entry for `key`.
+fn own_fit<'a>(medium: &'a Medium, key: &str) -> Option<&'a FittedTranslucency> {
+    medium.translucency.iter().find(|t| t.source == key)
+}
+
+impl From<&FittedTranslucency> for TranslucencyParams {
+    fn from(t: &FittedTranslucency) -> TranslucencyParams {
+        TranslucencyParams {
+            distortion: t.distortion as f32,
+            power: t.power as f32,
+            scale: t.scale as f32,
+            ambient: t.ambient as f32,
+        }
+    }
+}
+
+/// The built-in medium nearest to `medium` with parameters fitted for `key`, and those
+/// parameters. Two media are as near as the light in them goes as far and is absorbed as much:
+/// the distance is the sum over the channels of the squared differences of ln σ_tr (the
+/// diffusion's decay rate, [`sigma_tr_per_mm`]) and of ln(1 − α′) (the part of each scattering
+/// absorbed), each floored at 10⁻⁶. A choice, measured on media nobody fitted
+/// (docs/BENCHMARKS.md).
+pub fn nearest_fitted(medium: &Medium, key: &str) -> Option<(String, TranslucencyParams)> {
+    let coordinates = |m: &Medium| {
+        let (tr, albedo) = (sigma_tr_per_mm(m), m.reduced_albedo());
+        std::array::from_fn::<f64, 6, _>(|i| {
+            if i < 3 { tr[i].max(1e-6).ln() } else { (1.0 - albedo[i - 3]).max(1e-6).ln() }
+        })
+    };
+    let here = coordinates(medium);
+    rouge_model::medium::BUILTIN_MEDIA
+        .iter()
+        .filter_map(|name| Medium::builtin(name).ok())
+        .filter_map(|m| {
+            let fit = own_fit(&m, key).map(TranslucencyParams::from)?;
+            let d: f64 = coordinates(&m).iter().zip(&here).map(|(a, b)| (a - b).powi(2)).sum();
+            Some((d, m.name.clone(), fit))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, name, fit)| (name, fit))
+}
+
 /// as a rate should.
 pub fn sigma_tr_per_mm(m: &Medium) -> [f64; 3] {
     std::array::from_fn(|c| {

@@ -197,6 +197,11 @@ pub enum SubsurfaceModel {
         params: TranslucencyParams,
         /// Where the local thickness comes from.
         source: ThicknessSource,
+        /// With a profile, the screen-space kernel of it blurs the skin's diffuse radiance, the
+        /// light through thin parts with it (`screen-space+thickness`: the kernel's scattering
+        /// near where light entered, the thickness term's light from behind, issue 31 item 4);
+        /// without, the diffuse light stays where it entered.
+        kernel: Option<DiffusionProfile>,
     },
     /// The directional dipole (\[Frisvad2014\]) or the standard dipole (\[Jensen2001\]) of the
     /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
@@ -229,18 +234,22 @@ impl SubsurfaceModel {
         match self {
             SubsurfaceModel::None => "none",
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
-            SubsurfaceModel::Thickness { .. } => "thickness",
+            SubsurfaceModel::Thickness { kernel: Some(_), .. } => "screen-space+thickness",
+            SubsurfaceModel::Thickness { kernel: None, .. } => "thickness",
             SubsurfaceModel::Dipole { kind, .. } => kind.name(),
             SubsurfaceModel::CubeAtlas { .. } => "cube-atlas",
         }
     }
 
-    /// The diffusion profile of the screen-space model, if that is the model.
+    /// The diffusion profile of the screen-space kernel, where the model has one (the
+    /// screen-space model, or the thickness model with a kernel).
     pub fn profile(&self) -> Option<&DiffusionProfile> {
         match self {
-            SubsurfaceModel::ScreenSpace { profile } => Some(profile),
+            SubsurfaceModel::ScreenSpace { profile } | SubsurfaceModel::Thickness { kernel: Some(profile), .. } => {
+                Some(profile)
+            }
             SubsurfaceModel::None
-            | SubsurfaceModel::Thickness { .. }
+            | SubsurfaceModel::Thickness { kernel: None, .. }
             | SubsurfaceModel::Dipole { .. }
             | SubsurfaceModel::CubeAtlas { .. } => None,
         }

@@ -48,7 +48,7 @@ fn backlit(subsurface: SubsurfaceModel) -> Scene {
 
 fn thickness(baked: bool, params: TranslucencyParams) -> SubsurfaceModel {
     let medium = Medium::builtin("skin1").expect("skin1");
-    SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(baked, Some(&medium), 16, 30.0) }
+    SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(baked, Some(&medium), 16, 30.0), kernel: None }
 }
 
 /// Mean red diffuse radiance of the skin pixels within 6 px of the right ear (the vertices

@@ -11,6 +11,7 @@
 use anyhow::Result;
 use rouge_model::medium::Medium;
 use rouge_render::SubsurfaceModel;
+use rouge_render::sss::DiffusionProfile;
 use rouge_render::job::Prepared;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::translucency::ReferenceImage;
@@ -140,22 +141,30 @@ pub struct Fit {
 }
 
 impl Fit {
-    /// Renders `scene` over the grid for `source` and adds it to the medium's equations.
+    /// Renders `scene` over the grid for `source` (under the screen-space `kernel` of the
+    /// scene's skin, if given) and adds it to the medium's equations.
     ///
     /// # Errors
     /// The renderer's errors.
-    pub fn add_scene(&mut self, scene: &mut Scene<'_>, source: &ThicknessSource) -> Result<()> {
+    pub fn add_scene(
+        &mut self,
+        scene: &mut Scene<'_>,
+        source: &ThicknessSource,
+        kernel: Option<&DiffusionProfile>,
+    ) -> Result<()> {
         // (Deformed scenes are for testing the sources, not for fitting: the caller leaves them out.)
         let medium = scene.medium.name.clone();
+        // Under a kernel the frame is still linear in s and a (the blur is linear).
         let model = |distortion, power, scale, ambient| SubsurfaceModel::Thickness {
             params: TranslucencyParams { distortion, power, scale, ambient },
             source: source.clone(),
+            kernel: kernel.cloned(),
         };
         scene.prepared.scene.skin.subsurface = model(0.0, 1.0, 0.0, 0.0);
         let (base, mask) = compared_pixels(scene.prepared, scene.reference)?;
         let entry = self
             .cells
-            .entry((medium, source.name().to_string()))
+            .entry((medium, TranslucencyParams::fit_key(source.name(), kernel.is_some())))
             .or_insert_with(|| (vec![NormalEquations::default(); DISTORTIONS.len() * POWERS.len()], Vec::new()));
         entry.1.push(scene.name.to_string());
         for (i, &distortion) in DISTORTIONS.iter().enumerate() {

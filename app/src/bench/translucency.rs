@@ -178,6 +178,8 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         loaded.rest_mesh = loaded.rest_mesh.as_ref().map(as_referenced);
         let mut prepared = job.prepare_loaded(&loaded)?;
         let (better, _) = Skin::from_medium(&medium, Profile::BetterDipole.model());
+        // The combination's skin: the better dipole's kernel over the half-space law.
+        let combined = better.clone().half_space();
         let sources = [true, false].map(|baked| {
             ThicknessSource::for_medium(baked, Some(&medium), args.thickness_rays, args.thickness_cutoff_mm)
         });
@@ -201,19 +203,22 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
                 eprintln!("  (deformed: measured, not fitted on)");
                 continue;
             }
-            prepared.renderer.set_mesh(&loaded.mesh, better.albedo)?;
-            prepared.scene.skin = better.clone();
-            for source in &sources {
-                upload(
-                    &mut prepared,
-                    if matches!(source, ThicknessSource::Baked(_)) {
+            // The thickness model alone, then under the kernel (`screen-space+thickness`).
+            prepared.scene.sss.samples = COMBINATION_SAMPLES;
+            for (skin, kernel) in [(&better, None), (&combined, better.subsurface.profile())] {
+                prepared.renderer.set_mesh(&loaded.mesh, skin.albedo)?;
+                prepared.scene.skin = skin.clone();
+                for source in &sources {
+                    let map = if matches!(source, ThicknessSource::Baked(_)) {
                         ThicknessMap::Current
                     } else {
                         ThicknessMap::None
-                    },
-                )?;
-                let mut scene = Scene { name: &name, medium: &medium, prepared: &mut prepared, reference: &reference };
-                fit.add_scene(&mut scene, source)?;
+                    };
+                    upload(&mut prepared, map)?;
+                    let mut scene =
+                        Scene { name: &name, medium: &medium, prepared: &mut prepared, reference: &reference };
+                    fit.add_scene(&mut scene, source, kernel)?;
+                }
             }
             continue;
         }
@@ -246,6 +251,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             configs.push(plain("screen-space", json!({"profile": "deon-skin", "samples": 11}), Skin::default(), 11));
         }
         configs.extend(thickness_configs(&medium, &sources, &better, rest_map.is_some(), bake.seconds));
+        configs.extend(combination_configs(&medium, &sources, &combined, bake.seconds));
         configs.extend(dipole_configs(&better, args.dipole_sweep));
         configs.extend(atlas_configs(&better, args.atlas_sweep));
         for Config { model, params, skin, samples, map } in configs {
@@ -330,17 +336,19 @@ fn thickness_configs(
     let mut out = Vec::new();
     for source in sources {
         let baked = matches!(source, ThicknessSource::Baked(_));
-        let fitted = TranslucencyParams::for_medium(Some(medium), source.name());
-        let mut sets = vec![("three.js", TranslucencyParams::THREE_JS)];
-        if fitted.0 != TranslucencyParams::THREE_JS {
-            sets.push(("fitted", fitted.0));
+        // The medium's own fit, or its nearest fitted neighbour's (a medium nobody fitted).
+        let (fitted, origin) = TranslucencyParams::fitted(Some(medium), source.name(), false);
+        let mut sets = vec![("three.js".to_string(), TranslucencyParams::THREE_JS)];
+        if fitted != TranslucencyParams::THREE_JS {
+            sets.push((origin.label(), fitted));
         }
         let poses: &[ThicknessMap] = match (baked, morphed) {
             (false, _) => &[ThicknessMap::None],
             (true, false) => &[ThicknessMap::Current],
             (true, true) => &[ThicknessMap::Current, ThicknessMap::Rest],
         };
-        for &(which, params) in &sets {
+        for (which, params) in &sets {
+            let params = *params;
             for &map in poses {
                 let source_name = match map {
                     ThicknessMap::Rest => "baked-rest-pose",
@@ -358,12 +366,57 @@ fn thickness_configs(
                     p["bake_s"] = json!(bake_seconds);
                 }
                 let skin =
-                    Skin { subsurface: SubsurfaceModel::Thickness { params, source: source.clone() }, ..skin.clone() };
+                    Skin { subsurface: SubsurfaceModel::Thickness { params, source: source.clone(), kernel: None }, ..skin.clone() };
                 out.push(Config { model: "thickness", params: p, skin, samples: 0, map });
             }
         }
     }
     out
+}
+
+/// Samples a direction of the combination's kernel (the kernel rows' middle).
+const COMBINATION_SAMPLES: u32 = 11;
+
+/// `screen-space+thickness` (issue 31 item 4): the kernel of `skin` (the better dipole over the
+/// half-space law) with the thickness term of each source, at the parameters fitted under the
+/// kernel where the medium's file has them (`baked+kernel`, `shadow-map+kernel`), else those
+/// fitted for the thickness model alone.
+fn combination_configs(medium: &Medium, sources: &[ThicknessSource], skin: &Skin, bake_seconds: f64) -> Vec<Config> {
+    let Some(profile) = skin.subsurface.profile() else {
+        return Vec::new();
+    };
+    sources
+        .iter()
+        .map(|source| {
+            let (params, origin) = TranslucencyParams::fitted(Some(medium), source.name(), true);
+            let which = origin.label();
+            let baked = matches!(source, ThicknessSource::Baked(_));
+            let mut p = json!({
+                "source": source.name(),
+                "params": which,
+                "profile": "better-dipole",
+                "samples": COMBINATION_SAMPLES,
+                "diffuse": "half-space",
+                "distortion": params.distortion,
+                "power": params.power,
+                "scale": params.scale,
+                "ambient": params.ambient,
+            });
+            if baked {
+                p["bake_s"] = json!(bake_seconds);
+            }
+            let subsurface =
+                SubsurfaceModel::Thickness { params, source: source.clone(), kernel: Some(profile.clone()) };
+            let map = if baked { ThicknessMap::Current } else { ThicknessMap::None };
+            Config {
+                model: "screen-space+thickness",
+                params: p,
+                skin: Skin { subsurface, ..skin.clone() },
+                samples: COMBINATION_SAMPLES,
+                map,
+            }
+        })
+        .collect()
 }
 
 /// The dipole models' configurations: both BSSRDFs at the default settings; with `sweep`, the
@@ -430,6 +483,7 @@ fn square_label(r: &Row) -> Option<String> {
     let number = |k: &str| r.params.get(k).and_then(|v| v.as_u64()).unwrap_or(0);
     match r.model.as_str() {
         "thickness" => Some(format!("thickness {} {}", text("source"), text("params"))),
+        "screen-space+thickness" => Some(format!("kernel + thickness {} {}", text("source"), text("params"))),
         "directional-dipole" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }

@@ -69,7 +69,7 @@ fn thickness_model(baked: bool) -> SubsurfaceModel {
     let skin1 = skin1();
     let source = ThicknessSource::for_medium(baked, skin1, 64, 30.0);
     let (params, _) = TranslucencyParams::for_medium(skin1, source.name());
-    SubsurfaceModel::Thickness { params, source }
+    SubsurfaceModel::Thickness { params, source, kernel: None }
 }
 
 impl RougeApp {

@@ -125,7 +125,7 @@ pub(super) fn material(skin: &Skin) -> String {
         skin.subsurface.name()
     );
     match &skin.subsurface {
-        SubsurfaceModel::Thickness { params, source } => {
+        SubsurfaceModel::Thickness { params, source, .. } => {
             let (falloff, cutoff) = source.falloff();
             let _ = write!(
                 out,

@@ -203,7 +203,7 @@ impl Planner {
     /// The screen-space blur when the skin's model is screen-space and the width is not 0; its
     /// kernel, or why it does not run.
     pub fn screen_space(&mut self, scene: &Scene) -> Result<Option<SeparableKernel>> {
-        let SubsurfaceModel::ScreenSpace { profile } = &scene.skin.subsurface else {
+        let Some(profile) = scene.skin.subsurface.profile() else {
             self.skip("SSS passes", format!("the skin's subsurface model is {}", scene.skin.subsurface.name()));
             return Ok(None);
         };
@@ -277,7 +277,7 @@ impl Planner {
         local_thickness_map: bool,
         shadow_maps: u32,
     ) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
-        let SubsurfaceModel::Thickness { params, source } = &scene.skin.subsurface else {
+        let SubsurfaceModel::Thickness { params, source, .. } = &scene.skin.subsurface else {
             self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
             return Ok(None);
         };

@@ -74,19 +74,30 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     // Baked: the G-buffer samples the map, the pass adds to the diffuse radiance, no SSS.
     let params = TranslucencyParams::THREE_JS;
     let baked = ThicknessSource::for_medium(true, None, 8, 20.0);
-    scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone() };
+    scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone(), kernel: None };
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
     assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
     assert!(plan.targets.contains(&Target::LocalThickness) && plan.kernel.is_none());
     assert_eq!(plan.variant.thickness, ThicknessVariant::Baked);
     assert!(read(&plan, 1, Resource::LocalThicknessMap));
+    // Under a kernel (screen-space+thickness): the term is added to the diffuse radiance before
+    // the blur, which then scatters it with the rest.
+    let kernel = Some(crate::sss::DiffusionProfile::skin());
+    scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone(), kernel };
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(
+        steps(&plan),
+        ["shadow 0", "gbuffer", "lighting", "thickness", "sss horizontal", "sss vertical", "composite"]
+    );
+    assert!(plan.kernel.is_some() && plan.explain().contains("subsurface screen-space+thickness"));
+    scene.skin.subsurface = SubsurfaceModel::Thickness { params, source: baked.clone(), kernel: None };
     // The baked source without its map is an error that says what to do.
     let none = Uploaded { local_thickness_map: false, ..up };
     let err = FramePlan::new(&scene, none, settings()).expect_err("no map");
     assert!(err.to_string().contains("set_local_thickness"), "{err}");
     // Shadow-map source: lights without a shadow map get no term, and with none the pass goes.
     scene.skin.subsurface =
-        SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(false, None, 8, 20.0) };
+        SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(false, None, 8, 20.0), kernel: None };
     let plan = FramePlan::new(&scene, none, settings()).expect("plan");
     assert_eq!(plan.variant.thickness, ThicknessVariant::ShadowMap);
     assert!(
@@ -99,7 +110,7 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     assert!(text.contains("no light has a shadow map") && text.contains("thickness translucency of light 0"), "{text}");
     // Parameters out of their domain.
     scene.skin.subsurface =
-        SubsurfaceModel::Thickness { params: TranslucencyParams { power: -1.0, ..params }, source: baked };
+        SubsurfaceModel::Thickness { params: TranslucencyParams { power: -1.0, ..params }, source: baked, kernel: None };
     assert!(FramePlan::new(&scene, up, settings()).is_err());
 }
 

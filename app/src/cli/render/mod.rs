@@ -79,6 +79,10 @@ pub enum Subsurface {
     ScreenSpace,
     /// Fast thickness translucency ([BarreBrisebois2011]).
     Thickness,
+    /// The screen-space kernel with the thickness translucency's light from behind added before
+    /// the blur: the kernel near where light entered, the thickness term through thin parts; its
+    /// parameters fitted under the kernel where the --medium's file has them.
+    ScreenSpaceThickness,
     /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
     /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
@@ -126,8 +130,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     match args.subsurface {
         Subsurface::None => job.scene.skin.subsurface = SubsurfaceModel::None,
         Subsurface::ScreenSpace => {}
-        Subsurface::Thickness => {
-            job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref())?;
+        Subsurface::Thickness | Subsurface::ScreenSpaceThickness => {
+            // The material's kernel, kept under the thickness term in the combination.
+            let combined = args.subsurface == Subsurface::ScreenSpaceThickness;
+            let kernel = job.scene.skin.subsurface.profile().filter(|_| combined).cloned();
+            job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref(), kernel)?;
             job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
         }
         Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,

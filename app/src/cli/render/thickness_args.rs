@@ -7,6 +7,7 @@ use clap::Args;
 use rouge_model::medium::Medium;
 use rouge_render::SubsurfaceModel;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::sss::DiffusionProfile;
 
 #[derive(Debug, Clone, Args)]
 pub struct ThicknessArgs {
@@ -51,8 +52,9 @@ pub enum BakePose {
 }
 
 impl ThicknessArgs {
-    /// The skin's thickness model for a material of `medium` (if any).
-    pub fn model(&self, medium: Option<&Medium>) -> Result<SubsurfaceModel> {
+    /// The skin's thickness model for a material of `medium` (if any), under the screen-space
+    /// `kernel` of a profile if given (`--subsurface screen-space-thickness`).
+    pub fn model(&self, medium: Option<&Medium>, kernel: Option<DiffusionProfile>) -> Result<SubsurfaceModel> {
         let params = match &self.translucency {
             Some(v) => {
                 let &[distortion, power, scale, ambient] = v.as_slice() else {
@@ -64,7 +66,7 @@ impl ThicknessArgs {
             }
             None => {
                 let source = if self.thickness_source == ThicknessSourceArg::Baked { "baked" } else { "shadow-map" };
-                TranslucencyParams::for_medium(medium, source).0
+                TranslucencyParams::fitted(medium, source, kernel.is_some()).0
             }
         };
         let baked = self.thickness_source == ThicknessSourceArg::Baked;
@@ -75,6 +77,6 @@ impl ThicknessArgs {
             bail!("--thickness-rays 0: at least one ray per vertex");
         }
         let source = ThicknessSource::for_medium(baked, medium, self.thickness_rays, self.thickness_cutoff_mm);
-        Ok(SubsurfaceModel::Thickness { params, source })
+        Ok(SubsurfaceModel::Thickness { params, source, kernel })
     }
 }
