@@ -118,3 +118,36 @@ fn the_light_scale_multiplies_the_term_exactly_and_light_in_front_adds_nothing()
     let (b, _) = capture(&gpu, &mesh, &plain);
     assert_eq!(a.diffuse, b.diffuse);
 }
+
+#[test]
+fn parameters_come_from_the_medium_its_fit_under_the_kernel_or_its_nearest_fitted_neighbour() {
+    use rouge_render::local_thickness::FitOrigin;
+    let skin1 = Medium::builtin("skin1").expect("skin1");
+    let own = |key| TranslucencyParams::for_medium(Some(&skin1), key).0;
+    // skin1's own fits, alone and under the kernel.
+    assert_eq!(TranslucencyParams::fitted(Some(&skin1), "baked", false), (own("baked"), FitOrigin::Fitted));
+    assert_eq!(TranslucencyParams::fitted(Some(&skin1), "baked", true), (own("baked+kernel"), FitOrigin::Fitted));
+    assert_ne!(own("baked"), own("baked+kernel"));
+    // Under a kernel without a fit under it: the fit alone.
+    let mut alone = skin1.clone();
+    alone.translucency.retain(|t| !t.source.ends_with("+kernel"));
+    assert_eq!(TranslucencyParams::fitted(Some(&alone), "shadow-map", true).1, FitOrigin::FittedAlone);
+    // skin2 (nobody fitted it) gets skin1's; a copy of marble without its fits gets marble's; the
+    // apple (very little absorption) a milk's or marble's, never skin's or ketchup's.
+    let skin2 = Medium::builtin("skin2").expect("skin2");
+    assert!(skin2.translucency.is_empty(), "the test needs an unfitted medium");
+    assert_eq!(
+        TranslucencyParams::fitted(Some(&skin2), "shadow-map", true),
+        (own("shadow-map+kernel"), FitOrigin::Nearest("skin1".into()))
+    );
+    let mut marble = Medium::builtin("marble").expect("marble");
+    let marble_fit = TranslucencyParams::for_medium(Some(&marble), "baked").0;
+    marble.translucency.clear();
+    marble.name = "marble, unfitted".into();
+    assert_eq!(TranslucencyParams::fitted(Some(&marble), "baked", false), (marble_fit, FitOrigin::Nearest("marble".into())));
+    let apple = Medium::builtin("apple").expect("apple");
+    let (_, origin) = TranslucencyParams::fitted(Some(&apple), "baked", false);
+    assert!(matches!(&origin, FitOrigin::Nearest(n) if n == "skimmilk" || n == "marble"), "{origin:?}");
+    // No medium: the three.js defaults.
+    assert_eq!(TranslucencyParams::fitted(None, "baked", true), (TranslucencyParams::THREE_JS, FitOrigin::Defaults));
+}
