@@ -109,7 +109,8 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
 /// The write's error, naming `path`.
 pub fn write_output(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
     use anyhow::Context as _;
-    rouge_measure::preset::write_atomic(path, bytes.as_ref()).with_context(|| format!("cannot write {}", path.display()))
+    rouge_measure::preset::write_atomic(path, bytes.as_ref())
+        .with_context(|| format!("cannot write {}", path.display()))
 }
 
 fn main() -> ExitCode {

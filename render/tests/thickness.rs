@@ -48,7 +48,11 @@ fn backlit(subsurface: SubsurfaceModel) -> Scene {
 
 fn thickness(baked: bool, params: TranslucencyParams) -> SubsurfaceModel {
     let medium = Medium::builtin("skin1").expect("skin1");
-    SubsurfaceModel::Thickness { params, source: ThicknessSource::for_medium(baked, Some(&medium), 16, 30.0), kernel: None }
+    SubsurfaceModel::Thickness {
+        params,
+        source: ThicknessSource::for_medium(baked, Some(&medium), 16, 30.0),
+        kernel: None,
+    }
 }
 
 /// Mean red diffuse radiance of the skin pixels within 6 px of the right ear (the vertices
@@ -144,7 +148,10 @@ fn parameters_come_from_the_medium_its_fit_under_the_kernel_or_its_nearest_fitte
     let marble_fit = TranslucencyParams::for_medium(Some(&marble), "baked").0;
     marble.translucency.clear();
     marble.name = "marble, unfitted".into();
-    assert_eq!(TranslucencyParams::fitted(Some(&marble), "baked", false), (marble_fit, FitOrigin::Nearest("marble".into())));
+    assert_eq!(
+        TranslucencyParams::fitted(Some(&marble), "baked", false),
+        (marble_fit, FitOrigin::Nearest("marble".into()))
+    );
     let apple = Medium::builtin("apple").expect("apple");
     let (_, origin) = TranslucencyParams::fitted(Some(&apple), "baked", false);
     assert!(matches!(&origin, FitOrigin::Nearest(n) if n == "skimmilk" || n == "marble"), "{origin:?}");

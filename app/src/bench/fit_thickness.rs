@@ -11,9 +11,9 @@
 use anyhow::Result;
 use rouge_model::medium::Medium;
 use rouge_render::SubsurfaceModel;
-use rouge_render::sss::DiffusionProfile;
 use rouge_render::job::Prepared;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::sss::DiffusionProfile;
 use rouge_render::translucency::ReferenceImage;
 use rouge_render::translucency::compared_pixels;
 use serde::Serialize;

@@ -365,8 +365,10 @@ fn thickness_configs(
                 if baked {
                     p["bake_s"] = json!(bake_seconds);
                 }
-                let skin =
-                    Skin { subsurface: SubsurfaceModel::Thickness { params, source: source.clone(), kernel: None }, ..skin.clone() };
+                let skin = Skin {
+                    subsurface: SubsurfaceModel::Thickness { params, source: source.clone(), kernel: None },
+                    ..skin.clone()
+                };
                 out.push(Config { model: "thickness", params: p, skin, samples: 0, map });
             }
         }

@@ -218,14 +218,18 @@ fn a_gloss_layer_becomes_a_clearcoat_over_the_lobe_of_the_layers_under_it() {
     // not the gloss's.
     let (weight, rough) = (image("clearcoat"), image("metallic_roughness"));
     let lips = rouge_model::look::Region::Lips.mask().resized(256, 256);
-    let coated: Vec<(u32, u32, u8)> = weight.enumerate_pixels().map(|(x, y, p)| (x, y, p.0[0])).filter(|c| c.2 > 0).collect();
+    let coated: Vec<(u32, u32, u8)> =
+        weight.enumerate_pixels().map(|(x, y, p)| (x, y, p.0[0])).filter(|c| c.2 > 0).collect();
     assert!(coated.iter().filter(|c| c.2 == 255).count() > 20, "the coat covers the lips: {} texels", coated.len());
     assert!(coated.iter().all(|&(x, y, _)| lips.mm[(y * 256 + x) as usize] > 0.0), "a coat outside the lips");
     let foundation = rouge_model::look::builtin_preset("foundation_02_ivory").expect("foundation");
     let under = (foundation.specular.roughness as f32).sqrt();
     for &(x, y, _) in coated.iter().filter(|c| c.2 == 255) {
         let got = f32::from(rough.get_pixel(x, y).0[1]) / 255.0;
-        assert!((got - under).abs() < 0.01, "base roughness {got} at ({x}, {y}): the foundation's is {under}, the gloss's {want}");
+        assert!(
+            (got - under).abs() < 0.01,
+            "base roughness {got} at ({x}, {y}): the foundation's is {under}, the gloss's {want}"
+        );
     }
     validate(&[&glb]);
 }

@@ -65,7 +65,9 @@ impl Planner {
             if l.shadows && kept & (1 << layer) != 0 {
                 self.skip(
                     format!("shadow pass for light {light} ({kind})"),
-                    format!("shadow map {layer} is kept from an earlier frame: neither the mesh nor the light has moved"),
+                    format!(
+                        "shadow map {layer} is kept from an earlier frame: neither the mesh nor the light has moved"
+                    ),
                 );
                 layer += 1;
             } else if l.shadows {

@@ -109,8 +109,11 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     let text = plan.explain();
     assert!(text.contains("no light has a shadow map") && text.contains("thickness translucency of light 0"), "{text}");
     // Parameters out of their domain.
-    scene.skin.subsurface =
-        SubsurfaceModel::Thickness { params: TranslucencyParams { power: -1.0, ..params }, source: baked, kernel: None };
+    scene.skin.subsurface = SubsurfaceModel::Thickness {
+        params: TranslucencyParams { power: -1.0, ..params },
+        source: baked,
+        kernel: None,
+    };
     assert!(FramePlan::new(&scene, up, settings()).is_err());
 }
 
