@@ -91,7 +91,7 @@ fn the_viewport_keeps_its_size_as_the_status_line_changes_and_no_plane_is_drawn(
     assert!(h.state().thickness_under_cursor().is_some(), "the readout is shown");
     assert_eq!(h.state().viewport_size(), away, "the viewport moved as the thickness readout came");
     // An error on the status line: a stroke on the locked lipstick.
-    h.get_all_by_label("Lock").next().expect("lock buttons").click();
+    h.get_all_by_label(rouge_app::gui::layers::UNLOCKED).next().expect("lock buttons").click();
     h.run_steps(2);
     let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
     h.state_mut().paint_stroke_screen(&[lips, lips + egui::vec2(6.0, 0.0)]);

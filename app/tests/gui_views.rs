@@ -113,9 +113,10 @@ fn a_locked_layer_refuses_a_stroke_with_a_message_and_a_look_applies_in_one_clic
     let lips = h.state().screen_pos_of(h.state().lip_point().expect("lips")).expect("on screen");
     // Lock the top layer (the lipstick) with its lock button, as a user would.
     // The list shows the top layer first.
-    h.get_all_by_label("Lock").next().expect("lock buttons").click();
+    h.get_all_by_label(rouge_app::gui::layers::UNLOCKED).next().expect("lock buttons").click();
     h.run_steps(2);
     assert!(h.state().document().layers[2].locked);
+    assert_eq!(h.query_all_by_label(rouge_app::gui::layers::LOCKED).count(), 1, "the lock shows it is locked");
     let before = h.state().document().layers[2].map.mm.clone();
     h.state_mut().paint_stroke_screen(&[lips, lips + egui::vec2(6.0, 0.0)]);
     assert!(h.state().document().layers[2].map.mm == before, "the locked layer took no paint");
@@ -263,7 +264,8 @@ fn a_long_layer_name_neither_widens_the_panel_nor_pushes_the_buttons_out() {
         after.width()
     );
     let layers = h.state().document().layers.len();
-    for label in ["Up", "Down", "Dup", "Del"] {
+    use rouge_app::gui::layers::{DOWN, DUPLICATE, REMOVE, UP};
+    for label in [UP, DOWN, DUPLICATE, REMOVE] {
         let nodes: Vec<_> = h.query_all_by_label(label).collect();
         assert_eq!(nodes.len(), layers, "one {label} button a layer");
         for n in nodes {

@@ -4,6 +4,20 @@
 
 use super::*;
 
+// The layer row's buttons are icons (egui's bundled emoji-icon font), so the name gets the room.
+/// Lock toggle, unlocked.
+pub const UNLOCKED: &str = "🔓";
+/// Lock toggle, locked.
+pub const LOCKED: &str = "🔒";
+/// Move the layer up.
+pub const UP: &str = "⏶";
+/// Move the layer down.
+pub const DOWN: &str = "⏷";
+/// Duplicate the layer.
+pub const DUPLICATE: &str = "🗐";
+/// Remove the layer.
+pub const REMOVE: &str = "🗑";
+
 impl RougeApp {
     pub(super) fn layers_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("Layers");
@@ -21,7 +35,7 @@ impl RougeApp {
                 }
                 let mut locked = l.locked;
                 if ui
-                    .toggle_value(&mut locked, "Lock")
+                    .toggle_value(&mut locked, if l.locked { LOCKED } else { UNLOCKED })
                     .on_hover_text("locked: paint, fill and clear are refused (one undo step)")
                     .changed()
                 {
@@ -31,16 +45,16 @@ impl RougeApp {
                 // The buttons from the right edge, the name in what is left, cut short with "…"
                 // (whole on hover): a long name once widened the panel over the viewport.
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                    if ui.small_button("Del").on_hover_text("remove").clicked() {
+                    if ui.small_button(REMOVE).on_hover_text("remove").clicked() {
                         action = Some(Box::new(move |d: &mut Document| d.remove_layer(i)));
                     }
-                    if ui.small_button("Dup").on_hover_text("duplicate above (one undo step)").clicked() {
+                    if ui.small_button(DUPLICATE).on_hover_text("duplicate above (one undo step)").clicked() {
                         action = Some(Box::new(move |d: &mut Document| d.duplicate_layer(i)));
                     }
-                    if ui.small_button("Down").on_hover_text("move down").clicked() && i > 0 {
+                    if ui.small_button(DOWN).on_hover_text("move down").clicked() && i > 0 {
                         action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i - 1)));
                     }
-                    if ui.small_button("Up").on_hover_text("move up").clicked() && i + 1 < n {
+                    if ui.small_button(UP).on_hover_text("move up").clicked() && i + 1 < n {
                         action = Some(Box::new(move |d: &mut Document| d.move_layer(i, i + 1)));
                     }
                     let name = egui::Button::selectable(active == i, l.name.as_str()).truncate();

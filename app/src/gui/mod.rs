@@ -23,7 +23,7 @@ mod face;
 mod frame_stats;
 pub use frame_stats::with_timestamp_queries;
 mod lashes;
-mod layers;
+pub mod layers;
 mod looks_panel;
 pub mod materials;
 mod materials_panel;
