@@ -471,6 +471,22 @@ fn a_look_carries_its_mascara_and_checks_it() {
     assert!(e.contains("colour"), "{e}");
 }
 
+#[test]
+fn a_look_carries_its_brow_gel_and_checks_it() {
+    use rouge_model::mesh::brow_gel::BrowGel;
+    let path = std::path::Path::new("brows.json");
+    let text = r#"{"schema": "rouge-look", "version": 1, "name": "Brows", "layers": [],
+        "brow_gel": {"color": [0.045, 0.027, 0.016], "strength": 0.7}}"#;
+    let look = Look::from_json(text, path).expect("a look with a brow gel");
+    assert_eq!(look.brow_gel, Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.7 }));
+    assert_eq!(Look::from_json(&look.to_json(), path).expect("round trip"), look);
+    assert!(!Look::bare().to_json().contains("brow_gel"));
+    let e = Look::from_json(&text.replace("0.7", "1.7"), path).expect_err("too strong").to_string();
+    assert!(e.contains("brows.json") && e.contains("brow gel strength 1.7"), "{e}");
+    let e = Look::from_json(&text.replace("\"strength\"", "\"hold\""), path).expect_err("unknown").to_string();
+    assert!(e.contains("hold"), "{e}");
+}
+
 /// A look names its maps by path, so they can be anything: a pipe blocked the open for ever and
 /// `/dev/zero` was read until memory ran out. Both are refused before a byte is read, and so
 /// is a map wider than the limit (its header read, its pixels never decoded).

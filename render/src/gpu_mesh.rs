@@ -235,10 +235,17 @@ impl Default for HairAlbedo {
 }
 
 impl HairAlbedo {
-    /// The natural hairs with `mascara`'s colour on the lashes, if it has one.
-    pub fn with_mascara(mascara: Option<&rouge_model::mesh::lashes::Mascara>) -> HairAlbedo {
+    /// The natural hairs with `mascara`'s colour on the lashes, if it has one, and `brow_gel`'s
+    /// tint on the brows ([`rouge_model::mesh::brow_gel::BrowGel::tint`]).
+    pub fn with_products(
+        mascara: Option<&rouge_model::mesh::lashes::Mascara>,
+        brow_gel: Option<&rouge_model::mesh::brow_gel::BrowGel>,
+    ) -> HairAlbedo {
         let natural = HairAlbedo::default();
-        HairAlbedo { lash: mascara.and_then(|m| m.color).unwrap_or(natural.lash), ..natural }
+        HairAlbedo {
+            lash: mascara.and_then(|m| m.color).unwrap_or(natural.lash),
+            brow: brow_gel.map_or(natural.brow, |g| g.tint(natural.brow)),
+        }
     }
 }
 

@@ -96,6 +96,8 @@ pub struct RenderJob {
     pub face: FacePose,
     /// A mascara on the default head's lashes, over the look's own (`"mascara"`), if any.
     pub mascara: Option<Mascara>,
+    /// A tinted brow gel on the default head's brows, over the look's own (`"brow_gel"`), if any.
+    pub brow_gel: Option<rouge_model::mesh::brow_gel::BrowGel>,
 }
 
 impl Default for RenderJob {
@@ -121,6 +123,7 @@ impl Default for RenderJob {
             thickness_bake_rest_pose: false,
             face: FacePose::default(),
             mascara: None,
+            brow_gel: None,
         }
     }
 }
@@ -268,7 +271,8 @@ impl RenderJob {
         let Loaded { mesh, look, scene, camera, rest_mesh, .. } = loaded;
         let SkinTextureImages { albedo, normal } = self.skin_textures()?;
         let mut renderer = Renderer::new(&gpu.device, &gpu.queue);
-        renderer.set_hair_albedo(crate::gpu_mesh::HairAlbedo::with_mascara(look.mascara.as_ref()));
+        renderer
+            .set_hair_albedo(crate::gpu_mesh::HairAlbedo::with_products(look.mascara.as_ref(), look.brow_gel.as_ref()));
         renderer.set_mesh(mesh, scene.skin.albedo)?;
         renderer.set_textures(albedo.as_ref(), normal.as_ref())?;
         renderer.set_look(look)?;
@@ -366,9 +370,10 @@ impl RenderJob {
                 ))
             })?,
         };
-        // The mascara drawn (the job's over the look's) is the look's from here on: its colour
-        // goes to the lashes' albedo and to exports.
-        let look = Look { mascara, ..look };
+        // The mascara and brow gel drawn (the job's over the look's) are the look's from here
+        // on: their colours go to the hairs' albedo and to exports.
+        let brow_gel = self.brow_gel.or(look.brow_gel);
+        let look = Look { mascara, brow_gel, ..look };
         Ok(Loaded { mesh, look, scene, env, camera, rest_mesh })
     }
 }

@@ -112,7 +112,7 @@ impl Renderer {
     }
 
     /// The lashes' and brows' albedo of the meshes uploaded from now on ([`Renderer::set_mesh`]):
-    /// a mascara's colour on the lashes ([`crate::HairAlbedo::with_mascara`]).
+    /// a mascara's colour on the lashes, a brow gel's on the brows ([`crate::HairAlbedo::with_products`]).
     pub fn set_hair_albedo(&mut self, hair: crate::HairAlbedo) {
         self.hair_albedo = hair;
     }

@@ -121,3 +121,43 @@ fn mascara_darkens_and_lengthens_the_lash_line() {
     );
     assert!(redness(&red) > redness(&natural) + 5.0, "a red mascara reddens the lashes");
 }
+
+#[test]
+fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
+    use rouge_model::mesh::brow_gel::BrowGel;
+    let frame = |brow_gel: Option<BrowGel>, brows: bool| {
+        let job = RenderJob {
+            look: LookChoice::Bare,
+            width: SIZE,
+            height: SIZE,
+            subdivision: 1,
+            close_up: Some(AnatomyRegion::Forehead),
+            brow_gel,
+            ..RenderJob::default()
+        };
+        let loaded = job.load().expect("load");
+        let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
+        if !brows {
+            let no_brows = loaded.mesh.only(|g| g.part() != Part::Brow);
+            prepared.renderer.set_mesh(&no_brows, loaded.scene.skin.albedo).expect("set mesh");
+        }
+        prepared.render_display().expect("render")
+    };
+    let red = Some(BrowGel { color: [0.6, 0.02, 0.02], strength: 1.0 });
+    // Without the brow hairs the gel changes nothing.
+    assert!(frame(None, false) == frame(red, false), "the gel changed a pixel that is not a brow hair");
+    // With them, the brow pixels redden.
+    let (natural, gel) = (frame(None, true), frame(red, true));
+    let redder = (0..(SIZE * SIZE) as usize)
+        .filter(|&i| i32::from(gel[4 * i]) - i32::from(natural[4 * i]) > 20 && gel[4 * i + 1] <= natural[4 * i + 1] + 5)
+        .count();
+    println!("brow pixels reddened by the gel: {redder}");
+    assert!(redder > 30, "the gel reddens the brows: {redder} pixels");
+    // Half strength: half way.
+    let half = frame(Some(BrowGel { strength: 0.5, ..red.expect("red") }), true);
+    let between = (0..(SIZE * SIZE) as usize)
+        .filter(|&i| i32::from(gel[4 * i]) - i32::from(natural[4 * i]) > 20)
+        .filter(|&i| half[4 * i] > natural[4 * i] && half[4 * i] < gel[4 * i])
+        .count();
+    assert!(between * 10 > redder * 8, "half strength lies between: {between} of {redder}");
+}

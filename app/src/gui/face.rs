@@ -124,7 +124,8 @@ impl RougeApp {
         let mesh = self.face.mesh.get_or_insert_with(|| plan.rest().clone());
         plan.update(&positions, mesh);
         self.view.framing = Bounds::of(&plan.rest().positions);
-        self.gpu.renderer.set_hair_albedo(rouge_render::HairAlbedo::with_mascara(mascara.as_ref()));
+        let brow_gel = self.editor.document().brow_gel;
+        self.gpu.renderer.set_hair_albedo(rouge_render::HairAlbedo::with_products(mascara.as_ref(), brow_gel.as_ref()));
         self.gpu.set_posed_mesh(mesh.clone(), self.view.skin_albedo()).map_err(|e| e.to_string())?;
         self.face.surface_stale = true;
         self.view.needs_render = true;

@@ -287,6 +287,9 @@ pub struct Document {
     /// The look's mascara on the default head's lashes, saved with the project's `look.json`.
     /// Change it through [`Document::set_mascara`] (one undo step); `None` is natural lashes.
     pub mascara: Option<Mascara>,
+    /// The look's tinted brow gel, carried from the look to the project's `look.json` (the app
+    /// has no control for it yet: `rouge render --brow-gel` and looks set it).
+    pub brow_gel: Option<crate::mesh::brow_gel::BrowGel>,
     /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
     /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
     /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which
@@ -328,6 +331,7 @@ impl Document {
             face: FacePose::default(),
             saved_face: FacePose::default(),
             mascara: look.mascara,
+            brow_gel: look.brow_gel,
             skin: None,
             saved_skin: None,
             history: History::new(),
@@ -352,7 +356,7 @@ impl Document {
     pub fn to_look(&self) -> Look {
         let layers =
             self.layers.iter().enumerate().map(|(i, l)| look_layer(l, &layer_files(i, l), l.effective_map())).collect();
-        Look { name: self.name.clone(), layers, mascara: self.mascara }
+        Look { name: self.name.clone(), layers, mascara: self.mascara, brow_gel: self.brow_gel }
     }
 
     // --------------------------------------------------------------------------------------

@@ -417,7 +417,7 @@ fn write_project_files(doc: &Document, dir: &Path, look_path: &Path, new: &mut N
     }
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
-    let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara };
+    let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara, brow_gel: doc.brow_gel };
     let part = ProjectPart { face, skin, subsurface: Some(doc.subsurface) };
     write_atomic(look_path, look.to_project_json(Some(&part)).as_bytes())
         .map_err(|e| ModelError::file(look_path, e))?;

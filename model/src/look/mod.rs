@@ -141,6 +141,8 @@ pub struct Look {
     pub layers: Vec<LookLayer>,
     /// The mascara on the lashes, if any (`"mascara"`: [`crate::mesh::lashes::Mascara`]).
     pub mascara: Option<crate::mesh::lashes::Mascara>,
+    /// A tinted brow gel on the brow hairs, if any (`"brow_gel"`: [`crate::mesh::brow_gel::BrowGel`]).
+    pub brow_gel: Option<crate::mesh::brow_gel::BrowGel>,
 }
 
 /// The document's shape with the layers left untyped: errors here are not about a layer.
@@ -156,6 +158,8 @@ struct LookIn<L> {
     layers: Vec<L>,
     #[serde(default)]
     mascara: Option<crate::mesh::lashes::Mascara>,
+    #[serde(default)]
+    brow_gel: Option<crate::mesh::brow_gel::BrowGel>,
     #[serde(default)]
     project: Option<ProjectPart>,
 }
@@ -205,6 +209,8 @@ struct LookOut<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     mascara: Option<crate::mesh::lashes::Mascara>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    brow_gel: Option<crate::mesh::brow_gel::BrowGel>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     project: Option<&'a ProjectPart>,
 }
 
@@ -237,7 +243,7 @@ fn layer_label(v: &serde_json::Value) -> String {
 impl Look {
     /// A look without layers: bare skin.
     pub fn bare() -> Look {
-        Look { name: "Bare".into(), layers: Vec::new(), mascara: None }
+        Look { name: "Bare".into(), layers: Vec::new(), mascara: None, brow_gel: None }
     }
 
     /// The default look on the default head, bottom to top: Foundation 02 Ivory, 15 µm
@@ -269,7 +275,7 @@ impl Look {
             layer("blush_01_petal", ThicknessSource::Region { region: Region::Cheeks, mm: 0.008 }),
             layer("lipstick_02_red", ThicknessSource::Region { region: Region::Lips, mm: 0.02 }),
         ];
-        Look { name: "Default".into(), layers: layers.into_iter().flatten().collect(), mascara: None }
+        Look { name: "Default".into(), layers: layers.into_iter().flatten().collect(), mascara: None, brow_gel: None }
     }
 
     /// Reads a look file; presets, masks and maps are resolved relative to its folder.
@@ -344,7 +350,10 @@ impl Look {
         if let Some(m) = &doc.mascara {
             m.validate().map_err(|e| err(e.to_string()))?;
         }
-        Ok((Look { name, layers, mascara: doc.mascara }, doc.project))
+        if let Some(g) = &doc.brow_gel {
+            g.validate().map_err(|e| err(e.to_string()))?;
+        }
+        Ok((Look { name, layers, mascara: doc.mascara, brow_gel: doc.brow_gel }, doc.project))
     }
 
     /// Pretty JSON that [`Look::from_json`] reads back to an equal look (from the same folder:
@@ -372,6 +381,7 @@ impl Look {
                 })
                 .collect(),
             mascara: self.mascara,
+            brow_gel: self.brow_gel,
             project,
         };
         serde_json::to_string_pretty(&doc).map(|s| s + "\n").unwrap_or_default()

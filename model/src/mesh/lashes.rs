@@ -111,7 +111,7 @@ impl Mascara {
                 .split_once('=')
                 .ok_or_else(|| ModelError::Invalid(format!("mascara `{item}`: expected KEY=VALUE")))?;
             if k.trim() == "color" {
-                m.color = Some(parse_color(v.trim())?);
+                m.color = Some(parse_color("mascara", v.trim())?);
                 continue;
             }
             let v: f32 =
@@ -132,14 +132,15 @@ impl Mascara {
     }
 }
 
-/// A mascara colour: a named shade or `R/G/B` linear albedo.
-fn parse_color(v: &str) -> Result<[f32; 3]> {
+/// A hair product's colour (`what`: `mascara`, `brow gel`): a named shade
+/// ([`Mascara::named_color`]) or `R/G/B` linear albedo.
+pub(crate) fn parse_color(what: &str, v: &str) -> Result<[f32; 3]> {
     if let Some(c) = Mascara::named_color(v) {
         return Ok(c);
     }
     let parts: Vec<&str> = v.split('/').collect();
     let bad =
-        || ModelError::Invalid(format!("mascara color `{v}`: use black, brown, blue or R/G/B (linear albedo 0-1)"));
+        || ModelError::Invalid(format!("{what} color `{v}`: use black, brown, blue or R/G/B (linear albedo 0-1)"));
     if parts.len() != 3 {
         return Err(bad());
     }

@@ -3,6 +3,7 @@
 //! Units: positions are millimetres. Loaders take a declared `scale_to_mm` factor because
 //! scans come in arbitrary units (metres, centimetres, millimetres).
 
+pub mod brow_gel;
 mod cap;
 pub mod deform;
 mod gather;

@@ -203,7 +203,7 @@ pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u3
         normal_map: images.normal.as_ref(),
         texture_px,
         look_name: &loaded.look.name,
-        hair: crate::gpu_mesh::HairAlbedo::with_mascara(loaded.look.mascara.as_ref()),
+        hair: crate::gpu_mesh::HairAlbedo::with_products(loaded.look.mascara.as_ref(), loaded.look.brow_gel.as_ref()),
     })
 }
 

@@ -180,7 +180,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 r.size_px
             ))?;
         }
-        crate::emit(&mesh_parts_line(&loaded_scene.mesh, job.mascara.or(loaded_scene.look.mascara)))?;
+        crate::emit(&mesh_parts_line(&loaded_scene.mesh, &loaded_scene.look))?;
         if let Some(w) = job.wrinkle_weights()? {
             crate::emit(&format!("wrinkles (left / right, of each family's depth): {w}"))?;
         }
@@ -219,23 +219,28 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// The plan's line on the mesh: its triangles per part, where the hairs are drawn, the mascara.
-fn mesh_parts_line(
-    mesh: &rouge_model::mesh::TriangleMesh,
-    mascara: Option<rouge_model::mesh::lashes::Mascara>,
-) -> String {
+/// The plan's line on the mesh: its triangles per part, where the hairs are drawn, the mascara
+/// and the brow gel drawn (`look`'s: the job's over the file's).
+fn mesh_parts_line(mesh: &rouge_model::mesh::TriangleMesh, look: &rouge_model::look::Look) -> String {
     use rouge_model::mesh::Part;
     let parts = mesh.part_triangles();
     let counts: Vec<String> = parts.iter().map(|(p, n)| format!("{} {n}", p.name())).collect();
     let mut line = format!("mesh: {} triangles ({})", mesh.triangle_count(), counts.join(", "));
     if parts.iter().any(|(p, _)| matches!(p, Part::Lash | Part::Brow)) {
         line.push_str("; the lashes and brows are triangles of the shadow and G-buffer passes, no pass of their own");
-        match mascara.filter(|m| !m.is_none()) {
+        match look.mascara.filter(|m| !m.is_none()) {
             Some(m) => line.push_str(&format!(
                 "; mascara length {:.2}×, volume {:.2}×, curl {:.0}°",
                 m.length, m.volume, m.curl_deg
             )),
             None => line.push_str("; natural lashes (no mascara)"),
+        }
+        match look.brow_gel {
+            Some(g) => line.push_str(&format!(
+                "; brow gel {:.3}, {:.3}, {:.3} (linear) at strength {:.2}",
+                g.color[0], g.color[1], g.color[2], g.strength
+            )),
+            None => line.push_str("; natural brows (no brow gel)"),
         }
     }
     line

@@ -76,6 +76,12 @@ pub struct SceneArgs {
     /// `--mascara length=1.4,volume=2.5,curl=20,color=black`.
     #[arg(long, value_parser = parse_mascara)]
     pub mascara: Option<rouge_model::mesh::lashes::Mascara>,
+    /// A tinted brow gel on the default head's brows, over the look's: color=black|brown|R/G/B
+    /// (linear albedo), strength=X (0-1, the part of the hairs coated; 1 if left out); e.g.
+    /// `--brow-gel color=brown,strength=0.7`. A brow pencil or powder is a layer on the `brows`
+    /// region instead.
+    #[arg(long, value_parser = parse_brow_gel)]
+    pub brow_gel: Option<rouge_model::mesh::brow_gel::BrowGel>,
     /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
     /// chicken1, chicken2, cream, ketchup, marble, potato, skimmilk, skin1, skin2, wholemilk) or
     /// a `rouge-medium` JSON file. The skin's albedo, IOR and scattering profile then come from
@@ -338,6 +344,7 @@ impl SceneArgs {
             thickness_bake_rest_pose: false,
             face: self.face()?,
             mascara: self.mascara,
+            brow_gel: self.brow_gel,
         };
         self.note_regions(&job);
         Ok((job, fit))
@@ -431,6 +438,10 @@ fn parse_region(s: &str) -> Result<rouge_model::skin::AnatomyRegion, String> {
         let names: Vec<_> = AnatomyRegion::ALL.iter().map(|r| r.name()).collect();
         format!("unknown region {s:?}: use one of {}", names.join(", "))
     })
+}
+
+fn parse_brow_gel(s: &str) -> Result<rouge_model::mesh::brow_gel::BrowGel, String> {
+    rouge_model::mesh::brow_gel::BrowGel::parse(s).map_err(|e| e.to_string())
 }
 
 fn parse_mascara(s: &str) -> Result<rouge_model::mesh::lashes::Mascara, String> {
