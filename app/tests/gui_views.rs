@@ -188,9 +188,9 @@ fn the_mascara_switch_and_sliders_coat_the_lashes_as_one_undo_step_each() {
     let data = tempfile::tempdir().expect("tempdir");
     let mut h = harness(data.path());
     assert!(h.state().document().mascara.is_none());
-    h.get_by_label("Lashes").scroll_to_me();
+    h.get_by_label("Lashes and brows").scroll_to_me();
     h.run_steps(1);
-    h.get_by_label("Lashes").click_accesskit();
+    h.get_by_label("Lashes and brows").click_accesskit();
     h.run_steps(2);
     h.get_by_label("Mascara").scroll_to_me();
     h.run_steps(1);
@@ -217,6 +217,38 @@ fn the_mascara_switch_and_sliders_coat_the_lashes_as_one_undo_step_each() {
     h.run_steps(2);
     assert_eq!(h.state().document().mascara, Some(longest));
     assert!(lash_extent_mm(h.state()) > long, "length 2 reaches past length {}", coated.length);
+}
+
+#[test]
+fn the_brow_gel_switch_tints_the_brows_as_one_undo_step() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = harness(data.path());
+    let natural = h.state().hair_albedo().brow;
+    h.get_by_label("Lashes and brows").scroll_to_me();
+    h.run_steps(1);
+    h.get_by_label("Lashes and brows").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("Brow gel").scroll_to_me();
+    h.run_steps(1);
+    h.get_by_label("Brow gel").click_accesskit();
+    h.run_steps(2);
+    let gel = h.state().document().brow_gel.expect("the switch puts a gel on");
+    assert_eq!(h.state().hair_albedo().brow, gel.tint(natural), "the viewport's brows take the gel's tint");
+    assert_ne!(h.state().hair_albedo().brow, natural);
+    assert!(h.state().document().is_modified());
+    // Undo takes it off the document and the brows; redo puts it back.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert!(h.state().document().brow_gel.is_none());
+    assert_eq!(h.state().hair_albedo().brow, natural);
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().document().brow_gel, Some(gel));
+    // A gel out of range is refused with a message and changes nothing.
+    h.state_mut().commit_brow_gel(Some(rouge_model::mesh::brow_gel::BrowGel { strength: 2.0, ..gel }));
+    assert_eq!(h.state().document().brow_gel, Some(gel));
+    let (ok, message) = h.state().message().expect("a message").clone();
+    assert!(!ok && message.contains("strength 2"), "{message}");
 }
 
 #[test]

@@ -465,7 +465,7 @@ fn a_mascara_is_one_undo_step_and_a_bad_one_changes_nothing() {
     use rouge_model::mesh::lashes::Mascara;
     let mut doc = Document::from_look(&Look::bare());
     let m = Mascara { length: 1.5, volume: 3.0, curl_deg: 20.0, color: None };
-    assert_eq!(doc.set_mascara(Some(m)).expect("valid"), Change::Mascara);
+    assert_eq!(doc.set_mascara(Some(m)).expect("valid"), Change::Hair);
     assert!(doc.is_modified() && doc.can_undo());
     assert_eq!(doc.set_mascara(Some(m)).expect("valid"), Change::Nothing, "the same mascara is no step");
     // Out of range: an error naming the field, and the document keeps its mascara.
@@ -473,12 +473,12 @@ fn a_mascara_is_one_undo_step_and_a_bad_one_changes_nothing() {
     assert!(e.to_string().contains("volume"), "{e}");
     assert_eq!(doc.mascara, Some(m));
     // A mascara that changes nothing is natural lashes.
-    assert_eq!(doc.set_mascara(Some(Mascara::default())).expect("valid"), Change::Mascara);
+    assert_eq!(doc.set_mascara(Some(Mascara::default())).expect("valid"), Change::Hair);
     assert_eq!(doc.mascara, None);
-    assert_eq!(doc.undo(), Change::Mascara);
+    assert_eq!(doc.undo(), Change::Hair);
     assert_eq!(doc.mascara, Some(m));
-    assert_eq!(doc.undo(), Change::Mascara);
+    assert_eq!(doc.undo(), Change::Hair);
     assert_eq!((doc.mascara, doc.is_modified()), (None, false), "back to the opened state");
-    assert_eq!(doc.redo(), Change::Mascara);
+    assert_eq!(doc.redo(), Change::Hair);
     assert_eq!(doc.mascara, Some(m));
 }

@@ -111,6 +111,11 @@ impl Renderer {
         self.shared.formats
     }
 
+    /// The lashes' and brows' albedo the uploaded mesh was given ([`Renderer::set_hair_albedo`]).
+    pub fn hair_albedo(&self) -> crate::HairAlbedo {
+        self.hair_albedo
+    }
+
     /// The lashes' and brows' albedo of the meshes uploaded from now on ([`Renderer::set_mesh`]):
     /// a mascara's colour on the lashes, a brow gel's on the brows ([`crate::HairAlbedo::with_products`]).
     pub fn set_hair_albedo(&mut self, hair: crate::HairAlbedo) {

@@ -36,7 +36,7 @@ impl RougeApp {
             }
             Change::Skin { rect: None } => self.request_skin_bake(),
             Change::Skin { rect: Some(rect) } => self.skin_edits_changed(rect),
-            Change::Mascara => {
+            Change::Hair => {
                 let pose = self.face().clone();
                 self.show_pose(&pose);
             }

@@ -57,6 +57,11 @@ impl RougeApp {
         self.face.mesh.as_ref()
     }
 
+    /// The hairs' albedo the viewport's head was uploaded with (a mascara's and a brow gel's).
+    pub fn hair_albedo(&self) -> rouge_render::HairAlbedo {
+        self.gpu.renderer.hair_albedo()
+    }
+
     /// Plays or stops the expression cycle (neutral, smile, blink, talk, surprise).
     pub fn set_animation(&mut self, on: bool) {
         self.face.animate = on;
@@ -92,7 +97,7 @@ impl RougeApp {
         self.face.mesh = None;
         self.face.mascara_preview = None;
         let pose = self.face().clone();
-        if pose.is_neutral() && self.shown_mascara().is_none() {
+        if pose.is_neutral() && !self.hair_products_shown() {
             self.skin_pose(Default::default());
         } else {
             self.show_pose(&pose);
@@ -105,7 +110,7 @@ impl RougeApp {
             return Err("expressions and face shapes move the default head's vertices; this mesh has no targets".into());
         }
         let mascara = self.shown_mascara();
-        if self.face.mesh.is_none() && pose.is_neutral() && mascara.is_none() {
+        if self.face.mesh.is_none() && pose.is_neutral() && !self.hair_products_shown() {
             return Ok(());
         }
         let targets = TargetSet::default_head().map_err(|e| e.to_string())?;
@@ -139,6 +144,12 @@ impl RougeApp {
     /// The mascara on the viewport's lashes: the one being dragged, else the document's.
     pub(super) fn shown_mascara(&self) -> Option<Mascara> {
         self.face.mascara_preview.or(self.editor.document().mascara)
+    }
+
+    /// Whether a mascara or a brow gel is shown (the head is then posed and its hairs coloured
+    /// even at rest).
+    pub(super) fn hair_products_shown(&self) -> bool {
+        self.shown_mascara().is_some() || self.editor.document().brow_gel.is_some()
     }
 
     /// A panel's edit of the face: into the document, and onto the head unless the animation

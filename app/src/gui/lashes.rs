@@ -1,22 +1,28 @@
-//! The "Lashes" panel: a mascara on the default head's lashes ([`Mascara`]: length, volume,
-//! curl, colour), shown live while a slider is dragged and kept as one undo step when the drag ends
-//! (or at once for a click or a key), saved with the project's `look.json`.
+//! The "Lashes and brows" panel: a mascara on the default head's lashes ([`Mascara`]: length,
+//! volume, curl, colour), shown live while a slider is dragged and kept as one undo step when the
+//! drag ends (or at once for a click or a key), and a tinted brow gel on its brows ([`BrowGel`]:
+//! colour, strength; one undo step per change); both saved with the project's `look.json`.
 
 use super::*;
+use rouge_model::mesh::brow_gel::BrowGel;
 use rouge_model::mesh::lashes::Mascara;
 
 /// What the Mascara switch puts on natural lashes: a lengthening, volumising mascara with a
 /// little curl, inside every range and visible at the default framing.
 const DEFAULT_MASCARA: Mascara = Mascara { length: 1.3, volume: 2.5, curl_deg: 15.0, color: None };
 
+/// What the Brow gel switch puts on natural brows: a brown tint over most of the hairs.
+const DEFAULT_BROW_GEL: BrowGel = BrowGel { color: [0.045, 0.027, 0.016], strength: 0.8 };
+
 impl RougeApp {
     /// The mascara panel (under the Face panel).
     pub(super) fn lashes_panel(&mut self, ui: &mut egui::Ui) {
-        egui::CollapsingHeader::new("Lashes").default_open(false).show(ui, |ui| {
+        egui::CollapsingHeader::new("Lashes and brows").default_open(false).show(ui, |ui| {
             if !self.face.on_default_head {
-                ui.label("Mascara coats the default head's lashes only.");
+                ui.label("Mascara and brow gel coat the default head's lashes and brows only.");
                 return;
             }
+            self.brow_gel_controls(ui);
             let saved = self.editor.document().mascara;
             let mut on = saved.is_some();
             if ui
@@ -61,6 +67,41 @@ impl RougeApp {
                 self.show_pose(&pose);
             }
         });
+    }
+
+    /// The brow gel's switch, shade and strength (each change one undo step).
+    fn brow_gel_controls(&mut self, ui: &mut egui::Ui) {
+        let saved = self.editor.document().brow_gel;
+        let mut on = saved.is_some();
+        if ui.checkbox(&mut on, "Brow gel").on_hover_text("natural brows, or a tinted gel that colours the hairs").changed()
+        {
+            self.commit_brow_gel(on.then_some(DEFAULT_BROW_GEL));
+        }
+        let Some(mut g) = saved else { return };
+        let mut commit = false;
+        let shades = ["brown", "black"].map(|n| (Mascara::named_color(n).unwrap_or(DEFAULT_BROW_GEL.color), n));
+        let current = shades.iter().find(|(c, _)| *c == g.color).map_or("custom", |(_, n)| n);
+        egui::ComboBox::from_label("gel colour").selected_text(current).show_ui(ui, |ui| {
+            for (c, name) in shades {
+                commit |= ui.selectable_value(&mut g.color, c, name).changed();
+            }
+        });
+        let r = ui
+            .add(egui::Slider::new(&mut g.strength, 0.0..=1.0).text("gel strength"))
+            .on_hover_text("the part of the brow hairs the gel coats");
+        commit |= r.drag_stopped() || (r.changed() && !r.dragged());
+        if commit {
+            self.commit_brow_gel(Some(g));
+        }
+        ui.separator();
+    }
+
+    /// Puts `brow_gel` into the document (one undo step) and onto the viewport's brows.
+    pub fn commit_brow_gel(&mut self, brow_gel: Option<BrowGel>) {
+        match self.editor.document_mut().set_brow_gel(brow_gel) {
+            Ok(c) => self.apply_change(c),
+            Err(e) => self.ui.message = Some((false, e.to_string())),
+        }
     }
 
     /// Puts `mascara` into the document (one undo step) and onto the viewport's lashes.

@@ -114,13 +114,32 @@ impl Document {
         if let Some(m) = &mascara {
             m.validate()?;
         }
-        self.finish_stroke();
-        if self.mascara == mascara {
-            return Ok(Change::Nothing);
+        Ok(self.set_hair((mascara, self.brow_gel)))
+    }
+
+    /// Puts `brow_gel` on the brows (`None`: natural brows) as one undo step; nothing (no step)
+    /// when it is the gel already there.
+    ///
+    /// # Errors
+    /// A colour or strength out of range ([`BrowGel::validate`], naming it); the document is
+    /// unchanged.
+    pub fn set_brow_gel(&mut self, brow_gel: Option<BrowGel>) -> Result<Change> {
+        if let Some(g) = &brow_gel {
+            g.validate()?;
         }
-        let before = std::mem::replace(&mut self.mascara, mascara);
-        self.push(Edit::Mascara { before, after: mascara });
-        Ok(Change::Mascara)
+        Ok(self.set_hair((self.mascara, brow_gel)))
+    }
+
+    /// The hair products as one undo step (none when unchanged).
+    fn set_hair(&mut self, after: (Option<Mascara>, Option<BrowGel>)) -> Change {
+        self.finish_stroke();
+        let before = (self.mascara, self.brow_gel);
+        if before == after {
+            return Change::Nothing;
+        }
+        (self.mascara, self.brow_gel) = after;
+        self.push(Edit::Hair { before, after });
+        Change::Hair
     }
 
     /// Opens a skin brush stroke (ending any open stroke) and returns the skin edits to paint,
@@ -212,9 +231,9 @@ impl Document {
                 Arc::make_mut(edits).write_rect(*rect, if forward { after } else { before });
                 Change::Skin { rect: Some(*rect) }
             }
-            Edit::Mascara { before, after } => {
-                self.mascara = if forward { *after } else { *before };
-                Change::Mascara
+            Edit::Hair { before, after } => {
+                (self.mascara, self.brow_gel) = if forward { *after } else { *before };
+                Change::Hair
             }
         }
     }
@@ -243,7 +262,7 @@ impl Document {
             .map(|e| match &e.edit {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
                 Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
-                Edit::Mascara { .. } => std::mem::size_of::<Edit>(),
+                Edit::Hair { .. } => std::mem::size_of::<Edit>(),
                 Edit::Skin { before, after } => before
                     .iter()
                     .chain(after)
@@ -298,7 +317,7 @@ impl Document {
                 Edit::Stroke { before, after, .. } => (before.len() + after.len()) * std::mem::size_of::<f32>(),
                 Edit::SkinStroke { before, after, .. } => skin_stroke_bytes(before, after),
                 Edit::Skin { before, after } => before.iter().chain(after).map(|s| skin_bytes(s)).sum(),
-                Edit::Mascara { .. } => std::mem::size_of::<Edit>(),
+                Edit::Hair { .. } => std::mem::size_of::<Edit>(),
                 Edit::Layers { before, after } => (before.len() + after.len()) * LAYER_SNAPSHOT_BYTES,
             })
             .sum();

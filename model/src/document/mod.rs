@@ -25,6 +25,7 @@
 mod history;
 mod project;
 
+use crate::mesh::brow_gel::BrowGel;
 use crate::mesh::lashes::Mascara;
 use crate::mesh::targets::FacePose;
 use crate::skin::{ProjectSkin, SkinEdits};
@@ -147,8 +148,9 @@ pub enum Change {
         /// The edited texels, or `None` for the whole skin.
         rect: Option<TexelRect>,
     },
-    /// The mascara changed ([`Document::set_mascara`]): pose the lashes again.
-    Mascara,
+    /// The hair products changed ([`Document::set_mascara`], [`Document::set_brow_gel`]): pose
+    /// the lashes again and recolour the hairs.
+    Hair,
     /// Nothing changed (and no undo step was recorded).
     Nothing,
 }
@@ -163,9 +165,12 @@ enum Edit {
     Skin { before: Option<Arc<ProjectSkin>>, after: Option<Arc<ProjectSkin>> },
     /// A skin brush stroke: the changed rectangle of the skin edits, both planes, before and after.
     SkinStroke { rect: TexelRect, before: [Vec<f32>; 2], after: [Vec<f32>; 2] },
-    /// Another mascara (or none), before and after.
-    Mascara { before: Option<Mascara>, after: Option<Mascara> },
+    /// Other hair products: the mascara and the brow gel before and after.
+    Hair { before: HairProducts, after: HairProducts },
 }
+
+/// The products on the hairs: the mascara and the brow gel.
+type HairProducts = (Option<Mascara>, Option<BrowGel>);
 
 struct Entry {
     /// Identifies the document state after this step (for the saved marker).
@@ -287,9 +292,9 @@ pub struct Document {
     /// The look's mascara on the default head's lashes, saved with the project's `look.json`.
     /// Change it through [`Document::set_mascara`] (one undo step); `None` is natural lashes.
     pub mascara: Option<Mascara>,
-    /// The look's tinted brow gel, carried from the look to the project's `look.json` (the app
-    /// has no control for it yet: `rouge render --brow-gel` and looks set it).
-    pub brow_gel: Option<crate::mesh::brow_gel::BrowGel>,
+    /// The look's tinted brow gel on the default head's brows, saved with the project's
+    /// `look.json`. Change it through [`Document::set_brow_gel`] (one undo step).
+    pub brow_gel: Option<BrowGel>,
     /// The skin maps, their recipe and the skin edits (saved in the project's `skin.json` and
     /// `maps/`; `None`: the tone's flat skin, as projects saved before skin maps). Change it
     /// through [`Document::set_skin`] and skin strokes ([`Document::begin_skin_stroke`]), which

@@ -4,7 +4,8 @@
 //! A tinted gel coats each hair with a thin coloured film; where it covers, the hair shows the
 //! film's colour. Rouge draws the brows' colour as one albedo ([`BrowGel::tint`]): the natural
 //! hair's mixed with the gel's by its coverage `strength` (0 = untouched, 1 = every hair fully
-//! coated). Clear gels and the gel's hold (hairs brushed up) are not modelled.
+//! coated). Clear gels and the gel's hold (hairs brushed up) are not modelled. The app's Lashes
+//! and brows panel sets it ([`crate::document::Document::set_brow_gel`], one undo step).
 
 use serde::{Deserialize, Serialize};
 
