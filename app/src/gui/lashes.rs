@@ -73,7 +73,10 @@ impl RougeApp {
     fn brow_gel_controls(&mut self, ui: &mut egui::Ui) {
         let saved = self.editor.document().brow_gel;
         let mut on = saved.is_some();
-        if ui.checkbox(&mut on, "Brow gel").on_hover_text("natural brows, or a tinted gel that colours the hairs").changed()
+        if ui
+            .checkbox(&mut on, "Brow gel")
+            .on_hover_text("natural brows, or a tinted gel that colours the hairs")
+            .changed()
         {
             self.commit_brow_gel(on.then_some(DEFAULT_BROW_GEL));
         }
