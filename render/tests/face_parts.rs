@@ -143,18 +143,18 @@ fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
         }
         prepared.render_display().expect("render")
     };
-    let red = Some(BrowGel { color: [0.6, 0.02, 0.02], strength: 1.0 });
+    let red = BrowGel { color: [0.6, 0.02, 0.02], strength: 1.0 };
     // Without the brow hairs the gel changes nothing.
-    assert!(frame(None, false) == frame(red, false), "the gel changed a pixel that is not a brow hair");
+    assert!(frame(None, false) == frame(Some(red), false), "the gel changed a pixel that is not a brow hair");
     // With them, the brow pixels redden.
-    let (natural, gel) = (frame(None, true), frame(red, true));
+    let (natural, gel) = (frame(None, true), frame(Some(red), true));
     let redder = (0..(SIZE * SIZE) as usize)
         .filter(|&i| i32::from(gel[4 * i]) - i32::from(natural[4 * i]) > 20 && gel[4 * i + 1] <= natural[4 * i + 1] + 5)
         .count();
     println!("brow pixels reddened by the gel: {redder}");
     assert!(redder > 30, "the gel reddens the brows: {redder} pixels");
     // Half strength: half way.
-    let half = frame(Some(BrowGel { strength: 0.5, ..red.expect("red") }), true);
+    let half = frame(Some(BrowGel { strength: 0.5, ..red }), true);
     let between = (0..(SIZE * SIZE) as usize)
         .filter(|&i| i32::from(gel[4 * i]) - i32::from(natural[4 * i]) > 20)
         .filter(|&i| half[4 * i] > natural[4 * i] && half[4 * i] < gel[4 * i])
