@@ -5,7 +5,9 @@ binary under the studio lights with the default look:
                                 a mascara (`--mascara length=1.4,volume=2.5,curl=20`), the
                                 eyes half closed (eyeBlink 0.5) with the mascara, and an open
                                 smile (smile 1, jawOpen 0.35) and a wide open mouth (jawOpen 0.8)
-                                showing the teeth, tongue and the dark oral cavity
+                                showing the teeth, tongue and the dark oral cavity; the eye again
+                                with an auburn tinted brow gel on the brows
+                                (`--brow-gel color=0.2/0.07/0.03,strength=0.9`)
 
 Usage: python python/face_parts_figure.py [--rouge target/release/rouge] [--out docs/images]
 (about a minute with the release binary on 2 cores, lavapipe).
@@ -20,6 +22,7 @@ from pathlib import Path
 from skin_maps_figure import grid, label, render
 
 MASCARA = "length=1.4,volume=2.5,curl=20"
+BROW_GEL = "color=0.2/0.07/0.03,strength=0.9"
 
 
 def main() -> None:
@@ -38,10 +41,11 @@ def main() -> None:
         ("smile 1, jawOpen 0.35", [*mouth, "--expression", "smile=1,jawOpen=0.35"]),
         ("jawOpen 0.8", [*mouth, "--expression", "jawOpen=0.8"]),
         ("jawOpen 0.5, tongueOut 0.6", [*mouth, "--expression", "jawOpen=0.5,tongueOut=0.6"]),
+        (f"brow gel {BROW_GEL}", [*eye, "--brow-gel", BROW_GEL]),
     ]
     with tempfile.TemporaryDirectory() as tmp:
         cells = [label(render(a.rouge, Path(tmp) / f"{i}.png", *args), text) for i, (text, args) in enumerate(views)]
-    grid(cells, 3).save(a.out / "lashes_mouth.png")
+    grid(cells, 4).save(a.out / "lashes_mouth.png")
     print(f"wrote {a.out / 'lashes_mouth.png'}")
 
 
