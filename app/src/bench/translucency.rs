@@ -354,17 +354,7 @@ fn thickness_configs(
                     ThicknessMap::Rest => "baked-rest-pose",
                     _ => source.name(),
                 };
-                let mut p = json!({
-                    "source": source_name,
-                    "params": which,
-                    "distortion": params.distortion,
-                    "power": params.power,
-                    "scale": params.scale,
-                    "ambient": params.ambient,
-                });
-                if baked {
-                    p["bake_s"] = json!(bake_seconds);
-                }
+                let p = thickness_params_json(source_name, which, params, baked.then_some(bake_seconds));
                 let skin = Skin {
                     subsurface: SubsurfaceModel::Thickness { params, source: source.clone(), kernel: None },
                     ..skin.clone()
@@ -374,6 +364,28 @@ fn thickness_configs(
         }
     }
     out
+}
+
+/// A thickness term's row parameters: its local-thickness source, where its parameters come from,
+/// the four parameters, and the bake's seconds for the baked source.
+fn thickness_params_json(
+    source: &str,
+    which: &str,
+    params: TranslucencyParams,
+    bake_seconds: Option<f64>,
+) -> serde_json::Value {
+    let mut p = json!({
+        "source": source,
+        "params": which,
+        "distortion": params.distortion,
+        "power": params.power,
+        "scale": params.scale,
+        "ambient": params.ambient,
+    });
+    if let Some(s) = bake_seconds {
+        p["bake_s"] = json!(s);
+    }
+    p
 }
 
 /// Samples a direction of the combination's kernel (the kernel rows' middle).
@@ -393,20 +405,10 @@ fn combination_configs(medium: &Medium, sources: &[ThicknessSource], skin: &Skin
             let (params, origin) = TranslucencyParams::fitted(Some(medium), source.name(), true);
             let which = origin.label();
             let baked = matches!(source, ThicknessSource::Baked(_));
-            let mut p = json!({
-                "source": source.name(),
-                "params": which,
-                "profile": "better-dipole",
-                "samples": COMBINATION_SAMPLES,
-                "diffuse": "half-space",
-                "distortion": params.distortion,
-                "power": params.power,
-                "scale": params.scale,
-                "ambient": params.ambient,
-            });
-            if baked {
-                p["bake_s"] = json!(bake_seconds);
-            }
+            let mut p = thickness_params_json(source.name(), &which, params, baked.then_some(bake_seconds));
+            p["profile"] = json!("better-dipole");
+            p["samples"] = json!(COMBINATION_SAMPLES);
+            p["diffuse"] = json!("half-space");
             let subsurface =
                 SubsurfaceModel::Thickness { params, source: source.clone(), kernel: Some(profile.clone()) };
             let map = if baked { ThicknessMap::Current } else { ThicknessMap::None };

@@ -30,7 +30,7 @@ impl Coat {
 }
 
 /// Whether a layer is a gloss (its finish's kind).
-pub fn is_coat(layer: &LayerInput<'_>) -> bool {
+fn is_coat(layer: &LayerInput<'_>) -> bool {
     layer.preset.finish.is_some_and(|f| f.kind == FinishKind::Gloss)
 }
 
