@@ -23,20 +23,29 @@
 //!
 //! **The estimator** ([`pixel_sparkle`]) is the box-filtered lit area over the pixel's footprint
 //! in the surface's UVs (the parallelogram of the UVs' screen derivatives, taken as its bounding
-//! box), on a hierarchy of grids in the spirit of \[Zirr2016\] (a pixel's flakes are counted over
-//! its footprint on the grid level whose cells match the footprint, the levels blended by the
-//! footprint's log size, so that the count is antialiased and stable) with the counts of the
-//! coarse levels drawn as binomial laws as \[Deliot2023\] does:
-//! - footprints up to [`EXPLICIT_CELLS`] cells across: the flakes themselves, each lit flake's
-//!   square intersected with the footprint exactly (no sampling: antialiased, and stable as the
-//!   footprint slides over the flakes);
-//! - larger footprints: level L ≥ 1 has cells of 2^L fine cells a side; in each, the number of
-//!   lit flakes is Binomial(4^L, p) with p = (density × cell²) × P(∠(n, h) < δ/2), the latter
+//! box), on a hierarchy of grids in the spirit of \[Zirr2016\] (a pixel's flakes are taken on
+//! the grid level whose cells match the footprint, so that the work per pixel is bounded) with
+//! the counts of the coarse levels drawn as binomial laws as \[Deliot2023\] does:
+//! - level 0 is the flakes themselves, each lit flake's square intersected with the footprint
+//!   exactly (no sampling: antialiased, and stable as the footprint slides over the flakes);
+//! - level L ≥ 1 has cells of 2^L fine cells a side; in each, the number of lit flakes is
+//!   Binomial(4^L, p) with p = (density × cell²) × P(∠(n, h) < δ/2), the latter
 //!   D(h)(n·h) · 2π(1 − cos δ/2) for the Beckmann D (the cone's solid angle times the density
 //!   of normals in it: the small-cone limit), drawn by inverse CDF from one uniform number per
-//!   coarse cell (exact summation up to 64 flakes, a normal law above), and spread uniformly
-//!   over the coarse cell. Between two levels the footprint's fractional level blends them
-//!   linearly (level 0 being the explicit flakes).
+//!   coarse cell and bin of half vectors (exact summation up to 64 flakes, a normal law above).
+//!   The first [`PLACED_FLAKES`] of the count are *placed*: squares of the flake's edge at
+//!   uniform random places in the cell, intersected with the footprint like level 0's, so a
+//!   distant flake is a point of light of its own size, not a glow over the coarse cell (spread
+//!   over the cell, a flake lit 1.6 times the pixels the explicit flakes light at 1 mm a pixel);
+//!   the rest of a larger count is spread over the cell;
+//! - the bins: a coarse cell's count is drawn anew when the half vector's slopes cross a line
+//!   of its grid of bins ([`slope_bin`] wide, offset per cell), as often as explicit flakes turn
+//!   on and off, so a distant glitter twinkles as the head turns (with one draw per cell it stays
+//!   still: a quarter of the explicit flakes' flicker at 1 mm a pixel);
+//! - between levels: the footprint's level λ = log2(across / [`EXPLICIT_CELLS`]) falls between L
+//!   and L + 1; each cell of level L + 1 shows its own flakes when its fixed choice number is
+//!   below λ − L, else its four children's (no blending: a blend of two levels halves each
+//!   flake and lights twice the pixels), so cells change level one by one as the footprint grows.
 //!
 //! In the lighting pass the probability of a flake per cell is scaled by the layer's thickness
 //! over its preset's (`min(1, t / thickness_mm)`: a film thinner than the product's holds
@@ -45,10 +54,12 @@
 //!
 //! *Approximations*: the footprint is the bounding box of the UV parallelogram (exact where the
 //! UV axes are aligned with the screen's, as on the study's turntable; larger, hence blurrier,
-//! elsewhere); a coarse level's flakes are not the fine level's (the blend hides the change
-//! while the footprint grows, but a distant sparkle is a statistical one); the flakes' tilt is in
+//! elsewhere); a coarse level's flakes are not the fine level's (a distant sparkle is a
+//! statistical one: its places, count and twinkle have the explicit flakes' statistics, not
+//! their identity); the flakes' tilt is in
 //! the UVs' frame; a flake is lit over its whole face or not at all (no partial overlap of the
-//! cone and the disc); flakes cast no shadows and are not masked.
+//! cone and the disc); flakes cast no shadows and are not masked; a coarse cell's placed flakes
+//! may overlap, and within a bin its count follows p(h) smoothly.
 
 use glam::{Vec2, Vec3};
 use rouge_measure::finish::Glitter;
@@ -62,15 +73,30 @@ pub const LIGHT_HALF_ANGLE_RAD: f32 = 0.087_266_46;
 fn cos_half_cone() -> f32 {
     (0.5 * LIGHT_HALF_ANGLE_RAD).cos()
 }
-/// Footprints up to this many cells across are drawn with their flakes; larger ones by counts.
+/// Footprints up to this many cells across are drawn with their flakes only; up to twice as
+/// many, with their flakes and level 1's counts; and so on up the levels.
 pub const EXPLICIT_CELLS: f32 = 2.0;
 /// The coarsest level (cells of 2^8 fine cells a side).
 pub const MAX_LEVEL: u32 = 8;
+/// Most lit flakes a coarse cell places one by one; the rest of its count is spread over it
+/// (above four lit flakes in a cell of at most a footprint, the pixel is lit all over anyway).
+pub const PLACED_FLAKES: u32 = 4;
+/// The tag (bits 4-7 of the hash's third word) of a coarse cell's light-independent words.
+const CELL_TAG: u32 = 15;
+/// The width of a coarse cell's bins of half vectors, in slope (tan of the tilt): π/4 × δ, so
+/// that a cell draws its lit flakes anew as often as explicit flakes turn on and off. A flake is
+/// lit while h lies in a disc of diameter δ around its normal; moving h by dx crosses the discs
+/// of 2δ·dx/(πδ²/4) = 8/(πδ)·dx of the lit flakes per lit flake, and a cell whose bins are b wide
+/// redraws (all its lit flakes off, as many on) 2/b per unit: b = πδ/4.
+fn slope_bin() -> f32 {
+    std::f32::consts::FRAC_PI_4 * LIGHT_HALF_ANGLE_RAD
+}
 /// Up to this many flakes a binomial count is drawn exactly; above, by its normal law.
 const EXACT_COUNT: u32 = 64;
-/// Most cells a footprint spans per axis beyond the first (bounds the shader's loops; only a
-/// footprint wider than 4 cells of the coarsest level, 200 mm for 100 µm flakes, is cut).
-pub const MAX_SPAN: i32 = 4;
+/// Most cells of the coarser level a footprint spans per axis beyond the first (bounds the
+/// shader's loops: a footprint spans at most 3; only one wider than 3 cells of the coarsest
+/// level, 150 mm for 100 µm flakes, is cut).
+pub const MAX_SPAN: i32 = 2;
 
 /// The constants of the glitter for WGSL (injected by `shader::shader_source`).
 pub fn wgsl_constants() -> String {
@@ -79,9 +105,12 @@ pub fn wgsl_constants() -> String {
     format!(
         "const GLITTER_COS_HALF_CONE: f32 = {:?};\nconst GLITTER_CONE_SR: f32 = {cone:?};\nconst GLITTER_SIN2_LIGHT: f32 = {:?};\n\
          const GLITTER_EXPLICIT_CELLS: f32 = {EXPLICIT_CELLS:?};\nconst GLITTER_MAX_LEVEL: u32 = {MAX_LEVEL}u;\n\
-         const GLITTER_EXACT_COUNT: u32 = {EXACT_COUNT}u;\nconst GLITTER_MAX_SPAN: i32 = {MAX_SPAN};\n",
+         const GLITTER_EXACT_COUNT: u32 = {EXACT_COUNT}u;\nconst GLITTER_MAX_SPAN: i32 = {MAX_SPAN};\n\
+         const GLITTER_PLACED_FLAKES: u32 = {PLACED_FLAKES}u;\nconst GLITTER_CELL_TAG: u32 = {CELL_TAG}u;\n\
+         const GLITTER_SLOPE_BIN: f32 = {:?};\n",
         cos_half_cone(),
-        s * s
+        s * s,
+        slope_bin()
     )
 }
 
@@ -157,6 +186,34 @@ impl FlakeField {
         Some(Flake { centre_mm, normal })
     }
 
+    /// Whether cell `cell` of `level` (2^level fine cells a side) overlaps the box [lo, hi].
+    fn cell_overlaps(&self, level: u32, cell: [i32; 2], lo: Vec2, hi: Vec2) -> bool {
+        let cell_mm = self.cell_mm * (1u32 << level) as f32;
+        let corner = Vec2::new(cell[0] as f32, cell[1] as f32) * cell_mm;
+        corner.x < hi.x && corner.y < hi.y && corner.x + cell_mm > lo.x && corner.y + cell_mm > lo.y
+    }
+
+    /// The area inside [lo, hi] of a flake's square centred at `centre_mm`.
+    fn square_inside(&self, centre_mm: Vec2, lo: Vec2, hi: Vec2) -> f32 {
+        let (a, b) = (centre_mm - 0.5 * self.size_mm, centre_mm + 0.5 * self.size_mm);
+        overlap(a.x, b.x, lo.x, hi.x) * overlap(a.y, b.y, lo.y, hi.y)
+    }
+
+    /// The area of the lit flakes inside the box centred at `uv_mm` with half extents
+    /// `half_mm`, every cell visited: the exact box filter the estimator approximates (the
+    /// reference of `glitter_study`; its cost grows with the footprint's area in cells).
+    pub fn lit_area(&self, uv_mm: Vec2, half_mm: Vec2, h: Vec3) -> f32 {
+        let (lo, hi) = (uv_mm - half_mm, uv_mm + half_mm);
+        let (c0, c1) = ((lo / self.cell_mm).floor(), (hi / self.cell_mm).floor());
+        let mut lit = 0.0;
+        for j in c0.y as i32..=c1.y as i32 {
+            for i in c0.x as i32..=c1.x as i32 {
+                lit += self.flake([i, j]).filter(|f| f.lit(h)).map_or(0.0, |f| self.square_inside(f.centre_mm, lo, hi));
+            }
+        }
+        lit
+    }
+
     /// Whether a flake covers the point `uv_mm` and sparkles for the half vector `h` (unit,
     /// tangent frame): the integrand the reference supersamples.
     pub fn point_sparkle(&self, uv_mm: Vec2, h: Vec3) -> bool {
@@ -208,45 +265,91 @@ pub fn pixel_sparkle(field: &FlakeField, uv_mm: Vec2, half_mm: Vec2, h: Vec3) ->
     let half_mm = half_mm.max(Vec2::splat(1e-6 * field.cell_mm));
     let across = 2.0 * half_mm.max_element() / field.cell_mm;
     let lambda = (across / EXPLICIT_CELLS).log2().clamp(0.0, MAX_LEVEL as f32);
-    let level = lambda.floor() as u32;
+    let level = (lambda.floor() as u32).min(MAX_LEVEL - 1);
     let w = lambda - level as f32;
-    let fine = level_sparkle(field, level, uv_mm, half_mm, h);
-    if w <= 0.0 || level >= MAX_LEVEL {
-        return fine;
-    }
-    (1.0 - w) * fine + w * level_sparkle(field, level + 1, uv_mm, half_mm, h)
-}
-
-/// The lit part of the footprint at one level: the flakes themselves at level 0, binomial
-/// counts in cells of 2^level fine cells above.
-fn level_sparkle(field: &FlakeField, level: u32, uv_mm: Vec2, half_mm: Vec2, h: Vec3) -> f32 {
-    let cell_mm = field.cell_mm * (1u32 << level) as f32;
     let (lo, hi) = (uv_mm - half_mm, uv_mm + half_mm);
-    let c0 = (lo / cell_mm).floor();
-    let c1 = (hi / cell_mm).floor().min(c0 + MAX_SPAN as f32);
-    let half_size = 0.5 * field.size_mm;
-    let n = (1u32 << level) * (1u32 << level);
-    let p = if level == 0 { 0.0 } else { field.p_lit(h) };
+    let area = 4.0 * half_mm.x * half_mm.y;
+    if level == 0 && w <= 0.0 {
+        // Footprints of at most EXPLICIT_CELLS cells: their flakes alone (most of a close-up).
+        return (field.lit_area(uv_mm, half_mm, h) / area).min(1.0);
+    }
+    let counts = Counts::new(field, h);
+    // The cells of level + 1 over the footprint; each shows its own flakes with probability w
+    // (its choice number below w), else its four children's.
+    let parent_mm = field.cell_mm * (2u32 << level) as f32;
+    let c0 = (lo / parent_mm).floor();
+    let c1 = (hi / parent_mm).floor().min(c0 + MAX_SPAN as f32);
     let mut lit = 0.0;
     for j in c0.y as i32..=c1.y as i32 {
         for i in c0.x as i32..=c1.x as i32 {
-            if level == 0 {
-                if let Some(f) = field.flake([i, j]).filter(|f| f.lit(h)) {
-                    let (a, b) = (f.centre_mm - half_size, f.centre_mm + half_size);
-                    lit += overlap(a.x, b.x, lo.x, hi.x) * overlap(a.y, b.y, lo.y, hi.y);
+            if unit(cell_words(field, [i, j], level + 1)[0]) < w {
+                lit += counts.cell_lit(level + 1, [i, j], lo, hi);
+                continue;
+            }
+            for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let child = [2 * i + a, 2 * j + b];
+                if !field.cell_overlaps(level, child, lo, hi) {
+                    continue;
                 }
-            } else {
-                let u = unit(pcg4d([i as u32, j as u32, level, field.seed])[0]);
-                let count = binomial_quantile(n, p, u);
-                let corner = Vec2::new(i as f32, j as f32) * cell_mm;
-                let inside = overlap(corner.x, corner.x + cell_mm, lo.x, hi.x)
-                    * overlap(corner.y, corner.y + cell_mm, lo.y, hi.y)
-                    / (cell_mm * cell_mm);
-                lit += count * field.size_mm * field.size_mm * inside;
+                lit += if level == 0 {
+                    field.flake(child).filter(|f| f.lit(h)).map_or(0.0, |f| field.square_inside(f.centre_mm, lo, hi))
+                } else {
+                    counts.cell_lit(level, child, lo, hi)
+                };
             }
         }
     }
-    (lit / (4.0 * half_mm.x * half_mm.y)).min(1.0)
+    (lit / area).min(1.0)
+}
+
+/// The words of a coarse cell that do not depend on the light: its choice number between
+/// levels (word 0) and the offsets of its grid of half vectors (words 1, 2).
+fn cell_words(field: &FlakeField, cell: [i32; 2], level: u32) -> [u32; 4] {
+    pcg4d([cell[0] as u32, cell[1] as u32, level | (CELL_TAG << 4), field.seed])
+}
+
+/// The lit flakes of the coarse levels for one half vector: their probability per fine cell
+/// and the half vector's slopes in units of [`SLOPE_BIN`].
+struct Counts<'a> {
+    field: &'a FlakeField,
+    p: f32,
+    slope: Vec2,
+}
+
+impl Counts<'_> {
+    fn new(field: &FlakeField, h: Vec3) -> Counts<'_> {
+        Counts { field, p: field.p_lit(h), slope: Vec2::new(h.x, h.y) / (h.z * slope_bin()) }
+    }
+
+    /// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1: a
+    /// Binomial(4^level, p) count drawn for the cell's bin of half vectors, its first
+    /// [`PLACED_FLAKES`] flakes placed in the cell, the rest spread over it.
+    fn cell_lit(&self, level: u32, cell: [i32; 2], lo: Vec2, hi: Vec2) -> f32 {
+        let field = self.field;
+        if !field.cell_overlaps(level, cell, lo, hi) {
+            return 0.0;
+        }
+        let cell_mm = field.cell_mm * (1u32 << level) as f32;
+        let corner = Vec2::new(cell[0] as f32, cell[1] as f32) * cell_mm;
+        let words = cell_words(field, cell, level);
+        let bin = (self.slope + Vec2::new(unit(words[1]), unit(words[2]))).floor();
+        let angle_tag = ((bin.x as i32 as u32) & 0xfff) << 8 | ((bin.y as i32 as u32) & 0xfff) << 20;
+        let draw = |m: u32| pcg4d([cell[0] as u32, cell[1] as u32, level | m << 4 | angle_tag, field.seed]);
+        let n = (1u32 << level) * (1u32 << level);
+        let count = binomial_quantile(n, self.p, unit(draw(0)[0]));
+        let placed = (count as u32).min(PLACED_FLAKES);
+        let room = cell_mm - field.size_mm;
+        let mut lit = 0.0;
+        for m in 1..=placed {
+            let r = draw(m);
+            let centre = corner + Vec2::splat(0.5 * field.size_mm) + Vec2::new(unit(r[0]), unit(r[1])) * room;
+            lit += field.square_inside(centre, lo, hi);
+        }
+        let inside = overlap(corner.x, corner.x + cell_mm, lo.x, hi.x)
+            * overlap(corner.y, corner.y + cell_mm, lo.y, hi.y)
+            / (cell_mm * cell_mm);
+        lit + (count - placed as f32) * field.size_mm * field.size_mm * inside
+    }
 }
 
 /// The `u`-quantile of Binomial(n, p): the smallest k with CDF(k) > u, summed exactly while the

@@ -1,8 +1,11 @@
 //! `rouge bench glitter`'s measuring side: a flat patch of glitter ([`crate::glitter`]'s flake
 //! field) turning slowly on a turntable under one light, seen by an orthographic camera, drawn
-//! three ways on the CPU:
-//! - the **reference**: the explicit flakes, k×k point samples per pixel (box filter; k = 16);
-//! - **SSAA k×k** of the same explicit flakes (k = 2: what supersampling buys at 4 samples);
+//! several ways on the CPU:
+//! - the **reference**: the explicit flakes, each lit flake's square intersected with the
+//!   pixel's footprint exactly (the box filter every supersampled render converges to);
+//! - **SSAA k×k** of the same explicit flakes (k = 16: the reference, which converges
+//!   while a sample falls on every flake, pixels up to 16 flake edges; k = 2, 4: what
+//!   supersampling buys at 4 and 16 samples);
 //! - **Rouge's estimator** ([`crate::glitter::pixel_sparkle`], the shader's CPU twin), one
 //!   evaluation per pixel from the UVs' footprint.
 //!
@@ -43,8 +46,8 @@ pub struct GlitterStudy {
     /// A pixel sparkles when it shows more than this part of one flake (its lit fraction exceeds
     /// this × min(1, flake area / pixel footprint): the count means the same at every distance).
     pub threshold: f32,
-    /// Samples per pixel side of the reference.
-    pub reference_k: u32,
+    /// The reference the others are measured against.
+    pub reference: Method,
     /// Samples per pixel side of the supersampled rival.
     pub ssaa_k: u32,
 }
@@ -62,7 +65,7 @@ impl GlitterStudy {
             glitter: Glitter { size_um: 100.0, density_per_mm2: 16.0, color: [1.0; 3], spread: 0.3 },
             light: Vec3::new(0.68, 0.15, 0.71),
             threshold: 0.25,
-            reference_k: 16,
+            reference: Method::Exact,
             ssaa_k: 2,
         }
     }
@@ -71,6 +74,8 @@ impl GlitterStudy {
 /// A way to draw a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
+    /// Explicit flakes, the lit area of each inside the footprint, exactly.
+    Exact,
     /// Explicit flakes, k×k point samples per pixel.
     Supersampled(u32),
     /// [`pixel_sparkle`] once per pixel.
@@ -81,6 +86,7 @@ impl Method {
     /// The method's name in tables.
     pub fn name(self) -> String {
         match self {
+            Method::Exact => "explicit, exact area".into(),
             Method::Supersampled(k) => format!("explicit {k}×{k}"),
             Method::Estimator => "rouge estimator".into(),
         }
@@ -109,6 +115,7 @@ pub fn frame(study: &GlitterStudy, method: Method, t: u32) -> Vec<f32> {
     let pixel = |x: u32, y: u32| -> f32 {
         match method {
             Method::Estimator => pixel_sparkle(&field, uv_at(x as f32 + 0.5, y as f32 + 0.5), half, h),
+            Method::Exact => field.lit_area(uv_at(x as f32 + 0.5, y as f32 + 0.5), half, h) / (4.0 * half.x * half.y),
             Method::Supersampled(k) => {
                 let mut lit = 0u32;
                 for j in 0..k {
@@ -166,10 +173,10 @@ pub fn sparkle_threshold(study: &GlitterStudy) -> f32 {
     study.threshold * (flake_mm2 / footprint_mm2).min(1.0)
 }
 
-/// The figures of `methods` (the first row is the reference, `Supersampled(reference_k)`).
+/// The figures of `methods` (the first row is the reference, `study.reference`).
 pub fn run(study: &GlitterStudy, methods: &[Method]) -> Vec<GlitterRow> {
     let threshold = sparkle_threshold(study);
-    let reference_method = Method::Supersampled(study.reference_k);
+    let reference_method = study.reference;
     let mut all = vec![reference_method];
     all.extend(methods.iter().copied().filter(|m| *m != reference_method));
     let mut frames_of = Vec::new();
@@ -207,7 +214,7 @@ pub fn run(study: &GlitterStudy, methods: &[Method]) -> Vec<GlitterRow> {
                 method: m.name(),
                 samples_per_pixel: match m {
                     Method::Supersampled(k) => k * k,
-                    Method::Estimator => 1,
+                    Method::Estimator | Method::Exact => 1,
                 },
                 flicker,
                 flicker_relative: flicker / ref_flicker.max(1e-12),
@@ -226,13 +233,32 @@ mod tests {
 
     #[test]
     fn the_estimator_flickers_less_than_ssaa_2x2_and_counts_the_sparkles() {
-        // A small, short turntable (the bench's is 128² × 48 frames): loose bounds.
-        let study = GlitterStudy { size_px: 48, frames: 8, reference_k: 8, ..GlitterStudy::standard(0.0833) };
-        let rows = run(&study, &[Method::Supersampled(2), Method::Estimator]);
-        let (reference, ssaa, estimator) = (&rows[0], &rows[1], &rows[2]);
-        assert!(reference.sparkles_per_frame > 5.0, "{reference:?}");
-        assert!(estimator.flicker < ssaa.flicker, "{estimator:?} against {ssaa:?}");
-        assert!((estimator.sparkles_relative - 1.0).abs() < 0.2, "{estimator:?}");
-        assert!(estimator.rmse < ssaa.rmse, "{estimator:?} against {ssaa:?}");
+        // Small, short turntables (the bench's are 128² × 48 frames): the close-up, where the
+        // flakes are about a pixel, and 1 and 3 mm a pixel, where the coarse levels' counts
+        // take over (spread over their cells, the counts lit 1.6 times the pixels at 1 mm; with
+        // one draw per cell, they flickered a quarter as much as the flakes).
+        for (pixel_mm, size_px) in [(0.0833, 48), (1.0, 32), (3.0, 24)] {
+            let study = GlitterStudy { size_px, frames: 8, ..GlitterStudy::standard(pixel_mm) };
+            let rows = run(&study, &[Method::Supersampled(2), Method::Estimator]);
+            let (reference, ssaa, estimator) = (&rows[0], &rows[1], &rows[2]);
+            assert!(reference.sparkles_per_frame > 5.0, "{pixel_mm} mm: {reference:?}");
+            assert!(estimator.flicker < ssaa.flicker, "{pixel_mm} mm: {estimator:?} against {ssaa:?}");
+            assert!(estimator.flicker > 0.5 * reference.flicker, "{pixel_mm} mm: {estimator:?}");
+            assert!((estimator.sparkles_relative - 1.0).abs() < 0.1, "{pixel_mm} mm: {estimator:?}");
+            assert!(estimator.rmse < ssaa.rmse, "{pixel_mm} mm: {estimator:?} against {ssaa:?}");
+        }
+    }
+
+    #[test]
+    fn sixteen_samples_a_side_converge_to_the_exact_area_only_on_flakes_a_sample_apart() {
+        // The 16×16 reference against the exact box filter: within a few percent at
+        // 1 mm a pixel (a sample every 62 µm on 100 µm flakes), a quarter of the sparkles
+        // missed at 4 mm (a sample every 250 µm).
+        let count = |pixel_mm: f32| {
+            let study = GlitterStudy { size_px: 16, frames: 2, ..GlitterStudy::standard(pixel_mm) };
+            run(&study, &[Method::Supersampled(16)])[1].sparkles_relative
+        };
+        assert!((count(1.0) - 1.0).abs() < 0.1, "{}", count(1.0));
+        assert!(count(4.0) < 0.8, "{}", count(4.0));
     }
 }

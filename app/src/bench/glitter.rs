@@ -1,8 +1,9 @@
-//! `rouge bench glitter`: Rouge's glitter estimator against explicit flakes supersampled 16×16
-//! and 2×2 on a slowly turning patch (rouge_render::glitter_study): flicker between frames and
-//! the sparkles per frame, each relative to the 16×16 reference, at a few pixel sizes. The
-//! issue's bar: the estimator flickers less than SSAA 2×2 and counts the reference's sparkles
-//! within 10 %.
+//! `rouge bench glitter`: Rouge's glitter estimator against explicit flakes on a slowly turning
+//! patch (rouge_render::glitter_study): the exact box filter of the flakes (the reference),
+//! supersampled 16×16 (the reference, which converges while a sample falls on every
+//! flake), 2×2 and 4×4: flicker between frames and the sparkles per frame, each relative to the
+//! reference, at a few pixel sizes. The bar: the estimator flickers less than SSAA 2×2
+//! and counts the reference's sparkles within 10 %.
 
 use crate::bench::report::{emit_with_json, markdown_table};
 use anyhow::{Result, bail};
@@ -15,8 +16,9 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 pub struct GlitterBenchArgs {
     /// Pixel sizes on the patch, mm (0.083: the close-ups' 12 px/mm, flakes about a pixel;
-    /// 0.3: the face at the framing distance; 1: beyond, where the counts take over).
-    #[arg(long, value_delimiter = ',', default_values_t = [0.0833f32, 0.3, 1.0])]
+    /// 0.3: the face at the framing distance; 1 and 3: a face 150 and 50 pixels wide, where the
+    /// coarse levels' counts take over).
+    #[arg(long, value_delimiter = ',', default_values_t = [0.0833f32, 0.3, 1.0, 3.0])]
     pub pixel_mm: Vec<f32>,
     /// Frames of the turntable.
     #[arg(long, default_value_t = 48)]
@@ -120,7 +122,10 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
             glitter,
             ..GlitterStudy::standard(pixel_mm)
         };
-        let results = run_study(&study, &[Method::Supersampled(2), Method::Supersampled(4), Method::Estimator]);
+        let results = run_study(
+            &study,
+            &[Method::Supersampled(16), Method::Supersampled(2), Method::Supersampled(4), Method::Estimator],
+        );
         let ssaa2 = results.iter().find(|r| r.samples_per_pixel == 4).map(|r| r.flicker);
         for row in results {
             let passes = (row.method == Method::Estimator.name())

@@ -50,10 +50,7 @@ fn flake_lit_area(f: FlakeField, cell: vec2<i32>, h: vec3<f32>, lo: vec2<f32>, h
     if dot(n, h) <= GLITTER_COS_HALF_CONE {
         return 0.0;
     }
-    let a = centre - vec2<f32>(0.5 * f.size_mm);
-    let b = centre + vec2<f32>(0.5 * f.size_mm);
-    let o = max(min(b, hi) - max(a, lo), vec2<f32>(0.0));
-    return o.x * o.y;
+    return glitter_square_inside(f, centre, lo, hi);
 }
 
 // The probability that a cell holds a flake sparkling for `h`.
@@ -91,33 +88,59 @@ fn binomial_quantile(n: u32, p: f32, u_in: f32) -> f32 {
     return clamp(mean + sqrt(mean * q) * z, 0.0, f32(n));
 }
 
-// The lit part of the footprint [uv − half_mm, uv + half_mm] at one level.
-fn glitter_level(f: FlakeField, level: u32, uv: vec2<f32>, half_mm: vec2<f32>, h: vec3<f32>) -> f32 {
+// The area inside [lo, hi] of a flake's square centred at `centre` (mm).
+fn glitter_square_inside(f: FlakeField, centre: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
+    let a = centre - vec2<f32>(0.5 * f.size_mm);
+    let b = centre + vec2<f32>(0.5 * f.size_mm);
+    let o = max(min(b, hi) - max(a, lo), vec2<f32>(0.0));
+    return o.x * o.y;
+}
+
+// Whether cell `cell` of `level` overlaps the box [lo, hi].
+fn glitter_cell_overlaps(f: FlakeField, level: u32, cell: vec2<i32>, lo: vec2<f32>, hi: vec2<f32>) -> bool {
     let cell_mm = f.cell_mm * f32(1u << level);
-    let lo = uv - half_mm;
-    let hi = uv + half_mm;
-    let c0 = vec2<i32>(floor(lo / cell_mm));
-    let c1 = min(vec2<i32>(floor(hi / cell_mm)), c0 + vec2<i32>(GLITTER_MAX_SPAN));
+    let corner = vec2<f32>(f32(cell.x), f32(cell.y)) * cell_mm;
+    return all(corner < hi) && all(corner + vec2<f32>(cell_mm) > lo);
+}
+
+// A coarse cell's light-independent words: its choice number between levels (x) and the
+// offsets of its grid of half vectors (y, z).
+fn glitter_cell_words(f: FlakeField, cell: vec2<i32>, level: u32) -> vec4<u32> {
+    return pcg4d(vec4<u32>(bitcast<u32>(cell.x), bitcast<u32>(cell.y), level | (GLITTER_CELL_TAG << 4u), f.seed));
+}
+
+// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1, for the lit
+// probability `p` per fine cell and the half vector's slopes `slope` in bins.
+fn glitter_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, p: f32, slope: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
+    if !glitter_cell_overlaps(f, level, cell, lo, hi) {
+        return 0.0;
+    }
+    let cell_mm = f.cell_mm * f32(1u << level);
+    let corner = vec2<f32>(f32(cell.x), f32(cell.y)) * cell_mm;
+    let words = glitter_cell_words(f, cell, level);
+    let bin = floor(slope + vec2<f32>(glitter_unit(words.y), glitter_unit(words.z)));
+    let angle_tag = ((bitcast<u32>(i32(bin.x)) & 0xfffu) << 8u) | ((bitcast<u32>(i32(bin.y)) & 0xfffu) << 20u);
+    let base = vec4<u32>(bitcast<u32>(cell.x), bitcast<u32>(cell.y), level | angle_tag, f.seed);
     let n = (1u << level) * (1u << level);
-    var p = 0.0;
-    if level > 0u {
-        p = glitter_p_lit(f, h);
-    }
+    let count = binomial_quantile(n, p, glitter_unit(pcg4d(base).x));
+    let placed = min(u32(count), GLITTER_PLACED_FLAKES);
+    let room = cell_mm - f.size_mm;
     var lit = 0.0;
-    for (var j = c0.y; j <= c1.y; j++) {
-        for (var i = c0.x; i <= c1.x; i++) {
-            if level == 0u {
-                lit += flake_lit_area(f, vec2<i32>(i, j), h, lo, hi);
-            } else {
-                let u = glitter_unit(pcg4d(vec4<u32>(bitcast<u32>(i), bitcast<u32>(j), level, f.seed)).x);
-                let count = binomial_quantile(n, p, u);
-                let corner = vec2<f32>(f32(i), f32(j)) * cell_mm;
-                let o = max(min(corner + vec2<f32>(cell_mm), hi) - max(corner, lo), vec2<f32>(0.0));
-                lit += count * f.size_mm * f.size_mm * (o.x * o.y / (cell_mm * cell_mm));
-            }
-        }
+    for (var m = 1u; m <= placed; m++) {
+        let r = pcg4d(base | vec4<u32>(0u, 0u, m << 4u, 0u));
+        let centre = corner + vec2<f32>(0.5 * f.size_mm) + vec2<f32>(glitter_unit(r.x), glitter_unit(r.y)) * room;
+        lit += glitter_square_inside(f, centre, lo, hi);
     }
-    return min(lit / (4.0 * half_mm.x * half_mm.y), 1.0);
+    let o = max(min(corner + vec2<f32>(cell_mm), hi) - max(corner, lo), vec2<f32>(0.0));
+    return lit + (count - f32(placed)) * f.size_mm * f.size_mm * (o.x * o.y / (cell_mm * cell_mm));
+}
+
+// The lit area inside [lo, hi] of cell `cell` of `level`: its flake at level 0, its count above.
+fn glitter_any_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, h: vec3<f32>, p: f32, slope: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
+    if level == 0u {
+        return flake_lit_area(f, cell, h, lo, hi);
+    }
+    return glitter_cell_lit(f, level, cell, p, slope, lo, hi);
 }
 
 // The part of the footprint centred at `uv` (mm) with half extents `half_in_mm` (mm) that lit
@@ -129,13 +152,42 @@ fn pixel_sparkle(f: FlakeField, uv: vec2<f32>, half_in_mm: vec2<f32>, h: vec3<f3
     let half_mm = max(half_in_mm, vec2<f32>(1e-6 * f.cell_mm));
     let across = 2.0 * max(half_mm.x, half_mm.y) / f.cell_mm;
     let lambda = clamp(log2(across / GLITTER_EXPLICIT_CELLS), 0.0, f32(GLITTER_MAX_LEVEL));
-    let level = u32(floor(lambda));
+    let level = min(u32(floor(lambda)), GLITTER_MAX_LEVEL - 1u);
     let w = lambda - f32(level);
-    let fine = glitter_level(f, level, uv, half_mm, h);
-    if w <= 0.0 || level >= GLITTER_MAX_LEVEL {
-        return fine;
+    let lo = uv - half_mm;
+    let hi = uv + half_mm;
+    var lit = 0.0;
+    if level == 0u && w <= 0.0 {
+        // Footprints of at most EXPLICIT_CELLS cells: their flakes alone (most of a close-up).
+        let c0 = vec2<i32>(floor(lo / f.cell_mm));
+        let c1 = min(vec2<i32>(floor(hi / f.cell_mm)), c0 + vec2<i32>(2 * GLITTER_MAX_SPAN + 1));
+        for (var j = c0.y; j <= c1.y; j++) {
+            for (var i = c0.x; i <= c1.x; i++) {
+                lit += flake_lit_area(f, vec2<i32>(i, j), h, lo, hi);
+            }
+        }
+        return min(lit / (4.0 * half_mm.x * half_mm.y), 1.0);
     }
-    return (1.0 - w) * fine + w * glitter_level(f, level + 1u, uv, half_mm, h);
+    let p = glitter_p_lit(f, h);
+    let slope = h.xy / (h.z * GLITTER_SLOPE_BIN);
+    let parent_mm = f.cell_mm * f32(2u << level);
+    let c0 = vec2<i32>(floor(lo / parent_mm));
+    let c1 = min(vec2<i32>(floor(hi / parent_mm)), c0 + vec2<i32>(GLITTER_MAX_SPAN));
+    for (var j = c0.y; j <= c1.y; j++) {
+        for (var i = c0.x; i <= c1.x; i++) {
+            if glitter_unit(glitter_cell_words(f, vec2<i32>(i, j), level + 1u).x) < w {
+                lit += glitter_cell_lit(f, level + 1u, vec2<i32>(i, j), p, slope, lo, hi);
+                continue;
+            }
+            for (var k = 0; k < 4; k++) {
+                let child = vec2<i32>(2 * i + (k & 1), 2 * j + (k >> 1u));
+                if glitter_cell_overlaps(f, level, child, lo, hi) {
+                    lit += glitter_any_cell_lit(f, level, child, h, p, slope, lo, hi);
+                }
+            }
+        }
+    }
+    return min(lit / (4.0 * half_mm.x * half_mm.y), 1.0);
 }
 
 // The glitter's lobe per unit irradiance E·(n·l): sparkle · colour / (π sin²δ (n·l)).
