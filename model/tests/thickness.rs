@@ -13,8 +13,8 @@ use glam::{Vec2, Vec3};
 use rouge_model::mesh::shapes::{SPHERE_RADIUS_MM, WEDGE_SIZE_MM, sphere, wedge};
 use rouge_model::mesh::{Corner, Face, Group, Mesh, TriangleMesh};
 use rouge_model::thickness::{
-    BakeSettings, CacheUse, Falloff, LocalThickness, ThicknessError, bake_local_thickness, bake_local_thickness_cached,
-    morph_to_bounding_sphere, thickness_uv_map,
+    BakeSettings, CacheUse, Falloff, LocalThickness, ThicknessError, bake_ambient_occlusion, bake_local_thickness,
+    bake_local_thickness_cached, morph_to_bounding_sphere, thickness_uv_map,
 };
 
 /// Facet and origin-offset bias of the triangulated built-in sphere, mm (see the file docs).
@@ -127,6 +127,30 @@ fn sphere_mean_chord_is_four_thirds_radius() {
         assert!((f64::from(v[0]) - value_expected).abs() <= value_tolerance, "vertex {i}: value {v:?}");
         assert!(v[0] == v[1] && v[1] == v[2], "grey falloff gives equal channels");
     }
+}
+
+#[test]
+fn ambient_occlusion_is_one_outside_a_sphere_and_the_chord_inside_it() {
+    let mut mesh = builtin_sphere();
+    let (rays, cutoff) = (32, 60.0);
+    let s = settings(rays, cutoff, Falloff::Power { exponent: 1.0 });
+    // Outside a convex body every outward ray leaves: no occlusion at all.
+    let outside = bake_ambient_occlusion(&mesh, &s).expect("bake");
+    assert!(outside.iter().all(|&a| a == 1.0), "min {}", outside.iter().fold(1.0f32, |a, &b| a.min(b)));
+    // Inside it (normals turned in: the view from within a dome), every ray hits the far wall
+    // at 2r·cosθ: the occlusion 1 − E[1 − 2r cosθ / c] = (2r/c)(2/3), the local thickness's
+    // closed form turned over.
+    mesh.normals.iter_mut().for_each(|n| *n = -*n);
+    let inside = bake_ambient_occlusion(&mesh, &s).expect("bake");
+    let r = f64::from(SPHERE_RADIUS_MM);
+    let expected = 2.0 * r / f64::from(cutoff) * 2.0 / 3.0;
+    let tolerance = 2.0 * r / f64::from(cutoff) / f64::from(rays) + SPHERE_FACET_MM / f64::from(cutoff);
+    for (i, &a) in inside.iter().enumerate() {
+        assert!((f64::from(a) - expected).abs() <= tolerance, "vertex {i}: {a}, expected {expected} ± {tolerance}");
+    }
+    // Its errors are the thickness bake's.
+    let bad = bake_ambient_occlusion(&mesh, &BakeSettings { rays: 0, ..s });
+    assert!(matches!(bad, Err(ThicknessError::Setting { parameter: "rays", .. })), "{bad:?}");
 }
 
 /// ∫₀¹ 2μ·exp(−aμ) dμ = 2(1 − (1 + a)e^{−a})/a², the cosine-weighted mean of exp(−k·2r·cosθ)

@@ -37,8 +37,10 @@ struct Row {
     triangles: usize,
     /// Loading the scene (mesh, look, skin maps), once for every size.
     load_s: f64,
-    /// The bake, the PNG encoding and the document (median).
+    /// The bake (the ambient occlusion's included), the PNG encoding and the document (median).
     export_s: f64,
+    /// The same without the ambient occlusion, once.
+    without_occlusion_s: f64,
     /// The .glb's bytes put together and written (median).
     write_s: f64,
     glb_bytes: u64,
@@ -81,7 +83,7 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
         let mut last = None;
         for _ in 0..args.repeats {
             let t = Instant::now();
-            let export = export_loaded(&loaded, &images, texture_px)?;
+            let export = export_loaded(&loaded, &images, texture_px, true)?;
             export_s.push(t.elapsed().as_secs_f64());
             let t = Instant::now();
             export.document.write(&path)?;
@@ -90,11 +92,14 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
         }
         let Some(export) = last else { bail!("no export ran") };
         let t = Instant::now();
+        export_loaded(&loaded, &images, texture_px, false)?;
+        let without_occlusion_s = t.elapsed().as_secs_f64();
+        let t = Instant::now();
         let written = export_materialx(&loaded, &images, texture_px)?.write(&mtlx_dir)?;
         let materialx_s = t.elapsed().as_secs_f64();
         let materialx_bytes = written.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
         let t = Instant::now();
-        let glb = export_loaded(&loaded, &images, texture_px)?.document.glb_bytes();
+        let glb = export_loaded(&loaded, &images, texture_px, false)?.document.glb_bytes();
         let (bare, roughness) = bare_skin_texture(&loaded, &images, texture_px)?;
         let data = page_data(&loaded, (job.width, job.height), roughness, texture_px)?;
         let web_bytes = share_page(&data, &glb, &bare, job.width as f32 / job.height as f32).len();
@@ -105,6 +110,7 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
             load_s,
             export_s: median(export_s),
             write_s: median(write_s),
+            without_occlusion_s,
             glb_bytes: std::fs::metadata(&path)?.len(),
             images: export.document.images.iter().map(|i| (i.name.to_string(), i.png.len())).collect(),
             materialx_s,
@@ -125,6 +131,7 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
         &[
             "textures",
             "bake + PNG + document (s)",
+            "the same without occlusion (s)",
             "write .glb (s)",
             ".glb (MB)",
             "images (MB)",
@@ -139,6 +146,7 @@ pub fn run(args: &ExportBenchArgs) -> Result<()> {
             vec![
                 format!("{0}²", r.texture_px),
                 format!("{:.2}", r.export_s),
+                format!("{:.2}", r.without_occlusion_s),
                 format!("{:.3}", r.write_s),
                 format!("{:.1}", r.glb_bytes as f64 / 1e6),
                 images.join(", "),

@@ -19,7 +19,8 @@ pub enum ExportCommand {
     Mitsuba(MitsubaArgs),
     /// The head as `rouge render` draws it with the same options (posed, shaped, subdivided) and
     /// its eyes as glTF 2.0, with the look baked into textures: base colour (the skin and its
-    /// cosmetics under white light, subsurface scattering excluded), metallic-roughness, the
+    /// cosmetics under white light, subsurface scattering excluded), metallic-roughness with the
+    /// head's ambient occlusion, the
     /// normal map when the scene has one, KHR_materials_ior and KHR_materials_specular.
     /// Positions in metres (`rouge render --mesh FILE --mesh-scale 1000 --subdiv 0` reads it
     /// back). docs/FORMATS.md says what each file holds and what is lost.
@@ -72,6 +73,11 @@ pub struct GltfArgs {
     /// FILE_*.png beside it). Every file is replaced atomically.
     #[arg(long)]
     pub out: PathBuf,
+    /// Leave the ambient occlusion out (its bake takes 1-3 s on the subdivided head; glTF
+    /// viewers darken only their ambient light with it, so a scene lit by lights alone draws
+    /// the same without it).
+    #[arg(long)]
+    pub no_occlusion: bool,
 }
 
 #[derive(Debug, Args)]
@@ -134,7 +140,7 @@ fn run_gltf(args: &GltfArgs) -> Result<()> {
     }
     let (job, _) = args.scene.render_job()?;
     let start = std::time::Instant::now();
-    let export = rouge_render::gltf_export::export_job(&job, texture_px)?;
+    let export = rouge_render::gltf_export::export_job(&job, texture_px, !args.no_occlusion)?;
     let written = export.document.write(&args.out)?;
     let bytes: u64 = written.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
     eprintln!(

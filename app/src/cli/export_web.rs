@@ -44,7 +44,9 @@ pub fn run(args: &WebArgs) -> Result<()> {
     rouge_render::gltf_export::bake::check_texture_px(texture_px)?;
     let loaded = job.load()?;
     let images = job.skin_textures()?;
-    let export = export_loaded(&loaded, &images, texture_px)?;
+    // No occlusion: the page lights the head with one directional light, which glTF's
+    // occlusion does not darken.
+    let export = export_loaded(&loaded, &images, texture_px, false)?;
     let (bare_png, bare_roughness) = bare_skin_texture(&loaded, &images, texture_px)?;
     let data = page_data(&loaded, (job.width, job.height), bare_roughness, texture_px)?;
     let html = share_page(&data, &export.document.glb_bytes(), &bare_png, job.width as f32 / job.height as f32);

@@ -88,7 +88,7 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
             "face.glb",
             "face.gltf",
             "face_base_color.png",
-            "face_metallic_roughness.png",
+            "face_occlusion_roughness_metallic.png",
             "face_specular.png"
         ],
         "no temporary file is left"
@@ -118,7 +118,7 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
         (view["byteOffset"].as_u64().unwrap_or(0) as usize, view["byteLength"].as_u64().expect("length") as usize);
     let png = image::load_from_memory(&bin[at..at + len]).expect("PNG").to_rgb8();
     assert_eq!(png.dimensions(), (256, 256));
-    let baked = export_job(&job(), 256).expect("in-process export").surface;
+    let baked = export_job(&job(), 256, false).expect("in-process export").surface;
     let lips = rouge_model::look::Region::Lips.mask();
     let (u, v) = (0..lips.mm.len())
         .max_by(|&a, &b| lips.mm[a].total_cmp(&lips.mm[b]))
@@ -134,6 +134,33 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
     assert!(got.iter().zip(expect).all(|(a, b)| (a - b).abs() <= 1), "lips texel {got:?} vs the bake {expect:?}");
     assert!(got[0] > got[1] + 40, "the lips are red in the file: {got:?}");
     assert!(json["extensionsUsed"].as_array().is_some_and(|e| e.iter().any(|x| x == "KHR_materials_specular")));
+
+    // Occlusion in the roughness texture's red channel: the eyelids, under the brow ridge and
+    // over the eyeball, see less sky than the cheeks, which see nearly all of it.
+    let skin = &json["materials"][0];
+    assert_eq!(skin["occlusionTexture"]["index"], skin["pbrMetallicRoughness"]["metallicRoughnessTexture"]["index"]);
+    let orm = json["images"]
+        .as_array()
+        .expect("images")
+        .iter()
+        .find(|i| i["name"] == "occlusion_roughness_metallic")
+        .expect("occlusion-roughness-metallic");
+    let view = &json["bufferViews"][orm["bufferView"].as_u64().expect("view") as usize];
+    let (at, len) =
+        (view["byteOffset"].as_u64().unwrap_or(0) as usize, view["byteLength"].as_u64().expect("length") as usize);
+    let orm = image::load_from_memory(&bin[at..at + len]).expect("PNG").to_rgb8();
+    let mean_occlusion = |region: rouge_model::look::Region| {
+        let mask = region.mask().resized(256, 256);
+        let inside: Vec<f32> = orm
+            .enumerate_pixels()
+            .filter(|(x, y, _)| mask.mm[(y * 256 + x) as usize] > 0.0)
+            .map(|p| f32::from(p.2.0[0]) / 255.0)
+            .collect();
+        inside.iter().sum::<f32>() / inside.len().max(1) as f32
+    };
+    let (lids, cheeks) =
+        (mean_occlusion(rouge_model::look::Region::Eyelids), mean_occlusion(rouge_model::look::Region::Cheeks));
+    assert!(cheeks > 0.8 && lids < cheeks - 0.05, "occlusion: eyelids {lids}, cheeks {cheeks}");
 
     validate(&[&glb, &gltf]);
 }
@@ -192,13 +219,16 @@ fn a_gloss_layer_becomes_a_clearcoat_over_the_lobe_of_the_layers_under_it() {
     );
     std::fs::write(&look, text).expect("look");
     let glb = dir.path().join("gloss.glb");
-    let mut args = vec!["export", "gltf", "--look", look.to_str().expect("utf-8")];
+    // Without the occlusion (`--no-occlusion`): no occlusionTexture, and the texture is the
+    // plain metallic-roughness one.
+    let mut args = vec!["export", "gltf", "--no-occlusion", "--look", look.to_str().expect("utf-8")];
     args.extend(SCENE);
     args.push(glb.to_str().expect("utf-8"));
     let o = rouge(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     let bytes = std::fs::read(&glb).expect("glb");
     let (json, bin) = glb_chunks(&bytes);
+    assert!(json["materials"][0].get("occlusionTexture").is_none(), "{}", json["materials"][0]);
     assert!(json["extensionsUsed"].as_array().is_some_and(|e| e.iter().any(|x| x == "KHR_materials_clearcoat")));
     let coat = &json["materials"][0]["extensions"]["KHR_materials_clearcoat"];
     let preset = rouge_measure::preset::Preset::load(&gloss).expect("the gloss preset");

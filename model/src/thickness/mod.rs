@@ -23,6 +23,9 @@
 //! faces at once also count as misses, so corners read thicker than they are; the renderer's
 //! smooth-shaded meshes do not have them.
 //!
+//! [`bake_ambient_occlusion`] sends the same rays about the outward normal: ambient occlusion,
+//! for exports that carry an occlusion texture (glTF's `occlusionTexture`).
+//!
 //! [`thickness_uv_map`] rasterises the per-vertex values into the mesh's UV space (the same
 //! rasteriser and seam dilation as the brush's [`crate::paint::SurfaceMap`]);
 //! [`bake_local_thickness_cached`] keeps bakes on disk keyed by the mesh and the settings;
@@ -205,9 +208,42 @@ pub struct LocalThickness {
 /// mesh with no triangles, an index out of range, a normal count that is not the vertex count,
 /// or a non-finite position or normal (naming the vertex).
 pub fn bake_local_thickness(mesh: &TriangleMesh, settings: &BakeSettings) -> Result<LocalThickness, ThicknessError> {
+    let start = Instant::now();
+    let (mean_chord_mm, value) = trace_vertices(mesh, settings, Side::Inward)?.into_iter().unzip();
+    Ok(LocalThickness { settings: *settings, mean_chord_mm, value, bake_seconds: start.elapsed().as_secs_f64() })
+}
+
+/// Bakes the ambient occlusion of every vertex of `mesh`: the same rays as
+/// [`bake_local_thickness`] about the *outward* normal (the eye sockets, the nostrils and the
+/// folds under the chin see less of the sky), 1 − the mean weight w(t) of their hits: 1 where
+/// every ray leaves, down to 0 where every ray hits at once. With the default settings' linear
+/// falloff, a hit at distance t darkens by 1 − t/cutoff (the "distance" ambient occlusion of
+/// Blender's and Substance Painter's bakers). Same domain and errors as [`bake_local_thickness`];
+/// a vertex without a normal reads 1 (unoccluded).
+///
+/// # Errors
+/// As [`bake_local_thickness`].
+pub fn bake_ambient_occlusion(mesh: &TriangleMesh, settings: &BakeSettings) -> Result<Vec<f32>, ThicknessError> {
+    Ok(trace_vertices(mesh, settings, Side::Outward)?.into_iter().map(|(_, w)| 1.0 - w[0]).collect())
+}
+
+/// Which way a vertex's rays go.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    /// About −n, into the body (local thickness).
+    Inward,
+    /// About +n, away from the surface (ambient occlusion).
+    Outward,
+}
+
+/// Every vertex's (mean chord, mean weight) of its rays on `side`, traced in parallel.
+fn trace_vertices(
+    mesh: &TriangleMesh,
+    settings: &BakeSettings,
+    side: Side,
+) -> Result<Vec<(f32, [f32; 3])>, ThicknessError> {
     settings.validate()?;
     check_mesh(mesh)?;
-    let start = Instant::now();
     let triangles: Vec<Triangle> = mesh
         .indices
         .chunks_exact(3)
@@ -222,20 +258,20 @@ pub fn bake_local_thickness(mesh: &TriangleMesh, settings: &BakeSettings) -> Res
     let needs_fallback = mesh.normals.iter().any(|n| n.length_squared() <= f32::MIN_POSITIVE);
     let fallback = if needs_fallback { smooth_normals_per_position(mesh) } else { Vec::new() };
     let tracer = Tracer { bvh: &bvh, triangles: &triangles, settings, epsilon_mm };
-    let per_vertex: Vec<(f32, [f32; 3])> = par_rows(mesh.vertex_count(), |range| {
+    // The tracer sends its rays about the inward normal it is given.
+    let toward = if side == Side::Inward { 1.0 } else { -1.0 };
+    Ok(par_rows(mesh.vertex_count(), |range| {
         range
             .map(|i| {
                 let n = mesh.normals[i].try_normalize().or_else(|| fallback.get(i).and_then(|n| n.try_normalize()));
                 match n {
-                    Some(n) => tracer.vertex(mesh.positions[i], n, i as u64),
+                    Some(n) => tracer.vertex(mesh.positions[i], toward * n, i as u64),
                     None => (settings.cutoff_mm, [0.0; 3]),
                 }
             })
             .collect::<Vec<_>>()
     })
-    .concat();
-    let (mean_chord_mm, value) = per_vertex.into_iter().unzip();
-    Ok(LocalThickness { settings: *settings, mean_chord_mm, value, bake_seconds: start.elapsed().as_secs_f64() })
+    .concat())
 }
 
 /// Rejects meshes the baker cannot trace.

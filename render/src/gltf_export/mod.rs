@@ -9,7 +9,7 @@
 //!
 //! Materials: the skin's base colour is the baked diffuse reflectance; its metallic-roughness
 //! texture holds the roughness of the one lobe standing for the renderer's stack of Kelemen
-//! lobes (metallic 0); `KHR_materials_ior` carries the skin's IOR where it is not glTF's 1.5, and
+//! lobes (metallic 0) and, in its red channel, the head's ambient occlusion ([`occlusion`]); `KHR_materials_ior` carries the skin's IOR where it is not glTF's 1.5, and
 //! `KHR_materials_specular` the F0 the layers add (a texture of F0 relative to the skin's), and
 //! `KHR_materials_clearcoat` a gloss layer (finish `gloss`, [`coat`]): its coverage as the coat's
 //! texture and its roughness, the lobe under it baked without it (glTF's coat has index 1.5). The
@@ -19,6 +19,7 @@
 pub mod bake;
 pub mod coat;
 pub mod document;
+pub mod occlusion;
 
 pub use bake::{SkinSurface, SurfaceMaps, TEXTURE_PX_RANGE, TexelSurface, bake_surface};
 pub use document::Document;
@@ -54,6 +55,9 @@ pub struct GltfInput<'a> {
     pub look_name: &'a str,
     /// The lashes' and brows' colour (a mascara's on the lashes).
     pub hair: crate::HairAlbedo,
+    /// Bake the head's ambient occlusion into `occlusionTexture` ([`occlusion`]: 1-3 s on the
+    /// subdivided head; viewers apply it to ambient light only).
+    pub occlusion: bool,
 }
 
 /// An exported asset, ready to write.
@@ -93,10 +97,15 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
     // Tangents only where a normal texture uses them.
     let mesh = if input.normal_map.is_some() { with_tangents(input.mesh)? } else { checked(input.mesh)? };
     let skin = input.skin;
+    let occlusion =
+        if input.occlusion { Some(occlusion::occlusion_plane(input.mesh, input.texture_px)?) } else { None };
 
     let mut images = vec![
         Image { name: "base_color", png: encode_png(side(&surface), &base_color_texels(&surface), 3)? },
-        Image { name: "metallic_roughness", png: encode_png(side(&surface), &roughness_texels(lobe), 3)? },
+        Image {
+            name: if input.occlusion { "occlusion_roughness_metallic" } else { "metallic_roughness" },
+            png: encode_png(side(&surface), &orm_texels(lobe, occlusion.as_deref()), 3)?,
+        },
     ];
     let texture = |i: usize| json!({"index": i});
     let mut skin_material = json!({
@@ -108,6 +117,9 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
             "metallicRoughnessTexture": texture(1),
         },
     });
+    if occlusion.is_some() {
+        skin_material["occlusionTexture"] = texture(1);
+    }
     let mut extensions_used = Vec::new();
     let mut skin_ext = serde_json::Map::new();
     let ior = ior_extension(skin.ior);
@@ -177,16 +189,17 @@ pub fn export_gltf(input: &GltfInput<'_>) -> Result<GltfExport> {
 
 /// The scene of `job` as `rouge render` draws it (mesh posed, shaped and subdivided; the look's
 /// visible layers; the skin's colour, albedo texture or skin maps, and its normal map) exported
-/// with textures of `texture_px`² texels. Lights, camera and environment are not exported.
+/// with textures of `texture_px`² texels, and its ambient occlusion when `occlusion`. Lights,
+/// camera and environment are not exported.
 ///
 /// # Errors
 /// What [`RenderJob::load`], [`RenderJob::skin_textures`] and [`export_gltf`] refuse.
-pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
+pub fn export_job(job: &RenderJob, texture_px: u32, occlusion: bool) -> Result<GltfExport> {
     // Refused before anything is loaded: skin maps take seconds.
     bake::check_texture_px(texture_px)?;
     let loaded = job.load()?;
     let images = job.skin_textures()?;
-    export_loaded(&loaded, &images, texture_px)
+    export_loaded(&loaded, &images, texture_px, occlusion)
 }
 
 /// [`export_job`] from a scene already loaded and its skin textures read (what a benchmark
@@ -194,7 +207,12 @@ pub fn export_job(job: &RenderJob, texture_px: u32) -> Result<GltfExport> {
 ///
 /// # Errors
 /// What [`export_gltf`] refuses.
-pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u32) -> Result<GltfExport> {
+pub fn export_loaded(
+    loaded: &Loaded,
+    images: &SkinTextureImages,
+    texture_px: u32,
+    occlusion: bool,
+) -> Result<GltfExport> {
     let layers: Vec<LayerInput<'_>> = loaded.look.visible_layers().map(layer_input).collect();
     export_gltf(&GltfInput {
         mesh: &loaded.mesh,
@@ -204,6 +222,7 @@ pub fn export_loaded(loaded: &Loaded, images: &SkinTextureImages, texture_px: u3
         texture_px,
         look_name: &loaded.look.name,
         hair: crate::gpu_mesh::HairAlbedo::with_products(loaded.look.mascara.as_ref(), loaded.look.brow_gel.as_ref()),
+        occlusion,
     })
 }
 
@@ -333,9 +352,12 @@ pub(crate) fn base_color_texels(s: &SurfaceMaps) -> Vec<u8> {
     s.base_color.iter().flat_map(|c| c.map(|v| lut[(v.clamp(0.0, 1.0) * 4095.0).round() as usize])).collect()
 }
 
-/// glTF's metallic-roughness texture: G = roughness, B = metallic (0), R unused (255).
-fn roughness_texels(s: &SurfaceMaps) -> Vec<u8> {
-    s.beckmann_roughness.iter().flat_map(|&m| [255, (gltf_roughness(m) * 255.0).round() as u8, 0]).collect()
+/// glTF's occlusion and metallic-roughness textures in one (the "ORM" packing glTF's channels
+/// allow): R = occlusion (255 without it), G = roughness, B = metallic (0).
+fn orm_texels(s: &SurfaceMaps, occlusion: Option<&[f32]>) -> Vec<u8> {
+    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    let ao = |i: usize| occlusion.and_then(|o| o.get(i)).copied().unwrap_or(1.0);
+    s.beckmann_roughness.iter().enumerate().flat_map(|(i, &m)| [byte(ao(i)), byte(gltf_roughness(m)), 0]).collect()
 }
 
 /// `KHR_materials_ior` for a surface of index `ior`, unless it is glTF's default.
