@@ -15,6 +15,7 @@ pub mod analysis;
 pub mod colorimetry;
 pub mod compositing;
 pub mod error;
+pub mod file_set;
 pub mod finish;
 pub mod import;
 pub mod km;

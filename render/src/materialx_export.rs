@@ -23,12 +23,13 @@
 use crate::error::Result;
 use crate::gltf_export::bake::{SurfaceMaps, bake_surface};
 use crate::gltf_export::coat::split_coat;
-use crate::gltf_export::document::{encode_png, write_file};
+use crate::gltf_export::document::encode_png;
 use crate::gltf_export::{base_color_texels, checked, gltf_roughness, layer_input, skin_surface};
 use crate::job::{Loaded, SkinTextureImages};
 use crate::renderer::LayerInput;
 use crate::scene::{Skin, SubsurfaceModel, fresnel_f0};
 use crate::sss::DiffusionProfile;
+use rouge_measure::file_set::{content_tag_stem, content_tagged, write_file_set};
 use rouge_model::mesh::TriangleMesh;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -41,7 +42,8 @@ pub const OBJ_FILE: &str = "face.obj";
 /// An exported material and mesh, ready to write.
 #[derive(Clone, Debug)]
 pub struct MaterialxExport {
-    /// File names and contents, the .mtlx last (it names the others).
+    /// File names and contents: the textures (named by their content), the OBJ, the .mtlx last
+    /// (it names the textures).
     pub files: Vec<(String, Vec<u8>)>,
     /// Triangles of the OBJ.
     pub triangles: usize,
@@ -51,18 +53,25 @@ pub struct MaterialxExport {
 
 impl MaterialxExport {
     /// Writes every file into `dir` (which must exist), each through a temporary file and a
-    /// rename, the .mtlx last. Returns the files written.
+    /// rename: the textures (named by their content) and the OBJ, then the .mtlx that names the
+    /// textures, then the previous export's textures (`skin_*.<hash>.png`, and the plain
+    /// `skin_*.png` of exports before content names that the previous .mtlx names) are removed
+    /// (`rouge_measure::file_set`). A kill or a full disk at any point leaves a .mtlx whose
+    /// textures are all there and its own; the OBJ beside it may be the next export's (each file
+    /// whole). Returns the files written, the .mtlx last.
     ///
     /// # Errors
     /// [`crate::RenderError::File`] naming the file that could not be written.
     pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>> {
-        let mut written = Vec::new();
-        for (name, bytes) in &self.files {
-            let path = dir.join(name);
-            write_file(&path, bytes)?;
-            written.push(path);
-        }
-        Ok(written)
+        let Some(((_, mtlx), companions)) = self.files.split_last() else { return Ok(Vec::new()) };
+        let commit = dir.join(MTLX_FILE);
+        let previous = std::fs::read_to_string(&commit).unwrap_or_default();
+        let stale = |name: &str| {
+            content_tag_stem(name, "png").is_some_and(|s| s.starts_with("skin_"))
+                || (name.starts_with("skin_") && name.ends_with(".png") && previous.contains(&format!("\"{name}\"")))
+        };
+        write_file_set(dir, companions, &commit, mtlx, &stale)
+            .map_err(|(file, e)| crate::RenderError::file(&file, format!("cannot write: {e}")))
     }
 }
 
@@ -125,8 +134,15 @@ pub fn export_materialx(loaded: &Loaded, images: &SkinTextureImages, texture_px:
         eye_inputs.clear();
     }
     let (obj, triangles, has_eyes) = obj_text(&mesh);
+    let mut mtlx = mtlx_text(&loaded.look.name, &skin_inputs, has_eyes.then_some(&eye_inputs[..]));
+    // The textures named by their content (`skin_base_color.<hash>.png`), as the .mtlx names them:
+    // a new export never replaces a file the previous .mtlx still names.
+    for (name, bytes) in &mut files {
+        let tagged = content_tagged(name.trim_end_matches(".png"), "png", bytes);
+        mtlx = mtlx.replace(&format!("value=\"{name}\""), &format!("value=\"{tagged}\""));
+        *name = tagged;
+    }
     files.push((OBJ_FILE.to_string(), obj.into_bytes()));
-    let mtlx = mtlx_text(&loaded.look.name, &skin_inputs, has_eyes.then_some(&eye_inputs[..]));
     files.push((MTLX_FILE.to_string(), mtlx.into_bytes()));
     Ok(MaterialxExport { files, triangles, coat: coat.is_some() })
 }

@@ -76,13 +76,23 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
         assert!(o.status.success(), "{}", stderr(&o));
         assert!(stderr(&o).contains("triangles"), "{}", stderr(&o));
     }
-    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+    // Beside the .gltf, its companions named by their content (`STEM_NAME.<16 hex>.png`).
+    let names: Vec<String> = std::fs::read_dir(dir.path())
         .expect("dir")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into())
         .collect();
-    names.sort();
+    let mut kinds: Vec<String> = names
+        .iter()
+        .map(|n| {
+            ["bin", "png"]
+                .iter()
+                .find_map(|ext| rouge_measure::file_set::content_tag_stem(n, ext).map(|s| format!("{s}.{ext}")))
+                .unwrap_or_else(|| n.clone())
+        })
+        .collect();
+    kinds.sort();
     assert_eq!(
-        names,
+        kinds,
         [
             "face.bin",
             "face.glb",
@@ -91,7 +101,7 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
             "face_occlusion_roughness_metallic.png",
             "face_specular.png"
         ],
-        "no temporary file is left"
+        "no temporary file is left: {names:?}"
     );
 
     // The repo's loader reads both back (metres → mm): the triangles and bounds of the drawn mesh.

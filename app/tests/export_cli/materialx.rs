@@ -19,10 +19,17 @@ fn the_obj_reimports_as_the_drawn_mesh_beside_its_material_and_textures() {
     let dir = tempfile::tempdir().expect("temp dir");
     let o = export(dir.path(), "256");
     assert!(o.status.success(), "{}", stderr(&o));
+    // The textures are named by their content (`skin_NAME.<16 hex>.png`), as the .mtlx names them.
+    let plain: Vec<String> = names(dir.path())
+        .iter()
+        .map(|n| rouge_measure::file_set::content_tag_stem(n, "png").map_or_else(|| n.clone(), |s| format!("{s}.png")))
+        .collect();
     assert_eq!(
-        names(dir.path()),
+        plain,
         ["face.mtlx", "face.obj", "skin_base_color.png", "skin_specular_roughness.png", "skin_specular_weight.png"]
     );
+    let mtlx = std::fs::read_to_string(dir.path().join("face.mtlx")).expect("mtlx");
+    assert!(names(dir.path()).iter().filter(|n| n.ends_with(".png")).all(|n| mtlx.contains(n.as_str())), "{mtlx}");
     let drawn =
         RenderJob { subdivision: 1, look: LookChoice::Default, ..RenderJob::default() }.load().expect("scene").mesh;
     let back = load_mesh(Some(&dir.path().join("face.obj")), 1.0, 0).expect("re-import");
@@ -32,7 +39,8 @@ fn the_obj_reimports_as_the_drawn_mesh_beside_its_material_and_textures() {
     let eyes = back.groups.iter().filter(|g| g.is_eye()).count();
     assert_eq!(eyes, drawn.groups.iter().filter(|g| g.is_eye()).count(), "{:?}", back.groups);
     assert!(eyes > 0);
-    let base = image::open(dir.path().join("skin_base_color.png")).expect("png");
+    let base_file = names(dir.path()).into_iter().find(|n| n.starts_with("skin_base_color.")).expect("base colour");
+    let base = image::open(dir.path().join(base_file)).expect("png");
     assert_eq!((base.width(), base.height()), (256, 256));
 }
 

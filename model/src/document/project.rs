@@ -8,6 +8,7 @@ use crate::look::ProjectPart;
 use crate::mesh::targets::TargetSet;
 use crate::skin::SKIN_FILE;
 use crate::skin::file::{is_maps_file_name, project_skin_files, read_project_skin};
+pub(super) use rouge_measure::file_set::{HASH_DIGITS, bytes_hash, mix64};
 
 impl Document {
     // --------------------------------------------------------------------------------------
@@ -188,7 +189,8 @@ pub(super) fn map_hash(map: &ThicknessMap) -> u64 {
 }
 
 /// 64-bit hash of `header` (a size) and `values` (bit patterns), what names a map's file in a
-/// project ([`map_hash`], the skin maps). Multiply-rotate mixing with a SplitMix64 finaliser;
+/// project ([`map_hash`], the skin maps). Multiply-rotate mixing with SplitMix64's finaliser
+/// ([`mix64`], as [`bytes_hash`] of bytes);
 /// not cryptographic, only to tell maps apart.
 pub(crate) fn floats_hash(header: u64, values: impl Iterator<Item = f32>) -> u64 {
     let mut h = 0x9E37_79B9_7F4A_7C15u64 ^ header;
@@ -197,24 +199,8 @@ pub(crate) fn floats_hash(header: u64, values: impl Iterator<Item = f32>) -> u64
         h = (h.rotate_left(23) ^ u64::from(v.to_bits())).wrapping_mul(0xD6E8_FEB8_6659_FD93);
         n += 1;
     }
-    splitmix64(h ^ n)
+    mix64(h ^ n)
 }
-
-pub(super) fn bytes_hash(bytes: &[u8]) -> u64 {
-    let mut h = 0x9E37_79B9_7F4A_7C15u64;
-    for &b in bytes {
-        h = (h.rotate_left(23) ^ u64::from(b)).wrapping_mul(0xD6E8_FEB8_6659_FD93);
-    }
-    splitmix64(h ^ bytes.len() as u64)
-}
-
-pub(super) fn splitmix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-pub(super) const HASH_DIGITS: usize = 16;
 
 /// `NN-<slug>-<hash>.<ext>`.
 pub(super) fn hashed_name(i: usize, name: &str, hash: u64, ext: &str) -> String {

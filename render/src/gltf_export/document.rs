@@ -1,10 +1,14 @@
 //! The glTF 2.0 document ([glTF2]): meshes as binary accessors, materials, textures, and the two
 //! containers: one .glb (JSON and binary chunks, images in the binary buffer) or a .gltf with its
-//! .bin and PNG images beside it. Every file is written atomically (temporary file, rename).
+//! .bin and PNG images beside it. Every file is written atomically (temporary file, rename); a
+//! .gltf's companions are named by their content and written before it, and the previous
+//! export's removed after it (`rouge_measure::file_set`), so a kill or a full disk at any point
+//! leaves a .gltf whose files are all there and all its own.
 //!
 //! [glTF2]: https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html
 
 use crate::error::{RenderError, Result};
+use rouge_measure::file_set::{content_tag_stem, content_tagged, write_file_set};
 use rouge_measure::preset::write_atomic;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -145,7 +149,7 @@ impl Document {
                 Container::Glb => {
                     json!({"name": img.name, "mimeType": "image/png", "bufferView": bin.view(&img.png, None)})
                 }
-                Container::Beside { stem } => json!({"name": img.name, "uri": image_file_name(stem, img.name)}),
+                Container::Beside { stem } => json!({"name": img.name, "uri": image_file_name(stem, img)}),
             })
             .collect();
         while !bin.bytes.len().is_multiple_of(4) {
@@ -153,6 +157,7 @@ impl Document {
         }
         let mut buffer = json!({"byteLength": bin.bytes.len()});
         if let Container::Beside { stem } = container {
+            // Named by its content by `write`, which knows the bytes.
             buffer["uri"] = json!(format!("{stem}.bin"));
         }
         let nodes: Vec<Value> =
@@ -203,9 +208,10 @@ impl Document {
     }
 
     /// Writes the document to `path` by its extension: `.glb` (one file) or `.gltf` (with
-    /// `STEM.bin` and `STEM_NAME.png` beside it, written before the .gltf that names them).
+    /// `STEM.<hash>.bin` and `STEM_NAME.<hash>.png` beside it, named by their content and written
+    /// before the .gltf that names them; an earlier export's companions are removed after it).
     /// Every file goes through a temporary file and a rename, so a failed write leaves the
-    /// previous file whole. Returns the files written.
+    /// previous export whole. Returns the files written, the .gltf last.
     ///
     /// # Errors
     /// [`RenderError::File`] naming the file that could not be written, or `path` for another
@@ -221,22 +227,28 @@ impl Document {
                 let stem = path.file_stem().and_then(|s| s.to_str()).ok_or_else(|| {
                     RenderError::file(path, "the file name must be UTF-8 (it names the .bin and images)")
                 })?;
-                let (doc, bin) = self.build(&Container::Beside { stem });
-                let dir = path.parent().unwrap_or(Path::new(""));
-                let mut written = Vec::new();
-                let bin_path = dir.join(format!("{stem}.bin"));
-                write(&bin_path, &bin)?;
-                written.push(bin_path);
-                for img in &self.images {
-                    let p = dir.join(image_file_name(stem, img.name));
-                    write(&p, &img.png)?;
-                    written.push(p);
-                }
+                let (mut doc, bin) = self.build(&Container::Beside { stem });
+                let bin_name = content_tagged(stem, "bin", &bin);
+                doc["buffers"][0]["uri"] = json!(bin_name);
+                let mut companions = vec![(bin_name, bin)];
+                companions.extend(self.images.iter().map(|img| (image_file_name(stem, img), img.png.clone())));
                 let text = serde_json::to_string_pretty(&doc)
                     .map_err(|e| RenderError::file(path, format!("cannot encode JSON: {e}")))?;
-                write(path, text.as_bytes())?;
-                written.push(path.to_path_buf());
-                Ok(written)
+                let dir = path.parent().unwrap_or(Path::new(""));
+                // An earlier export's companions: content-named ones of this stem, and the plain
+                // names of exports before content names, when the previous .gltf names them.
+                let previous = std::fs::read_to_string(path).unwrap_or_default();
+                let stale = |name: &str| {
+                    let tagged = content_tag_stem(name, "bin") == Some(stem)
+                        || content_tag_stem(name, "png").is_some_and(|s| s.starts_with(&format!("{stem}_")));
+                    let plain = (name == format!("{stem}.bin")
+                        || (name.starts_with(&format!("{stem}_")) && name.ends_with(".png")))
+                        && previous.contains(&format!("\"{name}\""));
+                    tagged || plain
+                };
+                let dir_or_here = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
+                write_file_set(dir_or_here, &companions, path, text.as_bytes(), &stale)
+                    .map_err(|(file, e)| RenderError::file(&file, format!("cannot write: {e}")))
             }
             _ => Err(RenderError::file(path, "unknown glTF container: use .glb (one file) or .gltf (files beside it)")),
         }
@@ -252,8 +264,9 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
 }
 
-fn image_file_name(stem: &str, name: &str) -> String {
-    format!("{stem}_{name}.png")
+/// An image's file beside a .gltf: `STEM_NAME.<hash>.png`, named by its content.
+fn image_file_name(stem: &str, img: &Image) -> String {
+    content_tagged(&format!("{stem}_{}", img.name), "png", &img.png)
 }
 
 /// 8-bit texels (row 0 first) of `channels` 1 (grey), 3 (RGB) or 4 (RGBA) per texel as a PNG file.
