@@ -40,6 +40,10 @@ struct Cli {
     /// and quit (checks a real window, e.g. under Xvfb).
     #[arg(long)]
     window_screenshot: Option<std::path::PathBuf>,
+    /// Adopt the autosave without asking (how the app starts itself again after its graphics
+    /// device was lost).
+    #[arg(long, hide = true)]
+    recover: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -126,6 +130,7 @@ fn main() -> ExitCode {
             autosave: true,
             mesh: cli.mesh.map(|m| (m, cli.mesh_scale)),
             window_screenshot: cli.window_screenshot,
+            recover: cli.recover,
         };
         return match rouge_app::gui::run(options) {
             Ok(()) => ExitCode::SUCCESS,

@@ -22,7 +22,7 @@ fn app_on(setup: WgpuSetup, data_dir: &Path, project: Option<PathBuf>, autosave:
     let data_dir = data_dir.to_owned();
     let renderer = WgpuTestRenderer::from_setup(setup);
     let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).renderer(renderer).build_eframe(move |cc| {
-        RougeApp::new(cc, Options { data_dir, project, autosave, mesh: None, window_screenshot: None })
+        RougeApp::new(cc, Options { data_dir, project, autosave, mesh: None, window_screenshot: None, recover: false })
             .expect("the app opens")
     });
     h.state_mut().wait_ready();
@@ -150,4 +150,41 @@ fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
     let doc = h.state().document();
     assert_eq!((doc.name.as_str(), doc.subsurface, doc.is_modified()), ("Evening look", SubsurfaceChoice::None, false));
     assert_eq!(h.state().subsurface_in_use().0, "none", "the viewport draws the saved model");
+}
+
+#[test]
+fn a_lost_gpu_saves_the_work_and_the_restart_recovers_it_without_asking() {
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = app(data.path(), None, false);
+    let top = h.state().document().layers.len() - 1;
+    h.state_mut().rename_layer(top, "Painted before the loss");
+    assert!(h.state().device_loss().is_none());
+    // What a driver reset does: the device is gone; the next frame learns of it.
+    h.state().destroy_device();
+    h.run_steps(3);
+    let loss = h.state().device_loss().expect("the loss is seen").clone();
+    assert!(loss.reason.contains("Destroyed"), "{loss:?}");
+    assert_eq!(loss.saved, Ok(()), "the work is saved even with autosaves off");
+    let recovery = data.path().join("recovery");
+    let saved = Document::open_recovery(&recovery).expect("the autosave opens");
+    assert_eq!(saved.layers[top].name, "Painted before the loss");
+    drop(h);
+
+    // The restart (`rouge --recover`) adopts it without asking, on a new device.
+    let data_dir = data.path().to_owned();
+    let renderer = WgpuTestRenderer::from_setup(default_wgpu_setup());
+    let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).renderer(renderer).build_eframe(move |cc| {
+        RougeApp::new(
+            cc,
+            Options { data_dir, project: None, autosave: false, mesh: None, window_screenshot: None, recover: true },
+        )
+        .expect("the app opens")
+    });
+    h.state_mut().wait_ready();
+    h.run_steps(4);
+    assert_eq!(h.state().document().layers[top].name, "Painted before the loss");
+    assert!(h.state().document().is_modified(), "recovered work is unsaved");
+    let (ok, text) = h.state().message().expect("a message").clone();
+    assert!(ok && text.contains("graphics device was lost"), "{text}");
+    assert!(h.query_by_label("Recover").is_none(), "no offer: the restart recovered at once");
 }

@@ -197,8 +197,14 @@ fn a_skin_dab_changes_the_pixels_under_it_only_and_undo_restores_the_frame() {
     drop(h);
     let (data_dir, project) = (data.path().to_owned(), dir.clone());
     let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        let options =
-            Options { data_dir, project: Some(project), autosave: false, mesh: None, window_screenshot: None };
+        let options = Options {
+            data_dir,
+            project: Some(project),
+            autosave: false,
+            mesh: None,
+            window_screenshot: None,
+            recover: false,
+        };
         RougeApp::new(cc, options).expect("the app opens the project")
     });
     h.state_mut().wait_ready();
@@ -279,7 +285,14 @@ fn figure() {
     let data = tempfile::tempdir().expect("tempdir");
     let dir = data.path().to_owned();
     let mut h = Harness::builder().with_size(egui::vec2(1440.0, 900.0)).wgpu().build_eframe(move |cc| {
-        let options = Options { data_dir: dir, project: None, autosave: false, mesh: None, window_screenshot: None };
+        let options = Options {
+            data_dir: dir,
+            project: None,
+            autosave: false,
+            mesh: None,
+            window_screenshot: None,
+            recover: false,
+        };
         RougeApp::new(cc, options).expect("the app opens")
     });
     h.state_mut().wait_ready();

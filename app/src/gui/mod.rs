@@ -17,6 +17,8 @@
 //! jobs (mesh preparation, autosave, recovery, the window screenshot).
 
 mod brush;
+mod device_lost;
+pub use device_lost::{DeviceLoss, RECOVER_FLAG};
 mod edit;
 mod expression;
 mod face;
@@ -78,6 +80,8 @@ pub struct Options {
     /// Take a screenshot of the whole window once the face is drawn, write it here as a PNG,
     /// and close (for checking the real window under Xvfb, and for the README's picture).
     pub window_screenshot: Option<PathBuf>,
+    /// Adopt the autosave without asking: the restart after a lost GPU ([`RECOVER_FLAG`]).
+    pub recover: bool,
 }
 
 impl Options {
@@ -125,6 +129,9 @@ pub struct RougeApp {
     skin_panel: skin_panel::SkinPanel,
     /// The frame-rate and GPU-time readout ([`frame_stats`]).
     frames: frame_stats::FrameStats,
+    /// Whether eframe's device is lost, and what the app did then ([`device_lost`]).
+    device_watch: device_lost::DeviceWatch,
+    device_loss: Option<DeviceLoss>,
 }
 
 /// What the panels keep between frames that is neither document nor view.
@@ -179,7 +186,8 @@ impl RougeApp {
             message: None,
             rename_buffer: doc.layers.last().map(|l| l.name.clone()).unwrap_or_default(),
             project_path: options.project.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
-            recovery_offer: options.autosave && Document::recovery_available(&options.recovery_dir()),
+            recovery_offer: (options.autosave || options.recover)
+                && Document::recovery_available(&options.recovery_dir()),
             mesh_name: "default head (hm08, CC0)".into(),
             fill: brush::FillTarget::Whole,
             error_dialog,
@@ -198,11 +206,17 @@ impl RougeApp {
             skin: Default::default(),
             skin_panel: Default::default(),
             frames: Default::default(),
+            device_watch: device_lost::DeviceWatch::new(&rs.device, cc.egui_ctx.clone()),
+            device_loss: None,
             options,
         };
         match app.options.mesh.clone() {
             Some((path, scale)) => app.start_mesh(Some(path), scale),
             None => app.start_mesh(None, 1.0),
+        }
+        // Started again after a lost device: the autosave is the work, adopted without asking.
+        if app.options.recover && app.ui.recovery_offer {
+            app.recover("after the graphics device was lost, Rouge restarted and recovered the unsaved work");
         }
         // A project opened at start shows its skin maps.
         app.request_skin_bake();
@@ -418,6 +432,9 @@ impl RougeApp {
 
 impl eframe::App for RougeApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        if self.device_lost_frame(ui.ctx()) {
+            return;
+        }
         if self.poll_mesh() | self.library.poll() | self.poll_skin() {
             ui.ctx().request_repaint();
         }
@@ -471,7 +488,8 @@ impl eframe::App for RougeApp {
     }
 
     fn on_exit(&mut self) {
-        if !self.options.autosave {
+        // After a lost device the autosave written for the restart stays, whatever it holds.
+        if !self.options.autosave || self.device_loss.is_some() {
             return;
         }
         // Unsaved work survives a close as an autosave (offered at the next start); a saved
@@ -504,5 +522,9 @@ pub fn run(options: Options) -> Result<()> {
         ..Default::default()
     };
     eframe::run_native("Rouge", native, Box::new(move |cc| Ok(Box::new(RougeApp::new(cc, options)?))))
-        .map_err(|e| anyhow::anyhow!("cannot open the app window: {e}"))
+        .map_err(|e| anyhow::anyhow!("cannot open the app window: {e}"))?;
+    if device_lost::RESTART_AFTER_DEVICE_LOSS.load(std::sync::atomic::Ordering::SeqCst) {
+        device_lost::restart().context("cannot start Rouge again after the lost graphics device")?;
+    }
+    Ok(())
 }

@@ -123,19 +123,7 @@ impl RougeApp {
             ui.label(format!("Rouge did not close cleanly last time. An autosave is in {}.", dir.display()));
             ui.horizontal(|ui| {
                 if ui.button("Recover").clicked() {
-                    match Document::open_recovery(&dir) {
-                        Ok(doc) => {
-                            // The work goes on in the project it came from, when it had one.
-                            let project = std::fs::read_to_string(dir.join(RECOVERED_FROM_FILE))
-                                .ok()
-                                .map(|p| PathBuf::from(p.trim()))
-                                .filter(|p| !p.as_os_str().is_empty());
-                            self.adopt_document(doc, project);
-                            self.ui.message = Some((true, "recovered the unsaved work (not saved yet)".into()));
-                        }
-                        Err(e) => self.ui.message = Some((false, format!("cannot recover the autosave: {e}"))),
-                    }
-                    self.ui.recovery_offer = false;
+                    self.recover("recovered the unsaved work");
                 }
                 if ui.button("Discard").clicked() {
                     let _ = Document::clear_recovery(&dir);
@@ -143,6 +131,24 @@ impl RougeApp {
                 }
             });
         });
+    }
+
+    /// Adopts the autosave (in the project it came from, when it had one) and says `what` in the
+    /// status line; the recovery offer is answered.
+    pub(super) fn recover(&mut self, what: &str) {
+        let dir = self.options.recovery_dir();
+        match Document::open_recovery(&dir) {
+            Ok(doc) => {
+                let project = std::fs::read_to_string(dir.join(RECOVERED_FROM_FILE))
+                    .ok()
+                    .map(|p| PathBuf::from(p.trim()))
+                    .filter(|p| !p.as_os_str().is_empty());
+                self.adopt_document(doc, project);
+                self.ui.message = Some((true, format!("{what} (not saved yet)")));
+            }
+            Err(e) => self.ui.message = Some((false, format!("cannot recover the autosave: {e}"))),
+        }
+        self.ui.recovery_offer = false;
     }
 
     /// The error dialog ([`UiState::error_dialog`]), until OK.

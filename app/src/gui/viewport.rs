@@ -146,7 +146,7 @@ pub(super) const DEFAULT_EDGE_AA: rouge_render::aa::EdgeAa =
 /// The GPU side of the app: eframe's device, the renderer painting the document, the one
 /// showing bare skin for the split, and the egui textures their frames are shown through.
 pub(super) struct GpuState {
-    device: wgpu::Device,
+    pub(super) device: wgpu::Device,
     queue: wgpu::Queue,
     egui_renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>,
     pub(super) renderer: Renderer,

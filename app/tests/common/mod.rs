@@ -17,8 +17,11 @@ pub fn harness(data_dir: &Path) -> Harness<'static, RougeApp> {
 pub fn harness_with_mesh(data_dir: &Path, mesh: Option<(PathBuf, f32)>) -> Harness<'static, RougeApp> {
     let dir = data_dir.to_owned();
     let mut h = Harness::builder().with_size(egui::vec2(1200.0, 760.0)).wgpu().build_eframe(move |cc| {
-        RougeApp::new(cc, Options { data_dir: dir, project: None, autosave: false, mesh, window_screenshot: None })
-            .expect("the app opens")
+        RougeApp::new(
+            cc,
+            Options { data_dir: dir, project: None, autosave: false, mesh, window_screenshot: None, recover: false },
+        )
+        .expect("the app opens")
     });
     h.state_mut().wait_ready();
     h.run_steps(4);
