@@ -140,18 +140,40 @@ pub fn studio_radiance(d: Vec3) -> [f32; 3] {
 
 const STUDIO_TINT: [f32; 3] = [1.0, 0.96, 0.90];
 
+/// Widest and tallest environment map read (texels), checked in the file's header: 16384 × 8192
+/// is the largest equirectangular HDRI commonly published (Poly Haven's 16K).
+pub const MAX_ENV_SIDE_PX: usize = 16384;
+/// Largest environment file read (bytes), checked before reading: a 16K map of RGB f32,
+/// uncompressed, is 1.6 GB.
+pub const MAX_ENV_FILE_BYTES: u64 = 2 << 30;
+
 impl EnvMap {
     /// Loads the first layer with R, G and B channels of an OpenEXR file (scan lines or tiles,
     /// f16, f32 or u32 samples; alpha and other channels are ignored; the largest mip level).
     ///
     /// # Errors
     /// [`RenderError::File`] naming the file and saying why: it cannot be read, it is not an
-    /// OpenEXR file, no layer has R, G and B channels, the image is empty, or a texel is
+    /// OpenEXR file, it is not a regular file or larger than [`MAX_ENV_FILE_BYTES`], its header
+    /// claims more than [`MAX_ENV_SIDE_PX`] texels on a side, no layer has R, G and B channels,
+    /// the image is empty, or a texel is
     /// non-finite or negative (the message gives its `(x, y)`, row 0 at the top, and its value).
     pub fn load_exr(path: impl AsRef<Path>) -> Result<EnvMap> {
         let path = path.as_ref();
         let fail = |m: String| RenderError::file(path, m);
-        let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| fail(exr_reason(e)))?;
+        // A regular file of bounded size (not a pipe or a device), and a size in its header
+        // that fits, before any texel is decoded: a header of a few bytes can claim any size.
+        let bytes = rouge_measure::preset::read_bounded(path, MAX_ENV_FILE_BYTES)
+            .map_err(|e| fail(format!("cannot read: {e}")))?;
+        let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
+            .map_err(|e| fail(exr_reason(e)))?;
+        if let Some(h) =
+            meta.headers.iter().find(|h| h.layer_size.0 > MAX_ENV_SIDE_PX || h.layer_size.1 > MAX_ENV_SIDE_PX)
+        {
+            return Err(fail(format!(
+                "{} × {} texels: an environment map is at most {MAX_ENV_SIDE_PX} texels on a side",
+                h.layer_size.0, h.layer_size.1
+            )));
+        }
         let has_rgb = |h: &exr::meta::header::Header| {
             ["R", "G", "B"].iter().all(|n| h.channels.list.iter().any(|c| c.name.eq(n)))
         };
@@ -171,7 +193,7 @@ impl EnvMap {
             )
             .first_valid_layer()
             .all_attributes()
-            .from_file(path)
+            .from_buffered(std::io::Cursor::new(&bytes))
             .map_err(|e| fail(exr_reason(e)))?;
         let size = image.layer_data.size;
         let (width, height) = (size.0, size.1);

@@ -253,6 +253,26 @@ fn env_exr_errors_name_the_file_and_the_reason() {
     let msg = load_error(&negative);
     assert!(msg.contains("negative") && msg.contains("(x 0, y 3)") && msg.contains("-0.25"), "{msg}");
 
+    // A header that claims more texels than a map may have is refused before anything is
+    // decoded (a few bytes can claim any size); a folder or a pipe is refused before it is
+    // opened (a pipe's open blocks until something writes into it).
+    let wide = dir.path().join("wide.exr");
+    write_rgb_file(&wide, 1, 1, |_, _| (1.0f32, 1.0f32, 1.0f32)).unwrap();
+    let mut bytes = std::fs::read(&wide).unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = bytes.windows(key.len()).position(|w| w == key).expect("the data window") + key.len() + 4;
+    bytes[at + 8..at + 12].copy_from_slice(&99_999i32.to_le_bytes());
+    std::fs::write(&wide, &bytes).unwrap();
+    let msg = load_error(&wide);
+    assert!(msg.contains("wide.exr") && msg.contains("100000 × 1 texels") && msg.contains("16384"), "{msg}");
+    let msg = load_error(dir.path());
+    assert!(msg.contains("not a regular file"), "{msg}");
+    let fifo = dir.path().join("pipe.exr");
+    if std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        let msg = load_error(&fifo);
+        assert!(msg.contains("pipe.exr") && msg.contains("not a regular file"), "{msg}");
+    }
+
     let luminance = dir.path().join("luminance.exr");
     let y_only = AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new("Y", FlatSamples::F32(vec![1.0; 12]))]));
     Image::from_channels((4, 3), y_only).write().to_file(&luminance).unwrap();
