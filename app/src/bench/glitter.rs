@@ -6,7 +6,7 @@
 //! and counts the reference's sparkles within 10 %.
 
 use crate::bench::report::{emit_with_json, markdown_table};
-use anyhow::{Result, bail};
+use anyhow::{Context as _, Result, bail};
 use clap::Args;
 use rouge_measure::finish::Glitter;
 use rouge_render::glitter_study::{GlitterRow, GlitterStudy, Method, run as run_study};
@@ -46,6 +46,39 @@ pub struct GlitterBenchArgs {
     /// Also write the rows as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Also write each method's first frame at each pixel size into this folder (created), as
+    /// 16-bit grey PNGs of the lit fraction over the exact frame's brightest pixel, with
+    /// `frames.json` naming them: `python/glitter_figure.py` tiles them.
+    #[arg(long)]
+    pub frames_dir: Option<PathBuf>,
+}
+
+/// The methods of the frames written with `--frames-dir`, as their files name them.
+const FRAME_METHODS: [(Method, &str); 4] = [
+    (Method::Exact, "exact"),
+    (Method::Supersampled(16), "ssaa16"),
+    (Method::Supersampled(2), "ssaa2"),
+    (Method::Estimator, "rouge"),
+];
+
+/// Writes the first frame of each of [`FRAME_METHODS`] for `study` into `dir`; returns their
+/// entries of `frames.json`.
+fn write_frames(study: &GlitterStudy, dir: &std::path::Path) -> Result<Vec<serde_json::Value>> {
+    let frames: Vec<Vec<f32>> =
+        FRAME_METHODS.iter().map(|(m, _)| rouge_render::glitter_study::frame(study, *m, 0)).collect();
+    let scale = frames[0].iter().copied().fold(0.0f32, f32::max).max(1e-12);
+    let mut entries = Vec::new();
+    for ((_, slug), frame) in FRAME_METHODS.iter().zip(&frames) {
+        let file = format!("glitter_{}mm_{slug}.png", study.pixel_mm);
+        let texels: Vec<u16> = frame.iter().map(|v| ((v / scale).clamp(0.0, 1.0) * 65535.0).round() as u16).collect();
+        let image = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(study.size_px, study.size_px, texels)
+            .ok_or_else(|| anyhow::anyhow!("frame of {} texels for {}²", frame.len(), study.size_px))?;
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write_to(&mut bytes, image::ImageFormat::Png)?;
+        crate::write_output(&dir.join(&file), bytes.get_ref())?;
+        entries.push(serde_json::json!({"pixel_mm": study.pixel_mm, "method": slug, "file": file, "scale": scale}));
+    }
+    Ok(entries)
 }
 
 /// The frame times of the eyelids' close-up with the bronze eyeshadow, 15 µm, with and without
@@ -113,7 +146,11 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
     if args.pixel_mm.iter().any(|p| !(p.is_finite() && *p > 0.0)) || !(args.step_deg.is_finite()) {
         bail!("--pixel-mm must be positive and --step-deg finite");
     }
+    if let Some(dir) = &args.frames_dir {
+        std::fs::create_dir_all(dir).with_context(|| format!("--frames-dir {}", dir.display()))?;
+    }
     let mut rows = Vec::new();
+    let mut frames = Vec::new();
     for &pixel_mm in &args.pixel_mm {
         let study = GlitterStudy {
             size_px: args.size,
@@ -126,6 +163,9 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
             &study,
             &[Method::Supersampled(16), Method::Supersampled(2), Method::Supersampled(4), Method::Estimator],
         );
+        if let Some(dir) = &args.frames_dir {
+            frames.extend(write_frames(&study, dir)?);
+        }
         let ssaa2 = results.iter().find(|r| r.samples_per_pixel == 4).map(|r| r.flicker);
         for row in results {
             let passes = (row.method == Method::Estimator.name())
@@ -155,6 +195,9 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
         ]
     });
     emit_with_json(&markdown_table(&caption, &header, 2, cells), &rows, args.json.as_deref())?;
+    if let Some(dir) = &args.frames_dir {
+        crate::write_output(&dir.join("frames.json"), serde_json::to_vec_pretty(&frames)?)?;
+    }
     if args.gpu_frames > 0 {
         crate::emit(&gpu_cost(args.gpu_frames)?)?;
     }
