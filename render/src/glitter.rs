@@ -39,9 +39,9 @@
 //!   over the cell, a flake lit 1.6 times the pixels the explicit flakes light at 1 mm a pixel);
 //!   the rest of a larger count is spread over the cell;
 //! - the bins: a coarse cell's count is drawn anew when the half vector's slopes cross a line
-//!   of its grid of bins ([`slope_bin`] wide, offset per cell), as often as explicit flakes turn
-//!   on and off, so a distant glitter twinkles as the head turns (with one draw per cell it stays
-//!   still: a quarter of the explicit flakes' flicker at 1 mm a pixel);
+//!   of its grid of bins (πδ/4 wide in slope, `slope_bin`, offset per cell), as often as
+//!   explicit flakes turn on and off, so a distant glitter twinkles as the head turns (with one
+//!   draw per cell it stays still: a quarter of the explicit flakes' flicker at 1 mm a pixel);
 //! - between levels: the footprint's level λ = log2(across / [`EXPLICIT_CELLS`]) falls between L
 //!   and L + 1; each cell of level L + 1 shows its own flakes when its fixed choice number is
 //!   below λ − L, else its four children's (no blending: a blend of two levels halves each
