@@ -264,6 +264,17 @@ fn nice_steps(input: egui_plot::GridInput) -> [f64; 3] {
     [large / 10.0, large / 5.0, large]
 }
 
+/// The x axis's label of the tick at `value`: none within 3 % of the axis's right end, where a
+/// label centred on its tick runs past the plot and was cut at the panel's edge ("800" of the
+/// wavelength axis, whose data end at 780 nm).
+fn x_tick_label(value: f64, step: f64, range: &std::ops::RangeInclusive<f64>) -> String {
+    let (min, max) = (*range.start(), *range.end());
+    if value > max - 0.03 * (max - min) {
+        return String::new();
+    }
+    crate::ticks::label(value, step)
+}
+
 fn color(rgb: [u8; 3]) -> egui::Color32 {
     egui::Color32::from_rgb(rgb[0], rgb[1], rgb[2])
 }
@@ -277,6 +288,7 @@ fn labelled_plot(ui: &mut egui::Ui, id: impl std::hash::Hash + std::fmt::Debug, 
         .x_axis_label(panel.x_label)
         .y_axis_label(panel.y_label)
         .y_axis_min_width(56.0)
+        .x_axis_formatter(|mark, range| x_tick_label(mark.value, mark.step_size, range))
         .y_axis_formatter(|mark, _| crate::ticks::label(mark.value, mark.step_size))
         .grid_spacing(egui::Rangef::new(6.0, 48.0))
         .y_grid_spacer(egui_plot::uniform_grid_spacer(nice_steps))
@@ -320,4 +332,20 @@ fn reconstruction_delta_e(p: &Preset, r: &[f64], rg: &[f64]) -> Option<f64> {
     let c = Colorimeter::get(Viewing::D65_1931);
     let lab = |s: &Spectrum| c.lab(&c.xyz(s)).lab;
     Some(delta_e_2000_raw(lab(&measured), lab(&recomputed)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_tick_label_is_left_out_where_it_would_run_past_the_plot() {
+        // The wavelength axis as the plot frames 380-780 nm with its 5 % margins.
+        let range = 360.0..=800.0;
+        assert_eq!(x_tick_label(800.0, 100.0, &range), "");
+        assert_eq!(x_tick_label(700.0, 100.0, &range), "700");
+        assert_eq!(x_tick_label(400.0, 100.0, &range), "400");
+        // The thickness axis 0-0.2 mm: its last tick is inside by 4.5 %, and stays.
+        assert_eq!(x_tick_label(0.2, 0.1, &(-0.01..=0.21)), "0.2");
+    }
 }
