@@ -145,6 +145,13 @@ fn glb_and_gltf_reimport_with_the_drawn_mesh_carry_the_bake_and_validate() {
     assert!(got[0] > got[1] + 40, "the lips are red in the file: {got:?}");
     assert!(json["extensionsUsed"].as_array().is_some_and(|e| e.iter().any(|x| x == "KHR_materials_specular")));
 
+    // Every image is named as the writer knows its images (it removes an earlier export's by
+    // these names).
+    for image in json["images"].as_array().expect("images") {
+        let name = image["name"].as_str().expect("a name");
+        assert!(rouge_render::gltf_export::document::IMAGE_NAMES.contains(&name), "{name}");
+    }
+
     // Occlusion in the roughness texture's red channel: the eyelids, under the brow ridge and
     // over the eyeball, see less sky than the cheeks, which see nearly all of it.
     let skin = &json["materials"][0];

@@ -189,3 +189,20 @@ fn a_materialx_export_killed_at_any_moment_leaves_one_looks_whole_material_and_a
     expected.dedup();
     assert_eq!(left(dir.path()), expected, "a finished export leaves its own files only");
 }
+
+#[test]
+fn a_gltf_export_leaves_another_exports_files_beside_it_alone() {
+    // `face_closeup.gltf` shares `face_`'s prefix: exporting `face.gltf` again, with another
+    // look, must not take its images for an earlier `face.gltf`'s.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (face, closeup) = (dir.path().join("face.gltf"), dir.path().join("face_closeup.gltf"));
+    complete("gltf", 0, face.to_str().expect("utf-8"));
+    complete("gltf", 0, closeup.to_str().expect("utf-8"));
+    complete("gltf", 1, face.to_str().expect("utf-8"));
+    let mut expected = check_gltf(&face);
+    expected.extend(check_gltf(&closeup));
+    expected.extend(["face.gltf".into(), "face_closeup.gltf".into()]);
+    expected.sort();
+    expected.dedup();
+    assert_eq!(left(dir.path()), expected, "each export keeps its own files");
+}

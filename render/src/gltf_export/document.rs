@@ -45,7 +45,8 @@ pub struct Primitive {
 /// A PNG image of the document.
 #[derive(Clone, Debug)]
 pub struct Image {
-    /// What it holds, also the end of its file name beside a .gltf (`face_base_color.png`).
+    /// What it holds, one of [`IMAGE_NAMES`], also in its file's name beside a .gltf
+    /// (`face_base_color.<hash>.png`).
     pub name: &'static str,
     /// The PNG file.
     pub png: Vec<u8>,
@@ -238,9 +239,18 @@ impl Document {
                 // An earlier export's companions: content-named ones of this stem, and the plain
                 // names of exports before content names, when the previous .gltf names them.
                 let previous = std::fs::read_to_string(path).unwrap_or_default();
+                // An image's stem is `STEM_NAME` for one of the names an export gives its images
+                // exactly: another export's beside it (`face_closeup.gltf` beside `face.gltf`)
+                // is not this one's.
+                let is_ours = |tagged_stem: &str| {
+                    tagged_stem
+                        .strip_prefix(stem)
+                        .and_then(|r| r.strip_prefix('_'))
+                        .is_some_and(|n| IMAGE_NAMES.contains(&n))
+                };
                 let stale = |name: &str| {
                     let tagged = content_tag_stem(name, "bin") == Some(stem)
-                        || content_tag_stem(name, "png").is_some_and(|s| s.starts_with(&format!("{stem}_")));
+                        || content_tag_stem(name, "png").is_some_and(is_ours);
                     let plain = (name == format!("{stem}.bin")
                         || (name.starts_with(&format!("{stem}_")) && name.ends_with(".png")))
                         && previous.contains(&format!("\"{name}\""));
@@ -263,6 +273,10 @@ impl Document {
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
 }
+
+/// The names an export gives its images ([`Image::name`]).
+pub const IMAGE_NAMES: [&str; 6] =
+    ["base_color", "metallic_roughness", "occlusion_roughness_metallic", "specular", "clearcoat", "normal"];
 
 /// An image's file beside a .gltf: `STEM_NAME.<hash>.png`, named by its content.
 fn image_file_name(stem: &str, img: &Image) -> String {
