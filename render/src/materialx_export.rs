@@ -38,6 +38,10 @@ use std::path::{Path, PathBuf};
 pub const MTLX_FILE: &str = "face.mtlx";
 /// The mesh's file name.
 pub const OBJ_FILE: &str = "face.obj";
+/// The textures an export writes, without their content tag and `.png`: an earlier export's
+/// are known by them.
+pub const TEXTURE_STEMS: [&str; 5] =
+    ["skin_base_color", "skin_specular_roughness", "skin_specular_weight", "skin_coat_weight", "skin_normal"];
 
 /// An exported material and mesh, ready to write.
 #[derive(Clone, Debug)]
@@ -54,7 +58,7 @@ pub struct MaterialxExport {
 impl MaterialxExport {
     /// Writes every file into `dir` (which must exist), each through a temporary file and a
     /// rename: the textures (named by their content) and the OBJ, then the .mtlx that names the
-    /// textures, then the previous export's textures (`skin_*.<hash>.png`, and the plain
+    /// textures, then the previous export's textures ([`TEXTURE_STEMS`]`.<hash>.png`, and the plain
     /// `skin_*.png` of exports before content names that the previous .mtlx names) are removed
     /// (`rouge_measure::file_set`). A kill or a full disk at any point leaves a .mtlx whose
     /// textures are all there and its own; the OBJ beside it may be the next export's (each file
@@ -67,7 +71,7 @@ impl MaterialxExport {
         let commit = dir.join(MTLX_FILE);
         let previous = std::fs::read_to_string(&commit).unwrap_or_default();
         let stale = |name: &str| {
-            content_tag_stem(name, "png").is_some_and(|s| s.starts_with("skin_"))
+            content_tag_stem(name, "png").is_some_and(|s| TEXTURE_STEMS.contains(&s))
                 || (name.starts_with("skin_") && name.ends_with(".png") && previous.contains(&format!("\"{name}\"")))
         };
         write_file_set(dir, companions, &commit, mtlx, &stale)

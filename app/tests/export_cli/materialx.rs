@@ -28,6 +28,11 @@ fn the_obj_reimports_as_the_drawn_mesh_beside_its_material_and_textures() {
         plain,
         ["face.mtlx", "face.obj", "skin_base_color.png", "skin_specular_roughness.png", "skin_specular_weight.png"]
     );
+    for n in names(dir.path()) {
+        if let Some(stem) = rouge_measure::file_set::content_tag_stem(&n, "png") {
+            assert!(rouge_render::materialx_export::TEXTURE_STEMS.contains(&stem), "{n}: the writer knows it by name");
+        }
+    }
     let mtlx = std::fs::read_to_string(dir.path().join("face.mtlx")).expect("mtlx");
     assert!(names(dir.path()).iter().filter(|n| n.ends_with(".png")).all(|n| mtlx.contains(n.as_str())), "{mtlx}");
     let drawn =
