@@ -188,3 +188,21 @@ fn a_lost_gpu_saves_the_work_and_the_restart_recovers_it_without_asking() {
     assert!(ok && text.contains("graphics device was lost"), "{text}");
     assert!(h.query_by_label("Recover").is_none(), "no offer: the restart recovered at once");
 }
+
+#[test]
+fn without_a_file_dialog_save_project_says_where_to_type_the_folder_and_opens_it() {
+    // No desktop portal: rfd's D-Bus call fails at once (a bus that does not exist), as on a
+    // machine without a file dialog, where Save project used to fail with only a log line.
+    // SAFETY: no other test of this binary reads the variable, and it is set before the click.
+    unsafe { std::env::set_var("DBUS_SESSION_BUS_ADDRESS", "unix:path=/nonexistent/rouge-test-bus") };
+    let data = tempfile::tempdir().expect("tempdir");
+    let mut h = app(data.path(), None, false);
+    h.get_by_label("File").click();
+    h.run_steps(2);
+    h.get_by_label("Save project").click();
+    h.run_steps(3);
+    let (ok, text) = h.state().message().expect("a message").clone();
+    assert!(!ok && text.contains("no folder was chosen") && text.contains("Project folder"), "{text}");
+    assert!(h.query_by_label("Typed path, for machines without a file dialog").is_some(), "the section opens");
+    assert_eq!(h.state().project_folder(), None, "nothing was saved anywhere");
+}
