@@ -120,6 +120,9 @@ def main():
 
     layer = exr(8, 8, {"Y": [0.001 * (i % 8) for i in range(64)]})
     put("map", "layer.exr", layer)
+    # An environment map: radiance in R, G, B (and an alpha the reader ignores).
+    put("env", "studio.exr", exr(8, 4, {"R": [0.5 + 0.1 * i for i in range(32)], "G": [0.4] * 32,
+                                        "B": [0.3] * 32, "A": [1.0] * 32}))
     put("map", "layer.png", png16(8, 8, [i * 1000 for i in range(64)]))
 
     look = {"schema": "rouge-look", "version": 1, "name": "Fuzz", "layers": [

@@ -63,6 +63,8 @@ fn the_seeds_are_valid_files() {
     }
     let obj = rouge_model::mesh::parse_obj(&String::from_utf8_lossy(&seed("obj", "quad.obj")), Path::new("q"), 1.0);
     assert_eq!(obj.expect("quad.obj").faces.len(), 2);
+    let (w, h, texels) = rouge_model::hdr::decode_rgb_exr(&seed("env", "studio.exr"), 4096).expect("studio.exr");
+    assert_eq!((w, h, texels[1]), (8, 4, [0.6, 0.4, 0.3]), "the environment seed's second texel");
     let medium = dir.path().join("m.json");
     std::fs::write(&medium, seed("medium", "skin1.json")).expect("write");
     rouge_model::medium::Medium::load(&medium).expect("skin1.json");

@@ -26,6 +26,7 @@ pub const TARGETS: &[(&str, Target)] = &[
     ("gltf", gltf),
     ("map", map),
     ("project", project),
+    ("env", env),
 ];
 
 /// The scratch folder of this process (in /dev/shm where there is one: the targets write a
@@ -129,6 +130,12 @@ pub fn map(data: &[u8]) {
     write(&dir, "m", data);
     let _ = ThicknessSource::Map { path: "m".into(), scale_mm: Some(0.01) }.load_map(&dir);
     let _ = ThicknessSource::Mask { path: "m".into(), mm: 0.01 }.load_map(&dir);
+}
+
+/// An environment map (OpenEXR radiance, `--env`): the renderer's decoder, which lives in
+/// rouge-model (`hdr::decode_rgb_exr`) so that this crate reaches it without the renderer.
+pub fn env(data: &[u8]) {
+    let _ = rouge_model::hdr::decode_rgb_exr(data, 4096);
 }
 
 /// Files a project folder may hold, in the order [`project`] numbers them.

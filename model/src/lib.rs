@@ -17,6 +17,7 @@
 
 pub mod document;
 pub mod error;
+pub mod hdr;
 pub mod look;
 pub mod medium;
 pub mod mesh;

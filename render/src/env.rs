@@ -55,7 +55,6 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use exr::prelude::{ReadChannels, ReadLayers, Vec2 as ExrVec2};
 use glam::{Vec2, Vec3};
 
 use crate::error::{RenderError, Result};
@@ -164,43 +163,7 @@ impl EnvMap {
         // that fits, before any texel is decoded: a header of a few bytes can claim any size.
         let bytes = rouge_measure::preset::read_bounded(path, MAX_ENV_FILE_BYTES)
             .map_err(|e| fail(format!("cannot read: {e}")))?;
-        let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
-            .map_err(|e| fail(exr_reason(e)))?;
-        if let Some(h) =
-            meta.headers.iter().find(|h| h.layer_size.0 > MAX_ENV_SIDE_PX || h.layer_size.1 > MAX_ENV_SIDE_PX)
-        {
-            return Err(fail(format!(
-                "{} × {} texels: an environment map is at most {MAX_ENV_SIDE_PX} texels on a side",
-                h.layer_size.0, h.layer_size.1
-            )));
-        }
-        let has_rgb = |h: &exr::meta::header::Header| {
-            ["R", "G", "B"].iter().all(|n| h.channels.list.iter().any(|c| c.name.eq(n)))
-        };
-        if !meta.headers.iter().any(has_rgb) {
-            let found: Vec<String> =
-                meta.headers.iter().flat_map(|h| h.channels.list.iter().map(|c| c.name.to_string())).collect();
-            return Err(fail(format!("no layer has R, G and B channels (channels: {})", found.join(", "))));
-        }
-        let image = exr::image::read::read()
-            .no_deep_data()
-            .largest_resolution_level()
-            .rgb_channels(
-                |size: ExrVec2<usize>, _| (size.0, vec![[0.0f32; 3]; size.0 * size.1]),
-                |(w, px): &mut (usize, Vec<[f32; 3]>), pos: ExrVec2<usize>, (r, g, b): (f32, f32, f32)| {
-                    px[pos.1 * *w + pos.0] = [r, g, b];
-                },
-            )
-            .first_valid_layer()
-            .all_attributes()
-            .from_buffered(std::io::Cursor::new(&bytes))
-            .map_err(|e| fail(exr_reason(e)))?;
-        let size = image.layer_data.size;
-        let (width, height) = (size.0, size.1);
-        if width == 0 || height == 0 {
-            return Err(fail(format!("the image is empty ({width} × {height} texels)")));
-        }
-        let texels = image.layer_data.channel_data.pixels.1;
+        let (width, height, texels) = rouge_model::hdr::decode_rgb_exr(&bytes, MAX_ENV_SIDE_PX).map_err(fail)?;
         if let Some(i) = texels.iter().position(|t| t.iter().any(|c| !c.is_finite() || *c < 0.0)) {
             let t = texels[i];
             let what = if t.iter().all(|c| c.is_finite()) { "negative" } else { "non-finite" };
@@ -337,16 +300,6 @@ fn phi_integrals(i: usize, w: usize) -> [f64; 6] {
     let half = 0.5 * (b - a);
     let sin2 = 0.25 * ((2.0 * b).sin() - (2.0 * a).sin());
     [b - a, ca - cb, sb - sa, 0.5 * (sb * sb - sa * sa), half - sin2, half + sin2]
-}
-
-/// Why the exr crate refused a file, in words.
-fn exr_reason(e: exr::error::Error) -> String {
-    match e {
-        exr::error::Error::Io(e) => format!("cannot read: {e}"),
-        exr::error::Error::Invalid(m) => format!("not a valid OpenEXR file ({m})"),
-        exr::error::Error::NotSupported(m) => format!("unsupported OpenEXR feature ({m})"),
-        exr::error::Error::Aborted => "reading was aborted".to_string(),
-    }
 }
 
 impl ShIrradiance {
