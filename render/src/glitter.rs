@@ -199,6 +199,11 @@ impl FlakeField {
         overlap(a.x, b.x, lo.x, hi.x) * overlap(a.y, b.y, lo.y, hi.y)
     }
 
+    /// The area inside [lo, hi] of cell `cell`'s flake when it sparkles for `h` (0 otherwise).
+    fn flake_lit_area(&self, cell: [i32; 2], h: Vec3, lo: Vec2, hi: Vec2) -> f32 {
+        self.flake(cell).filter(|f| f.lit(h)).map_or(0.0, |f| self.square_inside(f.centre_mm, lo, hi))
+    }
+
     /// The area of the lit flakes inside the box centred at `uv_mm` with half extents
     /// `half_mm`, every cell visited: the exact box filter the estimator approximates (the
     /// reference of `glitter_study`; its cost grows with the footprint's area in cells).
@@ -208,7 +213,7 @@ impl FlakeField {
         let mut lit = 0.0;
         for j in c0.y as i32..=c1.y as i32 {
             for i in c0.x as i32..=c1.x as i32 {
-                lit += self.flake([i, j]).filter(|f| f.lit(h)).map_or(0.0, |f| self.square_inside(f.centre_mm, lo, hi));
+                lit += self.flake_lit_area([i, j], h, lo, hi);
             }
         }
         lit
@@ -282,8 +287,9 @@ pub fn pixel_sparkle(field: &FlakeField, uv_mm: Vec2, half_mm: Vec2, h: Vec3) ->
     let mut lit = 0.0;
     for j in c0.y as i32..=c1.y as i32 {
         for i in c0.x as i32..=c1.x as i32 {
-            if unit(cell_words(field, [i, j], level + 1)[0]) < w {
-                lit += counts.cell_lit(level + 1, [i, j], lo, hi);
+            let words = cell_words(field, [i, j], level + 1);
+            if unit(words[0]) < w {
+                lit += counts.cell_lit(level + 1, [i, j], words, lo, hi);
                 continue;
             }
             for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
@@ -292,9 +298,9 @@ pub fn pixel_sparkle(field: &FlakeField, uv_mm: Vec2, half_mm: Vec2, h: Vec3) ->
                     continue;
                 }
                 lit += if level == 0 {
-                    field.flake(child).filter(|f| f.lit(h)).map_or(0.0, |f| field.square_inside(f.centre_mm, lo, hi))
+                    field.flake_lit_area(child, h, lo, hi)
                 } else {
-                    counts.cell_lit(level, child, lo, hi)
+                    counts.cell_lit(level, child, cell_words(field, child, level), lo, hi)
                 };
             }
         }
@@ -309,7 +315,7 @@ fn cell_words(field: &FlakeField, cell: [i32; 2], level: u32) -> [u32; 4] {
 }
 
 /// The lit flakes of the coarse levels for one half vector: their probability per fine cell
-/// and the half vector's slopes in units of [`SLOPE_BIN`].
+/// and the half vector's slopes in units of `slope_bin()`.
 struct Counts<'a> {
     field: &'a FlakeField,
     p: f32,
@@ -321,17 +327,14 @@ impl Counts<'_> {
         Counts { field, p: field.p_lit(h), slope: Vec2::new(h.x, h.y) / (h.z * slope_bin()) }
     }
 
-    /// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1: a
-    /// Binomial(4^level, p) count drawn for the cell's bin of half vectors, its first
-    /// [`PLACED_FLAKES`] flakes placed in the cell, the rest spread over it.
-    fn cell_lit(&self, level: u32, cell: [i32; 2], lo: Vec2, hi: Vec2) -> f32 {
+    /// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1 (its
+    /// [`cell_words`] `words`; a cell outside the box gives 0): a Binomial(4^level, p) count
+    /// drawn for the cell's bin of half vectors, its first [`PLACED_FLAKES`] flakes placed in the
+    /// cell, the rest spread over it.
+    fn cell_lit(&self, level: u32, cell: [i32; 2], words: [u32; 4], lo: Vec2, hi: Vec2) -> f32 {
         let field = self.field;
-        if !field.cell_overlaps(level, cell, lo, hi) {
-            return 0.0;
-        }
         let cell_mm = field.cell_mm * (1u32 << level) as f32;
         let corner = Vec2::new(cell[0] as f32, cell[1] as f32) * cell_mm;
-        let words = cell_words(field, cell, level);
         let bin = (self.slope + Vec2::new(unit(words[1]), unit(words[2]))).floor();
         let angle_tag = ((bin.x as i32 as u32) & 0xfff) << 8 | ((bin.y as i32 as u32) & 0xfff) << 20;
         let draw = |m: u32| pcg4d([cell[0] as u32, cell[1] as u32, level | m << 4 | angle_tag, field.seed]);

@@ -109,15 +109,12 @@ fn glitter_cell_words(f: FlakeField, cell: vec2<i32>, level: u32) -> vec4<u32> {
     return pcg4d(vec4<u32>(bitcast<u32>(cell.x), bitcast<u32>(cell.y), level | (GLITTER_CELL_TAG << 4u), f.seed));
 }
 
-// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1, for the lit
-// probability `p` per fine cell and the half vector's slopes `slope` in bins.
-fn glitter_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, p: f32, slope: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
-    if !glitter_cell_overlaps(f, level, cell, lo, hi) {
-        return 0.0;
-    }
+// The area inside [lo, hi] of the lit flakes of coarse cell `cell` at `level` ≥ 1 (its
+// glitter_cell_words `words`), for the lit probability `p` per fine cell and the half vector's
+// slopes `slope` in bins.
+fn glitter_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, words: vec4<u32>, p: f32, slope: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
     let cell_mm = f.cell_mm * f32(1u << level);
     let corner = vec2<f32>(f32(cell.x), f32(cell.y)) * cell_mm;
-    let words = glitter_cell_words(f, cell, level);
     let bin = floor(slope + vec2<f32>(glitter_unit(words.y), glitter_unit(words.z)));
     let angle_tag = ((bitcast<u32>(i32(bin.x)) & 0xfffu) << 8u) | ((bitcast<u32>(i32(bin.y)) & 0xfffu) << 20u);
     let base = vec4<u32>(bitcast<u32>(cell.x), bitcast<u32>(cell.y), level | angle_tag, f.seed);
@@ -133,14 +130,6 @@ fn glitter_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, p: f32, slope: v
     }
     let o = max(min(corner + vec2<f32>(cell_mm), hi) - max(corner, lo), vec2<f32>(0.0));
     return lit + (count - f32(placed)) * f.size_mm * f.size_mm * (o.x * o.y / (cell_mm * cell_mm));
-}
-
-// The lit area inside [lo, hi] of cell `cell` of `level`: its flake at level 0, its count above.
-fn glitter_any_cell_lit(f: FlakeField, level: u32, cell: vec2<i32>, h: vec3<f32>, p: f32, slope: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> f32 {
-    if level == 0u {
-        return flake_lit_area(f, cell, h, lo, hi);
-    }
-    return glitter_cell_lit(f, level, cell, p, slope, lo, hi);
 }
 
 // The part of the footprint centred at `uv` (mm) with half extents `half_in_mm` (mm) that lit
@@ -175,14 +164,20 @@ fn pixel_sparkle(f: FlakeField, uv: vec2<f32>, half_in_mm: vec2<f32>, h: vec3<f3
     let c1 = min(vec2<i32>(floor(hi / parent_mm)), c0 + vec2<i32>(GLITTER_MAX_SPAN));
     for (var j = c0.y; j <= c1.y; j++) {
         for (var i = c0.x; i <= c1.x; i++) {
-            if glitter_unit(glitter_cell_words(f, vec2<i32>(i, j), level + 1u).x) < w {
-                lit += glitter_cell_lit(f, level + 1u, vec2<i32>(i, j), p, slope, lo, hi);
+            let words = glitter_cell_words(f, vec2<i32>(i, j), level + 1u);
+            if glitter_unit(words.x) < w {
+                lit += glitter_cell_lit(f, level + 1u, vec2<i32>(i, j), words, p, slope, lo, hi);
                 continue;
             }
             for (var k = 0; k < 4; k++) {
                 let child = vec2<i32>(2 * i + (k & 1), 2 * j + (k >> 1u));
-                if glitter_cell_overlaps(f, level, child, lo, hi) {
-                    lit += glitter_any_cell_lit(f, level, child, h, p, slope, lo, hi);
+                if !glitter_cell_overlaps(f, level, child, lo, hi) {
+                    continue;
+                }
+                if level == 0u {
+                    lit += flake_lit_area(f, child, h, lo, hi);
+                } else {
+                    lit += glitter_cell_lit(f, level, child, glitter_cell_words(f, child, level), p, slope, lo, hi);
                 }
             }
         }
