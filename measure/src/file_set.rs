@@ -50,9 +50,11 @@ pub fn content_tag_stem<'a>(file: &'a str, ext: &str) -> Option<&'a str> {
 }
 
 /// Writes `companions` (file names in `dir` and their bytes, named by their content) and then
-/// `commit` (the file that names them) atomically, then removes every other file of `dir` for
-/// which `stale` says yes (an earlier generation's companions; a removal that fails is left).
-/// Returns the files written, the commit file last.
+/// `commit` (the file that names them) atomically, then removes the earlier generations'
+/// companions (a removal that fails is left): every other file of `dir` whose stem and extension
+/// `ours` recognises as this writer's, named by its content (`STEM.<hash>.EXT`), or named plainly
+/// (`STEM.EXT`, as before content names) where the previous commit file named it. `dir` empty
+/// means the working folder. Returns the files written, the commit file last.
 ///
 /// # Errors
 /// The file that could not be written and why; the files written before it stay (they are new
@@ -62,8 +64,9 @@ pub fn write_file_set(
     companions: &[(String, Vec<u8>)],
     commit: &Path,
     commit_bytes: &[u8],
-    stale: &dyn Fn(&str) -> bool,
+    ours: &dyn Fn(&str, &str) -> bool,
 ) -> Result<Vec<PathBuf>, (PathBuf, std::io::Error)> {
+    let previous = std::fs::read_to_string(commit).unwrap_or_default();
     let mut written = Vec::new();
     for (name, bytes) in companions {
         let path = dir.join(name);
@@ -72,7 +75,15 @@ pub fn write_file_set(
     }
     write_atomic(commit, commit_bytes).map_err(|e| (commit.to_path_buf(), e))?;
     written.push(commit.to_path_buf());
-    if let Ok(entries) = std::fs::read_dir(dir) {
+    let stale = |name: &str| {
+        let Some((plain_stem, ext)) = name.rsplit_once('.') else { return false };
+        match content_tag_stem(name, ext) {
+            Some(stem) => ours(stem, ext),
+            None => ours(plain_stem, ext) && previous.contains(&format!("\"{name}\"")),
+        }
+    };
+    let listing = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
+    if let Ok(entries) = std::fs::read_dir(listing) {
         for entry in entries.flatten() {
             let name = entry.file_name();
             let Some(name) = name.to_str() else { continue };
@@ -107,7 +118,7 @@ mod tests {
         let d = dir.path();
         let commit = d.join("face.gltf");
         let set = |content: &[u8]| vec![(content_tagged("face", "bin", content), content.to_vec())];
-        let ours = |n: &str| content_tag_stem(n, "bin") == Some("face");
+        let ours = |stem: &str, ext: &str| stem == "face" && ext == "bin";
         let first = set(b"first");
         write_file_set(d, &first, &commit, first[0].0.as_bytes(), &ours).expect("first");
         std::fs::write(d.join("notes.txt"), b"mine").expect("a file of the user's");

@@ -23,13 +23,13 @@
 use crate::error::Result;
 use crate::gltf_export::bake::{SurfaceMaps, bake_surface};
 use crate::gltf_export::coat::split_coat;
-use crate::gltf_export::document::encode_png;
+use crate::gltf_export::document::{encode_png, file_set_error};
 use crate::gltf_export::{base_color_texels, checked, gltf_roughness, layer_input, skin_surface};
 use crate::job::{Loaded, SkinTextureImages};
 use crate::renderer::LayerInput;
 use crate::scene::{Skin, SubsurfaceModel, fresnel_f0};
 use crate::sss::DiffusionProfile;
-use rouge_measure::file_set::{content_tag_stem, content_tagged, write_file_set};
+use rouge_measure::file_set::{content_tagged, write_file_set};
 use rouge_model::mesh::TriangleMesh;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -59,7 +59,7 @@ impl MaterialxExport {
     /// Writes every file into `dir` (which must exist), each through a temporary file and a
     /// rename: the textures (named by their content) and the OBJ, then the .mtlx that names the
     /// textures, then the previous export's textures ([`TEXTURE_STEMS`]`.<hash>.png`, and the plain
-    /// `skin_*.png` of exports before content names that the previous .mtlx names) are removed
+    /// `STEM.png` of exports before content names that the previous .mtlx names) are removed
     /// (`rouge_measure::file_set`). A kill or a full disk at any point leaves a .mtlx whose
     /// textures are all there and its own; the OBJ beside it may be the next export's (each file
     /// whole). Returns the files written, the .mtlx last.
@@ -68,14 +68,8 @@ impl MaterialxExport {
     /// [`crate::RenderError::File`] naming the file that could not be written.
     pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>> {
         let Some(((_, mtlx), companions)) = self.files.split_last() else { return Ok(Vec::new()) };
-        let commit = dir.join(MTLX_FILE);
-        let previous = std::fs::read_to_string(&commit).unwrap_or_default();
-        let stale = |name: &str| {
-            content_tag_stem(name, "png").is_some_and(|s| TEXTURE_STEMS.contains(&s))
-                || (name.starts_with("skin_") && name.ends_with(".png") && previous.contains(&format!("\"{name}\"")))
-        };
-        write_file_set(dir, companions, &commit, mtlx, &stale)
-            .map_err(|(file, e)| crate::RenderError::file(&file, format!("cannot write: {e}")))
+        let ours = |stem: &str, ext: &str| ext == "png" && TEXTURE_STEMS.contains(&stem);
+        write_file_set(dir, companions, &dir.join(MTLX_FILE), mtlx, &ours).map_err(file_set_error)
     }
 }
 

@@ -8,7 +8,7 @@
 //! [glTF2]: https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html
 
 use crate::error::{RenderError, Result};
-use rouge_measure::file_set::{content_tag_stem, content_tagged, write_file_set};
+use rouge_measure::file_set::{content_tagged, write_file_set};
 use rouge_measure::preset::write_atomic;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -235,30 +235,18 @@ impl Document {
                 companions.extend(self.images.iter().map(|img| (image_file_name(stem, img), img.png.clone())));
                 let text = serde_json::to_string_pretty(&doc)
                     .map_err(|e| RenderError::file(path, format!("cannot encode JSON: {e}")))?;
-                let dir = path.parent().unwrap_or(Path::new(""));
-                // An earlier export's companions: content-named ones of this stem, and the plain
-                // names of exports before content names, when the previous .gltf names them.
-                let previous = std::fs::read_to_string(path).unwrap_or_default();
-                // An image's stem is `STEM_NAME` for one of the names an export gives its images
-                // exactly: another export's beside it (`face_closeup.gltf` beside `face.gltf`)
-                // is not this one's.
-                let is_ours = |tagged_stem: &str| {
-                    tagged_stem
-                        .strip_prefix(stem)
-                        .and_then(|r| r.strip_prefix('_'))
-                        .is_some_and(|n| IMAGE_NAMES.contains(&n))
+                // This export's companions: its .bin, and its images `STEM_NAME` for exactly the
+                // names an export gives them (another export's beside it, `face_closeup.gltf`
+                // beside `face.gltf`, is not this one's).
+                let ours = |s: &str, ext: &str| match ext {
+                    "bin" => s == stem,
+                    "png" => {
+                        s.strip_prefix(stem).and_then(|r| r.strip_prefix('_')).is_some_and(|n| IMAGE_NAMES.contains(&n))
+                    }
+                    _ => false,
                 };
-                let stale = |name: &str| {
-                    let tagged = content_tag_stem(name, "bin") == Some(stem)
-                        || content_tag_stem(name, "png").is_some_and(is_ours);
-                    let plain = (name == format!("{stem}.bin")
-                        || (name.starts_with(&format!("{stem}_")) && name.ends_with(".png")))
-                        && previous.contains(&format!("\"{name}\""));
-                    tagged || plain
-                };
-                let dir_or_here = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
-                write_file_set(dir_or_here, &companions, path, text.as_bytes(), &stale)
-                    .map_err(|(file, e)| RenderError::file(&file, format!("cannot write: {e}")))
+                write_file_set(path.parent().unwrap_or(Path::new("")), &companions, path, text.as_bytes(), &ours)
+                    .map_err(file_set_error)
             }
             _ => Err(RenderError::file(path, "unknown glTF container: use .glb (one file) or .gltf (files beside it)")),
         }
@@ -271,7 +259,12 @@ impl Document {
 /// # Errors
 /// [`RenderError::File`] naming `path`.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    write_atomic(path, bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+    write_atomic(path, bytes).map_err(|e| file_set_error((path.to_path_buf(), e)))
+}
+
+/// [`write_file_set`]'s error (the file and why) as the exports say it.
+pub(crate) fn file_set_error((file, e): (PathBuf, std::io::Error)) -> RenderError {
+    RenderError::file(&file, format!("cannot write: {e}"))
 }
 
 /// The names an export gives its images ([`Image::name`]).
