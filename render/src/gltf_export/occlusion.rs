@@ -10,6 +10,7 @@
 //! unshadowed), and the base colour stays free of it, as glTF asks.
 
 use crate::error::{RenderError, Result};
+use rouge_model::look::ThicknessMap;
 use rouge_model::mesh::TriangleMesh;
 use rouge_model::thickness::{BakeSettings, Falloff, bake_ambient_occlusion, thickness_uv_map};
 
@@ -34,40 +35,17 @@ const MAX_RASTER_PX: u32 = 1024;
 pub fn occlusion_plane(mesh: &TriangleMesh, side_px: u32) -> Result<Vec<f32>> {
     let fail = |e: rouge_model::thickness::ThicknessError| RenderError::Invalid(format!("glTF export: occlusion: {e}"));
     let per_vertex = bake_ambient_occlusion(mesh, &OCCLUSION_BAKE).map_err(fail)?;
-    let parts: Vec<_> = mesh.groups.iter().filter(|g| !g.is_skin()).map(|g| g.triangles.clone()).collect();
-    let skin = TriangleMesh {
-        indices: mesh
-            .indices
-            .chunks_exact(3)
-            .enumerate()
-            .filter(|(t, _)| !parts.iter().any(|r| r.contains(t)))
-            .flat_map(|(_, tri)| tri.iter().copied())
-            .collect(),
-        groups: Vec::new(),
-        tangents: None,
-        ..mesh.clone()
-    };
+    // The skin's triangles, as the brush's surface map takes them.
+    let skin = mesh.only(|g| g.is_skin());
     let raster_px = side_px.min(MAX_RASTER_PX);
     let values: Vec<[f32; 3]> = per_vertex.iter().map(|&a| [a; 3]).collect();
     let map = thickness_uv_map(&skin, &values, raster_px, raster_px).map_err(fail)?;
-    let at = |x: u32, y: u32| map.texel(x, y).map_or(1.0, |t| if t[3] > 0.0 { t[0] } else { 1.0 });
-    if raster_px == side_px {
-        return Ok((0..side_px).flat_map(|y| (0..side_px).map(move |x| (x, y))).map(|(x, y)| at(x, y)).collect());
-    }
-    // Bilinear between the raster's texel centres, clamped at its edges.
-    let scale = raster_px as f32 / side_px as f32;
-    let last = raster_px as f32 - 1.0;
-    Ok((0..side_px)
-        .flat_map(|y| (0..side_px).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            let (fx, fy) =
-                (((x as f32 + 0.5) * scale - 0.5).clamp(0.0, last), ((y as f32 + 0.5) * scale - 0.5).clamp(0.0, last));
-            let (x0, y0) = (fx.floor() as u32, fy.floor() as u32);
-            let (x1, y1) = ((x0 + 1).min(raster_px - 1), (y0 + 1).min(raster_px - 1));
-            let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
-            let top = at(x0, y0) * (1.0 - tx) + at(x1, y0) * tx;
-            let bottom = at(x0, y1) * (1.0 - tx) + at(x1, y1) * tx;
-            top * (1.0 - ty) + bottom * ty
-        })
-        .collect())
+    let plane = ThicknessMap {
+        width: raster_px,
+        height: raster_px,
+        mm: map.texels.iter().map(|t| if t[3] > 0.0 { t[0] } else { 1.0 }).collect(),
+    };
+    // Larger sides sampled bilinearly between the raster's texel centres, clamped at its edges,
+    // as the looks' maps are resampled.
+    Ok(plane.resized(side_px, side_px).mm)
 }
