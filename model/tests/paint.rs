@@ -77,6 +77,7 @@ fn a_single_quad_maps_texel_centres_exactly() {
         tangents: None,
         indices: vec![0, 1, 2, 0, 2, 3],
         groups: Vec::new(),
+        strands: None,
     };
     let (w, h) = (64, 32);
     let surface = SurfaceMap::build(&mesh, w, h);

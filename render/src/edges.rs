@@ -153,12 +153,19 @@ impl EdgeSet {
         let mut map: HashMap<(u32, u32), usize> = HashMap::new();
         let mut sides: Vec<Sides> = Vec::new();
         let mut faces = 0;
+        // Hairs drawn as fibres (the hair pass, when the mesh has strands) have no edges here.
+        let mut fibre = vec![false; mesh.indices.len() / 3];
+        if mesh.strands.is_some() {
+            for g in mesh.groups.iter().filter(|g| g.part().is_hair()) {
+                fibre.get_mut(g.triangles.clone()).into_iter().flatten().for_each(|f| *f = true);
+            }
+        }
         for (t, tri) in mesh.indices.chunks_exact(3).enumerate() {
             let [i0, i1, i2] = [tri[0], tri[1], tri[2]];
             let p = |i: u32| positions[i as usize];
             let n = (p(i1) - p(i0)).cross(p(i2) - p(i0));
             face_normals.push(n.normalize_or_zero());
-            if n.length_squared() <= f32::MIN_POSITIVE {
+            if n.length_squared() <= f32::MIN_POSITIVE || fibre[t] {
                 continue;
             }
             faces += 1;

@@ -69,6 +69,9 @@ pub struct GpuMesh {
     fixed: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
+    /// The triangles that are not hair drawn as fibres (the G-buffer's when the hair pass runs),
+    /// when the mesh has strands.
+    without_hair: Option<(wgpu::Buffer, u32)>,
     vertex_count: usize,
     /// The albedos the fixed stream was written with (a pose under other albedos is uploaded
     /// afresh).
@@ -133,6 +136,10 @@ impl GpuMesh {
                 wgpu::BufferUsages::INDEX,
             ),
             index_count: mesh.indices.len() as u32,
+            without_hair: without_hair(mesh).map(|indices| {
+                let bytes: &[u8] = bytemuck::cast_slice(&indices);
+                (buffer_init(device, "GpuMesh::without_hair", bytes, wgpu::BufferUsages::INDEX), indices.len() as u32)
+            }),
             vertex_count: mesh.positions.len(),
             albedos: (skin_albedo, hair),
             bounds,
@@ -186,6 +193,16 @@ impl GpuMesh {
         self.draw_instance(pass, 0);
     }
 
+    /// Draws every triangle but the hairs' that the hair pass draws as fibres (all of them for a
+    /// mesh without strands).
+    pub fn draw_without_hair(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let Some((indices, count)) = &self.without_hair else { return self.draw(pass) };
+        pass.set_vertex_buffer(0, self.moving.slice(..));
+        pass.set_vertex_buffer(1, self.fixed.slice(..));
+        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..*count, 0, 0..1);
+    }
+
     /// Binds the moving stream alone (a pipeline of [`position_layout`]) and draws every
     /// triangle.
     pub fn draw_positions(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -204,6 +221,16 @@ impl GpuMesh {
     }
 }
 
+/// The indices of `mesh`'s triangles that are not hair, when it has strands (whose hairs the
+/// hair pass draws as fibres).
+fn without_hair(mesh: &TriangleMesh) -> Option<Vec<u32>> {
+    mesh.strands.as_ref()?;
+    let hair = |t: usize| mesh.groups.iter().any(|g| g.part().is_hair() && g.triangles.contains(&t));
+    let kept: Vec<u32> =
+        mesh.indices.chunks_exact(3).enumerate().filter(|(t, _)| !hair(*t)).flat_map(|(_, tri)| tri.to_vec()).collect();
+    (!kept.is_empty()).then_some(kept)
+}
+
 /// Linear albedo of the teeth: a natural tooth's shade about CIELAB (78, 1, 18) (the middle of
 /// the VITA classical shade guide's A range as spectrophotometers read it, \[Chu2010\]).
 pub const TEETH_ALBEDO: [f32; 3] = [0.60, 0.52, 0.38];
@@ -214,12 +241,16 @@ pub const TONGUE_ALBEDO: [f32; 3] = [0.30, 0.11, 0.09];
 /// colour) times about 1/3 for the occlusion of the mouth, which the renderer does not compute
 /// (a path-traced open mouth is this dark a few millimetres behind the lips).
 pub const MOUTH_ALBEDO: [f32; 3] = [0.10, 0.035, 0.03];
-/// Linear albedo of a dark eyelash: eumelanin-rich hair absorbs nearly all the light that
-/// enters it, so a black lash reflects a few percent, mostly at its surface. A stand-in for a
-/// fibre model (issue 27's hair shading), not a measurement.
-pub const LASH_ALBEDO: [f32; 3] = [0.030, 0.025, 0.021];
-/// The hairs' linear albedo: the lashes' (a mascara's colour, or the natural lash's) and the
-/// brows' (constants in `render/src/gpu_mesh.rs`, cited there).
+/// Eumelanin concentration of the natural lashes: black hair (PBRT-v4's scale, \[dEon2011\]'s
+/// spectra; [`crate::fibre::sigma_a_from_melanin`]). Lash hair is among the most pigmented.
+pub const LASH_EUMELANIN: f32 = 8.0;
+/// Eumelanin concentration of the natural brows: dark brown (between PBRT-v4's brown, 1.3, and
+/// black, 8; brow hair carries less eumelanin than lash hair in most people).
+pub const BROW_EUMELANIN: f32 = 2.5;
+/// The hairs' colours: the lashes' (a mascara's colour, or the natural lash's) and the brows'
+/// (the natural brows' tinted by a brow gel). Each is a fibre's colour in the sense of
+/// [`crate::fibre::sigma_a_from_color`] (what it passes across its diameter), which the hair pass
+/// makes absorption; a mesh without strands draws the hairs in the G-buffer with it as albedo.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HairAlbedo {
     /// The lashes'.
@@ -230,7 +261,10 @@ pub struct HairAlbedo {
 
 impl Default for HairAlbedo {
     fn default() -> HairAlbedo {
-        HairAlbedo { lash: LASH_ALBEDO, brow: BROW_ALBEDO }
+        HairAlbedo {
+            lash: crate::fibre::color_from_melanin(LASH_EUMELANIN, 0.0),
+            brow: crate::fibre::color_from_melanin(BROW_EUMELANIN, 0.0),
+        }
     }
 }
 
@@ -248,10 +282,6 @@ impl HairAlbedo {
         }
     }
 }
-
-/// Linear albedo of the eyebrow hairs: dark brown (the same stand-in as the lashes', a little
-/// lighter: brow hair carries less eumelanin than lash hair in most people).
-pub const BROW_ALBEDO: [f32; 3] = [0.055, 0.038, 0.027];
 
 /// Albedo and material per vertex: the skin's albedo (a = 1: scatters, takes cosmetics) on skin
 /// groups; every other part ([`rouge_model::mesh::Part`]) does not scatter (a = 0): eyes get a

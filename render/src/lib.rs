@@ -27,6 +27,7 @@ pub mod directional_dipole;
 pub mod edges;
 pub mod env;
 pub mod error;
+pub mod fibre;
 pub mod frame;
 pub mod glitter;
 pub mod glitter_study;

@@ -72,6 +72,10 @@ pub struct Renderer {
     hair_albedo: crate::HairAlbedo,
     /// Keep current shadow maps between frames ([`Renderer::set_keep_shadow_maps`]).
     keep_shadow_maps: bool,
+    /// The mesh's hair strands at its current pose (the hair pass), empty without hair.
+    hair: crate::passes::hair::HairStrands,
+    /// The hairs drawn with their box-filter coverage ([`Renderer::set_hair_aa`]).
+    hair_aa: bool,
 }
 
 impl Renderer {
@@ -102,6 +106,8 @@ impl Renderer {
             wrinkle_weights: Default::default(),
             hair_albedo: Default::default(),
             keep_shadow_maps: true,
+            hair: Default::default(),
+            hair_aa: false,
             shared,
         }
     }
@@ -140,6 +146,7 @@ impl Renderer {
     /// when edge antialiasing is on).
     fn mesh_changed(&mut self, mesh: &TriangleMesh) {
         self.mesh_generation += 1;
+        self.hair = crate::passes::hair::HairStrands::of(mesh);
         if !self.edges.as_mut().is_some_and(|e| e.reposition(mesh)) {
             self.edges = None;
             if self.edge_aa != crate::aa::EdgeAa::Off {
@@ -181,6 +188,13 @@ impl Renderer {
     /// edges ([`Renderer::prepare_edges`], done by [`Renderer::set_mesh`] once this is on).
     pub fn set_edge_aa(&mut self, aa: crate::aa::EdgeAa) {
         self.edge_aa = aa;
+    }
+
+    /// Whether the hairs' fibres are drawn with their box-filter coverage (the antialiased hair
+    /// pass) or as opaque pixel centres; [`Renderer::set_aa_mode`] turns it on for every mode
+    /// but `none`.
+    pub fn set_hair_aa(&mut self, on: bool) {
+        self.hair_aa = on;
     }
 
     /// Whether unsorted edge overdraw feeds every edge to the GPU, whose vertex stage classifies
@@ -381,13 +395,22 @@ impl Renderer {
             } else {
                 0
             },
+            hair_strands: if self.mesh.is_some() { self.hair.strand_count() as u32 } else { 0 },
         };
         let max_side = self.shared.device.limits().max_texture_dimension_2d;
         let max_color_bytes = self.shared.device.limits().max_color_attachment_bytes_per_sample;
         FramePlan::new(
             scene,
             uploaded,
-            FrameSettings { width, height, display, max_side, max_color_bytes, aa: self.edge_aa },
+            FrameSettings {
+                width,
+                height,
+                display,
+                max_side,
+                max_color_bytes,
+                aa: self.edge_aa,
+                hair_aa: self.hair_aa,
+            },
         )
     }
 
@@ -443,6 +466,8 @@ impl Renderer {
             atlas,
             mesh_generation,
             wrinkle_weights,
+            hair,
+            hair_albedo,
             ..
         } = self;
         let mesh =
@@ -481,6 +506,8 @@ impl Renderer {
             edge_gpu_classify: *edge_gpu_classify,
             eye: camera.position(),
             edge_stats: None,
+            hair: plan.variant.hair.then_some(hair),
+            hair_albedo: *hair_albedo,
         };
         if let Some(p) = rec.enc.profiler.as_mut() {
             p.begin_frame();

@@ -136,6 +136,8 @@ pub enum Target {
     Display,
     /// Linear radiance output.
     Linear,
+    /// The hair pass's premultiplied radiance (rgb) and transmittance (a).
+    Hair,
 }
 
 impl Target {
@@ -156,6 +158,7 @@ impl Target {
             Target::ExitT => "exit T",
             Target::Display => "display",
             Target::Linear => "linear",
+            Target::Hair => "hair",
         }
     }
 

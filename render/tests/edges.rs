@@ -162,9 +162,17 @@ fn the_overdraw_pass_exists_only_with_edge_antialiasing() {
         skin_detail: false,
         glitter: 0,
         shadow_maps_kept: 0,
+        hair_strands: 0,
     };
-    let settings =
-        |aa, display| FrameSettings { width: 64, height: 48, display, max_side: 8192, max_color_bytes: 32, aa };
+    let settings = |aa, display| FrameSettings {
+        width: 64,
+        height: 48,
+        display,
+        max_side: 8192,
+        max_color_bytes: 32,
+        aa,
+        hair_aa: false,
+    };
     let has = |plan: &FramePlan| plan.passes.iter().any(|p| matches!(p.step, Step::EdgeOverdraw(_)));
     let scene = Scene::studio();
     let off = FramePlan::new(&scene, up, settings(EdgeAa::Off, true)).expect("plan");

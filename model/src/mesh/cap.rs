@@ -40,6 +40,7 @@ pub fn close_boundary_loops(mesh: &TriangleMesh, triangles: &[usize]) -> (Triang
         tangents: None,
         indices: Vec::new(),
         groups: Vec::new(),
+        strands: None,
     };
     let mut remap: HashMap<u32, u32> = HashMap::new();
     for &t in triangles {

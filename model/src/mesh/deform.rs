@@ -44,8 +44,10 @@ impl Clone for Scratch {
 
 impl SubdivisionPlan {
     /// Plans `levels` Catmull-Clark steps of `base` and its triangulation at `base`'s positions.
-    /// The rest mesh ([`SubdivisionPlan::rest`]) is exactly `base.catmull_clark(levels).triangulate()`.
+    /// The rest mesh ([`SubdivisionPlan::rest`]) is exactly `base.catmull_clark(levels).triangulate()`, with the base's hairs as strands
+    /// ([`super::strands::subdivided_with_strands`]).
     pub fn new(base: &Mesh, levels: u32) -> SubdivisionPlan {
+        let strands = super::strands::HairStrands::of(base);
         let mut steps = Vec::with_capacity(levels as usize);
         let mut mesh = base.clone();
         for _ in 0..levels {
@@ -58,7 +60,8 @@ impl SubdivisionPlan {
         if levels > 0 {
             mesh.recompute_normals();
         }
-        let (rest, sources) = mesh.triangulate_with_sources();
+        let (mut rest, sources) = mesh.triangulate_with_sources();
+        rest.strands = super::strands::attach(&strands, &sources);
         SubdivisionPlan {
             normals: NormalGather::new(mesh.positions.len(), &mesh.faces),
             steps,

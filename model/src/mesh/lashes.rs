@@ -12,8 +12,6 @@
 //! film's shrinkage as it dries lifts the lash into a curl (about 10-30° more at the tip)
 //! (\[Thibaut2010\] for the natural lash: 0.06-0.12 mm thick, 7-12 mm long, 80-160 per upper lid).
 
-use std::collections::HashMap;
-
 use glam::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -190,53 +188,9 @@ impl LashRig {
             return LashRig::default();
         }
         let centres: Vec<Vec3> = eyes.iter().map(|v| centre(&mesh.positions, v)).collect();
-        // Rungs: a quad's first and third edges (corners 0-1 and 2-3), as the generator writes
-        // both sides. Quads sharing a rung are neighbours along the strip.
-        let key = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
-        let mut quads_of: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
-        let mut quads: Vec<[[u32; 2]; 2]> = Vec::new();
-        for g in mesh.groups.iter().filter(|g| part(g) == Part::Lash) {
-            for f in &mesh.faces[g.faces.clone()] {
-                let [a, b, c, d] = match f.corners.as_slice() {
-                    [a, b, c, d] => [a.position, b.position, c.position, d.position],
-                    _ => continue,
-                };
-                let q = [key(a, b), key(c, d)];
-                for r in q {
-                    quads_of.entry(r).or_default().push(quads.len());
-                }
-                quads.push(q);
-            }
-        }
-        let mut seen = vec![false; quads.len()];
         let mut strands = Vec::new();
-        for start in 0..quads.len() {
-            if seen[start] {
-                continue;
-            }
-            // Walk to one end of the strip, then along it.
-            let mut end = (start, quads[start][0]);
-            loop {
-                let (q, r) = end;
-                match quads_of[&r].iter().find(|&&o| o != q) {
-                    Some(&o) => end = (o, if quads[o][0] == r { quads[o][1] } else { quads[o][0] }),
-                    None => break,
-                }
-                if end.0 == start {
-                    break; // a loop: not a strip
-                }
-            }
-            let (mut q, first) = end;
-            let mut rungs = vec![first];
-            loop {
-                seen[q] = true;
-                let next = if quads[q][0] == *rungs.last().expect("a rung") { quads[q][1] } else { quads[q][0] };
-                rungs.push(next);
-                match quads_of[&next].iter().find(|&&o| o != q && !seen[o]) {
-                    Some(&o) => q = o,
-                    None => break,
-                }
-            }
+        for strip in super::strands::strips(mesh, Part::Lash) {
+            let mut rungs = strip.rungs;
             let mid = |r: [u32; 2]| (mesh.positions[r[0] as usize] + mesh.positions[r[1] as usize]) * 0.5;
             let (root, tip) = (mid(rungs[0]), mid(*rungs.last().expect("a rung")));
             let eye = (0..centres.len())

@@ -34,6 +34,5 @@ pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result
             _ => return Err(ModelError::file(p, "unknown mesh format: use .obj, .gltf or .glb")),
         },
     };
-    let mesh = if subdivision > 0 { mesh.catmull_clark(subdivision) } else { mesh };
-    Ok(mesh.triangulate())
+    Ok(super::strands::subdivided_with_strands(&mesh, subdivision))
 }

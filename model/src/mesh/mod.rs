@@ -13,6 +13,7 @@ mod load;
 mod obj;
 mod pool;
 pub mod shapes;
+pub mod strands;
 mod subdivide;
 mod tangents;
 pub mod targets;
@@ -291,6 +292,11 @@ pub enum Part {
 }
 
 impl Part {
+    /// Whether the part is hair (lashes, brows): strands the renderer draws as fibres.
+    pub fn is_hair(self) -> bool {
+        matches!(self, Part::Lash | Part::Brow)
+    }
+
     /// Every part, skin first.
     pub const ALL: [Part; 7] = [Part::Skin, Part::Eye, Part::Mouth, Part::Teeth, Part::Tongue, Part::Lash, Part::Brow];
 
@@ -365,6 +371,10 @@ pub struct TriangleMesh {
     pub indices: Vec<u32>,
     /// Named triangle ranges.
     pub groups: Vec<TriangleGroup>,
+    /// The hairs (lashes, brows) as strands over these vertices, when the mesh was made from a
+    /// polygon mesh with hair ribbons ([`strands::subdivided_with_strands`]); the renderer draws
+    /// them as fibres ([`strands::HairStrands`]).
+    pub strands: Option<std::sync::Arc<strands::HairStrands>>,
 }
 
 impl TriangleMesh {
@@ -392,7 +402,8 @@ impl TriangleMesh {
 
     /// The mesh with only the triangles of the groups `keep` accepts, and those groups (their
     /// ranges renumbered); all vertices are kept, so values stay per vertex. A group's range
-    /// past the indices counts as empty. A mesh without groups is returned whole.
+    /// past the indices counts as empty. A mesh without groups is returned whole; the
+    /// strands of hair parts left out are dropped.
     pub fn only(&self, keep: impl Fn(&TriangleGroup) -> bool) -> TriangleMesh {
         let mut out = self.clone();
         if self.groups.iter().any(|g| !keep(g)) {
@@ -404,6 +415,12 @@ impl TriangleMesh {
                     self.indices.get(3 * g.triangles.start..3 * g.triangles.end).unwrap_or_default(),
                 );
                 out.groups.push(TriangleGroup { triangles: start..out.indices.len() / 3, ..g.clone() });
+            }
+            // The strands of the hair parts left out go with them.
+            if let Some(hairs) = &self.strands {
+                let kept = |p: Part| out.groups.iter().any(|g| g.part() == p);
+                let strands: Vec<_> = hairs.strands.iter().filter(|h| kept(h.part)).cloned().collect();
+                out.strands = (!strands.is_empty()).then(|| std::sync::Arc::new(strands::HairStrands { strands }));
             }
         }
         out
@@ -422,6 +439,7 @@ impl TriangleMesh {
             tangents: None,
             indices: vec![0, 1, 2, 0, 2, 3],
             groups: vec![],
+            strands: None,
         }
     }
 

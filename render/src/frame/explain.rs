@@ -33,6 +33,7 @@ impl Resource {
             Resource::MeshEdges { sorted: true } => "mesh edges (silhouettes sorted back to front)".into(),
             Resource::MeshEdges { sorted: false } => "mesh edges (classified on the GPU, unsorted)".into(),
             Resource::DisplayCopy => "display (a copy)".into(),
+            Resource::Strands(n) => format!("{n} hair strands (sorted back to front)"),
         }
     }
 

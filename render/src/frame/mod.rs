@@ -12,7 +12,7 @@
 //!
 //! [`FramePlan::new`] reads like the frame: validation, then one stage per part of it
 //! (`stages.rs`): shadows, the subsurface model's settings, the variant, the G-buffer, lighting,
-//! the subsurface model's passes, composition, edge overdraw. The render targets are the ones
+//! the subsurface model's passes, the hair, composition, edge overdraw. The render targets are the ones
 //! the passes read or write.
 
 mod explain;
@@ -52,6 +52,8 @@ pub struct Uploaded {
     /// neither the mesh nor the light has moved since they were drawn
     /// (`crate::passes::shadow::ShadowKey`).
     pub shadow_maps_kept: u8,
+    /// The mesh's hair strands drawn as fibres (0: no hair pass).
+    pub hair_strands: u32,
 }
 
 /// The output of a frame.
@@ -69,6 +71,8 @@ pub struct FrameSettings {
     pub max_color_bytes: u32,
     /// Discontinuity edge overdraw (\[Sander2001\]).
     pub aa: EdgeAa,
+    /// The hairs drawn with their box-filter coverage (any antialiasing but none).
+    pub hair_aa: bool,
 }
 
 /// What a pass reads or writes: a render target of the frame, or data uploaded or made by other
@@ -139,6 +143,8 @@ pub enum Resource {
     },
     /// A copy of the display image.
     DisplayCopy,
+    /// The mesh's hair strands, sorted back to front.
+    Strands(u32),
 }
 
 /// How a pass writes a resource.
@@ -218,6 +224,7 @@ impl FramePlan {
             dipole: models.dipole.is_some() || models.atlas.is_some(),
             atlas: models.atlas.is_some(),
             glitter: uploaded.glitter != 0 && uploaded.layers > 0 && scene.specular,
+            hair: uploaded.hair_strands > 0,
         };
         let mut variant = variant;
         let glitter_bytes = crate::passes::gbuffer::bytes_per_sample(variant);
@@ -236,6 +243,7 @@ impl FramePlan {
         plan.lighting(variant, uploaded.glitter);
         plan.subsurface_passes(variant, models);
         let kernel = plan.screen_space(scene)?;
+        plan.hair(variant, uploaded.hair_strands, settings.hair_aa);
         plan.composite(variant, kernel.is_some());
         plan.edge_overdraw(settings.aa, variant.display);
         let targets = plan.targets();

@@ -223,12 +223,34 @@ impl Planner {
         Ok(Some(kernel))
     }
 
+    /// The hair pass: the strands as fibres into the hair target, or why not.
+    pub fn hair(&mut self, variant: Variant, strands: u32, antialiased: bool) {
+        if !variant.hair {
+            return self.skip("hair pass", "the mesh has no hair strands (lashes, brows)");
+        }
+        let mut reads = vec![Resource::Strands(strands), Resource::Target(Target::Depth)];
+        if variant.shadows {
+            reads.push(Resource::ShadowMaps);
+        }
+        if variant.env {
+            reads.push(Resource::Environment);
+        }
+        self.push(
+            Step::Hair(crate::passes::hair::HairStep { antialiased }),
+            reads,
+            vec![(Resource::Target(Target::Hair), Access::Blend)],
+        );
+    }
+
     /// Composition of the skin radiance (scattered when the blur ran) with the surface radiance.
     pub fn composite(&mut self, variant: Variant, scattered: bool) {
         let skin = if scattered { Target::Scattered } else { Target::Diffuse };
         let mut reads = vec![skin, Target::Surface, Target::Normal];
         if variant.layers > 0 {
             reads.push(Target::ExitT);
+        }
+        if variant.hair {
+            reads.push(Target::Hair);
         }
         let out = Resource::Target(composite::output(variant));
         self.push(Step::Composite(skin), targets(&reads), vec![(out, Access::Replace)]);

@@ -11,7 +11,15 @@ fn read(plan: &FramePlan, i: usize, r: Resource) -> bool {
 }
 
 fn settings() -> FrameSettings {
-    FrameSettings { width: 64, height: 48, display: true, max_side: 8192, max_color_bytes: 32, aa: EdgeAa::Off }
+    FrameSettings {
+        width: 64,
+        height: 48,
+        display: true,
+        max_side: 8192,
+        max_color_bytes: 32,
+        aa: EdgeAa::Off,
+        hair_aa: false,
+    }
 }
 
 /// What is uploaded: `layers` layers and nothing else.
@@ -24,6 +32,7 @@ fn uploaded(layers: u32) -> Uploaded {
         skin_detail: false,
         glitter: 0,
         shadow_maps_kept: 0,
+        hair_strands: 0,
     }
 }
 

@@ -29,12 +29,14 @@ impl FramePass for CompositePass {
     const SHADER: PassShader = pass_shader!(CompositePass, "composite.wgsl", |v| Variant {
         layers: v.layers.min(1),
         display: v.display,
+        hair: v.hair,
         ..Variant::BARE
     });
 
     fn new(shared: &Shared) -> CompositePass {
-        let inputs = [float_tex(0, false), float_tex(1, false), float_tex(2, false), float_tex(3, false)]
-            .map(|e| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::COMPUTE, ..e });
+        let inputs =
+            [float_tex(0, false), float_tex(1, false), float_tex(2, false), float_tex(3, false), float_tex(5, false)]
+                .map(|e| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::COMPUTE, ..e });
         let layouts = [DISPLAY_STORAGE_FORMAT, shared.formats.linear].map(|format| {
             let mut entries = inputs.to_vec();
             entries.push(storage_texture_entry(4, format));
@@ -55,6 +57,7 @@ impl FramePass for CompositePass {
         let layout = &self.layouts[usize::from(!key.display)];
         let pipeline = self.pipelines.get_or_build_compute(shared, (&Self::SHADER, key), layout, "cs_composite")?;
         let exit_t = if key.layers > 0 { Some(targets.view(Target::ExitT)?) } else { None };
+        let hair = if key.hair { Some(targets.view(Target::Hair)?) } else { None };
         let (skin, surface, normal, out) = (
             targets.view(skin)?,
             targets.view(Target::Surface)?,
@@ -70,6 +73,7 @@ impl FramePass for CompositePass {
                 tex(2, exit_t.as_ref().unwrap_or(&shared.dummy)),
                 tex(3, &normal),
                 tex(4, &out),
+                tex(5, hair.as_ref().unwrap_or(&shared.dummy)),
             ],
         });
         let (width, height) = targets.size();

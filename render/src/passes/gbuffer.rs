@@ -127,7 +127,12 @@ impl FramePass for GbufferPass {
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);
-        rec.mesh.draw(&mut pass);
+        // Hairs drawn as fibres by the hair pass are left out of the G-buffer.
+        if rec.variant.hair {
+            rec.mesh.draw_without_hair(&mut pass)
+        } else {
+            rec.mesh.draw(&mut pass)
+        }
         Ok(())
     }
 }

@@ -19,6 +19,7 @@ pub mod depth_copy;
 pub mod dipole;
 pub mod edge_overdraw;
 pub mod gbuffer;
+pub mod hair;
 pub mod lighting;
 pub mod shadow;
 pub mod skin_gather;
@@ -119,6 +120,8 @@ frame_passes! {
     AtlasGather => atlas_gather: cube_atlas::gather::AtlasGatherPass,
     /// One direction of the screen-space scattering blur.
     Sss => sss: sss::SssPass,
+    /// The lashes and brows as fibres, into the hair target the composite lays over the frame.
+    Hair => hair: hair::HairPass,
     /// Composition of the skin radiance (diffuse or scattered) with the surface radiance.
     Composite => composite: composite::CompositePass,
     /// Discontinuity edges drawn over the display image (\[Sander2001\]).
@@ -226,6 +229,7 @@ pub enum Vertices {
     MeshPositions,
     /// One discontinuity edge per instance ([`edge_overdraw::instance_layout`]).
     EdgeInstances,
+    HairSegments,
 }
 
 /// What differs between the passes' pipelines.
@@ -273,6 +277,7 @@ pub fn build_pipeline(shared: &Shared, spec: &PipelineSpec<'_>) -> Result<wgpu::
         Vertices::Mesh => crate::gpu_mesh::full_layouts().map(Some).to_vec(),
         Vertices::MeshPositions => vec![Some(crate::gpu_mesh::position_layout())],
         Vertices::EdgeInstances => vec![Some(edge_overdraw::instance_layout())],
+        Vertices::HairSegments => vec![Some(hair::instance_layout())],
     };
     let targets: Vec<Option<wgpu::ColorTargetState>> = spec
         .targets
@@ -350,6 +355,10 @@ pub struct Recording<'a> {
     pub eye: glam::Vec3,
     /// Edge counts of this frame's edge list, when the CPU made one (set by the pass).
     pub edge_stats: Option<FrameEdgeStats>,
+    /// The mesh's strands, when the hair pass runs.
+    pub hair: Option<&'a mut hair::HairStrands>,
+    /// The hairs' colours.
+    pub hair_albedo: crate::HairAlbedo,
 }
 
 impl Recording<'_> {

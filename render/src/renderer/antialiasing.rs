@@ -7,7 +7,8 @@ use crate::error::Result;
 use crate::scene::{Camera, Scene};
 
 impl Renderer {
-    /// Sets the edge overdraw of the following frames for `mode` (with `coverage`) and returns
+    /// Sets the edge overdraw of the following frames for `mode` (with `coverage`), the hairs'
+    /// coverage (on for every mode but `none`, [`Renderer::set_hair_aa`]), and returns
     /// the mode's supersampling factor k (1 for the modes that do not supersample).
     ///
     /// # Errors
@@ -15,6 +16,7 @@ impl Renderer {
     pub fn set_aa_mode(&mut self, mode: AaMode, coverage: EdgeCoverage) -> Result<u32> {
         let (edge, k) = mode.frame(coverage)?;
         self.set_edge_aa(edge);
+        self.set_hair_aa(mode != AaMode::None);
         Ok(k)
     }
 

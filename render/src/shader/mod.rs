@@ -48,6 +48,8 @@ pub struct Variant {
     /// Some layer has glitter (only with layers): the G-buffer keeps the flake field's UVs and
     /// footprint, the lighting pass adds the flakes' sparkle.
     pub glitter: bool,
+    /// The mesh's hairs are drawn as fibres (the hair pass) and composited over the frame.
+    pub hair: bool,
 }
 
 impl Variant {
@@ -64,6 +66,7 @@ impl Variant {
         dipole: false,
         atlas: false,
         glitter: false,
+        hair: false,
     };
 
     /// Every variant, for validating all shader sources: the diffusion models' flags are
@@ -84,13 +87,16 @@ impl Variant {
                     dipole: bits % 96 >= 32,
                     atlas: bits % 96 >= 64,
                     glitter: bits >= 192 && layers > 0,
+                    // Tied to the shadow bit: the passes that read it (hair, composite) meet
+                    // it on and off with every other flag they depend on.
+                    hair: bits & 1 != 0,
                 })
             })
         })
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, half_linear: bool) -> [(&'static str, bool); 15] {
+    fn flags(self, half_linear: bool) -> [(&'static str, bool); 16] {
         [
             ("DIPOLE", self.dipole),
             ("ATLAS", self.atlas),
@@ -106,6 +112,7 @@ impl Variant {
             ("NORMAL_MAP", self.normal_map),
             ("SKIN_DETAIL", self.skin_detail),
             ("GLITTER", self.glitter),
+            ("HAIR", self.hair),
             ("HALF_LINEAR", half_linear),
         ]
     }
@@ -157,6 +164,7 @@ pub fn shader_source(pass: &PassShader, variant: Variant, half_linear: bool) -> 
     out.push_str(&rouge_measure::compositing::CompositingBasis::get().wgsl_constants());
     out.push_str(&crate::specular::wgsl_constants());
     out.push_str(&crate::glitter::wgsl_constants());
+    out.push_str(&crate::fibre::wgsl_constants());
     out.push_str(&format!("const PORE_DEPTH_MM: f32 = {:?};\n", rouge_model::skin::detail::PORE_DEPTH_MM));
     out.push_str(include_str!("../shaders/common.wgsl"));
     out.push_str(&preprocess(pass.file, pass.source, &variant.flags(half_linear))?);
@@ -174,6 +182,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "skin_pixel" => Some(include_str!("../shaders/skin_pixel.wgsl")),
         "layered_mesh" => Some(include_str!("../shaders/layered_mesh.wgsl")),
         "glitter" => Some(include_str!("../shaders/glitter.wgsl")),
+        "coverage" => Some(include_str!("../shaders/coverage.wgsl")),
         _ => None,
     }
 }

@@ -63,10 +63,10 @@ fn every_shader_variant_validates() {
     assert_eq!(Variant::all().count(), 9 * 384 * 3);
     // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants, and
     // the 8 with layers again with glitter; thickness: 3; lighting: 9 × shadows × env × 3
-    // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display; shadow,
-    // SSS, depth copy, edge overdraw, the three dipole passes and the atlas gather: 1 each; the
-    // atlas irradiance: shadows × env.
-    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 3 + 9 * 12 + 8 * 12 + 2 * 2 + 4 + 3 + 1 + 4;
+    // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display × hair;
+    // shadow, SSS, depth copy, edge overdraw, the three dipole passes and the atlas gather: 1
+    // each; the atlas irradiance and the hair: shadows × env.
+    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 3 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 4 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -89,6 +89,7 @@ fn variants_compile_only_what_the_scene_uses() {
         dipole: false,
         atlas: false,
         glitter: true,
+        hair: true,
     };
     let src = source(LIGHTING, full);
     assert!(src.contains("layer_rt") && src.contains("shadow_factor") && src.contains("fn sh_irradiance"));
@@ -141,12 +142,14 @@ fn rust_and_wgsl_uniform_layouts_match() {
         dipole: true,
         atlas: true,
         glitter: true,
+        hair: true,
     };
     // Frame, Light and Layer are in every pass; SssPass in the SSS pass.
     let lighting = parse(LIGHTING, variant);
     let sss = parse(&SssPass::SHADER, variant);
     let thickness = parse(THICKNESS, variant);
     let edges = parse(&EdgeOverdrawPass::SHADER, variant);
+    let hair = parse(&crate::passes::hair::HairPass::SHADER, variant);
     let dipole = parse(&DipoleRadiancePass::SHADER, variant);
     let atlas = parse(&AtlasGatherPass::SHADER, variant);
     for (name, size, fields) in uniform_layouts() {
@@ -154,6 +157,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
             "SssPass" => &sss,
             "ThicknessPass" => &thickness,
             "EdgePass" => &edges,
+            "HairPass" => &hair,
             "DipolePass" => &dipole,
             "AtlasPass" => &atlas,
             _ => &lighting,
@@ -180,8 +184,21 @@ type UniformLayout = (&'static str, usize, Vec<(&'static str, usize)>);
 
 /// Field offsets of the uniforms, for the layout test against naga's view of the WGSL.
 fn uniform_layouts() -> Vec<UniformLayout> {
+    use crate::passes::hair::HairUniform;
     use std::mem::{offset_of, size_of};
     vec![
+        (
+            "HairPass",
+            size_of::<HairUniform>(),
+            vec![
+                ("params", offset_of!(HairUniform, params)),
+                ("lash_sigma_a", offset_of!(HairUniform, lash_sigma_a)),
+                ("lash_albedo", offset_of!(HairUniform, lash_albedo)),
+                ("brow_sigma_a", offset_of!(HairUniform, brow_sigma_a)),
+                ("brow_albedo", offset_of!(HairUniform, brow_albedo)),
+                ("fibre", offset_of!(HairUniform, fibre)),
+            ],
+        ),
         (
             "Frame",
             size_of::<FrameUniform>(),

@@ -6,6 +6,8 @@
 @group(1) @binding(1) var surface: texture_2d<f32>;
 @group(1) @binding(2) var exit_t: texture_2d<f32>;
 @group(1) @binding(3) var coverage: texture_2d<f32>;
+// The hair pass's premultiplied radiance and transmittance (render/src/passes/hair.rs).
+@group(1) @binding(5) var hair_image: texture_2d<f32>;
 
 // Khronos PBR Neutral ([KhronosNeutral]): hue-preserving, linear below ~0.76, so product colours stay true.
 fn pbr_neutral(color_in: vec3<f32>) -> vec3<f32> {
@@ -68,6 +70,11 @@ fn cs_composite(@builtin(global_invocation_id) id: vec3<u32>) {
 //#endif
         c = textureLoad(diffuse, p, 0).rgb * t + textureLoad(surface, p, 0).rgb;
     }
+//#if HAIR
+    // The hairs over everything behind them, in linear radiance.
+    let hair = textureLoad(hair_image, p, 0);
+    c = c * hair.a + hair.rgb;
+//#endif
 //#if DISPLAY
     textureStore(out_image, p, vec4<f32>(display_encode(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0)))), 1.0));
 //#else

@@ -137,28 +137,7 @@ fn vs_edge(e: EdgeIn, @builtin(vertex_index) i: u32) -> EdgeOut {
     return out;
 }
 
-// Coverage of a unit pixel (box filter) by the half-plane {y : n · (y − centre) ≤ x}, n unit:
-// the distribution function of the projection of a uniform point of the square onto n, a
-// trapezoid of width |nx| + |ny| (the convolution of boxes of widths |nx| and |ny|).
-fn box_coverage(x: f32, n: vec2<f32>) -> f32 {
-    let a = max(abs(n.x), abs(n.y));
-    let b = min(abs(n.x), abs(n.y));
-    let h = 0.5 * (a + b);
-    let k = 0.5 * (a - b);
-    if x <= -h {
-        return 0.0;
-    }
-    if x >= h {
-        return 1.0;
-    }
-    if x < -k {
-        return (x + h) * (x + h) / (2.0 * a * b);
-    }
-    if x > k {
-        return 1.0 - (h - x) * (h - x) / (2.0 * a * b);
-    }
-    return 0.5 + x / a;
-}
+//#insert coverage
 
 @fragment
 fn fs_edge(in: EdgeOut) -> @location(0) vec4<f32> {

@@ -1,0 +1,260 @@
+//! The hair pass (shaders/hair.wgsl): the mesh's lashes and brows ([`rouge_model::mesh::strands`])
+//! drawn as fibres after the skin's passes and before the composite. Each strand's segments are
+//! screen-space quads around their centre line, shaded by the fibre model ([`crate::fibre`]:
+//! \[Marschner2003\]'s lobes with \[Karis2016\]'s fits, absorption from the hairs' colours by
+//! [`crate::fibre::sigma_a_from_color`]) under the scene's lights, shadow maps and environment, depth tested against the
+//! G-buffer (which leaves the hair out) and accumulated "over", strands sorted back to front on
+//! the CPU, into [`Target::Hair`]: premultiplied radiance and transmittance, which the composite
+//! lays over the frame in linear radiance.
+//!
+//! Antialiased (any `--aa` but `none`), a fragment carries the exact box-filter coverage of its
+//! fibre's strip (shaders/coverage.wgsl), so a hair thinner than a pixel is a faint line rather
+//! than the dotted one the G-buffer's pixel centres make of it; consecutive segments cut at the
+//! bisector of their joint, so no pixel is covered twice by one strand.
+
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use crate::error::{RenderError, Result};
+use crate::shader::{PassShader, Variant, pass_shader};
+use crate::targets::Target;
+use crate::wgpu_util::{buf, color, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use rouge_model::mesh::{Part, TriangleMesh};
+
+/// Pixels by which an antialiased fibre's quad is widened on each side: the box filter's reach
+/// beyond the strip (half the pixel's diagonal, √2/2) and a margin.
+pub const WIDEN_PX: f32 = 0.75;
+
+/// One segment of a strand, as `SegmentIn` in shaders/hair.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct HairSegment {
+    prev: [f32; 3],
+    p0: [f32; 3],
+    p1: [f32; 3],
+    next: [f32; 3],
+    radii: [f32; 2],
+    part: u32,
+    pad: u32,
+}
+
+/// The per-instance vertex layout of [`HairSegment`].
+pub fn instance_layout() -> wgpu::VertexBufferLayout<'static> {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Float32x3, 4 => Float32x2, 5 => Uint32
+    ];
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<HairSegment>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &ATTRIBUTES,
+    }
+}
+
+/// The pass's uniform, as `HairPass` in shaders/hair.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct HairUniform {
+    pub(crate) params: [f32; 4],
+    pub(crate) lash_sigma_a: [f32; 4],
+    pub(crate) lash_albedo: [f32; 4],
+    pub(crate) brow_sigma_a: [f32; 4],
+    pub(crate) brow_albedo: [f32; 4],
+    pub(crate) fibre: [f32; 4],
+}
+
+impl HairUniform {
+    /// The uniform for hairs of these colours ([`crate::HairAlbedo`], made absorption by
+    /// [`crate::fibre::sigma_a_from_color`]), with each fibre's albedo for the environment's
+    /// light ([`crate::fibre::albedo`]).
+    pub fn new(antialiased: bool, hair: crate::HairAlbedo) -> HairUniform {
+        let v4 = |c: [f32; 3]| [c[0], c[1], c[2], 0.0];
+        let sigma = |c: [f32; 3]| v4(crate::fibre::sigma_a_from_color(c));
+        let colour =
+            |c: [f32; 3]| v4(crate::fibre::albedo(crate::fibre::sigma_a_from_color(c), crate::fibre::ROUGHNESS_RAD));
+        HairUniform {
+            params: [if antialiased { 1.0 } else { 0.0 }, if antialiased { WIDEN_PX } else { 0.0 }, 0.0, 0.0],
+            lash_sigma_a: sigma(hair.lash),
+            lash_albedo: colour(hair.lash),
+            brow_sigma_a: sigma(hair.brow),
+            brow_albedo: colour(hair.brow),
+            fibre: [crate::fibre::ROUGHNESS_RAD, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// The mesh's strands as segments, grouped by strand, with each strand's centre for sorting.
+#[derive(Debug, Default)]
+pub struct HairStrands {
+    segments: Vec<HairSegment>,
+    /// Per strand: its segments' range and its centre (mm).
+    strands: Vec<(std::ops::Range<usize>, Vec3)>,
+    /// This frame's sorted segments on the GPU, grown as needed.
+    buffer: Option<(wgpu::Buffer, usize)>,
+}
+
+impl HairStrands {
+    /// The segments of `mesh`'s strands at its current positions; none without strands.
+    pub fn of(mesh: &TriangleMesh) -> HairStrands {
+        let mut out = HairStrands::default();
+        let Some(strands) = mesh.strands.as_deref() else { return out };
+        for s in &strands.strands {
+            let stations = s.stations(&mesh.positions);
+            if stations.len() < 2 || stations.iter().any(|(p, r)| !p.is_finite() || !r.is_finite()) {
+                continue;
+            }
+            let part = u32::from(s.part == Part::Brow);
+            let start = out.segments.len();
+            let at = |i: usize| stations[i.min(stations.len() - 1)].0;
+            for i in 0..stations.len() - 1 {
+                out.segments.push(HairSegment {
+                    prev: at(i.saturating_sub(1)).to_array(),
+                    p0: at(i).to_array(),
+                    p1: at(i + 1).to_array(),
+                    next: at(i + 2).to_array(),
+                    radii: [stations[i].1, stations[i + 1].1],
+                    part,
+                    pad: 0,
+                });
+            }
+            let centre = stations.iter().map(|(p, _)| *p).sum::<Vec3>() / stations.len() as f32;
+            out.strands.push((start..out.segments.len(), centre));
+        }
+        out
+    }
+
+    /// Whether there is nothing to draw.
+    pub fn is_empty(&self) -> bool {
+        self.segments.is_empty()
+    }
+
+    /// Number of strands.
+    pub fn strand_count(&self) -> usize {
+        self.strands.len()
+    }
+
+    /// The segments with their strands in back-to-front order from `eye`.
+    pub fn sorted(&self, eye: Vec3) -> Vec<HairSegment> {
+        let mut order: Vec<usize> = (0..self.strands.len()).collect();
+        order.sort_by(|&a, &b| {
+            self.strands[b].1.distance_squared(eye).total_cmp(&self.strands[a].1.distance_squared(eye))
+        });
+        order.iter().flat_map(|&s| self.segments[self.strands[s].0.clone()].iter().copied()).collect()
+    }
+}
+
+/// What the plan gives the pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HairStep {
+    /// Box-filter coverage (antialiasing on), or opaque pixel centres.
+    pub antialiased: bool,
+}
+
+/// The hair pass.
+#[derive(Debug)]
+pub struct HairPass {
+    layout: wgpu::BindGroupLayout,
+    pipelines: Pipelines,
+    uniform: wgpu::Buffer,
+}
+
+impl FramePass for HairPass {
+    type Step = HairStep;
+    const SHADER: PassShader =
+        pass_shader!(HairPass, "hair.wgsl", |v| Variant { shadows: v.shadows, env: v.env, ..Variant::BARE });
+
+    fn new(shared: &Shared) -> HairPass {
+        let layout = layout(
+            &shared.device,
+            "HairPass::layout",
+            &[
+                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                tex_entry(1, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+                sampler_entry(2, wgpu::SamplerBindingType::Comparison),
+            ],
+        );
+        let uniform =
+            crate::wgpu_util::uniform_buffer(&shared.device, "HairPass::uniform", std::mem::size_of::<HairUniform>());
+        HairPass { layout, pipelines: Pipelines::default(), uniform }
+    }
+
+    fn name(step: &HairStep) -> String {
+        if step.antialiased { "hair (antialiased)".into() } else { "hair".into() }
+    }
+
+    /// Records the strands, sorted back to front from the eye, into [`Target::Hair`] (cleared to
+    /// no radiance and full transmittance), depth tested against [`Target::Depth`].
+    fn record(&mut self, rec: &mut Recording<'_>, step: &HairStep) -> Result<()> {
+        let (shared, targets) = (rec.shared, rec.targets);
+        let device = &shared.device;
+        let hair = rec
+            .hair
+            .as_deref_mut()
+            .ok_or_else(|| RenderError::Invalid("the hair pass needs the mesh's strands".into()))?;
+        let key = rec.variant;
+        let key = (Self::SHADER.reduce)(key);
+        // Radiance and transmittance both "over": rgb = src + dst·(1 − a), a = dst·(1 − a).
+        let blend = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+        };
+        let pipeline = self.pipelines.get_or_build(shared, key, || PipelineSpec {
+            shader: &Self::SHADER,
+            variant: key,
+            layout: &self.layout,
+            vertices: Vertices::HairSegments,
+            vs: "vs_hair",
+            fs: Some("fs_hair"),
+            targets: vec![Some(Target::Hair.format(shared.formats))],
+            blend: Some(blend),
+            depth: Some(wgpu::DepthBiasState::default()),
+        })?;
+        shared.queue.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&HairUniform::new(step.antialiased, rec.hair_albedo)),
+        );
+        let sorted = hair.sorted(rec.eye);
+        if hair.buffer.as_ref().is_none_or(|(_, cap)| *cap < sorted.len()) {
+            use wgpu::util::DeviceExt;
+            let zero = [HairSegment::zeroed()];
+            let data: &[HairSegment] = if sorted.is_empty() { &zero } else { &sorted };
+            let b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("HairPass::segments"),
+                contents: bytemuck::cast_slice(data),
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            });
+            hair.buffer = Some((b, sorted.len().max(1)));
+        } else if let Some((b, _)) = &hair.buffer {
+            shared.queue.write_buffer(b, 0, bytemuck::cast_slice(&sorted));
+        }
+        let (buffer, _) = hair.buffer.as_ref().ok_or_else(|| RenderError::Gpu("no hair buffer".into()))?;
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("HairPass::group"),
+            layout: &self.layout,
+            entries: &[buf(0, &self.uniform), tex(1, &rec.shadow_maps), sampler(2, &shared.shadow_sampler)],
+        });
+        let out = targets.view(Target::Hair)?;
+        let depth = targets.view(Target::Depth)?;
+        let depth_attachment = wgpu::RenderPassDepthStencilAttachment {
+            view: &depth,
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+            stencil_ops: None,
+        };
+        let clear = wgpu::Color { r: 0.0, g: 0.0, b: 0.0, a: 1.0 };
+        let mut pass = rec.enc.begin("hair", &[color(&out, clear)], Some(depth_attachment));
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &shared.frame_group, &[]);
+        pass.set_bind_group(1, &group, &[]);
+        pass.set_vertex_buffer(0, buffer.slice(..));
+        pass.draw(0..6, 0..sorted.len() as u32);
+        Ok(())
+    }
+}

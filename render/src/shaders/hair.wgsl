@@ -1,0 +1,199 @@
+// The hair pass (render/src/passes/hair.rs): each segment of a lash or brow strand is a fibre
+// (a centre line and a radius), drawn as a screen-space quad around its projected centre line
+// and shaded by the fibre model (render/src/fibre.rs `scattering`, twin of `fibre_scattering`
+// below). Antialiased, the quad is widened by a pixel and each fragment carries the exact box
+// coverage of the fibre's strip (coverage.wgsl); aliased, the quad is the fibre's own width and
+// every covered pixel centre is opaque, as the G-buffer would draw it. The pass accumulates
+// premultiplied radiance and transmittance ("over", back to front as the CPU sorted them) into
+// the hair target, which the composite lays over the frame in linear radiance.
+
+struct HairPass {
+    // x: 1 when antialiased, y: widening in pixels, z, w: unused
+    params: vec4<f32>,
+    // σa per unit radius of the lashes (rgb) and their albedo under the environment (w: unused)
+    lash_sigma_a: vec4<f32>,
+    lash_albedo: vec4<f32>,
+    brow_sigma_a: vec4<f32>,
+    brow_albedo: vec4<f32>,
+    // x: longitudinal roughness (radians), yzw: unused
+    fibre: vec4<f32>,
+}
+
+@group(1) @binding(0) var<uniform> hair_pass: HairPass;
+@group(1) @binding(1) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(2) var shadow_sampler: sampler_comparison;
+
+//#insert shadow_factor
+//#insert sh_eval
+//#insert coverage
+
+struct SegmentIn {
+    // The centre line before the segment, its two ends and after it (mm); the ends' radii (mm).
+    @location(0) prev: vec3<f32>,
+    @location(1) p0: vec3<f32>,
+    @location(2) p1: vec3<f32>,
+    @location(3) next: vec3<f32>,
+    @location(4) radii: vec2<f32>,
+    // 0 lash, 1 brow
+    @location(5) part: u32,
+}
+
+struct SegmentOut {
+    @builtin(position) pos: vec4<f32>,
+    // The segment's ends in pixels; its unit direction and normal on screen.
+    @location(0) @interpolate(flat) a: vec2<f32>,
+    @location(1) @interpolate(flat) b: vec2<f32>,
+    // The joints' cutting directions (bisectors of the neighbouring segments' directions).
+    @location(2) @interpolate(flat) cut_a: vec2<f32>,
+    @location(3) @interpolate(flat) cut_b: vec2<f32>,
+    // The ends' radii in pixels.
+    @location(4) @interpolate(flat) radii_px: vec2<f32>,
+    @location(5) @interpolate(flat) p0: vec3<f32>,
+    @location(6) @interpolate(flat) p1: vec3<f32>,
+    @location(7) @interpolate(flat) part: u32,
+}
+
+fn to_pixels(clip: vec4<f32>) -> vec2<f32> {
+    let ndc = clip.xy / clip.w;
+    return vec2<f32>((ndc.x * 0.5 + 0.5) * frame.viewport.x, (0.5 - 0.5 * ndc.y) * frame.viewport.y);
+}
+
+// The unit vector of `d`, or `fallback` for a (near) zero one.
+fn unit_or(d: vec2<f32>, fallback: vec2<f32>) -> vec2<f32> {
+    let l2 = dot(d, d);
+    return select(fallback, d * inverseSqrt(l2), l2 > 1e-10);
+}
+
+@vertex
+fn vs_hair(s: SegmentIn, @builtin(vertex_index) i: u32) -> SegmentOut {
+    var out: SegmentOut;
+    out.pos = vec4<f32>(-2.0, -2.0, 0.0, 1.0);
+    let c0 = frame.view_proj * vec4<f32>(s.p0, 1.0);
+    let c1 = frame.view_proj * vec4<f32>(s.p1, 1.0);
+    if c0.w <= 1e-3 || c1.w <= 1e-3 {
+        return out;
+    }
+    let a = to_pixels(c0);
+    let b = to_pixels(c1);
+    let dir = unit_or(b - a, vec2<f32>(1.0, 0.0));
+    let cp = frame.view_proj * vec4<f32>(s.prev, 1.0);
+    let cn = frame.view_proj * vec4<f32>(s.next, 1.0);
+    let dir_prev = select(dir, unit_or(a - to_pixels(cp), dir), cp.w > 1e-3);
+    let dir_next = select(dir, unit_or(to_pixels(cn) - b, dir), cn.w > 1e-3);
+    let nrm = vec2<f32>(-dir.y, dir.x);
+    // Radius in pixels: mm × focal length (pixels) / view depth (clip w).
+    let r0 = s.radii.x * frame.projection.x / c0.w;
+    let r1 = s.radii.y * frame.projection.x / c1.w;
+    let widen = hair_pass.params.y;
+    let half_width = max(r0, r1) + widen;
+    let corner = array<u32, 6>(0u, 1u, 2u, 2u, 1u, 3u)[i % 6u];
+    let at_b = (corner & 1u) == 1u;
+    let end = select(c0, c1, at_b);
+    // Along the segment, past each end by the half width so that the cut at the joint (the
+    // bisector) lies inside the quad.
+    let along = select(-half_width, half_width, at_b);
+    let px = select(a, b, at_b) + dir * along + nrm * select(-half_width, half_width, corner >= 2u);
+    let ndc = vec2<f32>(px.x * frame.viewport.z * 2.0 - 1.0, 1.0 - px.y * frame.viewport.w * 2.0);
+    out.pos = vec4<f32>(ndc * end.w, end.z, end.w);
+    out.a = a;
+    out.b = b;
+    out.cut_a = unit_or(dir_prev + dir, dir);
+    out.cut_b = unit_or(dir + dir_next, dir);
+    out.radii_px = vec2<f32>(r0, r1);
+    out.p0 = s.p0;
+    out.p1 = s.p1;
+    out.part = s.part;
+    return out;
+}
+
+fn fresnel_keratin(cos: f32) -> f32 {
+    let k = (1.0 - FIBRE_ETA) / (1.0 + FIBRE_ETA);
+    let f0 = k * k;
+    return f0 + (1.0 - f0) * pow(1.0 - clamp(cos, 0.0, 1.0), 5.0);
+}
+
+fn unit_gaussian(b: f32, x: f32) -> f32 {
+    return exp(-0.5 * x * x / (b * b)) / (2.5066283 * b);
+}
+
+// Outgoing radiance per unit irradiance at normal incidence of a fibre with tangent `t`, lit from
+// `l`, seen from `v` (render/src/fibre.rs `scattering`, its twin: the citations and domain are
+// there).
+fn fibre_scattering(t: vec3<f32>, l: vec3<f32>, v: vec3<f32>, sigma_a: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let sin_l = clamp(dot(t, l), -1.0, 1.0);
+    let sin_v = clamp(dot(t, v), -1.0, 1.0);
+    let cos_d = max(cos(0.5 * abs(asin(sin_v) - asin(sin_l))), 1e-3);
+    let lp = l - t * sin_l;
+    let vp = v - t * sin_v;
+    let cos_phi = dot(lp, vp) / sqrt(dot(lp, lp) * dot(vp, vp) + 1e-4);
+    let cos_half_phi = sqrt(clamp(0.5 + 0.5 * cos_phi, 0.0, 1.0));
+    let b = max(roughness, 1e-3);
+    let sum = sin_l + sin_v;
+    let cos_l = sqrt(max(1.0 - sin_l * sin_l, 0.0));
+    let m_r = unit_gaussian(b, sum + 2.0 * CUTICLE_TILT_RAD);
+    let r = m_r * 0.25 * cos_half_phi * fresnel_keratin(sqrt(clamp(0.5 + 0.5 * dot(l, v), 0.0, 1.0)));
+    let eta_p = 1.19 / cos_d + 0.36 * cos_d;
+    let a = 1.0 / eta_p;
+    let h = cos_half_phi * (1.0 + a * (0.6 - 0.8 * cos_phi));
+    let f_tt = fresnel_keratin(cos_d * sqrt(clamp(1.0 - h * h, 0.0, 1.0)));
+    let m_tt = unit_gaussian(b * 0.70710678, sum - CUTICLE_TILT_RAD);
+    let n_tt = exp(-3.65 * cos_phi - 3.98);
+    let path_tt = 2.0 * sqrt(clamp(1.0 - (h * a) * (h * a), 0.0, 1.0)) / cos_d;
+    let f_trt = fresnel_keratin(cos_d * 0.5);
+    let m_trt = unit_gaussian(b * 1.41421356, sum - 4.0 * CUTICLE_TILT_RAD);
+    let n_trt = exp(17.0 * cos_phi - 16.78);
+    let path_trt = 3.2 / cos_d;
+    let tt = m_tt * n_tt * (1.0 - f_tt) * (1.0 - f_tt) * exp(-sigma_a * path_tt);
+    let trt = m_trt * n_trt * (1.0 - f_trt) * (1.0 - f_trt) * f_trt * exp(-sigma_a * path_trt);
+    return (vec3<f32>(r) + tt + trt) * cos_l;
+}
+
+@fragment
+fn fs_hair(in: SegmentOut) -> @location(0) vec4<f32> {
+    let p = in.pos.xy;
+    // Each fragment belongs to one segment of its strand: between the cuts at its joints.
+    if dot(p - in.a, in.cut_a) < 0.0 || dot(p - in.b, in.cut_b) >= 0.0 {
+        discard;
+    }
+    let d = in.b - in.a;
+    let len2 = max(dot(d, d), 1e-8);
+    let t = clamp(dot(p - in.a, d) / len2, 0.0, 1.0);
+    let dir = d * inverseSqrt(len2);
+    let nrm = vec2<f32>(-dir.y, dir.x);
+    let x = dot(p - in.a, nrm);
+    let r = mix(in.radii_px.x, in.radii_px.y, t);
+    var coverage = 1.0;
+    if hair_pass.params.x > 0.5 {
+        coverage = strip_coverage(x, r, nrm);
+    } else if abs(x) > r {
+        discard;
+    }
+    if coverage <= 0.0 {
+        discard;
+    }
+    let world = mix(in.p0, in.p1, t);
+    let tangent = normalize(in.p1 - in.p0 + vec3<f32>(0.0, 0.0, 1e-9));
+    let v = normalize(frame.camera_pos.xyz - world);
+    // The fibre's normal toward the eye: where shadows are looked up and ambient light arrives.
+    let facing = normalize(v - tangent * dot(v, tangent) + vec3<f32>(0.0, 1e-6, 0.0));
+    var sigma_a = hair_pass.lash_sigma_a.rgb;
+    var albedo = hair_pass.lash_albedo.rgb;
+    if in.part == 1u {
+        sigma_a = hair_pass.brow_sigma_a.rgb;
+        albedo = hair_pass.brow_albedo.rgb;
+    }
+    var radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.counts.x; i++) {
+        let light = frame.lights[i];
+        let arrival = light_arrival(light, world);
+        var visible = 1.0;
+//#if SHADOWS
+        visible = shadow_factor(light, world, facing);
+//#endif
+        radiance += arrival.e * visible * fibre_scattering(tangent, arrival.l, v, sigma_a, hair_pass.fibre.x);
+    }
+//#if ENV
+    radiance += albedo * sh_irradiance(frame.sh, facing) / PI;
+//#endif
+    return vec4<f32>(radiance * coverage, coverage);
+}
