@@ -165,11 +165,39 @@ pub fn mask_near_segments(segments: &[([f32; 2], [f32; 2])], (w, h): (usize, usi
     mask
 }
 
+/// Marks the pixels where the reference differs from its own 1-pixel blur (a 3×3 box, edges
+/// clamped) by more than `threshold` levels of 255 in some sRGB-encoded channel: every
+/// discontinuity a viewer sees (silhouettes, the eyes' outlines, the lash line, hairs, specular
+/// edges), whether or not it lies on a mesh edge. Issue 27's measure of edge antialiasing.
+pub fn detail_mask(reference: &[[f32; 3]], (w, h): (usize, usize), threshold: f32) -> Vec<bool> {
+    let encoded: Vec<[f32; 3]> =
+        reference.iter().map(|p| p.map(|v| (srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0) as f32)).collect();
+    let at =
+        |x: isize, y: isize| encoded[y.clamp(0, h as isize - 1) as usize * w + x.clamp(0, w as isize - 1) as usize];
+    let mut mask = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let mut blur = [0.0f32; 3];
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let p = at(x as isize + dx, y as isize + dy);
+                    (0..3).for_each(|c| blur[c] += p[c] / 9.0);
+                }
+            }
+            let p = encoded[y * w + x];
+            mask[y * w + x] = (0..3).any(|c| (p[c] - blur[c]).abs() > threshold);
+        }
+    }
+    mask
+}
+
 /// Errors of an image against its reference on the masked pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct EdgeError {
     /// Root mean square of the linear sRGB differences (all channels).
     pub rmse: f64,
+    /// The same of the sRGB-encoded values, in levels of 255 (as an 8-bit image differs).
+    pub rmse_srgb8: f64,
     /// Mean CIEDE2000 (D65).
     pub delta_e_mean: f64,
     /// Pixels measured.
@@ -178,7 +206,8 @@ pub struct EdgeError {
 
 /// RMSE and mean ΔE2000 of `image` against `reference` (linear sRGB) over the `mask`ed pixels.
 pub fn edge_error(image: &[[f32; 3]], reference: &[[f32; 3]], mask: &[bool]) -> EdgeError {
-    let (mut sq, mut de, mut n) = (0.0f64, 0.0f64, 0usize);
+    let (mut sq, mut sq8, mut de, mut n) = (0.0f64, 0.0f64, 0.0f64, 0usize);
+    let encode = |v: f32| srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0;
     for ((a, b), &m) in image.iter().zip(reference).zip(mask) {
         if !m {
             continue;
@@ -186,6 +215,7 @@ pub fn edge_error(image: &[[f32; 3]], reference: &[[f32; 3]], mask: &[bool]) -> 
         n += 1;
         for c in 0..3 {
             sq += f64::from(a[c] - b[c]).powi(2);
+            sq8 += (encode(a[c]) - encode(b[c])).powi(2);
         }
         let lab = |p: &[f32; 3]| linear_srgb_to_lab(p.map(f64::from));
         de += delta_e_2000_raw(lab(a), lab(b));
@@ -193,7 +223,8 @@ pub fn edge_error(image: &[[f32; 3]], reference: &[[f32; 3]], mask: &[bool]) -> 
     if n == 0 {
         return EdgeError::default();
     }
-    EdgeError { rmse: (sq / (3 * n) as f64).sqrt(), delta_e_mean: de / n as f64, pixels: n }
+    let rms = |s: f64| (s / (3 * n) as f64).sqrt();
+    EdgeError { rmse: rms(sq), rmse_srgb8: rms(sq8), delta_e_mean: de / n as f64, pixels: n }
 }
 
 /// Crawl between two consecutive frames: the RMS over the masked pixels of the difference

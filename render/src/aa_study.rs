@@ -30,6 +30,18 @@ pub struct AaStudy {
     /// Also measure unsorted two-sided overdraw with every edge classified on the GPU
     /// ([`Renderer::set_edge_gpu_classify`]), the row `edges-gpu`.
     pub gpu_classify: bool,
+    /// Which pixels are measured.
+    pub mask: Mask,
+}
+
+/// The pixels an [`AaStudy`] measures.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub enum Mask {
+    /// Within 2 pixels of a mesh edge drawn from that view ([`edge_mask`]).
+    NearEdges,
+    /// Where the reference differs from its 1-pixel blur by more than this many levels of 255
+    /// ([`aa::detail_mask`]): issue 27's measure, every discontinuity a viewer sees.
+    Detail(f32),
 }
 
 /// One mode's results over the sequence.
@@ -41,6 +53,10 @@ pub struct AaRow {
     pub coverage: Option<EdgeCoverage>,
     /// Mean over the frames of the RMSE (linear sRGB) near discontinuities.
     pub rmse: f64,
+    /// The same in levels of 255 of the sRGB-encoded images.
+    pub rmse_srgb8: f64,
+    /// Pixels measured a frame (mean).
+    pub pixels: f64,
     /// Mean over the frames of the mean ΔE2000 near discontinuities.
     pub delta_e_mean: f64,
     /// Mean over consecutive frame pairs of the crawl ([`aa::crawl`]).
@@ -48,6 +64,35 @@ pub struct AaRow {
     /// Median wall time of a frame (render and wait), ms; GPU work on the adapter named in the
     /// report (lavapipe: CPU cores, noisy).
     pub frame_ms: f64,
+    /// Median GPU time of each pass over the timed frames (timestamp queries), ms, in frame
+    /// order; empty where the adapter has no timestamps.
+    pub pass_ms: Vec<(String, f64)>,
+}
+
+impl AaRow {
+    /// The frame's GPU time: the sum of [`AaRow::pass_ms`].
+    pub fn gpu_ms(&self) -> f64 {
+        self.pass_ms.iter().map(|(_, ms)| ms).sum()
+    }
+
+    /// The GPU time the antialiasing adds to the aliased frame `none`: for a supersampled
+    /// mode the whole difference; otherwise the passes `none` does not run (edge overdraw) and
+    /// what the antialiased hair pass takes beyond the aliased one (the other passes do the same
+    /// work, so their run-to-run noise is left out).
+    pub fn aa_ms(&self, none: &AaRow) -> f64 {
+        if self.mode.starts_with("ssaa") {
+            return self.gpu_ms() - none.gpu_ms();
+        }
+        let of = |row: &AaRow, pass: &str| row.pass_ms.iter().find(|(p, _)| p == pass).map(|(_, ms)| *ms);
+        self.pass_ms
+            .iter()
+            .map(|(pass, ms)| match of(none, pass) {
+                None => *ms,
+                Some(base) if pass.starts_with("hair") => (ms - base).max(0.0),
+                Some(_) => 0.0,
+            })
+            .sum()
+    }
 }
 
 /// The edge counts of one mesh averaged over viewpoints (\[Sander2001\] table 1).
@@ -109,12 +154,21 @@ pub fn run(
     let bounds = r.mesh_bounds().ok_or_else(|| crate::RenderError::Invalid("no mesh".into()))?;
     let cameras: Vec<Camera> =
         study.yaws_deg.iter().map(|&yaw| Camera::framing(&bounds, yaw, study.pitch_deg)).collect();
+    // The reference: no edge overdraw (supersampling resolves the edges), the hairs with their
+    // coverage (thinner than a pixel even k× larger).
     r.set_edge_aa(EdgeAa::Off);
+    r.set_hair_aa(true);
     let mut references = Vec::new();
     let mut masks = Vec::new();
     for camera in &cameras {
-        references.push(r.render_linear_srgb(scene, camera, study.size, study.reference_k)?);
-        masks.push(edge_mask(r, camera, study.size));
+        let reference = r.render_linear_srgb(scene, camera, study.size, study.reference_k)?;
+        masks.push(match study.mask {
+            Mask::NearEdges => edge_mask(r, camera, study.size),
+            Mask::Detail(threshold) => {
+                aa::detail_mask(&reference, (study.size.0 as usize, study.size.1 as usize), threshold)
+            }
+        });
+        references.push(reference);
     }
     let mut rows = Vec::new();
     let mut runs: Vec<(AaMode, EdgeCoverage, bool)> = study.modes.iter().map(|&(m, c)| (m, c, false)).collect();
@@ -125,12 +179,14 @@ pub fn run(
         let k = r.set_aa_mode(mode, coverage)?;
         r.set_edge_gpu_classify(gpu);
         let mut images = Vec::new();
-        let (mut rmse, mut de) = (0.0, 0.0);
+        let (mut rmse, mut rmse8, mut de, mut pixels) = (0.0, 0.0, 0.0, 0.0);
         for (i, camera) in cameras.iter().enumerate() {
             let image = r.render_linear_srgb(scene, camera, study.size, k)?;
             let e = aa::edge_error(&image, &references[i], &masks[i]);
             rmse += e.rmse;
+            rmse8 += e.rmse_srgb8;
             de += e.delta_e_mean;
+            pixels += e.pixels as f64;
             images.push(image);
         }
         let mut crawl = 0.0;
@@ -148,6 +204,27 @@ pub fn run(
         }
         times.remove(0); // the first frame builds pipelines
         times.sort_by(f64::total_cmp);
+        // The passes' GPU times, profiled apart from the wall times (profiling waits per frame).
+        r.set_profiling(true);
+        let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
+        for _ in 0..study.timed_frames.max(1) {
+            r.render(scene, &camera, study.size.0 * k, study.size.1 * k, true)?;
+            r.wait()?;
+            for t in r.timings() {
+                match per_pass.iter_mut().find(|(name, _)| *name == t.pass) {
+                    Some((_, v)) => v.push(t.ms),
+                    None => per_pass.push((t.pass.clone(), vec![t.ms])),
+                }
+            }
+        }
+        r.set_profiling(false);
+        let pass_ms = per_pass
+            .into_iter()
+            .map(|(name, mut v)| {
+                v.sort_by(f64::total_cmp);
+                (name, v[v.len() / 2])
+            })
+            .collect();
         let n = cameras.len().max(1) as f64;
         let edge_mode = matches!(mode, AaMode::Edges | AaMode::EdgesSorted);
         r.set_edge_gpu_classify(false);
@@ -155,12 +232,16 @@ pub fn run(
             mode: if gpu { "edges-gpu".into() } else { mode.name() },
             coverage: edge_mode.then_some(coverage),
             rmse: rmse / n,
+            rmse_srgb8: rmse8 / n,
+            pixels: pixels / n,
             delta_e_mean: de / n,
             crawl: crawl / (images.len().saturating_sub(1).max(1)) as f64,
             frame_ms: times[times.len() / 2],
+            pass_ms,
         });
     }
     r.set_edge_aa(EdgeAa::Off);
+    r.set_hair_aa(false);
     Ok(rows)
 }
 

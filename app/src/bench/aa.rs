@@ -29,9 +29,20 @@ pub struct AaBenchArgs {
     #[arg(long, default_value_t = 8)]
     pub reference: u32,
     /// Meshes: head (the default head, subdivided once), cube (flat-shaded, the paper's
-    /// textured cube without its texture), wedge (builtin:wedge, a box with a slanted back).
+    /// textured cube without its texture), wedge (builtin:wedge, a box with a slanted back),
+    /// face (the default head as `rouge render` draws it: two levels, its skin, look and
+    /// lights, turned from yaw 35°; issue 27's scene, best with --width 320 --height 180
+    /// --reference 16 --mask detail).
     #[arg(long, value_delimiter = ',', default_values_t = ["head".to_string(), "cube".to_string(), "wedge".to_string()])]
     pub meshes: Vec<String>,
+    /// Pixels measured: edges (within 2 px of a mesh edge drawn from the view) or detail
+    /// (where the reference differs from its 1-px blur by more than --threshold levels of 255:
+    /// every discontinuity a viewer sees, hairs and eye outlines included).
+    #[arg(long, value_enum, default_value_t = MaskArg::Edges)]
+    pub mask: MaskArg,
+    /// Levels of 255 of the detail mask.
+    #[arg(long, default_value_t = 4.0)]
+    pub threshold: f32,
     /// Frames timed per mode (median reported).
     #[arg(long, default_value_t = 9)]
     pub timed_frames: u32,
@@ -41,6 +52,32 @@ pub struct AaBenchArgs {
     /// Draw error and crawl against ms per frame (PNG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+}
+
+/// `--mask` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MaskArg {
+    /// Within 2 px of a mesh edge.
+    Edges,
+    /// Where the reference differs from its 1-px blur.
+    Detail,
+}
+
+/// The default head as `rouge render --width W --height H` draws it (its look, skin and
+/// lights), ready to render, with its mesh.
+fn face(width: u32, height: u32) -> Result<(rouge_render::job::Prepared, TriangleMesh)> {
+    #[derive(clap::Parser)]
+    struct Defaults {
+        #[command(flatten)]
+        scene: crate::cli::render::scene_args::SceneArgs,
+    }
+    use clap::Parser;
+    let (w, h) = (width.to_string(), height.to_string());
+    let defaults = Defaults::try_parse_from(["rouge", "--width", w.as_str(), "--height", h.as_str()])?;
+    let (job, _) = defaults.scene.render_job()?;
+    let loaded = job.load()?;
+    let prepared = job.prepare_loaded(&loaded)?;
+    Ok((prepared, loaded.mesh))
 }
 
 /// One mesh's results.
@@ -63,7 +100,7 @@ fn mesh(name: &str) -> Result<(TriangleMesh, f32, f32)> {
         "head2" => (load_mesh(None, 1.0, 2)?, 30.0, 5.0),
         "cube" => (rouge_render::edges::cube(40.0).triangulate(), 20.0, 25.0),
         "wedge" => (builtin_shape("wedge").context("builtin:wedge")?.triangulate(), 35.0, 20.0),
-        other => bail!("unknown mesh {other:?} for bench aa: use head, cube or wedge"),
+        other => bail!("unknown mesh {other:?} for bench aa: use head, face, cube or wedge"),
     })
 }
 
@@ -92,14 +129,20 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
     );
     println!("msaa4: not measured (the deferred frame has no multisampled G-buffer)");
     for name in &args.meshes {
-        let (mesh, yaw0, pitch) = mesh(name)?;
-        let mut scene = Scene::studio();
-        if name != "head" {
-            scene.skin.subsurface = rouge_render::SubsurfaceModel::None;
-        }
-        let mut r = Renderer::new(&gpu.device, &gpu.queue);
-        r.set_mesh(&mesh, scene.skin.albedo)?;
-        r.set_look(&rouge_model::look::Look::default_look())?;
+        let (mut r, scene, mesh, yaw0, pitch) = if name == "face" {
+            let (prepared, mesh) = face(args.width, args.height)?;
+            (prepared.renderer, prepared.scene, mesh, 35.0, 0.0)
+        } else {
+            let (mesh, yaw0, pitch) = mesh(name)?;
+            let mut scene = Scene::studio();
+            if name != "head" {
+                scene.skin.subsurface = rouge_render::SubsurfaceModel::None;
+            }
+            let mut r = Renderer::new(&gpu.device, &gpu.queue);
+            r.set_mesh(&mesh, scene.skin.albedo)?;
+            r.set_look(&rouge_model::look::Look::default_look())?;
+            (r, scene, mesh, yaw0, pitch)
+        };
         let study = AaStudy {
             size: (args.width, args.height),
             yaws_deg: (0..args.frames).map(|i| yaw0 + args.yaw_step * i as f32).collect(),
@@ -107,7 +150,11 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
             reference_k: args.reference,
             modes: modes.clone(),
             timed_frames: args.timed_frames,
-            gpu_classify: true,
+            gpu_classify: name != "face",
+            mask: match args.mask {
+                MaskArg::Edges => aa_study::Mask::NearEdges,
+                MaskArg::Detail => aa_study::Mask::Detail(args.threshold),
+            },
         };
         let start = std::time::Instant::now();
         r.prepare_edges(&mesh);
@@ -132,13 +179,36 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
             table.search_skipping_us,
             table.sorted_list_us
         );
-        println!("  {:<13} {:<10} {:>8} {:>7} {:>8} {:>9}", "mode", "coverage", "RMSE", "ΔE", "crawl", "ms/frame");
+        let none = rows.iter().find(|r| r.mode == "none");
+        println!(
+            "  {:.0} pixels measured a frame; RMSE in linear sRGB and in levels of 255, × none's; GPU: the passes' \
+             timestamps; AA cost: the GPU time it adds to none's frame (AaRow::aa_ms); wall: render and wait",
+            rows.first().map_or(0.0, |r| r.pixels)
+        );
+        println!(
+            "  {:<13} {:<10} {:>8} {:>8} {:>6} {:>7} {:>8} {:>8} {:>8} {:>8}",
+            "mode", "coverage", "RMSE", "RMSE/255", "× none", "ΔE", "crawl", "wall ms", "GPU ms", "AA cost"
+        );
         for row in &rows {
             let coverage = row.coverage.map_or("-".to_string(), |c| format!("{c:?}"));
+            let (ratio, cost) = none.map_or((f64::NAN, f64::NAN), |n| (row.rmse_srgb8 / n.rmse_srgb8, row.aa_ms(n)));
             println!(
-                "  {:<13} {:<10} {:>8.4} {:>7.2} {:>8.4} {:>9.2}",
-                row.mode, coverage, row.rmse, row.delta_e_mean, row.crawl, row.frame_ms
+                "  {:<13} {:<10} {:>8.4} {:>8.2} {:>6.2} {:>7.2} {:>8.4} {:>8.2} {:>8.2} {:>8.2}",
+                row.mode,
+                coverage,
+                row.rmse,
+                row.rmse_srgb8,
+                ratio,
+                row.delta_e_mean,
+                row.crawl,
+                row.frame_ms,
+                row.gpu_ms(),
+                cost
             );
+        }
+        for row in rows.iter().filter(|r| r.mode == "none" || r.mode == "edges") {
+            let passes: Vec<String> = row.pass_ms.iter().map(|(p, ms)| format!("{p} {ms:.2}")).collect();
+            println!("  {} {:?} passes (GPU ms): {}", row.mode, row.coverage, passes.join(", "));
         }
         results.push(MeshResult { mesh: name.clone(), preprocess_ms, table, rows });
     }
@@ -149,6 +219,8 @@ pub fn run(args: &AaBenchArgs) -> Result<()> {
             "frames": args.frames,
             "yaw_step_deg": args.yaw_step,
             "reference_k": args.reference,
+            "mask": format!("{:?}", args.mask),
+            "threshold": args.threshold,
             "meshes": results,
         });
         crate::write_output(path, serde_json::to_string_pretty(&json)?.as_bytes())?;

@@ -166,11 +166,13 @@ impl FramePass for HairPass {
         let layout = layout(
             &shared.device,
             "HairPass::layout",
+            // The vertex stage shades (lights, shadow maps), the fragment stage covers.
             &[
                 uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
                 tex_entry(1, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
                 sampler_entry(2, wgpu::SamplerBindingType::Comparison),
-            ],
+            ]
+            .map(|e| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::VERTEX_FRAGMENT, ..e }),
         );
         let uniform =
             crate::wgpu_util::uniform_buffer(&shared.device, "HairPass::uniform", std::mem::size_of::<HairUniform>());

@@ -1,7 +1,7 @@
 // The hair pass (render/src/passes/hair.rs): each segment of a lash or brow strand is a fibre
 // (a centre line and a radius), drawn as a screen-space quad around its projected centre line
 // and shaded by the fibre model (render/src/fibre.rs `scattering`, twin of `fibre_scattering`
-// below). Antialiased, the quad is widened by a pixel and each fragment carries the exact box
+// below), at the segment's ends in the vertex stage. Antialiased, the quad is widened by a pixel and each fragment carries the exact box
 // coverage of the fibre's strip (coverage.wgsl); aliased, the quad is the fibre's own width and
 // every covered pixel centre is opaque, as the G-buffer would draw it. The pass accumulates
 // premultiplied radiance and transmittance ("over", back to front as the CPU sorted them) into
@@ -48,9 +48,8 @@ struct SegmentOut {
     @location(3) @interpolate(flat) cut_b: vec2<f32>,
     // The ends' radii in pixels.
     @location(4) @interpolate(flat) radii_px: vec2<f32>,
-    @location(5) @interpolate(flat) p0: vec3<f32>,
-    @location(6) @interpolate(flat) p1: vec3<f32>,
-    @location(7) @interpolate(flat) part: u32,
+    // The fibre's radiance, shaded at the segment's ends (the vertex stage) and interpolated.
+    @location(5) radiance: vec3<f32>,
 }
 
 fn to_pixels(clip: vec4<f32>) -> vec2<f32> {
@@ -100,9 +99,8 @@ fn vs_hair(s: SegmentIn, @builtin(vertex_index) i: u32) -> SegmentOut {
     out.cut_a = unit_or(dir_prev + dir, dir);
     out.cut_b = unit_or(dir + dir_next, dir);
     out.radii_px = vec2<f32>(r0, r1);
-    out.p0 = s.p0;
-    out.p1 = s.p1;
-    out.part = s.part;
+    let tangent = normalize(s.p1 - s.p0 + vec3<f32>(0.0, 0.0, 1e-9));
+    out.radiance = fibre_radiance(select(s.p0, s.p1, at_b), tangent, s.part);
     return out;
 }
 
@@ -148,6 +146,34 @@ fn fibre_scattering(t: vec3<f32>, l: vec3<f32>, v: vec3<f32>, sigma_a: vec3<f32>
     return (vec3<f32>(r) + tt + trt) * cos_l;
 }
 
+// The fibre's radiance at `world` with tangent `tangent` (the lights with their shadows, and the
+// environment through the fibre's albedo), for the part's absorption.
+fn fibre_radiance(world: vec3<f32>, tangent: vec3<f32>, part: u32) -> vec3<f32> {
+    let v = normalize(frame.camera_pos.xyz - world);
+    // The fibre's normal toward the eye: where shadows are looked up and ambient light arrives.
+    let facing = normalize(v - tangent * dot(v, tangent) + vec3<f32>(0.0, 1e-6, 0.0));
+    var sigma_a = hair_pass.lash_sigma_a.rgb;
+    var albedo = hair_pass.lash_albedo.rgb;
+    if part == 1u {
+        sigma_a = hair_pass.brow_sigma_a.rgb;
+        albedo = hair_pass.brow_albedo.rgb;
+    }
+    var radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.counts.x; i++) {
+        let light = frame.lights[i];
+        let arrival = light_arrival(light, world);
+        var visible = 1.0;
+//#if SHADOWS
+        visible = shadow_factor(light, world, facing);
+//#endif
+        radiance += arrival.e * visible * fibre_scattering(tangent, arrival.l, v, sigma_a, hair_pass.fibre.x);
+    }
+//#if ENV
+    radiance += albedo * sh_irradiance(frame.sh, facing) / PI;
+//#endif
+    return radiance;
+}
+
 @fragment
 fn fs_hair(in: SegmentOut) -> @location(0) vec4<f32> {
     let p = in.pos.xy;
@@ -171,29 +197,5 @@ fn fs_hair(in: SegmentOut) -> @location(0) vec4<f32> {
     if coverage <= 0.0 {
         discard;
     }
-    let world = mix(in.p0, in.p1, t);
-    let tangent = normalize(in.p1 - in.p0 + vec3<f32>(0.0, 0.0, 1e-9));
-    let v = normalize(frame.camera_pos.xyz - world);
-    // The fibre's normal toward the eye: where shadows are looked up and ambient light arrives.
-    let facing = normalize(v - tangent * dot(v, tangent) + vec3<f32>(0.0, 1e-6, 0.0));
-    var sigma_a = hair_pass.lash_sigma_a.rgb;
-    var albedo = hair_pass.lash_albedo.rgb;
-    if in.part == 1u {
-        sigma_a = hair_pass.brow_sigma_a.rgb;
-        albedo = hair_pass.brow_albedo.rgb;
-    }
-    var radiance = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.counts.x; i++) {
-        let light = frame.lights[i];
-        let arrival = light_arrival(light, world);
-        var visible = 1.0;
-//#if SHADOWS
-        visible = shadow_factor(light, world, facing);
-//#endif
-        radiance += arrival.e * visible * fibre_scattering(tangent, arrival.l, v, sigma_a, hair_pass.fibre.x);
-    }
-//#if ENV
-    radiance += albedo * sh_irradiance(frame.sh, facing) / PI;
-//#endif
-    return vec4<f32>(radiance * coverage, coverage);
+    return vec4<f32>(in.radiance * coverage, coverage);
 }
