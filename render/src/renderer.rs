@@ -184,10 +184,13 @@ impl Renderer {
         self.edges = Some(GpuEdges::new(frames));
     }
 
-    /// Sets the edge antialiasing of the following frames. A frame with edges needs the mesh's
-    /// edges ([`Renderer::prepare_edges`], done by [`Renderer::set_mesh`] once this is on).
+    /// Sets the edge antialiasing of the following frames, and the hairs' coverage with it (on
+    /// with any edge overdraw; [`Renderer::set_hair_aa`] afterwards sets it apart). A frame with
+    /// edges needs the mesh's edges ([`Renderer::prepare_edges`], done by
+    /// [`Renderer::set_mesh`] once this is on).
     pub fn set_edge_aa(&mut self, aa: crate::aa::EdgeAa) {
         self.edge_aa = aa;
+        self.hair_aa = aa != crate::aa::EdgeAa::Off;
     }
 
     /// Whether the hairs' fibres are drawn with their box-filter coverage (the antialiased hair
