@@ -198,7 +198,8 @@ impl PyRenderer {
     /// float32 linear radiance. `mesh`: a file (.obj, .gltf, .glb, mm) or None for the default
     /// head (painted from skin maps of `skin_tone`); `look`: a Look, "default", "bare" or a look
     /// file; `skin_tone`: a tone name of `rouge skin tones` or an ITA°; `expression`: weights
-    /// of the default head's expressions ("smile" or "smile=0.5,blink=1").
+    /// of the default head's expressions ("smile" or "smile=0.5,blink=1"). Antialiased as
+    /// `rouge render`'s default (`--aa edges`: edge overdraw and the hairs' coverage).
     #[pyo3(signature = (*, mesh=None, look=None, skin_tone=None, expression=None, width=640, height=480, linear=false, subdiv=2, yaw=0.0, pitch=0.0))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
@@ -265,6 +266,9 @@ impl PyRenderer {
         let frame = py.detach(move || -> rouge_render::error::Result<Frame> {
             let loaded = job.load()?;
             let mut prepared = job.prepare_on(&loaded, gpu)?;
+            // As `rouge render`'s default.
+            let (mode, coverage) = (rouge_render::aa::AaMode::DEFAULT, rouge_render::aa::EdgeCoverage::TwoSided);
+            prepared.set_antialiasing(mode, coverage, &loaded.mesh)?;
             Ok(if linear {
                 Frame::Linear(prepared.render_linear()?.into_iter().flatten().collect())
             } else {

@@ -47,6 +47,10 @@ pub enum AaMode {
 }
 
 impl AaMode {
+    /// The mode of `rouge render` and `rouge.render` when none is asked for: two-sided edge
+    /// overdraw and the hairs' coverage, about 3 % of a 1280×720 frame (docs/BENCHMARKS.md).
+    pub const DEFAULT: AaMode = AaMode::Edges;
+
     /// The modes, as the command line names them.
     pub const ALL: [AaMode; 6] =
         [AaMode::None, AaMode::Edges, AaMode::EdgesSorted, AaMode::Msaa4, AaMode::Ssaa(2), AaMode::Ssaa(4)];

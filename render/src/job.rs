@@ -447,6 +447,25 @@ pub struct Loaded {
 }
 
 impl Prepared {
+    /// Sets the antialiasing of the frames as `rouge render --aa` does: the mode's edge overdraw
+    /// (with `mesh`'s edges, prepared here when it draws them) and the hairs' coverage; returns
+    /// the mode's supersampling factor.
+    ///
+    /// # Errors
+    /// As [`crate::aa::AaMode::frame`].
+    pub fn set_antialiasing(
+        &mut self,
+        mode: crate::aa::AaMode,
+        coverage: crate::aa::EdgeCoverage,
+        mesh: &TriangleMesh,
+    ) -> Result<u32> {
+        let k = self.renderer.set_aa_mode(mode, coverage)?;
+        if mode != crate::aa::AaMode::None && k == 1 {
+            self.renderer.prepare_edges(mesh);
+        }
+        Ok(k)
+    }
+
     /// Renders the tone-mapped frame and reads it back as RGBA8.
     ///
     /// # Errors

@@ -50,7 +50,7 @@ pub struct RenderArgs {
     pub dipole: DipoleArgs,
     #[command(flatten)]
     pub atlas: AtlasArgs,
-    /// Antialiasing: none, edges (the default: discontinuity edge overdraw [Sander2001],
+    /// Antialiasing: none, edges (the default, AaMode::DEFAULT: discontinuity edge overdraw [Sander2001],
     /// unsorted, and the hairs drawn with their coverage; about 3 % of a 1280×720 frame),
     /// edges-sorted (silhouettes sorted back to front), ssaa2 or ssaa4 (supersampling k×k, PNG
     /// only; the hairs with their coverage too); msaa4 is refused (no multisampled G-buffer).
@@ -151,10 +151,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let loaded_scene = job.load()?;
     let mut prepared = job.prepare_loaded(&loaded_scene)?;
-    let supersample = prepared.renderer.set_aa_mode(aa, coverage)?;
-    if aa != rouge_render::aa::AaMode::None && supersample == 1 {
-        prepared.renderer.prepare_edges(&loaded_scene.mesh);
-    }
+    let supersample = prepared.set_antialiasing(aa, coverage, &loaded_scene.mesh)?;
     let loaded = start.elapsed();
     if let Some(bake) = &prepared.thickness_bake {
         eprintln!(
