@@ -6,6 +6,7 @@ pub mod aa;
 pub mod atlas;
 pub mod deform;
 pub mod export;
+pub mod fibre;
 pub mod fit_thickness;
 pub mod glitter;
 pub mod recipe;
@@ -55,6 +56,9 @@ pub enum BenchCommand {
     /// ΔE2000 near discontinuities and the crawl between frames against a k×k supersampled
     /// reference, ms per frame, the paper's table 1 edge counts; `--plot F.png`.
     Aa(crate::bench::aa::AaBenchArgs),
+    /// The hair fibre model against PBRT-v4's HairBxDF averaged across the fibre
+    /// (data/hair/pbrt_v4_hair.csv): relative RMS and energy per σa, CPU cost; `--plot F.png`.
+    Fibre(crate::bench::fibre::FibreBenchArgs),
     /// Cube-atlas translucency ([Benmounah2009] Table 2): frames per second with and without
     /// deformation (the mesh morphed toward its bounding sphere each frame) against triangle
     /// count: the hm08 hand and head at subdivision levels 0-3 and the built-in sphere.
@@ -144,6 +148,7 @@ pub fn run(cmd: &BenchCommand) -> Result<()> {
         BenchCommand::Translucency(args) => crate::bench::translucency::run(args),
         BenchCommand::Deform(args) => crate::bench::deform::run(args),
         BenchCommand::Aa(args) => crate::bench::aa::run(args),
+        BenchCommand::Fibre(args) => crate::bench::fibre::run(args),
         BenchCommand::CubeAtlas(args) => crate::bench::atlas::run(args),
         BenchCommand::Skin(args) => crate::bench::skin::run(args),
         BenchCommand::Recipe(args) => crate::bench::recipe::run(args),
