@@ -163,3 +163,22 @@ fn glitter_is_planned_only_where_a_layer_has_it_and_the_device_takes_its_target(
     let plan = FramePlan::new(&dark, up(1), roomy).expect("plan");
     assert!(!plan.variant.glitter && plan.explain().contains("glitter: specular is off"), "{}", plan.explain());
 }
+
+#[test]
+fn the_hair_pass_runs_only_for_a_mesh_with_strands() {
+    let plan = FramePlan::new(&Scene::studio(), uploaded(3), settings()).expect("plan");
+    assert!(!steps(&plan).iter().any(|s| s.starts_with("hair")));
+    assert!(!plan.targets.contains(&Target::Hair) && !plan.variant.hair);
+    assert!(plan.explain().contains("hair pass: the mesh has no hair strands"), "{}", plan.explain());
+    let with_hair = Uploaded { hair_strands: 620, ..uploaded(3) };
+    for antialiased in [false, true] {
+        let plan = FramePlan::new(&Scene::studio(), with_hair, FrameSettings { hair_aa: antialiased, ..settings() })
+            .expect("plan");
+        let names = steps(&plan);
+        let hair = names.iter().position(|s| s.starts_with("hair")).expect("a hair pass");
+        assert_eq!(names[hair + 1], "composite", "the hair is composited: {names:?}");
+        assert_eq!(plan.passes[hair].step, Step::Hair(crate::passes::hair::HairStep { antialiased }));
+        assert!(plan.passes[hair + 1].reads.contains(&Resource::Target(Target::Hair)));
+        assert!(plan.explain().contains("620 hair strands"), "{}", plan.explain());
+    }
+}
