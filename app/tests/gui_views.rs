@@ -249,6 +249,15 @@ fn the_brow_gel_switch_tints_the_brows_as_one_undo_step() {
     assert_eq!(h.state().document().brow_gel, Some(gel));
     let (ok, message) = h.state().message().expect("a message").clone();
     assert!(!ok && message.contains("strength 2"), "{message}");
+    // The fill slider is there; a fill reaches the viewport's hairs as one undo step.
+    assert!(h.query_all_by_label("brow fill").next().is_some(), "the panel has a brow fill slider");
+    let filled = rouge_model::mesh::brow_gel::BrowGel { fill: 0.6, ..gel };
+    h.state_mut().commit_brow_gel(Some(filled));
+    h.run_steps(2);
+    assert_eq!(h.state().hair_albedo().brow_fill, 0.6);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!((h.state().document().brow_gel, h.state().hair_albedo().brow_fill), (Some(gel), 0.0));
 }
 
 #[test]

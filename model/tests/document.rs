@@ -450,7 +450,7 @@ fn a_looks_mascara_survives_the_project() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut look = Look::bare();
     look.mascara = Some(Mascara { length: 1.3, volume: 2.0, curl_deg: 15.0, color: None });
-    look.brow_gel = Some(rouge_model::mesh::brow_gel::BrowGel { color: [0.01, 0.01, 0.011], strength: 0.6 });
+    look.brow_gel = Some(rouge_model::mesh::brow_gel::BrowGel { color: [0.01, 0.01, 0.011], strength: 0.6, fill: 0.5 });
     let mut doc = Document::from_look(&look);
     assert_eq!(doc.to_look().mascara, look.mascara);
     doc.save_project(dir.path()).expect("save");

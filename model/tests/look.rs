@@ -478,7 +478,7 @@ fn a_look_carries_its_brow_gel_and_checks_it() {
     let text = r#"{"schema": "rouge-look", "version": 1, "name": "Brows", "layers": [],
         "brow_gel": {"color": [0.045, 0.027, 0.016], "strength": 0.7}}"#;
     let look = Look::from_json(text, path).expect("a look with a brow gel");
-    assert_eq!(look.brow_gel, Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.7 }));
+    assert_eq!(look.brow_gel, Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.7, fill: 0.0 }));
     assert_eq!(Look::from_json(&look.to_json(), path).expect("round trip"), look);
     assert!(!Look::bare().to_json().contains("brow_gel"));
     let e = Look::from_json(&text.replace("0.7", "1.7"), path).expect_err("too strong").to_string();

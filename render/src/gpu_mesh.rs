@@ -247,8 +247,8 @@ pub const LASH_EUMELANIN: f32 = 8.0;
 /// Eumelanin concentration of the natural brows: dark brown (between PBRT-v4's brown, 1.3, and
 /// black, 8; brow hair carries less eumelanin than lash hair in most people).
 pub const BROW_EUMELANIN: f32 = 2.5;
-/// The hairs' colours: the lashes' (a mascara's colour, or the natural lash's) and the brows'
-/// (the natural brows' tinted by a brow gel). Each is a fibre's colour in the sense of
+/// The hairs' colours, the lashes' (a mascara's colour, or the natural lash's) and the brows'
+/// (the natural brows' tinted by a brow gel), and a fibre gel's fill of the brows. Each is a fibre's colour in the sense of
 /// [`crate::fibre::sigma_a_from_color`] (what it passes across its diameter), which the hair pass
 /// makes absorption; a mesh without strands draws the hairs in the G-buffer with it as albedo.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -257,6 +257,9 @@ pub struct HairAlbedo {
     pub lash: [f32; 3],
     /// The brows'.
     pub brow: [f32; 3],
+    /// A fibre brow gel's extra hairs, a fraction of the brow's own (0..=1; the hair pass draws
+    /// them, [`rouge_model::mesh::brow_gel::BrowGel::fill`]).
+    pub brow_fill: f32,
 }
 
 impl Default for HairAlbedo {
@@ -264,6 +267,7 @@ impl Default for HairAlbedo {
         HairAlbedo {
             lash: crate::fibre::color_from_melanin(LASH_EUMELANIN, 0.0),
             brow: crate::fibre::color_from_melanin(BROW_EUMELANIN, 0.0),
+            brow_fill: 0.0,
         }
     }
 }
@@ -279,6 +283,7 @@ impl HairAlbedo {
         HairAlbedo {
             lash: mascara.and_then(|m| m.color).unwrap_or(natural.lash),
             brow: brow_gel.map_or(natural.brow, |g| g.tint(natural.brow)),
+            brow_fill: brow_gel.map_or(0.0, |g| g.fill.clamp(0.0, 1.0)),
         }
     }
 }

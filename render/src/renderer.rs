@@ -146,7 +146,7 @@ impl Renderer {
     /// when edge antialiasing is on).
     fn mesh_changed(&mut self, mesh: &TriangleMesh) {
         self.mesh_generation += 1;
-        self.hair = crate::passes::hair::HairStrands::of(mesh);
+        self.hair = crate::passes::hair::HairStrands::of(mesh, self.hair_albedo.brow_fill);
         if !self.edges.as_mut().is_some_and(|e| e.reposition(mesh)) {
             self.edges = None;
             if self.edge_aa != crate::aa::EdgeAa::Off {

@@ -143,7 +143,7 @@ fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
         }
         prepared.render_display().expect("render")
     };
-    let red = BrowGel { color: [0.6, 0.02, 0.02], strength: 1.0 };
+    let red = BrowGel { color: [0.6, 0.02, 0.02], strength: 1.0, fill: 0.0 };
     // Without the brow hairs the gel changes nothing.
     assert!(frame(None, false) == frame(Some(red), false), "the gel changed a pixel that is not a brow hair");
     // With them, the brow pixels redden.
@@ -160,4 +160,36 @@ fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
         .filter(|&i| half[4 * i] > natural[4 * i] && half[4 * i] < gel[4 * i])
         .count();
     assert!(between * 10 > redder * 8, "half strength lies between: {between} of {redder}");
+}
+
+#[test]
+fn a_fibre_gel_fills_the_brows() {
+    use rouge_model::mesh::brow_gel::BrowGel;
+    let frame = |fill: f32| {
+        let job = RenderJob {
+            look: LookChoice::Bare,
+            width: SIZE,
+            height: SIZE,
+            subdivision: 1,
+            close_up: Some(AnatomyRegion::Forehead),
+            brow_gel: Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.0, fill }),
+            ..RenderJob::default()
+        };
+        let loaded = job.load().expect("load");
+        let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
+        prepared.renderer.set_hair_aa(true);
+        prepared.render_display().expect("render")
+    };
+    let luma = |f: &[u8]| -> f64 {
+        f.chunks_exact(4).map(|p| 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])).sum()
+    };
+    let (bare, half, full) = (frame(0.0), frame(0.5), frame(1.0));
+    let (darker_half, darker_full) = (luma(&bare) - luma(&half), luma(&bare) - luma(&full));
+    println!("luma taken by the fill (sum over the frame): half {darker_half:.0}, full {darker_full:.0}");
+    assert!(darker_half > 0.0 && darker_full > 1.5 * darker_half, "more fill, darker brows");
+    // Only the brows change: the rows above the brows' top are the same.
+    let changed_rows: Vec<usize> = (0..SIZE as usize)
+        .filter(|&y| (0..SIZE as usize).any(|x| bare[4 * (y * SIZE as usize + x)] != full[4 * (y * SIZE as usize + x)]))
+        .collect();
+    assert!(changed_rows.len() < SIZE as usize / 2, "the fill changes the brow rows only: {} rows", changed_rows.len());
 }

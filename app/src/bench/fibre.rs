@@ -46,7 +46,8 @@ pub fn run(args: &FibreBenchArgs) -> Result<()> {
     }
     println!("  one RGB evaluation on the CPU: {ns:.0} ns");
     if let Some(path) = &args.json {
-        let json = serde_json::json!({ "reference": args.reference, "summary": summary, "ns_per_eval": ns, "rows": rows });
+        let json =
+            serde_json::json!({ "reference": args.reference, "summary": summary, "ns_per_eval": ns, "rows": rows });
         crate::write_output(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
     }
     if let Some(path) = &args.plot {

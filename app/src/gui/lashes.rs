@@ -12,7 +12,7 @@ use rouge_model::mesh::lashes::Mascara;
 const DEFAULT_MASCARA: Mascara = Mascara { length: 1.3, volume: 2.5, curl_deg: 15.0, color: None };
 
 /// What the Brow gel switch puts on natural brows: a brown tint over most of the hairs.
-const DEFAULT_BROW_GEL: BrowGel = BrowGel { color: [0.045, 0.027, 0.016], strength: 0.8 };
+const DEFAULT_BROW_GEL: BrowGel = BrowGel { color: [0.045, 0.027, 0.016], strength: 0.8, fill: 0.0 };
 
 impl RougeApp {
     /// The mascara panel (under the Face panel).
@@ -69,7 +69,7 @@ impl RougeApp {
         });
     }
 
-    /// The brow gel's switch, shade and strength (each change one undo step).
+    /// The brow gel's switch, shade, strength and fill (each change one undo step).
     fn brow_gel_controls(&mut self, ui: &mut egui::Ui) {
         let saved = self.editor.document().brow_gel;
         let mut on = saved.is_some();
@@ -92,6 +92,10 @@ impl RougeApp {
         let r = ui
             .add(egui::Slider::new(&mut g.strength, 0.0..=1.0).text("gel strength"))
             .on_hover_text("the part of the brow hairs the gel coats");
+        commit |= r.drag_stopped() || (r.changed() && !r.dragged());
+        let r = ui
+            .add(egui::Slider::new(&mut g.fill, 0.0..=1.0).text("brow fill"))
+            .on_hover_text("a fibre gel's extra hairs, as a fraction of the brow's own: most where the brow is sparse");
         commit |= r.drag_stopped() || (r.changed() && !r.dragged());
         if commit {
             self.commit_brow_gel(Some(g));

@@ -93,33 +93,44 @@ pub struct HairStrands {
 }
 
 impl HairStrands {
-    /// The segments of `mesh`'s strands at its current positions; none without strands.
-    pub fn of(mesh: &TriangleMesh) -> HairStrands {
+    /// The segments of `mesh`'s strands at its current positions, with `brow_fill` × as many
+    /// brow hairs again ([`fill_hairs`]); none without strands.
+    pub fn of(mesh: &TriangleMesh, brow_fill: f32) -> HairStrands {
         let mut out = HairStrands::default();
         let Some(strands) = mesh.strands.as_deref() else { return out };
-        for s in &strands.strands {
-            let stations = s.stations(&mesh.positions);
-            if stations.len() < 2 || stations.iter().any(|(p, r)| !p.is_finite() || !r.is_finite()) {
-                continue;
-            }
-            let part = u32::from(s.part == Part::Brow);
-            let start = out.segments.len();
-            let at = |i: usize| stations[i.min(stations.len() - 1)].0;
-            for i in 0..stations.len() - 1 {
-                out.segments.push(HairSegment {
-                    prev: at(i.saturating_sub(1)).to_array(),
-                    p0: at(i).to_array(),
-                    p1: at(i + 1).to_array(),
-                    next: at(i + 2).to_array(),
-                    radii: [stations[i].1, stations[i + 1].1],
-                    part,
-                    pad: 0,
-                });
-            }
-            let centre = stations.iter().map(|(p, _)| *p).sum::<Vec3>() / stations.len() as f32;
-            out.strands.push((start..out.segments.len(), centre));
+        let hairs: Vec<(Part, Vec<(Vec3, f32)>)> = strands
+            .strands
+            .iter()
+            .map(|s| (s.part, s.stations(&mesh.positions)))
+            .filter(|(_, st)| st.len() >= 2 && st.iter().all(|(p, r)| p.is_finite() && r.is_finite()))
+            .collect();
+        let brows: Vec<&[(Vec3, f32)]> =
+            hairs.iter().filter(|(p, _)| *p == Part::Brow).map(|(_, st)| st.as_slice()).collect();
+        let fill = fill_hairs(&brows, brow_fill);
+        for (part, stations) in hairs.iter().map(|(p, st)| (*p, st)).chain(fill.iter().map(|st| (Part::Brow, st))) {
+            out.push(part, stations);
         }
         out
+    }
+
+    /// Appends one strand's segments.
+    fn push(&mut self, part: Part, stations: &[(Vec3, f32)]) {
+        let part = u32::from(part == Part::Brow);
+        let start = self.segments.len();
+        let at = |i: usize| stations[i.min(stations.len() - 1)].0;
+        for i in 0..stations.len() - 1 {
+            self.segments.push(HairSegment {
+                prev: at(i.saturating_sub(1)).to_array(),
+                p0: at(i).to_array(),
+                p1: at(i + 1).to_array(),
+                next: at(i + 2).to_array(),
+                radii: [stations[i].1, stations[i + 1].1],
+                part,
+                pad: 0,
+            });
+        }
+        let centre = stations.iter().map(|(p, _)| *p).sum::<Vec3>() / stations.len() as f32;
+        self.strands.push((start..self.segments.len(), centre));
     }
 
     /// Whether there is nothing to draw.
@@ -140,6 +151,43 @@ impl HairStrands {
         });
         order.iter().flat_map(|&s| self.segments[self.strands[s].0.clone()].iter().copied()).collect()
     }
+}
+
+/// A fibre gel's extra brow hairs: for a `fill` fraction of the `hairs` (chosen by a fixed hash
+/// of their index, so the same ones in every pose), a hair midway between it and the hair whose
+/// root is nearest its own: station k the mean of its k-th and the neighbour's at the same
+/// fraction of its length, radius too. Where the brow is sparse the new hairs fill the gaps; where
+/// it is dense they lie among the others. Each follows the pose, being made from posed hairs.
+pub fn fill_hairs(hairs: &[&[(Vec3, f32)]], fill: f32) -> Vec<Vec<(Vec3, f32)>> {
+    if !(fill > 0.0) || hairs.len() < 2 {
+        return Vec::new();
+    }
+    let chosen = |i: usize| {
+        let h = rouge_measure::file_set::mix64(i as u64 ^ 0x6272_6f77_5f66_696c);
+        ((h >> 11) as f64 / (1u64 << 53) as f64) < f64::from(fill)
+    };
+    let mut out = Vec::new();
+    for (i, hair) in hairs.iter().enumerate().filter(|(i, _)| chosen(*i)) {
+        let root = hair[0].0;
+        let Some(near) = (0..hairs.len())
+            .filter(|&j| j != i)
+            .min_by(|&a, &b| hairs[a][0].0.distance_squared(root).total_cmp(&hairs[b][0].0.distance_squared(root)))
+        else {
+            continue;
+        };
+        let other = hairs[near];
+        let last = (hair.len() - 1).max(1) as f32;
+        out.push(
+            hair.iter()
+                .enumerate()
+                .map(|(k, &(p, r))| {
+                    let (q, s) = other[((k as f32 / last) * (other.len() - 1) as f32).round() as usize];
+                    ((p + q) * 0.5, 0.5 * (r + s))
+                })
+                .collect(),
+        );
+    }
+    out
 }
 
 /// What the plan gives the pass.
@@ -258,5 +306,31 @@ impl FramePass for HairPass {
         pass.set_vertex_buffer(0, buffer.slice(..));
         pass.draw(0..6, 0..sorted.len() as u32);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fill_adds_hairs_midway_to_the_nearest_neighbour_and_follows_the_fraction() {
+        // Three parallel hairs 1 mm and 3 mm apart.
+        let hair = |x: f32, r: f32| -> Vec<(Vec3, f32)> { (0..4).map(|k| (Vec3::new(x, k as f32, 0.0), r)).collect() };
+        let (a, b, c) = (hair(0.0, 0.1), hair(1.0, 0.05), hair(4.0, 0.1));
+        let hairs = [a.as_slice(), b.as_slice(), c.as_slice()];
+        assert!(fill_hairs(&hairs, 0.0).is_empty());
+        assert!(fill_hairs(&hairs, f32::NAN).is_empty());
+        let full = fill_hairs(&hairs, 1.0);
+        assert_eq!(full.len(), 3);
+        // a's neighbour is b: midway at x 0.5, radius the mean; c's is b: x 2.5.
+        assert!(full[0].iter().all(|(p, r)| (p.x - 0.5).abs() < 1e-6 && (r - 0.075).abs() < 1e-6));
+        assert!(full[2].iter().all(|(p, _)| (p.x - 2.5).abs() < 1e-6));
+        // A fraction of them, the same ones every time.
+        let many: Vec<Vec<(Vec3, f32)>> = (0..400).map(|i| hair(i as f32, 0.1)).collect();
+        let refs: Vec<&[(Vec3, f32)]> = many.iter().map(Vec::as_slice).collect();
+        let half = fill_hairs(&refs, 0.5);
+        assert!((170..230).contains(&half.len()), "{}", half.len());
+        assert_eq!(half, fill_hairs(&refs, 0.5));
     }
 }

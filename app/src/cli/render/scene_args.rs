@@ -77,9 +77,10 @@ pub struct SceneArgs {
     #[arg(long, value_parser = parse_mascara)]
     pub mascara: Option<rouge_model::mesh::lashes::Mascara>,
     /// A tinted brow gel on the default head's brows, over the look's: color=black|brown|R/G/B
-    /// (linear albedo), strength=X (0-1, the part of the hairs coated; 1 if left out); e.g.
-    /// `--brow-gel color=brown,strength=0.7`. A brow pencil or powder is a layer on the `brows`
-    /// region instead.
+    /// (linear albedo), strength=X (0-1, the part of the hairs coated; 1 if left out), fill=X
+    /// (0-1, a fibre gel's extra hairs as a fraction of the brow's own; 0 if left out); e.g.
+    /// `--brow-gel color=brown,strength=0.7,fill=0.5`. A brow pencil or powder is a layer on the
+    /// `brows` region instead.
     #[arg(long, value_parser = parse_brow_gel)]
     pub brow_gel: Option<rouge_model::mesh::brow_gel::BrowGel>,
     /// Physical medium under the skin: a built-in measured medium of [Jensen2001] (apple,
