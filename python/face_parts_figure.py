@@ -6,8 +6,9 @@ binary under the studio lights with the default look:
                                 eyes half closed (eyeBlink 0.5) with the mascara, and an open
                                 smile (smile 1, jawOpen 0.35) and a wide open mouth (jawOpen 0.8)
                                 showing the teeth, tongue and the dark oral cavity; the eye again
-                                with an auburn tinted brow gel on the brows
-                                (`--brow-gel color=0.2/0.07/0.03,strength=0.9`)
+                                with an auburn fibre brow gel on the brows, tinting them and
+                                adding 60 % more hairs
+                                (`--brow-gel color=0.2/0.07/0.03,strength=0.9,fill=0.6`)
 
 Usage: python python/face_parts_figure.py [--rouge target/release/rouge] [--out docs/images]
 (about a minute with the release binary on 2 cores, lavapipe).
@@ -22,7 +23,7 @@ from pathlib import Path
 from skin_maps_figure import grid, label, render
 
 MASCARA = "length=1.4,volume=2.5,curl=20"
-BROW_GEL = "color=0.2/0.07/0.03,strength=0.9"
+BROW_GEL = "color=0.2/0.07/0.03,strength=0.9,fill=0.6"
 
 
 def main() -> None:
