@@ -4,7 +4,7 @@
 //!
 //! A hair ribbon (`python/gen_head_parts.py`) is a strip of quads from root to tip whose first
 //! and third edges (corners 0-1 and 2-3) are its *rungs*, the two vertices across the ribbon;
-//! quads sharing a rung are neighbours along the strip. [`strips`] walks them; [`HairStrands::of`]
+//! quads sharing a rung are neighbours along the strip. `strips` walks them; [`HairStrands::of`]
 //! keeps one strip per hair (the lashes are written twice, front and back faces with their own
 //! vertices at the same places), and [`HairStrands::on_triangles`] renames the rungs' vertices to
 //! those of the subdivided, triangulated mesh: Catmull-Clark keeps a parent vertex's index
@@ -122,7 +122,7 @@ pub struct HairStrands {
 const SAME_HAIR_MM: f32 = 1e-4;
 
 impl HairStrands {
-    /// The lash and brow strips of `mesh` ([`strips`]), one per hair, each from root to tip: a
+    /// The lash and brow strips of `mesh` (found by `strips`), one per hair, each from root to tip: a
     /// lash's root is the end nearer an eye's centre (its lid margin), a brow hair's the end the
     /// file wrote first (the generator writes each hair from the skin it grows from). Strips of
     /// fewer than two rungs are left out.

@@ -159,7 +159,7 @@ impl HairStrands {
 /// fraction of its length, radius too. Where the brow is sparse the new hairs fill the gaps; where
 /// it is dense they lie among the others. Each follows the pose, being made from posed hairs.
 pub fn fill_hairs(hairs: &[&[(Vec3, f32)]], fill: f32) -> Vec<Vec<(Vec3, f32)>> {
-    if !(fill > 0.0) || hairs.len() < 2 {
+    if fill.is_nan() || fill <= 0.0 || hairs.len() < 2 {
         return Vec::new();
     }
     let chosen = |i: usize| {
