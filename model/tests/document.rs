@@ -456,7 +456,7 @@ fn a_looks_mascara_survives_the_project() {
     doc.save_project(dir.path()).expect("save");
     let opened = Document::open_project(dir.path()).expect("open");
     assert_eq!(opened.mascara, look.mascara, "saved and reopened with the project's look.json");
-    assert_eq!(opened.brow_gel, look.brow_gel, "the brow gel too (the app has no control for it, but keeps it)");
+    assert_eq!(opened.brow_gel, look.brow_gel, "the brow gel too, its fill included");
 }
 
 #[test]
