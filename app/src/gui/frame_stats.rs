@@ -3,13 +3,18 @@
 //! renderer's per-pass timestamp queries (`Renderer::timings`, as `rouge_render::study::
 //! frame_times` sums them), or "n/a" where the device has no timestamp queries (wgpu's GL
 //! backend, or a device made without the feature). The viewport draws only when something
-//! changed, so an idle view reads 0 frames/s.
+//! changed, so an idle view reads 0 frames/s. Reading the timestamps back waits for the GPU, so
+//! only one frame in [`PROFILE_EVERY`] is profiled; the readout shows the last one measured.
 
 use super::*;
 use std::collections::VecDeque;
 
 /// The span over which frames are counted.
 const WINDOW: Duration = Duration::from_secs(1);
+
+/// One frame in this many is profiled (its timestamps read back, which waits for the GPU); the
+/// others are submitted without waiting.
+pub const PROFILE_EVERY: u64 = 16;
 
 /// When the viewport's last frames were drawn and what the last one cost.
 #[derive(Debug, Default)]
@@ -20,13 +25,24 @@ pub struct FrameStats {
     gpu_ms: Option<f64>,
     /// Whether the viewport's corner shows the readout (View menu).
     pub(super) in_viewport: bool,
+    /// Frames drawn since the start.
+    count: u64,
 }
 
 impl FrameStats {
-    /// Notes a frame drawn at `at` that took `gpu_ms` on the GPU (`None`: not measured).
-    pub fn frame_drawn(&mut self, at: Instant, gpu_ms: Option<f64>) {
+    /// Whether the next frame is to be profiled: one in [`PROFILE_EVERY`], the first included.
+    pub fn profile_next(&self) -> bool {
+        self.count.is_multiple_of(PROFILE_EVERY)
+    }
+
+    /// Notes a frame drawn at `at`; `gpu_ms` is its GPU time when it was profiled (`Some(None)`:
+    /// profiled on a device without timestamp queries), `None` when it was not.
+    pub fn frame_drawn(&mut self, at: Instant, gpu_ms: Option<Option<f64>>) {
         self.drawn.push_back(at);
-        self.gpu_ms = gpu_ms;
+        self.count += 1;
+        if let Some(ms) = gpu_ms {
+            self.gpu_ms = ms;
+        }
         while self.drawn.front().is_some_and(|&t| at.saturating_duration_since(t) >= WINDOW) {
             self.drawn.pop_front();
         }
@@ -55,10 +71,10 @@ impl FrameStats {
 impl RougeApp {
     /// Notes the frame just rendered: its time and, where the renderer measured it, the sum of
     /// its passes' GPU times.
-    pub(super) fn note_frame(&mut self) {
+    pub(super) fn note_frame(&mut self, profiled: bool) {
         let timings = self.gpu.renderer.timings();
         let gpu_ms = (!timings.is_empty()).then(|| timings.iter().map(|t| t.ms).sum());
-        self.frames.frame_drawn(Instant::now(), gpu_ms);
+        self.frames.frame_drawn(Instant::now(), profiled.then_some(gpu_ms));
     }
 
     /// The View menu's readout and its switch for the viewport's corner.
@@ -103,15 +119,18 @@ mod tests {
         let mut s = FrameStats::default();
         assert_eq!(s.readout(t0), "0 frames/s · GPU n/a");
         for i in 0..30u64 {
-            s.frame_drawn(t0 + Duration::from_millis(50 * i), Some(8.3));
+            assert_eq!(s.profile_next(), i.is_multiple_of(PROFILE_EVERY), "one frame in {PROFILE_EVERY} is profiled");
+            let profiled = s.profile_next().then_some(Some(8.3 + i as f64));
+            s.frame_drawn(t0 + Duration::from_millis(50 * i), profiled);
         }
         // Frames at 0.50 .. 1.45 s are within the second before 1.46 s.
         let now = t0 + Duration::from_millis(1460);
         assert_eq!(s.frames_per_s(now), 20);
-        assert_eq!(s.readout(now), "20 frames/s · GPU 8.3 ms");
+        // The last profiled frame (the 17th, i = 16) is shown until the next is measured.
+        assert_eq!(s.readout(now), "20 frames/s · GPU 24.3 ms");
         // Idle: the count falls to zero; no timestamps: n/a.
         assert_eq!(s.frames_per_s(t0 + Duration::from_secs(10)), 0);
-        s.frame_drawn(t0 + Duration::from_secs(11), None);
+        s.frame_drawn(t0 + Duration::from_secs(11), Some(None));
         assert_eq!(s.readout(t0 + Duration::from_secs(11)), "1 frames/s · GPU n/a");
         assert_eq!(s.drawn.len(), 1, "old frames are forgotten");
     }

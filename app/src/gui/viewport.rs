@@ -179,8 +179,6 @@ impl GpuState {
     pub(super) fn new(rs: &egui_wgpu::RenderState) -> GpuState {
         let mut renderer = Renderer::new(&rs.device, &rs.queue);
         renderer.set_edge_aa(DEFAULT_EDGE_AA);
-        // Per-pass GPU times for the frame readout (nothing without timestamp queries).
-        renderer.set_profiling(true);
         GpuState {
             renderer,
             device: rs.device.clone(),
@@ -374,8 +372,12 @@ impl RougeApp {
         let start = Instant::now();
         self.view.update_lights();
         self.apply_subsurface();
+        // Per-pass GPU times for the frame readout, one frame in frame_stats::PROFILE_EVERY
+        // (nothing without timestamp queries).
+        let profiled = self.frames.profile_next();
+        self.gpu.renderer.set_profiling(profiled);
         match self.gpu.render(&self.view.scene, &camera, size) {
-            Ok(()) => self.note_frame(),
+            Ok(()) => self.note_frame(profiled),
             Err(e) => self.ui.message = Some((false, e.to_string())),
         }
         if self.view.split {
