@@ -31,7 +31,9 @@ impl Resource {
             Resource::RadianceMaps { .. } => "radiance maps".into(),
             Resource::CubeAtlas(_) => "cube atlas".into(),
             Resource::MeshEdges { sorted: true } => "mesh edges (silhouettes sorted back to front)".into(),
-            Resource::MeshEdges { sorted: false } => "mesh edges (classified on the GPU, unsorted)".into(),
+            Resource::MeshEdges { sorted: false } => {
+                "mesh edges (unsorted: the CPU's silhouette list, or every edge classified on the GPU)".into()
+            }
             Resource::DisplayCopy => "display (a copy)".into(),
             Resource::Strands(n) => format!("{n} hair strands (sorted back to front)"),
         }
