@@ -315,3 +315,29 @@ pub fn halves_to_f32(bytes: &[u8]) -> Vec<[f32; 4]> {
     let halves: Vec<u16> = bytemuck::pod_collect_to_vec(bytes);
     halves.chunks_exact(4).map(|c| std::array::from_fn(|i| half::f16::from_bits(c[i]).to_f32())).collect()
 }
+
+/// A vertex buffer of per-instance data (`instances`; one zeroed instance, never drawn, when there
+/// are none: a zero-sized vertex buffer cannot be bound), writable for later frames.
+pub fn instance_buffer<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, instances: &[T]) -> wgpu::Buffer {
+    let zero = [T::zeroed()];
+    let data: &[T] = if instances.is_empty() { &zero } else { instances };
+    buffer_init(device, label, bytemuck::cast_slice(data), wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST)
+}
+
+/// This frame's `instances` in `slot`'s buffer (its capacity in instances beside it): written
+/// into the buffer when they fit, else into a new one ([`instance_buffer`]) that replaces it.
+pub fn write_instances<'a, T: bytemuck::Pod>(
+    (device, queue): (&wgpu::Device, &wgpu::Queue),
+    label: &str,
+    slot: &'a mut Option<(wgpu::Buffer, usize)>,
+    instances: &[T],
+) -> &'a wgpu::Buffer {
+    match slot {
+        Some((buffer, capacity)) if *capacity >= instances.len() => {
+            queue.write_buffer(buffer, 0, bytemuck::cast_slice(instances));
+        }
+        _ => *slot = Some((instance_buffer(device, label, instances), instances.len().max(1))),
+    }
+    let (buffer, _) = slot.get_or_insert_with(|| (instance_buffer::<T>(device, label, &[]), 1));
+    buffer
+}

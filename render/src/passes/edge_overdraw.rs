@@ -16,7 +16,9 @@ use crate::error::{RenderError, Result};
 use crate::shader::{PassShader, bare, pass_shader};
 use crate::silhouettes::{EdgeFrames, EdgeInstance};
 use crate::targets::Target;
-use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, texture, uniform_entry, view};
+use crate::wgpu_util::{
+    buf, color_load, float_tex, instance_buffer, layout, tex, texture, uniform_entry, view, write_instances,
+};
 use bytemuck::{Pod, Zeroable};
 
 /// Fraction of its distance from the eye by which an edge is pulled toward the eye for the depth
@@ -85,18 +87,6 @@ impl GpuEdges {
         self.all = None;
         self.frames.reposition(mesh)
     }
-}
-
-fn instance_buffer(device: &wgpu::Device, instances: &[EdgeInstance]) -> wgpu::Buffer {
-    use wgpu::util::DeviceExt;
-    // A zero-sized vertex buffer cannot be bound: keep one (never drawn) instance.
-    let zero = [EdgeInstance::zeroed()];
-    let data: &[EdgeInstance] = if instances.is_empty() { &zero } else { instances };
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("EdgeOverdrawPass::instances"),
-        contents: bytemuck::cast_slice(data),
-        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-    })
 }
 
 /// The edge overdraw pass.
@@ -199,17 +189,14 @@ impl FramePass for EdgeOverdrawPass {
         );
         let (buffer, count) = match sorted.as_deref() {
             None => {
-                let all = edges.all.get_or_insert_with(|| instance_buffer(device, &edges.frames.all_instances()));
+                let all = edges.all.get_or_insert_with(|| {
+                    instance_buffer(device, "EdgeOverdrawPass::instances", &edges.frames.all_instances())
+                });
                 (&*all, edges.frames.set.edges.len())
             }
             Some(list) => {
-                if self.sorted.as_ref().is_none_or(|(_, cap)| *cap < list.len()) {
-                    self.sorted = Some((instance_buffer(device, list), list.len().max(1)));
-                } else if let Some((b, _)) = &self.sorted {
-                    shared.queue.write_buffer(b, 0, bytemuck::cast_slice(list));
-                }
-                let (b, _) = self.sorted.as_ref().ok_or_else(|| RenderError::Gpu("no edge buffer".into()))?;
-                (b, list.len())
+                let gpu = (device, &shared.queue);
+                (write_instances(gpu, "EdgeOverdrawPass::instances", &mut self.sorted, list), list.len())
             }
         };
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {

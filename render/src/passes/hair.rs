@@ -16,7 +16,7 @@ use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::{RenderError, Result};
 use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::Target;
-use crate::wgpu_util::{buf, color, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry};
+use crate::wgpu_util::{buf, color, layout, sampler, sampler_entry, tex, tex_entry, uniform_entry, write_instances};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use rouge_model::mesh::{Part, TriangleMesh};
@@ -203,6 +203,8 @@ pub struct HairPass {
     layout: wgpu::BindGroupLayout,
     pipelines: Pipelines,
     uniform: wgpu::Buffer,
+    /// What the uniform buffer holds: the step's coverage and the hairs' colours.
+    written: Option<(bool, crate::HairAlbedo)>,
 }
 
 impl FramePass for HairPass {
@@ -224,7 +226,7 @@ impl FramePass for HairPass {
         );
         let uniform =
             crate::wgpu_util::uniform_buffer(&shared.device, "HairPass::uniform", std::mem::size_of::<HairUniform>());
-        HairPass { layout, pipelines: Pipelines::default(), uniform }
+        HairPass { layout, pipelines: Pipelines::default(), uniform, written: None }
     }
 
     fn name(step: &HairStep) -> String {
@@ -266,26 +268,16 @@ impl FramePass for HairPass {
             blend: Some(blend),
             depth: Some(wgpu::DepthBiasState::default()),
         })?;
-        shared.queue.write_buffer(
-            &self.uniform,
-            0,
-            bytemuck::bytes_of(&HairUniform::new(step.antialiased, rec.hair_albedo)),
-        );
-        let sorted = hair.sorted(rec.eye);
-        if hair.buffer.as_ref().is_none_or(|(_, cap)| *cap < sorted.len()) {
-            use wgpu::util::DeviceExt;
-            let zero = [HairSegment::zeroed()];
-            let data: &[HairSegment] = if sorted.is_empty() { &zero } else { &sorted };
-            let b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("HairPass::segments"),
-                contents: bytemuck::cast_slice(data),
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-            });
-            hair.buffer = Some((b, sorted.len().max(1)));
-        } else if let Some((b, _)) = &hair.buffer {
-            shared.queue.write_buffer(b, 0, bytemuck::cast_slice(&sorted));
+        // The uniform (with each colour's environment albedo, an integral over the sphere) is
+        // made again only when what it depends on changes.
+        let inputs = (step.antialiased, rec.hair_albedo);
+        if self.written != Some(inputs) {
+            let uniform = HairUniform::new(step.antialiased, rec.hair_albedo);
+            shared.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+            self.written = Some(inputs);
         }
-        let (buffer, _) = hair.buffer.as_ref().ok_or_else(|| RenderError::Gpu("no hair buffer".into()))?;
+        let sorted = hair.sorted(rec.eye);
+        let buffer = write_instances((device, &shared.queue), "HairPass::segments", &mut hair.buffer, &sorted);
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("HairPass::group"),
             layout: &self.layout,
