@@ -170,20 +170,7 @@ impl LashRig {
     /// shared rungs, each ordered from the end nearer an eyeball's centre (the root) to the
     /// other. A mesh without lashes or without eyes gives an empty rig.
     pub fn of(mesh: &Mesh) -> LashRig {
-        let part = |g: &super::Group| Part::of(&g.name, g.material.as_deref());
-        let eyes: Vec<Vec<u32>> = mesh
-            .groups
-            .iter()
-            .filter(|g| part(g) == Part::Eye)
-            .map(|g| {
-                let mut v: Vec<u32> =
-                    mesh.faces[g.faces.clone()].iter().flat_map(|f| f.corners.iter().map(|c| c.position)).collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            })
-            .filter(|v| !v.is_empty())
-            .collect();
+        let eyes = eye_vertices(mesh);
         if eyes.is_empty() {
             return LashRig::default();
         }
@@ -191,14 +178,7 @@ impl LashRig {
         let mut strands = Vec::new();
         for strip in super::strands::strips(mesh, Part::Lash) {
             let mut rungs = strip.rungs;
-            let mid = |r: [u32; 2]| (mesh.positions[r[0] as usize] + mesh.positions[r[1] as usize]) * 0.5;
-            let (root, tip) = (mid(rungs[0]), mid(*rungs.last().expect("a rung")));
-            let eye = (0..centres.len())
-                .min_by(|&a, &b| root.distance(centres[a]).total_cmp(&root.distance(centres[b])))
-                .expect("an eye");
-            if tip.distance(centres[eye]) < root.distance(centres[eye]) {
-                rungs.reverse();
-            }
+            let eye = root_first(&mut rungs, &mesh.positions, &centres);
             strands.push(Strand { rungs, eye });
         }
         LashRig { strands, eyes }
@@ -246,6 +226,38 @@ impl LashRig {
     }
 }
 
-fn centre(positions: &[Vec3], vertices: &[u32]) -> Vec3 {
+/// The vertices of each eye group of `mesh` ([`Part::Eye`]), each once; their mean is the eye's
+/// centre in any pose ([`centre`]). Groups without faces are left out.
+pub(crate) fn eye_vertices(mesh: &Mesh) -> Vec<Vec<u32>> {
+    mesh.groups
+        .iter()
+        .filter(|g| g.part() == Part::Eye)
+        .map(|g| {
+            let mut v: Vec<u32> =
+                mesh.faces[g.faces.clone()].iter().flat_map(|f| f.corners.iter().map(|c| c.position)).collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        })
+        .filter(|v| !v.is_empty())
+        .collect()
+}
+
+/// Orders a lash strip's `rungs` root first: the root is the end nearer the eye whose centre
+/// (`centres`, not empty) is nearest the strip's first end. Returns that eye.
+pub(crate) fn root_first(rungs: &mut [[u32; 2]], positions: &[Vec3], centres: &[Vec3]) -> usize {
+    let mid = |r: [u32; 2]| (positions[r[0] as usize] + positions[r[1] as usize]) * 0.5;
+    let (root, tip) = (mid(rungs[0]), mid(rungs[rungs.len() - 1]));
+    let eye = (0..centres.len())
+        .min_by(|&a, &b| root.distance(centres[a]).total_cmp(&root.distance(centres[b])))
+        .unwrap_or(0);
+    if tip.distance(centres[eye]) < root.distance(centres[eye]) {
+        rungs.reverse();
+    }
+    eye
+}
+
+/// The mean of `vertices`' positions.
+pub(crate) fn centre(positions: &[Vec3], vertices: &[u32]) -> Vec3 {
     vertices.iter().map(|&v| positions[v as usize]).sum::<Vec3>() / vertices.len().max(1) as f32
 }

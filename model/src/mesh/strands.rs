@@ -15,6 +15,7 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 
+use super::lashes::{centre, eye_vertices, root_first};
 use super::{Mesh, Part, TriangleMesh};
 
 /// One strip of quads chained by their rungs, in walking order (either end first), and the
@@ -123,22 +124,11 @@ const SAME_HAIR_MM: f32 = 1e-4;
 
 impl HairStrands {
     /// The lash and brow strips of `mesh` (found by `strips`), one per hair, each from root to tip: a
-    /// lash's root is the end nearer an eye's centre (its lid margin), a brow hair's the end the
-    /// file wrote first (the generator writes each hair from the skin it grows from). Strips of
+    /// lash's root is the end nearer an eye's centre (its lid margin, as the lash rig orders it),
+    /// a brow hair's the end the file wrote first (the generator writes each hair from the skin it grows from). Strips of
     /// fewer than two rungs are left out.
     pub fn of(mesh: &Mesh) -> HairStrands {
-        let eyes: Vec<Vec3> = mesh
-            .groups
-            .iter()
-            .filter(|g| g.part() == Part::Eye)
-            .filter_map(|g| {
-                let v: Vec<Vec3> = mesh.faces[g.faces.clone()]
-                    .iter()
-                    .flat_map(|f| f.corners.iter().map(|c| mesh.positions[c.position as usize]))
-                    .collect();
-                (!v.is_empty()).then(|| v.iter().sum::<Vec3>() / v.len() as f32)
-            })
-            .collect();
+        let eyes: Vec<Vec3> = eye_vertices(mesh).iter().map(|v| centre(&mesh.positions, v)).collect();
         let mid = |r: [u32; 2]| (mesh.positions[r[0] as usize] + mesh.positions[r[1] as usize]) * 0.5;
         let mut strands: Vec<HairStrand> = Vec::new();
         let mut seen: Vec<(Vec3, Vec3)> = Vec::new();
@@ -148,18 +138,12 @@ impl HairStrands {
                     continue;
                 }
                 let mut rungs = strip.rungs;
-                let (a, b) = (mid(rungs[0]), mid(*rungs.last().expect("two rungs")));
-                let reverse = match part {
-                    Part::Lash if !eyes.is_empty() => {
-                        let near = |p: Vec3| eyes.iter().map(|e| e.distance(p)).fold(f32::INFINITY, f32::min);
-                        near(b) < near(a)
-                    }
-                    _ => strip.last_face < strip.first_face,
-                };
-                if reverse {
+                if part == Part::Lash && !eyes.is_empty() {
+                    root_first(&mut rungs, &mesh.positions, &eyes);
+                } else if strip.last_face < strip.first_face {
                     rungs.reverse();
                 }
-                let ends = if reverse { (b, a) } else { (a, b) };
+                let ends = (mid(rungs[0]), mid(*rungs.last().expect("two rungs")));
                 if seen.iter().any(|s| s.0.distance(ends.0) < SAME_HAIR_MM && s.1.distance(ends.1) < SAME_HAIR_MM) {
                     continue;
                 }
@@ -239,18 +223,7 @@ mod tests {
             }
         }
         // Lash roots sit nearer the eye than their tips.
-        let eyes: Vec<Vec3> = head
-            .groups
-            .iter()
-            .filter(|g| g.part() == Part::Eye)
-            .map(|g| {
-                let v: Vec<Vec3> = head.faces[g.faces.clone()]
-                    .iter()
-                    .flat_map(|f| f.corners.iter().map(|c| head.positions[c.position as usize]))
-                    .collect();
-                v.iter().sum::<Vec3>() / v.len() as f32
-            })
-            .collect();
+        let eyes: Vec<Vec3> = eye_vertices(&head).iter().map(|v| centre(&head.positions, v)).collect();
         let near = |p: Vec3| eyes.iter().map(|e| e.distance(p)).fold(f32::INFINITY, f32::min);
         for s in hairs.strands.iter().filter(|s| s.part == Part::Lash) {
             let st = s.stations(&head.positions);
