@@ -105,12 +105,17 @@ pub fn decode_srgb8(rgba: &[u8]) -> Vec<[f32; 3]> {
     rgba.chunks_exact(4).map(|p| std::array::from_fn(|c| srgb_decode(f64::from(p[c]) / 255.0) as f32)).collect()
 }
 
+/// A linear value (clamped to 0..=1) sRGB-encoded, in levels of 255, unrounded.
+fn encoded_255(v: f32) -> f64 {
+    srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0
+}
+
 /// An sRGB-encoded RGBA8 image (alpha 255) from linear sRGB.
 pub fn encode_srgb8(linear: &[[f32; 3]]) -> Vec<u8> {
     linear
         .iter()
         .flat_map(|p| {
-            let e = |v: f32| (srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0).round() as u8;
+            let e = |v: f32| encoded_255(v).round() as u8;
             [e(p[0]), e(p[1]), e(p[2]), 255]
         })
         .collect()
@@ -174,8 +179,7 @@ pub fn mask_near_segments(segments: &[([f32; 2], [f32; 2])], (w, h): (usize, usi
 /// discontinuity a viewer sees (silhouettes, the eyes' outlines, the lash line, hairs, specular
 /// edges), whether or not it lies on a mesh edge. Issue 27's measure of edge antialiasing.
 pub fn detail_mask(reference: &[[f32; 3]], (w, h): (usize, usize), threshold: f32) -> Vec<bool> {
-    let encoded: Vec<[f32; 3]> =
-        reference.iter().map(|p| p.map(|v| (srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0) as f32)).collect();
+    let encoded: Vec<[f32; 3]> = reference.iter().map(|p| p.map(|v| encoded_255(v) as f32)).collect();
     let at =
         |x: isize, y: isize| encoded[y.clamp(0, h as isize - 1) as usize * w + x.clamp(0, w as isize - 1) as usize];
     let mut mask = vec![false; w * h];
@@ -211,7 +215,6 @@ pub struct EdgeError {
 /// RMSE and mean ΔE2000 of `image` against `reference` (linear sRGB) over the `mask`ed pixels.
 pub fn edge_error(image: &[[f32; 3]], reference: &[[f32; 3]], mask: &[bool]) -> EdgeError {
     let (mut sq, mut sq8, mut de, mut n) = (0.0f64, 0.0f64, 0.0f64, 0usize);
-    let encode = |v: f32| srgb_encode(f64::from(v.clamp(0.0, 1.0))) * 255.0;
     for ((a, b), &m) in image.iter().zip(reference).zip(mask) {
         if !m {
             continue;
@@ -219,7 +222,7 @@ pub fn edge_error(image: &[[f32; 3]], reference: &[[f32; 3]], mask: &[bool]) -> 
         n += 1;
         for c in 0..3 {
             sq += f64::from(a[c] - b[c]).powi(2);
-            sq8 += (encode(a[c]) - encode(b[c])).powi(2);
+            sq8 += (encoded_255(a[c]) - encoded_255(b[c])).powi(2);
         }
         let lab = |p: &[f32; 3]| linear_srgb_to_lab(p.map(f64::from));
         de += delta_e_2000_raw(lab(a), lab(b));

@@ -225,9 +225,7 @@ impl GpuMesh {
 /// hair pass draws as fibres).
 fn without_hair(mesh: &TriangleMesh) -> Option<Vec<u32>> {
     mesh.strands.as_ref()?;
-    let hair = |t: usize| mesh.groups.iter().any(|g| g.part().is_hair() && g.triangles.contains(&t));
-    let kept: Vec<u32> =
-        mesh.indices.chunks_exact(3).enumerate().filter(|(t, _)| !hair(*t)).flat_map(|(_, tri)| tri.to_vec()).collect();
+    let kept = mesh.only(|g| !g.part().is_hair()).indices;
     (!kept.is_empty()).then_some(kept)
 }
 

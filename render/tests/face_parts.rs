@@ -122,19 +122,24 @@ fn mascara_darkens_and_lengthens_the_lash_line() {
     assert!(redness(&red) > redness(&natural) + 5.0, "a red mascara reddens the lashes");
 }
 
+/// A close-up of the brows of the bare head at one subdivision level, with `brow_gel`.
+fn brows_job(brow_gel: Option<rouge_model::mesh::brow_gel::BrowGel>) -> RenderJob {
+    RenderJob {
+        look: LookChoice::Bare,
+        width: SIZE,
+        height: SIZE,
+        subdivision: 1,
+        close_up: Some(AnatomyRegion::Forehead),
+        brow_gel,
+        ..RenderJob::default()
+    }
+}
+
 #[test]
 fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
     use rouge_model::mesh::brow_gel::BrowGel;
     let frame = |brow_gel: Option<BrowGel>, brows: bool| {
-        let job = RenderJob {
-            look: LookChoice::Bare,
-            width: SIZE,
-            height: SIZE,
-            subdivision: 1,
-            close_up: Some(AnatomyRegion::Forehead),
-            brow_gel,
-            ..RenderJob::default()
-        };
+        let job = brows_job(brow_gel);
         let loaded = job.load().expect("load");
         let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
         if !brows {
@@ -166,15 +171,7 @@ fn a_brow_gel_tints_the_brow_hairs_and_nothing_else() {
 fn a_fibre_gel_fills_the_brows() {
     use rouge_model::mesh::brow_gel::BrowGel;
     let frame = |fill: f32| {
-        let job = RenderJob {
-            look: LookChoice::Bare,
-            width: SIZE,
-            height: SIZE,
-            subdivision: 1,
-            close_up: Some(AnatomyRegion::Forehead),
-            brow_gel: Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.0, fill }),
-            ..RenderJob::default()
-        };
+        let job = brows_job(Some(BrowGel { color: [0.045, 0.027, 0.016], strength: 0.0, fill }));
         let loaded = job.load().expect("load");
         let mut prepared = job.prepare_loaded(&loaded).expect("prepare");
         prepared.renderer.set_hair_aa(true);
