@@ -318,6 +318,16 @@ fn render_writes_png_and_exr_and_bad_inputs_name_their_file() {
 /// The app in a real window under Xvfb with `args`, its data in `data_dir`, ended after
 /// `timeout_s`; `None` (and a line saying so) without xvfb-run.
 fn app_under_xvfb(timeout_s: u32, data_dir: &Path, args: &[&std::ffi::OsStr]) -> Option<Output> {
+    app_under_xvfb_with(timeout_s, data_dir, args, &[])
+}
+
+/// [`app_under_xvfb`] with `env` set.
+fn app_under_xvfb_with(
+    timeout_s: u32,
+    data_dir: &Path,
+    args: &[&std::ffi::OsStr],
+    env: &[(&str, &str)],
+) -> Option<Output> {
     if Command::new("xvfb-run").arg("--help").output().is_err() {
         eprintln!("skipped: xvfb-run is not installed (tests/run.sh installs xvfb)");
         return None;
@@ -328,6 +338,7 @@ fn app_under_xvfb(timeout_s: u32, data_dir: &Path, args: &[&std::ffi::OsStr]) ->
         .args(args)
         .env("XDG_DATA_HOME", data_dir)
         .env("WINIT_UNIX_BACKEND", "x11")
+        .envs(env.iter().copied())
         .env_remove("WAYLAND_DISPLAY")
         .current_dir(root())
         .output()
@@ -353,6 +364,26 @@ fn the_app_opens_a_real_window_under_xvfb_and_draws_the_face() {
         })
         .count();
     assert!(skin > 20_000, "{skin} skin-coloured pixels in the window's centre");
+}
+
+#[test]
+fn a_lost_device_restarts_the_app_in_the_same_process_with_the_work_recovered() {
+    // The device is destroyed once the face is shown: the app writes the autosave, closes, and
+    // becomes Rouge again with --recover (exec: xvfb-run, waiting for this process, keeps its
+    // display), which adopts the autosave and takes the screenshot.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let shot = dir.path().join("window.png");
+    let env = [(rouge_app::gui::LOSE_DEVICE_ENV, "1")];
+    let Some(o) = app_under_xvfb_with(240, dir.path(), &["--window-screenshot".as_ref(), shot.as_ref()], &env) else {
+        return;
+    };
+    let err = stderr(&o);
+    assert!(o.status.success(), "status {:?}\n{err}", o.status);
+    assert!(err.contains("the graphics device was lost") && err.contains("restarting"), "{err}");
+    assert!(err.contains("the unsaved work is recovered from the autosave"), "{err}");
+    assert!(dir.path().join("rouge/recovery").is_dir(), "the autosave is kept until the work is saved");
+    let img = image::open(&shot).expect("the restarted app's screenshot").to_rgba8();
+    assert!(img.width() >= 800 && img.height() >= 500, "{}×{}", img.width(), img.height());
 }
 
 #[test]

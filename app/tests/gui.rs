@@ -306,4 +306,17 @@ fn a_smile_slider_poses_the_face_and_painting_lands_on_the_deformed_face() {
     h.state_mut().set_face(Default::default()).expect("neutral");
     h.state_mut().open_project_from(project.path()).expect("open");
     assert_eq!(h.state().face().expression.get("smile"), Some(&1.0));
+
+    // A neutral project puts the smiling head back at rest (it kept smiling under the neutral
+    // document before).
+    let neutral = tempfile::tempdir().expect("tempdir");
+    rouge_model::document::Document::default_project().save_project(neutral.path()).expect("save");
+    h.state_mut().open_project_from(neutral.path()).expect("open");
+    h.run_steps(2);
+    assert!(h.state().face().is_neutral());
+    let rest = rouge_model::mesh::load_mesh(None, 1.0, 2).expect("the default head");
+    let shown = h.state().posed_mesh().expect("the head, posed back to rest");
+    let off_mm = rest.positions.iter().zip(&shown.positions).map(|(a, b)| a.distance(*b)).fold(0.0f32, f32::max);
+    assert_eq!(rest.positions.len(), shown.positions.len());
+    assert!(off_mm < 1e-3, "the neutral project's head is {off_mm} mm from rest");
 }

@@ -164,6 +164,12 @@ pub struct GlitterRow {
     /// CPU milliseconds per frame (all threads; the estimator as the shader's twin, not the
     /// shader).
     pub cpu_ms_per_frame: f64,
+    /// The method drawn.
+    #[serde(skip)]
+    pub drawn_by: Method,
+    /// Its first frame ([`frame`] at `t` = 0), for figures.
+    #[serde(skip)]
+    pub first_frame: Vec<f32>,
 }
 
 /// The lit fraction above which a pixel of `study` sparkles (at its first frame's footprint).
@@ -222,6 +228,8 @@ pub fn run(study: &GlitterStudy, methods: &[Method]) -> Vec<GlitterRow> {
                 sparkles_relative: sparkles / ref_sparkles.max(1e-12),
                 rmse: (se / n.max(1) as f64).sqrt(),
                 cpu_ms_per_frame: *ms,
+                drawn_by: *m,
+                first_frame: frames.first().cloned().unwrap_or_default(),
             }
         })
         .collect()

@@ -61,11 +61,18 @@ const FRAME_METHODS: [(Method, &str); 4] = [
     (Method::Estimator, "rouge"),
 ];
 
-/// Writes the first frame of each of [`FRAME_METHODS`] for `study` into `dir`; returns their
-/// entries of `frames.json`.
-fn write_frames(study: &GlitterStudy, dir: &std::path::Path) -> Result<Vec<serde_json::Value>> {
-    let frames: Vec<Vec<f32>> =
-        FRAME_METHODS.iter().map(|(m, _)| rouge_render::glitter_study::frame(study, *m, 0)).collect();
+/// Writes the first frame of each of [`FRAME_METHODS`] (as `rows`, the study's, drew them)
+/// into `dir`; returns their entries of `frames.json`.
+fn write_frames(study: &GlitterStudy, rows: &[GlitterRow], dir: &std::path::Path) -> Result<Vec<serde_json::Value>> {
+    let frames = FRAME_METHODS
+        .iter()
+        .map(|(m, slug)| {
+            rows.iter()
+                .find(|r| r.drawn_by == *m)
+                .map(|r| r.first_frame.as_slice())
+                .ok_or_else(|| anyhow::anyhow!("the study drew no {slug} frame"))
+        })
+        .collect::<Result<Vec<_>>>()?;
     let scale = frames[0].iter().copied().fold(0.0f32, f32::max).max(1e-12);
     let mut entries = Vec::new();
     for ((_, slug), frame) in FRAME_METHODS.iter().zip(&frames) {
@@ -164,7 +171,7 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
             &[Method::Supersampled(16), Method::Supersampled(2), Method::Supersampled(4), Method::Estimator],
         );
         if let Some(dir) = &args.frames_dir {
-            frames.extend(write_frames(&study, dir)?);
+            frames.extend(write_frames(&study, &results, dir)?);
         }
         let ssaa2 = results.iter().find(|r| r.samples_per_pixel == 4).map(|r| r.flicker);
         for row in results {
@@ -202,4 +209,35 @@ pub fn run(args: &GlitterBenchArgs) -> Result<()> {
         crate::emit(&gpu_cost(args.gpu_frames)?)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_frames_written_are_the_studys_first_frames_scaled_by_the_exact_ones_brightest_pixel() {
+        let study = GlitterStudy { size_px: 12, frames: 2, ..GlitterStudy::standard(0.0833) };
+        let methods = [Method::Supersampled(16), Method::Supersampled(2), Method::Estimator];
+        let rows = run_study(&study, &methods);
+        let dir = tempfile::tempdir().expect("tempdir");
+        let entries = write_frames(&study, &rows, dir.path()).expect("frames");
+        assert_eq!(entries.len(), FRAME_METHODS.len());
+        let exact = &rows[0];
+        assert_eq!(exact.drawn_by, Method::Exact);
+        let scale = exact.first_frame.iter().copied().fold(0.0f32, f32::max);
+        assert!(scale > 0.0, "a flake lit in the exact frame");
+        for ((method, slug), entry) in FRAME_METHODS.iter().zip(&entries) {
+            let file = dir.path().join(entry["file"].as_str().expect("a file name"));
+            let png = image::open(&file).expect("a PNG").to_luma16();
+            let row = rows.iter().find(|r| r.drawn_by == *method).expect("drawn");
+            for (texel, lit) in png.pixels().zip(&row.first_frame) {
+                let expected = ((lit / scale).clamp(0.0, 1.0) * 65535.0).round() as u16;
+                assert_eq!(texel.0[0], expected, "{slug}");
+            }
+        }
+        // Without a method's rows there is nothing to write, and the error says which.
+        let err = write_frames(&study, &rows[..1], dir.path()).expect_err("no ssaa16 row");
+        assert!(err.to_string().contains("ssaa16"), "{err}");
+    }
 }

@@ -91,12 +91,70 @@ impl RougeApp {
     }
 }
 
-/// Starts Rouge again with [`RECOVER_FLAG`] (the arguments it was started with, the flag once),
-/// after a window closed on a lost device.
+/// The environment variable that makes the app lose its device once the face is shown (the
+/// test of the restart, `app/tests/cli.rs`): a fault injected as a driver reset would, never set
+/// in the restarted app.
+pub const LOSE_DEVICE_ENV: &str = "ROUGE_TEST_LOSE_DEVICE";
+
+impl RougeApp {
+    /// With [`LOSE_DEVICE_ENV`] set (and not in the restarted app): destroys the device once the
+    /// face has been shown.
+    pub(super) fn lose_device_if_asked(&mut self) {
+        if self.device_loss.is_none()
+            && !self.options.recover
+            && self.ready()
+            && self.gpu.has_frame()
+            && std::env::var_os(LOSE_DEVICE_ENV).is_some()
+        {
+            self.destroy_device();
+        }
+    }
+}
+
+/// The command that starts Rouge again after a lost device: `exe` with `args` (those it was
+/// started with; [`RECOVER_FLAG`] once, at the end), without [`LOSE_DEVICE_ENV`].
+pub fn restart_command(
+    exe: &std::path::Path,
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> std::process::Command {
+    let mut command = std::process::Command::new(exe);
+    command.args(args.into_iter().filter(|a| a != RECOVER_FLAG)).arg(RECOVER_FLAG).env_remove(LOSE_DEVICE_ENV);
+    command
+}
+
+/// Starts Rouge again ([`restart_command`]) after a window closed on a lost device. On Unix the
+/// new app replaces this process (`exec`): the same process id, so a terminal, a launcher or
+/// `xvfb-run` that waits for Rouge waits for the restarted app; elsewhere it is spawned.
+///
+/// # Errors
+/// When the executable cannot be started (on Unix this returns only then).
 pub(super) fn restart() -> anyhow::Result<()> {
     let exe = std::env::current_exe()?;
-    let mut args: Vec<String> = std::env::args().skip(1).filter(|a| a != RECOVER_FLAG).collect();
-    args.push(RECOVER_FLAG.into());
-    std::process::Command::new(&exe).args(&args).spawn()?;
-    Ok(())
+    let mut command = restart_command(&exe, std::env::args_os().skip(1));
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt as _;
+        Err(command.exec().into())
+    }
+    #[cfg(not(unix))]
+    {
+        command.spawn()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_restart_keeps_the_arguments_adds_the_recover_flag_once_and_no_injected_loss() {
+        let args = ["--project", "my project", RECOVER_FLAG, "--mesh-scale", "25"].map(std::ffi::OsString::from);
+        let command = restart_command(std::path::Path::new("/opt/rouge"), args);
+        assert_eq!(command.get_program(), "/opt/rouge");
+        let got: Vec<_> = command.get_args().collect();
+        assert_eq!(got, ["--project", "my project", "--mesh-scale", "25", RECOVER_FLAG]);
+        let envs: Vec<_> = command.get_envs().collect();
+        assert_eq!(envs, [(std::ffi::OsStr::new(LOSE_DEVICE_ENV), None)], "removed from the restart's environment");
+    }
 }

@@ -23,8 +23,9 @@ pub(super) struct FaceState {
     /// The mascara shown while a Lashes slider is dragged (the document's takes over when the
     /// drag ends and becomes one undo step).
     pub(super) mascara_preview: Option<Mascara>,
-    /// The posed mesh (updated in place), and whether the viewport shows it.
-    mesh: Option<TriangleMesh>,
+    /// The viewport's mesh has been posed since it was loaded (it is posed in place, in
+    /// [`GpuState::pose_mesh`]).
+    posed: bool,
     /// The surface map predates the last pose.
     surface_stale: bool,
     /// The mesh being painted is the default head (the targets' mesh).
@@ -54,7 +55,7 @@ impl RougeApp {
     /// The viewport's posed default head (subdivided), `None` while it shows the head at rest
     /// (nothing posed since the mesh was loaded).
     pub fn posed_mesh(&self) -> Option<&TriangleMesh> {
-        self.face.mesh.as_ref()
+        self.gpu.mesh().filter(|_| self.face.posed)
     }
 
     /// The hairs' albedo the viewport's head was uploaded with (a mascara's and a brow gel's).
@@ -78,7 +79,7 @@ impl RougeApp {
         if !self.face.surface_stale {
             return;
         }
-        if let Some(mesh) = &self.face.mesh {
+        if let Some(mesh) = self.posed_mesh() {
             let size = rouge_model::document::MAP_SIZE;
             self.editor.set_surface(Some(Arc::new(SurfaceMap::build(mesh, size, size))));
         }
@@ -92,12 +93,17 @@ impl RougeApp {
         }
     }
 
-    /// After a new mesh or document: pose the default head as the document says.
+    /// The viewport shows a newly loaded mesh, at rest.
+    pub(super) fn mesh_loaded(&mut self) {
+        self.face.posed = false;
+    }
+
+    /// After a new mesh or document: pose the default head as the document says (a posed head
+    /// goes back to rest for a neutral document).
     pub(super) fn pose_from_document(&mut self) {
-        self.face.mesh = None;
         self.face.mascara_preview = None;
         let pose = self.face().clone();
-        if pose.is_neutral() && !self.hair_products_shown() {
+        if !self.face.posed && pose.is_neutral() && !self.hair_products_shown() {
             self.skin_pose(Default::default());
         } else {
             self.show_pose(&pose);
@@ -110,7 +116,7 @@ impl RougeApp {
             return Err("expressions and face shapes move the default head's vertices; this mesh has no targets".into());
         }
         let mascara = self.shown_mascara();
-        if self.face.mesh.is_none() && pose.is_neutral() && !self.hair_products_shown() {
+        if !self.face.posed && pose.is_neutral() && !self.hair_products_shown() {
             return Ok(());
         }
         let targets = TargetSet::default_head().map_err(|e| e.to_string())?;
@@ -126,12 +132,13 @@ impl RougeApp {
         if let Some(m) = &mascara {
             rig.apply(m, &mut positions);
         }
-        let mesh = self.face.mesh.get_or_insert_with(|| plan.rest().clone());
-        plan.update(&positions, mesh);
         self.view.framing = Bounds::of(&plan.rest().positions);
         let brow_gel = self.editor.document().brow_gel;
         self.gpu.renderer.set_hair_albedo(rouge_render::HairAlbedo::with_products(mascara.as_ref(), brow_gel.as_ref()));
-        self.gpu.set_posed_mesh(mesh.clone(), self.view.skin_albedo()).map_err(|e| e.to_string())?;
+        let rest = (!self.face.posed).then(|| plan.rest());
+        let skin_albedo = self.view.skin_albedo();
+        self.gpu.pose_mesh(rest, skin_albedo, |mesh| plan.update(&positions, mesh)).map_err(|e| e.to_string())?;
+        self.face.posed = true;
         self.face.surface_stale = true;
         self.view.needs_render = true;
         self.remorph();

@@ -18,7 +18,7 @@
 
 mod brush;
 mod device_lost;
-pub use device_lost::{DeviceLoss, RECOVER_FLAG};
+pub use device_lost::{DeviceLoss, LOSE_DEVICE_ENV, RECOVER_FLAG};
 mod edit;
 mod expression;
 mod face;
@@ -217,6 +217,9 @@ impl RougeApp {
         // Started again after a lost device: the autosave is the work, adopted without asking.
         if app.options.recover && app.ui.recovery_offer {
             app.recover("after the graphics device was lost, Rouge restarted and recovered the unsaved work");
+            eprintln!(
+                "rouge: restarted after the lost graphics device; the unsaved work is recovered from the autosave"
+            );
         }
         // A project opened at start shows its skin maps.
         app.request_skin_bake();
@@ -432,6 +435,7 @@ impl RougeApp {
 
 impl eframe::App for RougeApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.lose_device_if_asked();
         if self.device_lost_frame(ui.ctx()) {
             return;
         }

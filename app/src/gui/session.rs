@@ -96,6 +96,7 @@ impl RougeApp {
                     self.ui.message = Some((false, format!("{label}: {e}")));
                     return true;
                 }
+                self.mesh_loaded();
                 self.editor.set_surface(Some(surface));
                 // A morph preview was of the mesh before.
                 self.view.morph = Default::default();

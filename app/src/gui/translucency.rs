@@ -203,7 +203,7 @@ impl RougeApp {
         } else {
             rouge_model::thickness::morph_to_bounding_sphere(&base, t).map_err(|e| e.to_string())
         };
-        match shown.and_then(|mesh| self.gpu.set_posed_mesh(mesh, albedo).map_err(|e| e.to_string())) {
+        match shown.and_then(|mesh| self.gpu.set_moved_mesh(mesh, albedo).map_err(|e| e.to_string())) {
             Ok(()) => self.view.morph.t = t,
             Err(e) => self.ui.message = Some((false, format!("morph: {e}"))),
         }

@@ -208,20 +208,54 @@ impl GpuState {
         Ok(())
     }
 
-    /// Moves the uploaded head to its pose (same triangles and UVs as the mesh it replaces:
-    /// positions and normals written in place, [`Renderer::move_mesh`]), keeping the local
-    /// thickness, which lies in UV space and so follows the skin; the split's bare renderer
-    /// moves with it.
+    /// Poses the uploaded head in place: `pose` writes new positions and normals into the
+    /// viewport's mesh, first made again from `rest` when given (the first pose after a load:
+    /// the same vertices, triangles and UVs), and they go into the existing vertex buffers
+    /// ([`Renderer::move_mesh`]); no copy of the mesh per pose. The local thickness, which lies
+    /// in UV space and so follows the skin, stays; the split's bare renderer moves with it.
     ///
     /// # Errors
-    /// As [`Renderer::set_mesh`]; the previous mesh stays.
-    pub(super) fn set_posed_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
-        self.renderer.move_mesh(&mesh, skin_albedo)?;
-        if self.bare.as_mut().is_some_and(|bare| bare.move_mesh(&mesh, skin_albedo).is_err()) {
+    /// No mesh to pose; as [`Renderer::set_mesh`], when the GPU keeps the previous positions
+    /// (the next pose writes them again).
+    pub(super) fn pose_mesh(
+        &mut self,
+        rest: Option<&TriangleMesh>,
+        skin_albedo: [f32; 3],
+        pose: impl FnOnce(&mut TriangleMesh),
+    ) -> rouge_render::Result<()> {
+        if let Some(rest) = rest {
+            self.mesh = Some(rest.clone());
+        }
+        let Some(mesh) = self.mesh.as_mut() else {
+            return Err(rouge_render::RenderError::Invalid("no mesh is loaded to pose".into()));
+        };
+        pose(mesh);
+        self.upload_moved(skin_albedo)
+    }
+
+    /// Shows `mesh`, the viewport's mesh moved (the morph preview: the same vertices, triangles
+    /// and UVs), written into the existing vertex buffers as [`GpuState::pose_mesh`] does.
+    ///
+    /// # Errors
+    /// As [`GpuState::pose_mesh`].
+    pub(super) fn set_moved_mesh(&mut self, mesh: TriangleMesh, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
+        self.mesh = Some(mesh);
+        self.upload_moved(skin_albedo)
+    }
+
+    /// Writes the moved mesh's positions and normals to the GPU, the split's bare renderer's too.
+    fn upload_moved(&mut self, skin_albedo: [f32; 3]) -> rouge_render::Result<()> {
+        let Some(mesh) = self.mesh.as_ref() else { return Ok(()) };
+        self.renderer.move_mesh(mesh, skin_albedo)?;
+        if self.bare.as_mut().is_some_and(|bare| bare.move_mesh(mesh, skin_albedo).is_err()) {
             self.bare = None;
         }
-        self.mesh = Some(mesh);
         Ok(())
+    }
+
+    /// The mesh the viewport shows (posed in place by [`GpuState::pose_mesh`]).
+    pub(super) fn mesh(&self) -> Option<&TriangleMesh> {
+        self.mesh.as_ref()
     }
 
     /// Uploads the skin's albedo texture (the skin maps' colour) to the document's renderer and
