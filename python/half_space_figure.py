@@ -1,7 +1,7 @@
 """The exact half-space under the kernel against the path tracer (issue 31, item 1;
 docs/BENCHMARKS.md "The exact half-space under the kernel"): front-lit and backlit reference
 scenes rendered by `rouge render` with the screen-space kernel of the better dipole under the
-Lambert law (the profile's total as albedo) and under the half-space law (`--diffuse
+Lambert law (the medium's adding-doubling albedo) and under the half-space law (`--diffuse
 half-space`), next to the Mitsuba 3 reference and each one's per-pixel error.
 
     python python/half_space_figure.py --rouge target/release/rouge --out docs/images/half_space.png

@@ -155,8 +155,9 @@ pub struct Skin {
 /// irradiance, as a function of the incidence and exit cosines.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum DiffuseLaw {
-    /// Lambert: albedo/π in every direction, the albedo being the profile's total (the diffusion
-    /// models' Rd) or a measured colour.
+    /// Lambert: albedo/π in every direction, the albedo being a medium's exact half-space
+    /// albedo ([`Skin::medium_albedo`], what the diffusion models' Rd approximates) or a
+    /// measured colour.
     #[default]
     Lambert,
     /// The exact transport of an isotropic half-space under an index-matched boundary
@@ -273,12 +274,13 @@ impl Skin {
     }
 
     /// A material of `medium` whose screen-space profile comes from `model` fitted by Gaussians
-    /// ([`FittedProfile`]): the albedo is the model's total diffuse reflectance, the IOR the
-    /// medium's η, the roughness that of skin. Returns the fit too (its error is reported).
+    /// ([`FittedProfile`]): the albedo is what the profile's total diffuse reflectance stands
+    /// for, computed exactly ([`Skin::medium_albedo`]), the IOR the medium's η, the roughness
+    /// that of skin. Returns the fit too (its error is reported).
     pub fn from_medium(medium: &Medium, model: ProfileModel) -> (Skin, FittedProfile) {
         let fit = FittedProfile::of_medium(medium, model);
         let skin = Skin {
-            albedo: fit.total.map(|v| v.clamp(0.0, 1.0) as f32),
+            albedo: Skin::medium_albedo(medium, &fit),
             roughness: 0.35,
             ior: medium.eta as f32,
             subsurface: SubsurfaceModel::ScreenSpace { profile: fit.profile.clone() },
@@ -286,6 +288,20 @@ impl Skin {
             diffuse: DiffuseLaw::Lambert,
         };
         (skin, fit)
+    }
+
+    /// The albedo of `medium` per channel: the subsurface reflectance at normal incidence of its
+    /// half-space under its boundary ([`crate::dielectric_half_space`], adding-doubling: every
+    /// order of scattering and the boundary's internal reflections), which the diffusion
+    /// profiles' totals approximate, 2-37% off for skin at η = 1.3 (docs/BENCHMARKS.md, "The
+    /// dielectric half-space"). `fit`'s totals stand in only for a medium outside the table's
+    /// domain, which [`Medium`]'s checks keep out.
+    pub fn medium_albedo(medium: &Medium, fit: &FittedProfile) -> [f32; 3] {
+        let alpha = medium.reduced_albedo();
+        std::array::from_fn(|c| {
+            crate::dielectric_half_space::reflectance(alpha[c], medium.eta).map_or(fit.total[c], |r| r.normal).clamp(0.0, 1.0)
+                as f32
+        })
     }
 
     /// This skin under [`DiffuseLaw::HalfSpace`]. With a medium, the albedo becomes Hapke's r₀ of

@@ -34,8 +34,8 @@ pub struct TranslucencyBenchArgs {
     /// Profiles the screen-space kernel is built from.
     #[arg(long, value_delimiter = ',', value_enum, default_values_t = [Profile::Dipole, Profile::BetterDipole, Profile::Burley])]
     pub profiles: Vec<Profile>,
-    /// Diffuse laws of the screen-space rows and of `none`: Lambert with the profile's total as
-    /// albedo, and the exact half-space of the medium (Chandrasekhar's H-function).
+    /// Diffuse laws of the screen-space rows and of `none`: Lambert with the medium's exact
+    /// albedo (adding-doubling, which the profile's total approximates), and the exact half-space of the medium (Chandrasekhar's H-function).
     #[arg(long, value_delimiter = ',', value_enum, default_values_t = [Diffuse::Lambert, Diffuse::HalfSpace])]
     pub diffuse: Vec<Diffuse>,
     /// Frames timed per configuration (after two warm-up frames).

@@ -110,11 +110,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     args.scene.check()?;
     let (mut job, fit) = args.scene.render_job()?;
-    if let Some(fit) = &fit {
+    if let (Some(fit), Some(medium)) = (&fit, &job.scene.skin.medium) {
+        let albedo = rouge_render::Skin::medium_albedo(medium, fit);
         eprintln!(
-            "rouge: {} profile of {}: albedo {:.4}, {:.4}, {:.4}; {} Gaussians, fit error {:.2}%, {:.2}%, {:.2}%",
+            "rouge: {} profile of {}: albedo {:.4}, {:.4}, {:.4} (the profile's total {:.4}, {:.4}, {:.4}); {} Gaussians, fit error {:.2}%, {:.2}%, {:.2}%",
             fit.model.name(),
-            job.scene.skin.medium.as_ref().map_or("the medium", |m| m.name.as_str()),
+            medium.name,
+            albedo[0],
+            albedo[1],
+            albedo[2],
             fit.total[0],
             fit.total[1],
             fit.total[2],

@@ -105,7 +105,8 @@ pub struct SceneArgs {
     #[arg(long, value_enum, default_value_t = Profile::BetterDipole)]
     pub profile: Profile,
     /// How the skin's light depends on the light's and the viewer's directions: `lambert`
-    /// (the albedo in every direction; with a medium, the profile's total), or `half-space`, the
+    /// (the albedo in every direction; with a medium, its half-space's exact albedo under its η
+    /// by adding-doubling, which the profile's total approximates), or `half-space`, the
     /// exact transport of an isotropic half-space at an index-matched boundary from
     /// Chandrasekhar's H-function (every albedo, single scattering included; with a medium its
     /// reduced albedo, else the skin's albedo read as Hapke's diffusive reflectance r0).
