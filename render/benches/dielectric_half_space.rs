@@ -7,8 +7,8 @@
 //! `cargo bench -p rouge-render --bench dielectric_half_space`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rouge_render::diffusion::{ChannelProfile, ProfileModel};
 use rouge_render::dielectric_half_space::reflectance;
+use rouge_render::diffusion::{ChannelProfile, ProfileModel};
 use std::hint::black_box;
 
 #[derive(serde::Deserialize)]
@@ -57,11 +57,19 @@ fn report() {
     // Worst relative error over the points off the grid, per η band.
     for (label, lo, hi) in [("η = 1", 1.0, 1.0), ("1 < η ≤ 1.3", 1.0001, 1.3), ("1.3 < η ≤ 1.6", 1.3001, 1.6)] {
         let band: Vec<&Entry> = r.check.iter().filter(|e| e.eta >= lo && e.eta <= hi && e.r_normal > 1e-3).collect();
-        let worst = |f: &dyn Fn(&Entry) -> f64| band.iter().map(|e| (f(e) / e.r_normal - 1.0).abs()).fold(0.0, f64::max);
+        let worst =
+            |f: &dyn Fn(&Entry) -> f64| band.iter().map(|e| (f(e) / e.r_normal - 1.0).abs()).fold(0.0, f64::max);
         let table = worst(&|e| reflectance(e.albedo, e.eta).expect("in the domain").normal);
-        let models: Vec<String> =
-            MODELS.iter().map(|(m, name)| format!("{name} {:.1}%", 100.0 * worst(&|e| total(*m, e.albedo, e.eta)))).collect();
-        eprintln!("{label} ({} points): worst relative error: table {:.3}%, {}", band.len(), 100.0 * table, models.join(", "));
+        let models: Vec<String> = MODELS
+            .iter()
+            .map(|(m, name)| format!("{name} {:.1}%", 100.0 * worst(&|e| total(*m, e.albedo, e.eta))))
+            .collect();
+        eprintln!(
+            "{label} ({} points): worst relative error: table {:.3}%, {}",
+            band.len(),
+            100.0 * table,
+            models.join(", ")
+        );
     }
 }
 

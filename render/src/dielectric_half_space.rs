@@ -89,7 +89,11 @@ fn load() -> std::result::Result<Table, String> {
             return Err(format!("entry {i} (η {}, α′ {}) is not the grid's", e.eta, e.albedo));
         }
     }
-    Ok(Table { etas: r.grid_etas, steps: r.grid_steps, values: r.grid.iter().map(|e| [e.r_normal, e.r_diffuse]).collect() })
+    Ok(Table {
+        etas: r.grid_etas,
+        steps: r.grid_steps,
+        values: r.grid.iter().map(|e| [e.r_normal, e.r_diffuse]).collect(),
+    })
 }
 
 fn table() -> Result<&'static Table> {

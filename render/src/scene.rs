@@ -299,8 +299,9 @@ impl Skin {
     pub fn medium_albedo(medium: &Medium, fit: &FittedProfile) -> [f32; 3] {
         let alpha = medium.reduced_albedo();
         std::array::from_fn(|c| {
-            crate::dielectric_half_space::reflectance(alpha[c], medium.eta).map_or(fit.total[c], |r| r.normal).clamp(0.0, 1.0)
-                as f32
+            crate::dielectric_half_space::reflectance(alpha[c], medium.eta)
+                .map_or(fit.total[c], |r| r.normal)
+                .clamp(0.0, 1.0) as f32
         })
     }
 
