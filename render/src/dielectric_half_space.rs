@@ -85,7 +85,7 @@ fn load() -> std::result::Result<Table, String> {
         let (eta, k) = (r.grid_etas[i / nodes], i % nodes);
         let t = k as f64 / r.grid_steps as f64;
         let in_place = (e.eta - eta).abs() < 1e-12 && (e.albedo - (1.0 - t.powi(4))).abs() < 1e-12;
-        if !in_place || !(e.r_normal.is_finite() && e.r_diffuse.is_finite()) {
+        if !(in_place && e.r_normal.is_finite() && e.r_diffuse.is_finite()) {
             return Err(format!("entry {i} (η {}, α′ {}) is not the grid's", e.eta, e.albedo));
         }
     }
