@@ -138,8 +138,12 @@ fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
     let project = data.path().join("Evening look");
     let mut h = app(data.path(), None, false);
     assert_eq!(h.state().document().name, "Untitled");
-    h.state_mut().set_subsurface(SubsurfaceChoice::None);
+    // The kernel and the per-light translucency together (the model closest to the path tracer
+    // on the front-lit head), offered in the panel since the kernel + thickness model landed.
+    h.state_mut().set_subsurface(SubsurfaceChoice::ScreenSpaceThickness);
     assert!(h.state().document().is_modified(), "another subsurface model is unsaved work");
+    h.run_steps(2);
+    assert_eq!(h.state().subsurface_in_use().0, "screen-space+thickness");
     h.state_mut().save_project_to(&project).expect("save");
     assert_eq!(h.state().document().name, "Evening look", "a new project takes its folder's name");
     h.run_steps(2);
@@ -148,8 +152,9 @@ fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
     let mut h = app(data.path(), Some(project.clone()), false);
     h.run_steps(2);
     let doc = h.state().document();
-    assert_eq!((doc.name.as_str(), doc.subsurface, doc.is_modified()), ("Evening look", SubsurfaceChoice::None, false));
-    assert_eq!(h.state().subsurface_in_use().0, "none", "the viewport draws the saved model");
+    let want = ("Evening look", SubsurfaceChoice::ScreenSpaceThickness, false);
+    assert_eq!((doc.name.as_str(), doc.subsurface, doc.is_modified()), want);
+    assert_eq!(h.state().subsurface_in_use().0, "screen-space+thickness", "the viewport draws the saved model");
 }
 
 #[test]

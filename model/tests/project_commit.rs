@@ -88,7 +88,7 @@ fn state(k: u64) -> Document {
         paint(&mut doc, 1, at(5), 0.002 + k as f32 * 1e-6);
     }
     doc.face.expression.insert("smile".into(), (k % 11) as f32 / 10.0);
-    doc.subsurface = SubsurfaceChoice::ALL[(k % 6) as usize];
+    doc.subsurface = SubsurfaceChoice::ALL[k as usize % SubsurfaceChoice::ALL.len()];
     doc.skin = match k % 3 {
         0 => None,
         i => Some(Arc::clone(&skins()[i as usize - 1])),

@@ -59,3 +59,19 @@ fn the_default_head_closes_at_the_neck_only() {
     let cap_normal = *closed.normals.last().expect("cap vertices");
     assert!(cap_normal.y < -0.5, "cap normal {cap_normal}");
 }
+
+#[test]
+fn the_built_in_sphere_and_wedge_take_the_mesh_scale_and_the_head_keeps_its_size() {
+    let radius = |m: &TriangleMesh| m.positions.iter().map(|p| p.length()).fold(0.0f32, f32::max);
+    let sphere = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
+    let big = load_mesh(Some(Path::new("builtin:sphere")), 4.0, 0).expect("sphere");
+    assert!((radius(&sphere) - 25.0).abs() < 0.01 && (radius(&big) - 100.0).abs() < 0.05, "{}", radius(&big));
+    assert_eq!(sphere.normals, big.normals, "the shape's normals stay");
+    let extent = |m: &TriangleMesh| rouge_model::mesh::Bounds::of(&m.positions).map(|b| b.size());
+    let wedge = load_mesh(Some(Path::new("builtin:wedge")), 0.5, 0).expect("wedge");
+    let full = load_mesh(Some(Path::new("builtin:wedge")), 1.0, 0).expect("wedge");
+    assert_eq!(extent(&wedge).map(|s| s * 2.0), extent(&full));
+    let head = load_mesh(Some(Path::new("builtin:head")), 3.0, 0).expect("head");
+    let rest = load_mesh(None, 1.0, 0).expect("head");
+    assert_eq!(head.positions, rest.positions, "the head's targets are in mm: not scaled");
+}

@@ -190,3 +190,26 @@ fn a_fibre_gel_fills_the_brows() {
         .collect();
     assert!(changed_rows.len() < SIZE as usize / 2, "the fill changes the brow rows only: {} rows", changed_rows.len());
 }
+
+#[test]
+fn hairs_sorted_for_one_eye_are_drawn_again_as_they_are_and_sorted_again_when_the_eye_moves() {
+    // The hair pass sorts its strands back to front once per eye (passes/hair.rs): a frame from
+    // the same eye reuses the upload, a moved eye sorts again. Either way the frame is what a
+    // fresh renderer draws from that eye, bit for bit.
+    let job = brows_job(None);
+    let loaded = job.load().expect("load");
+    let render = |p: &mut rouge_render::job::Prepared| p.render_display().expect("render");
+    let mut reused = job.prepare_loaded(&loaded).expect("prepare");
+    reused.renderer.set_hair_aa(true);
+    let front = render(&mut reused);
+    assert!(render(&mut reused) == front, "the same eye draws the same frame");
+    for yaw in [50.0, -50.0] {
+        reused.camera.yaw_deg = yaw;
+        let turned = render(&mut reused);
+        let mut fresh = job.prepare_loaded(&loaded).expect("prepare");
+        fresh.renderer.set_hair_aa(true);
+        fresh.camera = reused.camera;
+        assert!(turned == render(&mut fresh), "yaw {yaw}: the reused renderer's hairs differ from a fresh one's");
+        assert!(turned != front);
+    }
+}

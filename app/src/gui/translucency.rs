@@ -38,6 +38,7 @@ fn label(choice: SubsurfaceChoice) -> &'static str {
         SubsurfaceChoice::ScreenSpace => "Screen-space scattering",
         SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
         SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
+        SubsurfaceChoice::ScreenSpaceThickness => "Scattering + translucency (per light)",
         SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
         SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
         SubsurfaceChoice::None => "None",
@@ -64,12 +65,18 @@ fn skin1() -> Option<&'static Medium> {
     SKIN1.get_or_init(|| Medium::builtin("skin1").ok()).as_ref()
 }
 
-/// The translucency of the app's skin: skin1's medium, fitted parameters, `baked` or per light.
-fn thickness_model(baked: bool) -> SubsurfaceModel {
+/// The translucency of the app's skin: skin1's medium, its parameters fitted to the path
+/// tracer, `baked` or per light, alone or under the skin's screen-space kernel (with the
+/// parameters fitted under a kernel).
+fn thickness_model(baked: bool, with_kernel: bool) -> SubsurfaceModel {
     let skin1 = skin1();
     let source = ThicknessSource::for_medium(baked, skin1, 64, 30.0);
-    let (params, _) = TranslucencyParams::for_medium(skin1, source.name());
-    SubsurfaceModel::Thickness { params, source, kernel: None }
+    let (params, _) = TranslucencyParams::fitted(skin1, source.name(), with_kernel);
+    let kernel = match SubsurfaceModel::skin_screen_space() {
+        SubsurfaceModel::ScreenSpace { profile } => Some(profile).filter(|_| with_kernel),
+        _ => None,
+    };
+    SubsurfaceModel::Thickness { params, source, kernel }
 }
 
 impl RougeApp {
@@ -93,7 +100,7 @@ impl RougeApp {
             && matches!(self.gpu.local_thickness, LocalThicknessState::Missing)
             && let Some(mesh) = self.gpu.mesh_for_bake()
         {
-            let settings = match thickness_model(true) {
+            let settings = match thickness_model(true, false) {
                 SubsurfaceModel::Thickness { source: ThicknessSource::Baked(s), .. } => s,
                 _ => rouge_model::thickness::BakeSettings::default(),
             };
@@ -115,9 +122,10 @@ impl RougeApp {
             }
             SubsurfaceChoice::ScreenSpace => SubsurfaceModel::skin_screen_space(),
             SubsurfaceChoice::None => SubsurfaceModel::None,
-            SubsurfaceChoice::ThicknessPerLight => thickness_model(false),
+            SubsurfaceChoice::ThicknessPerLight => thickness_model(false, false),
+            SubsurfaceChoice::ScreenSpaceThickness => thickness_model(false, true),
             SubsurfaceChoice::ThicknessBaked => match self.gpu.local_thickness {
-                LocalThicknessState::Ready => thickness_model(true),
+                LocalThicknessState::Ready => thickness_model(true, false),
                 _ => SubsurfaceModel::skin_screen_space(),
             },
         };
@@ -147,7 +155,8 @@ impl RougeApp {
             .on_hover_text(
                 "Translucency: light from behind through thin parts (ears, nostrils, lips), \
                  [Barré-Brisebois 2011], with skin1's parameters fitted to a path tracer. Baked: \
-                 the thickness of the mesh at rest; per light: from the light's shadow map.",
+                 the thickness of the mesh at rest; per light: from the light's shadow map. \
+                 Scattering + translucency: both, the closest to the path tracer on a front-lit head.",
             );
         if chosen != before {
             self.set_subsurface(chosen);

@@ -9,7 +9,8 @@ use crate::error::{ModelError, Result};
 /// Loads a mesh by extension (or the default head for `None`), subdivides it `subdivision`
 /// times (Catmull-Clark) and triangulates it. `builtin:head`, `builtin:sphere` and
 /// `builtin:wedge` name the built-in objects ([`super::shapes`]); the sphere and the wedge are
-/// exact shapes in mm, neither scaled nor subdivided.
+/// exact shapes in mm times `scale_mm` (a 100 mm sphere is `builtin:sphere` at 4), never
+/// subdivided; the head keeps its size (its morph targets are in mm).
 ///
 /// # Errors
 /// The loader's error naming the file; an unknown extension or built-in name.
@@ -24,7 +25,11 @@ pub fn load_mesh(path: Option<&Path>, scale_mm: f32, subdivision: u32) -> Result
                 BUILTIN_SHAPES.join(", builtin:")
             ))
         })?;
-        return Ok(shape.triangulate());
+        let mut mesh = shape.triangulate();
+        if scale_mm != 1.0 {
+            mesh.positions.iter_mut().for_each(|p| *p *= scale_mm);
+        }
+        return Ok(mesh);
     }
     let mesh = match path {
         None => default_head()?,

@@ -88,8 +88,11 @@ pub struct HairStrands {
     segments: Vec<HairSegment>,
     /// Per strand: its segments' range and its centre (mm).
     strands: Vec<(std::ops::Range<usize>, Vec3)>,
-    /// This frame's sorted segments on the GPU, grown as needed.
+    /// The sorted segments on the GPU, grown as needed.
     buffer: Option<(wgpu::Buffer, usize)>,
+    /// The eye they were sorted from: a frame from the same eye draws them as they are (a new
+    /// mesh or pose makes new strands, so the positions cannot have changed under it).
+    sorted_from: Option<Vec3>,
 }
 
 impl HairStrands {
@@ -276,8 +279,14 @@ impl FramePass for HairPass {
             shared.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
             self.written = Some(inputs);
         }
-        let sorted = hair.sorted(rec.eye);
-        let buffer = write_instances((device, &shared.queue), "HairPass::segments", &mut hair.buffer, &sorted);
+        if hair.sorted_from != Some(rec.eye) || hair.buffer.is_none() {
+            let sorted = hair.sorted(rec.eye);
+            write_instances((device, &shared.queue), "HairPass::segments", &mut hair.buffer, &sorted);
+            hair.sorted_from = Some(rec.eye);
+        }
+        let Some((buffer, _)) = hair.buffer.as_ref() else {
+            return Err(RenderError::Invalid("the hair segments were not uploaded".into()));
+        };
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("HairPass::group"),
             layout: &self.layout,
@@ -296,7 +305,7 @@ impl FramePass for HairPass {
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &group, &[]);
         pass.set_vertex_buffer(0, buffer.slice(..));
-        pass.draw(0..6, 0..sorted.len() as u32);
+        pass.draw(0..6, 0..hair.segments.len() as u32);
         Ok(())
     }
 }

@@ -20,11 +20,12 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, Args)]
 pub struct SceneArgs {
     /// Mesh to render (.obj, .gltf, .glb), or builtin:head, builtin:sphere (25 mm radius),
-    /// builtin:wedge (60×40 mm, 1 to 15 mm thick); the embedded default head (hm08, CC0) when
-    /// absent.
+    /// builtin:wedge (60×40 mm, 1 to 15 mm thick), both times --mesh-scale; the embedded default
+    /// head (hm08, CC0) when absent.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
-    /// Millimetres per mesh unit (scans come in metres, centimetres or arbitrary units).
+    /// Millimetres per mesh unit (scans come in metres, centimetres or arbitrary units); for the
+    /// built-in sphere and wedge, their scale.
     #[arg(long, default_value_t = 1.0, value_parser = parse_mesh_scale)]
     pub mesh_scale: f32,
     /// Catmull-Clark subdivision levels applied to the mesh (0-3).
