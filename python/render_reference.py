@@ -84,12 +84,53 @@ UNSEEN: dict[str, tuple[list[str], int, str]] = {
         "the hm08 hand in skin2, lit from the front left (mesh, medium and light together unseen)"),
 }
 
+# Scenes with a dielectric boundary (issue 31, item 5): a smooth boundary of the medium's own
+# eta, lit only by a uniform white environment, which the path tracer reaches by following the
+# refracted paths out (no light sampling through the boundary, so no fireflies: the estimator
+# converges on a CPU). Rouge's medium albedo is exact at normal incidence there (the sphere's
+# centre, render/src/dielectric_half_space.rs); the rim measures the angle dependence no diffuse
+# law has at eta != 1 (`--set dielectric`, data/reference/translucency-dielectric/).
+WHITE_ENV = HERE.parent / "data" / "reference" / "translucency-dielectric" / "white_env.exr"
+DIELECTRIC_EXPORT = ["--boundary-alpha", "0"]
+
+
+def dielectric(medium: str, eta: str, spp: int, description: str, *extra: str):
+    args = ["--mesh", SPHERE, *extra, "--look", "bare", "--eta", eta, "--lights", "none",
+            "--env", str(WHITE_ENV.relative_to(HERE.parent)), "--medium", medium, *SMALL]
+    return (args, spp, description)
+
+
+DIELECTRIC: dict[str, tuple[list[str], int, str]] = {
+    "sphere-skin1-env-eta1.3": dielectric(
+        "skin1", "1.3", 1024, "a 25 mm sphere of skin1 behind a smooth boundary of eta 1.3, under a uniform white sky"),
+    "sphere-ketchup-env-eta1.3": dielectric(
+        "ketchup", "1.3", 512, "a 25 mm sphere of ketchup behind a smooth boundary of eta 1.3, under a uniform white sky"),
+    # The same skin1 sphere four times larger: what the sphere's curvature adds under a uniform
+    # sky shrinks as 1/R (docs/BENCHMARKS.md, "The dielectric half-space").
+    "sphere100-skin1-env-eta1.3": dielectric(
+        "skin1", "1.3", 1024,
+        "a 100 mm sphere of skin1 behind a smooth boundary of eta 1.3, under a uniform white sky", "--mesh-scale", "4"),
+}
+
+
+def write_white_env(path: Path) -> None:
+    """A uniform environment of radiance 1 (16 x 8 texels, RGB = 1)."""
+    import numpy as np
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    img = np.ones((8, 16, 4), dtype=np.float32)
+    mitsuba_ref.write_exr(path, img)
+
+
 def do_export(rouge: str, scenes_dir: Path, names: list[str], scenes: dict = SCENES) -> None:
+    if scenes is DIELECTRIC and not WHITE_ENV.exists():
+        write_white_env(WHITE_ENV)
+    extra = DIELECTRIC_EXPORT if scenes is DIELECTRIC else []
     for name in names:
         args, spp, _ = scenes[name]
         for interior in ("medium", "absorber"):
             out = scenes_dir / name / interior
-            mitsuba_ref.export(rouge, [*args, "--spp", str(spp)], interior, out)
+            mitsuba_ref.export(rouge, [*args, *extra, "--spp", str(spp)], interior, out)
         (scenes_dir / name / "options.json").write_text(json.dumps(args))
         print(f"exported {name}", flush=True)
 
@@ -155,16 +196,19 @@ def main() -> None:
     ap.add_argument("stage", choices=["export", "render", "all"])
     ap.add_argument("--rouge", default=str(HERE.parent / "target" / "debug" / "rouge"))
     ap.add_argument("--scenes-dir", type=Path, default=HERE.parent / "build" / "reference-scenes")
-    ap.add_argument("--set", choices=["committed", "unseen"], default="committed",
-                    help="the committed scenes, or those the half-space law was not developed on")
-    ap.add_argument("--out", type=Path, help="default: data/reference/translucency (-unseen for --set unseen)")
+    ap.add_argument("--set", choices=["committed", "unseen", "dielectric"], default="committed",
+                    help="the committed scenes, those the half-space law was not developed on, or those with a "
+                    "dielectric boundary under a uniform sky")
+    ap.add_argument("--out", type=Path,
+                    help="default: data/reference/translucency (-unseen or -dielectric for those sets)")
     ap.add_argument("--only", nargs="*", help="scene names (default: all)")
     ap.add_argument("--variant", help="Mitsuba variant (default: cuda_ad_rgb if a GPU answers, else scalar_rgb)")
     ap.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's samples")
     ap.add_argument("--max-seconds", type=float, help="stop a scene's medium render after this long (samples vary)")
     a = ap.parse_args()
-    scenes = UNSEEN if a.set == "unseen" else SCENES
-    out = a.out or HERE.parent / "data" / "reference" / ("translucency-unseen" if a.set == "unseen" else "translucency")
+    scenes = {"unseen": UNSEEN, "dielectric": DIELECTRIC}.get(a.set, SCENES)
+    suffix = {"unseen": "-unseen", "dielectric": "-dielectric"}.get(a.set, "")
+    out = a.out or HERE.parent / "data" / "reference" / f"translucency{suffix}"
     names = a.only or list(scenes)
     unknown = [n for n in names if n not in scenes]
     if unknown:
