@@ -247,6 +247,10 @@ pub fn summarize(rows: &[PbrtRow]) -> Vec<PbrtSummary> {
         .collect()
 }
 
+/// The WGSL twin of [`scattering`] (shaders/fibre.wgsl, inserted into shaders/hair.wgsl): it
+/// needs [`wgsl_constants`] before it.
+pub const WGSL_SCATTERING: &str = include_str!("shaders/fibre.wgsl");
+
 /// The WGSL constants of the fibre model (shaders/hair.wgsl).
 pub fn wgsl_constants() -> String {
     format!("const FIBRE_ETA: f32 = {ETA:?};\nconst CUTICLE_TILT_RAD: f32 = {CUTICLE_TILT_RAD:?};\n")

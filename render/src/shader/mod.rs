@@ -183,6 +183,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "layered_mesh" => Some(include_str!("../shaders/layered_mesh.wgsl")),
         "glitter" => Some(include_str!("../shaders/glitter.wgsl")),
         "coverage" => Some(include_str!("../shaders/coverage.wgsl")),
+        "fibre" => Some(crate::fibre::WGSL_SCATTERING),
         _ => None,
     }
 }
