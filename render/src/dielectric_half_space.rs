@@ -159,6 +159,35 @@ pub fn reflectance(alpha_prime: f64, eta: f64) -> Result<Reflectance> {
     Ok(Reflectance { normal: sum[0].clamp(0.0, 1.0), diffuse: sum[1].clamp(0.0, 1.0) })
 }
 
+/// The single-scattering albedo ϖ whose index-matched half-space, with \[Hapke2002\]'s H as the
+/// GPU's `half-space` law evaluates it ([`crate::half_space::h_hapke`]), reflects at normal
+/// incidence what the half-space of `alpha_prime` under a boundary of `eta` does
+/// ([`reflectance`]): the albedo that law takes for a medium with η ≠ 1, so that its energy at
+/// normal incidence is exact while its angular shape stays the index-matched one (an
+/// approximation, measured in docs/BENCHMARKS.md, "The dielectric half-space"). At η = 1 it is
+/// `alpha_prime` itself.
+///
+/// # Errors
+/// As [`reflectance`].
+pub fn index_matched_albedo(alpha_prime: f64, eta: f64) -> Result<f64> {
+    let target = reflectance(alpha_prime, eta)?.normal;
+    if eta == 1.0 {
+        return Ok(alpha_prime);
+    }
+    // 1 − √(1 − ϖ)·H(1) rises from 0 to 1 with ϖ: bisection to f64's resolution.
+    let normal = |w: f64| 1.0 - (1.0 - w).sqrt() * crate::half_space::h_hapke(w, 1.0);
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if normal(mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -31,7 +31,8 @@
 //! H is measured by `rouge bench half-space` (docs/BENCHMARKS.md).
 //!
 //! Domain: 0 ≤ ϖ ≤ 1, 0 ≤ μ, μ₀ ≤ 1 (arguments are clamped there). η = 1 only: a dielectric
-//! boundary changes both the H-equation and the exit distribution (issue 31, item 5).
+//! boundary changes both the H-equation and the exit distribution; its energy at normal and
+//! uniform incidence is [`crate::dielectric_half_space`]'s.
 
 /// Composite Gauss-Legendre panels on [0, 1] for the H-equation: geometric towards 0.
 const PANELS: [(f64, f64); 5] = [(0.0, 1e-3), (1e-3, 1e-2), (1e-2, 0.1), (0.1, 0.4), (0.4, 1.0)];

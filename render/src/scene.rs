@@ -307,10 +307,16 @@ impl Skin {
 
     /// This skin under [`DiffuseLaw::HalfSpace`]. With a medium, the albedo becomes Hapke's r₀ of
     /// each channel's reduced albedo α′ = σs′/σt′ ([`crate::half_space::r0_from_albedo`]), so that
-    /// the lighting pass recovers α′ exactly; without one, the albedo is read as r₀ as it is.
+    /// the lighting pass recovers α′ exactly; under a boundary of η ≠ 1, of the albedo whose
+    /// index-matched half-space reflects as much at normal incidence
+    /// ([`crate::dielectric_half_space::index_matched_albedo`]). Without a medium, the albedo is
+    /// read as r₀ as it is.
     pub fn half_space(self) -> Skin {
         let albedo = match &self.medium {
-            Some(m) => m.reduced_albedo().map(|alpha| crate::half_space::r0_from_albedo(alpha) as f32),
+            Some(m) => m.reduced_albedo().map(|alpha| {
+                let w = crate::dielectric_half_space::index_matched_albedo(alpha, m.eta).unwrap_or(alpha);
+                crate::half_space::r0_from_albedo(w) as f32
+            }),
             None => self.albedo,
         };
         Skin { albedo, diffuse: DiffuseLaw::HalfSpace, ..self }

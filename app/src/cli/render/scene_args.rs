@@ -110,7 +110,9 @@ pub struct SceneArgs {
     /// by adding-doubling, which the profile's total approximates), or `half-space`, the
     /// exact transport of an isotropic half-space at an index-matched boundary from
     /// Chandrasekhar's H-function (every albedo, single scattering included; with a medium its
-    /// reduced albedo, else the skin's albedo read as Hapke's diffusive reflectance r0).
+    /// reduced albedo, else the skin's albedo read as Hapke's diffusive reflectance r0). With a
+    /// medium of eta != 1 its albedo reflects the dielectric half-space's energy at normal
+    /// incidence, its angular shape stays the index-matched one.
     #[arg(long, value_enum, default_value_t = Diffuse::Lambert)]
     pub diffuse: Diffuse,
     /// Skin reflectance for the skin's colour: a CSV table (`wavelength_nm` or `wavelength` and
