@@ -205,6 +205,9 @@ fn env_u64(name: &str) -> Option<u64> {
 /// autosave (the same writer, as the app's recovery folder gets it).
 fn save_until_killed(dir: &Path, from: u64) -> ! {
     let _ = skins();
+    // The parent times its kill from here: the start-up (a process, two skins) takes from a
+    // few milliseconds to over a second, as loaded as the machine is.
+    println!("ready");
     for k in from.. {
         let mut doc = state(k);
         match k % 2 {
@@ -229,13 +232,20 @@ fn kill_one_child(dir: &Path, committed: u64, delay: Duration) -> u64 {
         .spawn()
         .expect("spawn the child");
     let stdout = child.stdout.take().expect("piped");
+    let (ready_tx, ready) = std::sync::mpsc::channel();
     let reader = std::thread::spawn(move || {
         std::io::BufReader::new(stdout)
             .lines()
             .map_while(Result::ok)
+            .inspect(|l| {
+                if l == "ready" {
+                    let _ = ready_tx.send(());
+                }
+            })
             .filter_map(|l| l.strip_prefix("saved ").and_then(|k| k.parse::<u64>().ok()))
             .last()
     });
+    ready.recv_timeout(Duration::from_secs(120)).expect("the child starts saving");
     std::thread::sleep(delay);
     // Child::kill is SIGKILL on Unix: no destructor, no flush, nothing of the save finishes.
     child.kill().expect("kill");
@@ -265,9 +275,10 @@ fn sigkill_at_any_moment_of_a_save_leaves_the_old_or_the_new_project() {
     let mut committed = 1;
     let (mut old, mut new, mut mid_save) = (0, 0, 0);
     for round in 0..rounds {
-        // The child starts (a process, two skins) and then saves every `save`: a delay of up
-        // to a few saves after a start-up lands anywhere in a save.
-        let delay = Duration::from_millis(30) + save.mul_f64(2.0 * rng.next_f64());
+        // The child says when it starts saving, then saves every `save`: a delay of up to two
+        // saves from then lands anywhere in a save. (Timed from the spawn, with a guess at the
+        // start-up, every kill landed before the first save on a loaded machine.)
+        let delay = save.mul_f64(2.0 * rng.next_f64());
         let said = kill_one_child(&dir, committed, delay);
         let found = which_state(&dir).unwrap_or_else(|e| panic!("kill {round} after {delay:?}: the project {e}"));
         assert!(
