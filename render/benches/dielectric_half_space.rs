@@ -7,22 +7,9 @@
 //! `cargo bench -p rouge-render --bench dielectric_half_space`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rouge_render::dielectric_half_space::reflectance;
+use rouge_render::dielectric_half_space::{ReferencePoint, held_out_points, reflectance};
 use rouge_render::diffusion::{ChannelProfile, ProfileModel};
 use std::hint::black_box;
-
-#[derive(serde::Deserialize)]
-struct Entry {
-    eta: f64,
-    albedo: f64,
-    r_normal: f64,
-    medium: Option<String>,
-}
-
-#[derive(serde::Deserialize)]
-struct Reference {
-    check: Vec<Entry>,
-}
 
 /// A profile's total at reduced albedo `alpha` (σt′ = 1 mm⁻¹: the total does not depend on it).
 fn total(model: ProfileModel, alpha: f64, eta: f64) -> f64 {
@@ -36,11 +23,10 @@ const MODELS: [(ProfileModel, &str); 3] = [
 ];
 
 fn report() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/reference/dielectric_half_space.json");
-    let r: Reference = serde_json::from_str(&std::fs::read_to_string(path).expect("read")).expect("parse");
+    let check = held_out_points().expect("the reference");
     eprintln!("| medium channel | α′ | η | adding-doubling | table | classic dipole | better dipole | Burley |");
     eprintln!("|---|---:|---:|---:|---:|---:|---:|---:|");
-    for e in r.check.iter().filter(|e| e.medium.is_some()) {
+    for e in check.iter().filter(|e| e.medium.is_some()) {
         let rel = |v: f64| format!("{:+.1}%", 100.0 * (v / e.r_normal - 1.0));
         let table = reflectance(e.albedo, e.eta).expect("in the domain").normal;
         let models: Vec<String> = MODELS.iter().map(|(m, _)| rel(total(*m, e.albedo, e.eta))).collect();
@@ -56,9 +42,11 @@ fn report() {
     }
     // Worst relative error over the points off the grid, per η band.
     for (label, lo, hi) in [("η = 1", 1.0, 1.0), ("1 < η ≤ 1.3", 1.0001, 1.3), ("1.3 < η ≤ 1.6", 1.3001, 1.6)] {
-        let band: Vec<&Entry> = r.check.iter().filter(|e| e.eta >= lo && e.eta <= hi && e.r_normal > 1e-3).collect();
-        let worst =
-            |f: &dyn Fn(&Entry) -> f64| band.iter().map(|e| (f(e) / e.r_normal - 1.0).abs()).fold(0.0, f64::max);
+        let band: Vec<&ReferencePoint> =
+            check.iter().filter(|e| e.eta >= lo && e.eta <= hi && e.r_normal > 1e-3).collect();
+        let worst = |f: &dyn Fn(&ReferencePoint) -> f64| {
+            band.iter().map(|e| (f(e) / e.r_normal - 1.0).abs()).fold(0.0, f64::max)
+        };
         let table = worst(&|e| reflectance(e.albedo, e.eta).expect("in the domain").normal);
         let models: Vec<String> = MODELS
             .iter()

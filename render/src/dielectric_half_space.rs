@@ -43,19 +43,42 @@ pub struct Reflectance {
     pub diffuse: f64,
 }
 
-#[derive(serde::Deserialize)]
-struct Entry {
-    eta: f64,
-    albedo: f64,
-    r_normal: f64,
-    r_diffuse: f64,
+/// One point of the adding-doubling reference (`data/reference/dielectric_half_space.json`).
+#[derive(Clone, Debug, serde::Deserialize)]
+pub struct ReferencePoint {
+    /// Relative index of refraction.
+    pub eta: f64,
+    /// Reduced albedo α′.
+    pub albedo: f64,
+    /// Subsurface reflectance at normal incidence.
+    pub r_normal: f64,
+    /// Subsurface reflectance under uniform incidence.
+    pub r_diffuse: f64,
+    /// The medium and channel of data/media/ it is, for those points.
+    #[serde(default)]
+    pub medium: Option<String>,
 }
 
 #[derive(serde::Deserialize)]
 struct Reference {
     grid_etas: Vec<f64>,
     grid_steps: usize,
-    grid: Vec<Entry>,
+    grid: Vec<ReferencePoint>,
+    check: Vec<ReferencePoint>,
+}
+
+/// The reference file's text, compiled in.
+const REFERENCE_JSON: &str = include_str!("../../data/reference/dielectric_half_space.json");
+
+/// The reference's points off the table's grid (other η, random albedos, the media), on which
+/// the interpolation is judged (`render/tests/dielectric_half_space.rs`, the bench).
+///
+/// # Errors
+/// [`RenderError::Invalid`] if the compiled-in file does not parse.
+pub fn held_out_points() -> Result<Vec<ReferencePoint>> {
+    serde_json::from_str::<Reference>(REFERENCE_JSON)
+        .map(|r| r.check)
+        .map_err(|e| RenderError::Invalid(format!("data/reference/dielectric_half_space.json: {e}")))
 }
 
 /// The grid: `values[e * (steps + 1) + k]` at η = `etas[e]` and t = (1 − α′)^¼ = k / steps.
@@ -65,10 +88,9 @@ struct Table {
     values: Vec<[f64; 2]>,
 }
 
-/// The reference's grid, read once and checked: every η and s in place, every value finite.
+/// The reference's grid, read once and checked: every η and t in place, every value finite.
 fn load() -> std::result::Result<Table, String> {
-    let text = include_str!("../../data/reference/dielectric_half_space.json");
-    let r: Reference = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    let r: Reference = serde_json::from_str(REFERENCE_JSON).map_err(|e| e.to_string())?;
     let nodes = r.grid_steps + 1;
     let eta_steps = r.grid_etas.len().saturating_sub(1);
     if r.grid_steps < 3 || eta_steps < 1 || r.grid.len() != nodes * r.grid_etas.len() {

@@ -2,33 +2,15 @@
 //! not built from: the adding-doubling points off its grid, and at η = 1 Chandrasekhar's
 //! H-function (render/src/half_space.rs, itself checked against 50-digit values).
 
-use rouge_render::dielectric_half_space::{ETA_RANGE, reflectance};
+use rouge_render::dielectric_half_space::{ETA_RANGE, held_out_points, reflectance};
 use rouge_render::half_space::HalfSpace;
-
-#[derive(serde::Deserialize)]
-struct Entry {
-    eta: f64,
-    albedo: f64,
-    r_normal: f64,
-    r_diffuse: f64,
-}
-
-#[derive(serde::Deserialize)]
-struct Reference {
-    check: Vec<Entry>,
-}
-
-fn reference() -> Reference {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/reference/dielectric_half_space.json");
-    serde_json::from_str(&std::fs::read_to_string(&path).expect("read")).expect("parse")
-}
 
 #[test]
 fn off_the_grid_the_table_is_within_a_ten_thousandth_of_adding_doubling() {
-    let r = reference();
-    assert!(r.check.len() > 100);
+    let check = held_out_points().expect("the reference");
+    assert!(check.len() > 100);
     let mut errors: Vec<(f64, f64, f64)> = Vec::new();
-    for e in &r.check {
+    for e in &check {
         let got = reflectance(e.albedo, e.eta).expect("in the domain");
         for err in [(got.normal - e.r_normal).abs(), (got.diffuse - e.r_diffuse).abs()] {
             errors.push((err, e.albedo, e.eta));

@@ -96,6 +96,12 @@ impl RougeApp {
 /// in the restarted app.
 pub const LOSE_DEVICE_ENV: &str = "ROUGE_TEST_LOSE_DEVICE";
 
+/// Whether [`LOSE_DEVICE_ENV`] is set, read once (the check runs every frame).
+fn loss_injected() -> bool {
+    static SET: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *SET.get_or_init(|| std::env::var_os(LOSE_DEVICE_ENV).is_some())
+}
+
 impl RougeApp {
     /// With [`LOSE_DEVICE_ENV`] set (and not in the restarted app): destroys the device once the
     /// face has been shown.
@@ -104,7 +110,7 @@ impl RougeApp {
             && !self.options.recover
             && self.ready()
             && self.gpu.has_frame()
-            && std::env::var_os(LOSE_DEVICE_ENV).is_some()
+            && loss_injected()
         {
             self.destroy_device();
         }
