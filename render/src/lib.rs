@@ -50,6 +50,7 @@ pub mod scene;
 pub(crate) mod shader;
 pub mod silhouettes;
 pub mod skin_study;
+pub mod slab_transmittance;
 pub mod specular;
 pub mod sss;
 pub mod study;
