@@ -204,6 +204,17 @@ pub enum SubsurfaceModel {
         /// without, the diffuse light stays where it entered.
         kernel: Option<DiffusionProfile>,
     },
+    /// The slab law ([`crate::slab_transmittance`]): each light that crossed the mesh before a
+    /// skin pixel lights it as a plane slab of the skin's medium, of the thickness the light
+    /// crossed (its shadow map) and tilted as the face it entered (the map's slope), would: exact
+    /// transport, every order of scattering, no fitted parameter. The thickness pass draws it,
+    /// with the local-thickness target for the material id. Needs `Skin::medium`, and lights
+    /// that cast shadows; exact for an index-matched boundary (η = 1).
+    Slab {
+        /// With a profile, its screen-space kernel blurs the skin's diffuse radiance, the slab's
+        /// light with it (`screen-space+slab`), as in [`SubsurfaceModel::Thickness`].
+        kernel: Option<DiffusionProfile>,
+    },
     /// The directional dipole (\[Frisvad2014\]) or the standard dipole (\[Jensen2001\]) of the
     /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
     /// (\[DirDipoleThesis\], the dipole passes). Takes over the skin's direct light; needs
@@ -237,6 +248,8 @@ impl SubsurfaceModel {
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
             SubsurfaceModel::Thickness { kernel: Some(_), .. } => "screen-space+thickness",
             SubsurfaceModel::Thickness { kernel: None, .. } => "thickness",
+            SubsurfaceModel::Slab { kernel: Some(_) } => "screen-space+slab",
+            SubsurfaceModel::Slab { kernel: None } => "slab",
             SubsurfaceModel::Dipole { kind, .. } => kind.name(),
             SubsurfaceModel::CubeAtlas { .. } => "cube-atlas",
         }
@@ -246,11 +259,12 @@ impl SubsurfaceModel {
     /// screen-space model, or the thickness model with a kernel).
     pub fn profile(&self) -> Option<&DiffusionProfile> {
         match self {
-            SubsurfaceModel::ScreenSpace { profile } | SubsurfaceModel::Thickness { kernel: Some(profile), .. } => {
-                Some(profile)
-            }
+            SubsurfaceModel::ScreenSpace { profile }
+            | SubsurfaceModel::Thickness { kernel: Some(profile), .. }
+            | SubsurfaceModel::Slab { kernel: Some(profile) } => Some(profile),
             SubsurfaceModel::None
             | SubsurfaceModel::Thickness { kernel: None, .. }
+            | SubsurfaceModel::Slab { kernel: None }
             | SubsurfaceModel::Dipole { .. }
             | SubsurfaceModel::CubeAtlas { .. } => None,
         }

@@ -20,7 +20,9 @@
 //!   grid of G = T_m · e^{κτ} over 25 albedos even in t = (1 − α′)^¼, 32 thicknesses even in
 //!   ln(1 + τ) up to τ = 256, and 9 × 9 cosines even in [0, 1]. κ(α′) is Case's discrete
 //!   eigenvalue ([`kappa`]), the slowest decay of transport with depth, so G varies slowly and
-//!   interpolates linearly (quadrilinear here and in `shaders/slab.wgsl`, the same taps).
+//!   interpolates linearly: quadrilinear here; the renderer interpolates the albedo once per
+//!   medium on the CPU ([`medium_values`]) and the other three axes per pixel
+//!   (`shaders/slab.wgsl`), which is the same sum.
 //!
 //! Accuracy, on the 240 points off the grid the script computes independently (24 quadrature
 //! angles, other nodes): within the figures of docs/BENCHMARKS.md ("The slab law"), worst for
@@ -72,6 +74,10 @@ struct Reference {
     g: Vec<f64>,
     check: Vec<SlabPoint>,
 }
+
+/// The shader's twin of [`transmittance`] (`shaders/slab.wgsl`, `//#insert slab`): it reads the
+/// table from a storage array `slab_table` the including shader declares.
+pub const WGSL: &str = include_str!("shaders/slab.wgsl");
 
 const REFERENCE_JSON: &str = include_str!("../../data/reference/slab_transmittance.json");
 const FILE: &str = "data/reference/slab_transmittance.json";
@@ -137,12 +143,33 @@ pub fn axes() -> Result<Axes> {
     Ok(table()?.axes)
 }
 
-/// The grid of G = T_m·e^{κτ} as the shader reads it, `[albedo][thickness][μ_v][μ_l]`.
+/// The whole grid of G = T_m·e^{κτ}, `[albedo][thickness][μ_v][μ_l]`.
 ///
 /// # Errors
 /// [`RenderError::Invalid`] if the compiled-in table is malformed.
-pub fn gpu_values() -> Result<&'static [f32]> {
+pub fn values() -> Result<&'static [f32]> {
     Ok(&table()?.g)
+}
+
+/// The grid at one medium's three reduced albedos, as the shader reads it:
+/// `[channel][thickness][μ_v][μ_l]`, each channel's block interpolated linearly in t between the
+/// albedo nodes around it (the first of [`transmittance`]'s four interpolations, so the shader's
+/// remaining three give the same value).
+///
+/// # Errors
+/// [`RenderError::Invalid`] naming an albedo outside [0, 1], or a malformed table.
+pub fn medium_values(alpha_prime: [f64; 3]) -> Result<Vec<f32>> {
+    let t = table()?;
+    let ax = t.axes;
+    let block = ax.taus * ax.mus * ax.mus;
+    let mut out = Vec::with_capacity(3 * block);
+    for a in alpha_prime {
+        check("albedo", a, (0.0..=1.0).contains(&a), "is outside [0, 1]")?;
+        let (ia, fa) = cell((1.0 - a).powf(0.25), ax.albedos);
+        let (lo, hi) = (&t.g[ia * block..(ia + 1) * block], &t.g[(ia + 1) * block..(ia + 2) * block]);
+        out.extend(lo.iter().zip(hi).map(|(l, h)| ((1.0 - fa) * *l as f64 + fa * *h as f64) as f32));
+    }
+    Ok(out)
 }
 
 /// Case's discrete eigenvalue of isotropic scattering at albedo α′ as a decay rate κ = 1/ν₀
@@ -237,7 +264,10 @@ mod tests {
     #[test]
     fn the_table_loads_and_its_kappa_is_this_module_s() {
         let ax = axes().expect("table");
-        assert_eq!(gpu_values().expect("values").len(), ax.albedos * ax.taus * ax.mus * ax.mus);
+        assert_eq!(values().expect("values").len(), ax.albedos * ax.taus * ax.mus * ax.mus);
+        let medium = medium_values([1.0, 0.5, 0.0]).expect("in the domain");
+        assert_eq!(medium.len(), 3 * ax.taus * ax.mus * ax.mus);
+        assert!(medium_values([0.5, f64::NAN, 0.5]).is_err());
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! The Subsurface panel: which subsurface model the skin uses in the viewport: the screen-space
 //! kernel (the default), the fast thickness translucency (\[BarreBrisebois2011\]) with a baked
-//! local thickness or one read per light from its shadow map, the directional dipole, the
+//! local thickness or one read per light from its shadow map, the kernel with the slab law's
+//! light through thin parts ([`rouge_render::slab_transmittance`]), the directional dipole, the
 //! cube-map atlas dipole (\[Benmounah2009\], with the paper's deformation test: the head morphed
 //! toward its bounding sphere, by hand or animated), or none. The bake runs on a
 //! background thread (cached on disk by mesh: instant the second time); until it lands the
@@ -39,6 +40,7 @@ fn label(choice: SubsurfaceChoice) -> &'static str {
         SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
         SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
         SubsurfaceChoice::ScreenSpaceThickness => "Scattering + translucency (per light)",
+        SubsurfaceChoice::ScreenSpaceSlab => "Scattering + slab translucency (skin1, exact)",
         SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
         SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
         SubsurfaceChoice::None => "None",
@@ -109,8 +111,11 @@ impl RougeApp {
             });
             self.gpu.local_thickness = LocalThicknessState::Baking(rx);
         }
-        // The dipoles need a physical medium: the app's skin takes skin1's for them.
-        let physical = matches!(choice, SubsurfaceChoice::DirectionalDipole | SubsurfaceChoice::CubeAtlas);
+        // The dipoles and the slab law need a physical medium: the app's skin takes skin1's.
+        let physical = matches!(
+            choice,
+            SubsurfaceChoice::DirectionalDipole | SubsurfaceChoice::CubeAtlas | SubsurfaceChoice::ScreenSpaceSlab
+        );
         self.view.scene.skin.medium = physical.then(|| skin1().cloned()).flatten();
         self.view.scene.skin.subsurface = match choice {
             SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
@@ -124,6 +129,9 @@ impl RougeApp {
             SubsurfaceChoice::None => SubsurfaceModel::None,
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false, false),
             SubsurfaceChoice::ScreenSpaceThickness => thickness_model(false, true),
+            SubsurfaceChoice::ScreenSpaceSlab => {
+                SubsurfaceModel::Slab { kernel: SubsurfaceModel::skin_screen_space().profile().cloned() }
+            }
             SubsurfaceChoice::ThicknessBaked => match self.gpu.local_thickness {
                 LocalThicknessState::Ready => thickness_model(true, false),
                 _ => SubsurfaceModel::skin_screen_space(),

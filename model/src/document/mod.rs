@@ -238,6 +238,9 @@ pub enum SubsurfaceChoice {
     /// The screen-space kernel and the per-light thickness translucency together, with the
     /// term's parameters fitted under the kernel (the best model on the front-lit head).
     ScreenSpaceThickness,
+    /// The screen-space kernel and skin1's light through thin parts by the slab law (exact slab
+    /// transport per light, no fitted parameter).
+    ScreenSpaceSlab,
     /// The directional dipole of skin1 (\[Frisvad2014\]), accumulated over frames while still.
     DirectionalDipole,
     /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame (\[Benmounah2009\]).
@@ -248,24 +251,26 @@ pub enum SubsurfaceChoice {
 
 impl SubsurfaceChoice {
     /// Every choice, in the order the app lists them.
-    pub const ALL: [SubsurfaceChoice; 7] = [
+    pub const ALL: [SubsurfaceChoice; 8] = [
         SubsurfaceChoice::ScreenSpace,
         SubsurfaceChoice::ThicknessBaked,
         SubsurfaceChoice::ThicknessPerLight,
         SubsurfaceChoice::ScreenSpaceThickness,
+        SubsurfaceChoice::ScreenSpaceSlab,
         SubsurfaceChoice::DirectionalDipole,
         SubsurfaceChoice::CubeAtlas,
         SubsurfaceChoice::None,
     ];
 
     /// The name a project file gives it (`screen-space`, `thickness-baked`, `thickness-per-light`,
-    /// `screen-space-thickness`, `directional-dipole`, `cube-atlas`, `none`).
+    /// `screen-space-thickness`, `screen-space-slab`, `directional-dipole`, `cube-atlas`, `none`).
     pub fn name(self) -> &'static str {
         match self {
             SubsurfaceChoice::ScreenSpace => "screen-space",
             SubsurfaceChoice::ThicknessBaked => "thickness-baked",
             SubsurfaceChoice::ThicknessPerLight => "thickness-per-light",
             SubsurfaceChoice::ScreenSpaceThickness => "screen-space-thickness",
+            SubsurfaceChoice::ScreenSpaceSlab => "screen-space-slab",
             SubsurfaceChoice::DirectionalDipole => "directional-dipole",
             SubsurfaceChoice::CubeAtlas => "cube-atlas",
             SubsurfaceChoice::None => "none",

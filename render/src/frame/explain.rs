@@ -140,6 +140,13 @@ pub(super) fn material(skin: &Skin) -> String {
                 source.name()
             );
         }
+        SubsurfaceModel::Slab { .. } => {
+            out.push_str(
+                " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
+                 and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
+                 face it entered from the map's slope; η = 1)",
+            );
+        }
         SubsurfaceModel::CubeAtlas { settings: a } => {
             let _ = write!(
                 out,

@@ -159,7 +159,7 @@ impl Planner {
         let added = vec![(Resource::Target(Target::Diffuse), Access::Add)];
         if let Some((source, uniform)) = models.thickness {
             let mut reads = targets(&thickness::inputs());
-            if source == ThicknessVariant::ShadowMap {
+            if matches!(source, ThicknessVariant::ShadowMap | ThicknessVariant::Slab) {
                 reads.push(Resource::ShadowMaps);
             }
             self.push(Step::Thickness(uniform), reads, added.clone());
@@ -301,9 +301,13 @@ impl Planner {
         local_thickness_map: bool,
         shadow_maps: u32,
     ) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
-        let SubsurfaceModel::Thickness { params, source, .. } = &scene.skin.subsurface else {
-            self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
-            return Ok(None);
+        let (params, source) = match &scene.skin.subsurface {
+            SubsurfaceModel::Thickness { params, source, .. } => (params, source),
+            SubsurfaceModel::Slab { .. } => return self.slab_model(scene, shadow_maps),
+            _ => {
+                self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
+                return Ok(None);
+            }
         };
         params.check()?;
         if scene.lights.is_empty() {
@@ -337,6 +341,28 @@ impl Planner {
         };
         let (falloff, cutoff_mm) = source.falloff();
         Ok(Some((variant, ThicknessUniform::new(*params, falloff, cutoff_mm))))
+    }
+
+    /// The slab law's thickness pass: the skin's medium, and a light with a shadow map.
+    fn slab_model(&mut self, scene: &Scene, shadow_maps: u32) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
+        let medium = scene.skin.medium.as_ref().ok_or_else(|| {
+            RenderError::Invalid(
+                "the slab model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
+            )
+        })?;
+        for (i, l) in scene.lights.iter().enumerate() {
+            if !l.shadows {
+                self.skip(
+                    format!("slab translucency of light {i}"),
+                    "the slab law reads the thickness the light crossed from its shadow map, and the light casts none",
+                );
+            }
+        }
+        if shadow_maps == 0 {
+            self.skip("thickness pass and local-thickness target", "no light has a shadow map for the slab law");
+            return Ok(None);
+        }
+        Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium)?)))
     }
 
     /// The dipole passes when the skin's model is a dipole: one light view per directional light

@@ -127,6 +127,42 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
 }
 
 #[test]
+fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() {
+    let up = uploaded(0);
+    let mut scene = Scene::rig(crate::scene::LightRig::Back);
+    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: None };
+    // No physical medium: an error that says how to give one.
+    let err = FramePlan::new(&scene, up, settings()).expect_err("no medium");
+    assert!(err.to_string().contains("--medium"), "{err}");
+    scene.skin.medium = Some(rouge_model::medium::Medium::builtin("marble").expect("marble"));
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
+    assert_eq!(plan.variant.thickness, ThicknessVariant::Slab);
+    assert!(
+        plan.passes
+            .iter()
+            .any(|p| matches!(p.step, Step::Thickness(u) if u.is_slab()) && p.reads.contains(&Resource::ShadowMaps))
+    );
+    assert!(!plan.passes.iter().any(|p| p.reads.contains(&Resource::LocalThicknessMap)));
+    assert!(plan.explain().contains("subsurface slab (each shadowed light through a plane slab"));
+    // Under the kernel, before the blur.
+    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: Some(crate::sss::DiffusionProfile::skin()) };
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(
+        steps(&plan),
+        ["shadow 0", "gbuffer", "lighting", "thickness", "sss horizontal", "sss vertical", "composite"]
+    );
+    // No shadow map: no pass, and the plan says why.
+    scene.lights[0].shadows = false;
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert!(!plan.targets.contains(&Target::LocalThickness));
+    let text = plan.explain();
+    assert!(
+        text.contains("no light has a shadow map for the slab law") && text.contains("slab translucency of light 0")
+    );
+}
+
+#[test]
 fn bad_requests_are_errors() {
     let up = uploaded(0);
     let scene = Scene::studio();

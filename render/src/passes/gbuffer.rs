@@ -59,7 +59,11 @@ impl FramePass for GbufferPass {
         albedo_map: v.albedo_map,
         normal_map: v.normal_map,
         skin_detail: v.skin_detail,
-        thickness: v.thickness,
+        // The G-buffer writes the material id for either shadow-map law alike.
+        thickness: match v.thickness {
+            ThicknessVariant::Slab => ThicknessVariant::ShadowMap,
+            t => t,
+        },
         glitter: v.glitter,
         ..Variant::BARE
     });

@@ -4,14 +4,21 @@
 //! subsurface model is [`crate::scene::SubsurfaceModel::Thickness`]; the G-buffer then carries
 //! the local thickness and the material id ([`Target::LocalThickness`]), and the per-material
 //! parameters live in this pass's uniform, indexed by that id (the talk's material-id packing).
+//! Under the slab law ([`crate::scene::SubsurfaceModel::Slab`]) the same pass lights the skin as a
+//! plane slab of the thickness each light crossed ([`crate::slab_transmittance`]); its table is
+//! uploaded the first time a frame needs it, and a one-value stand-in is bound otherwise.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
-use crate::error::Result;
+use crate::error::{RenderError, Result};
 use crate::local_thickness::TranslucencyParams;
 use crate::shader::{PassShader, Variant, pass_shader};
+use crate::slab_transmittance;
 use crate::targets::{HDR_FORMAT, Target};
-use crate::wgpu_util::{buf, color_load, float_tex, layout, tex, tex_entry, uniform_buffer, uniform_entry};
+use crate::wgpu_util::{
+    buf, buffer_init, color_load, float_tex, layout, storage_entry, tex, tex_entry, uniform_buffer, uniform_entry,
+};
 use bytemuck::{Pod, Zeroable};
+use rouge_model::medium::Medium;
 use rouge_model::thickness::Falloff;
 
 /// Translucency material ids the G-buffer's 2-bit alpha can hold (0 is "none").
@@ -30,6 +37,14 @@ pub struct ThicknessUniform {
     pub falloff: [f32; 4],
     /// x: 1 for the exponential falloff, 0 for the power falloff.
     pub kind: [u32; 4],
+    /// The slab law's reduced albedo α′ per channel (zero under the talk's term).
+    pub slab_albedo: [f32; 4],
+    /// Case's decay rate κ(α′) per channel ([`slab_transmittance::kappa`]).
+    pub slab_kappa: [f32; 4],
+    /// σt′ = σa + σs′ per channel, mm⁻¹.
+    pub slab_sigma_t: [f32; 4],
+    /// The table's axes: albedo, thickness and cosine nodes, ln(1 + τ_max).
+    pub slab_axes: [f32; 4],
 }
 
 impl ThicknessUniform {
@@ -41,7 +56,40 @@ impl ThicknessUniform {
             Falloff::Power { exponent } => ([exponent, 0.0, 0.0, cutoff_mm], 0),
             Falloff::Exponential { per_mm } => ([per_mm[0], per_mm[1], per_mm[2], cutoff_mm], 1),
         };
-        ThicknessUniform { materials, falloff, kind: [kind, 0, 0, 0] }
+        ThicknessUniform { materials, falloff, kind: [kind, 0, 0, 0], ..ThicknessUniform::zeroed() }
+    }
+
+    /// The uniform of the slab law for a skin of `medium`.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] if the compiled-in table is malformed, or the medium's
+    /// coefficients give no finite reduced albedo and extinction.
+    pub fn slab(medium: &Medium) -> Result<ThicknessUniform> {
+        let axes = slab_transmittance::axes()?;
+        let alpha = medium.reduced_albedo();
+        let sigma_t: [f64; 3] = std::array::from_fn(|c| medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]);
+        if let Some(c) = (0..3).find(|&c| !(sigma_t[c].is_finite() && sigma_t[c] > 0.0 && alpha[c].is_finite())) {
+            return Err(RenderError::Invalid(format!(
+                "the slab law needs a finite, positive σa + σs′: {} has {} mm⁻¹ in channel {c}",
+                medium.name, sigma_t[c]
+            )));
+        }
+        let rgb = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
+        let mut materials = [[0.0; 4]; MATERIAL_IDS];
+        materials[SKIN_MATERIAL_ID] = [0.0, 1.0, 0.0, 0.0];
+        Ok(ThicknessUniform {
+            materials,
+            slab_albedo: rgb(alpha),
+            slab_kappa: rgb(alpha.map(slab_transmittance::kappa)),
+            slab_sigma_t: rgb(sigma_t),
+            slab_axes: [axes.albedos as f32, axes.taus as f32, axes.mus as f32, axes.tau_max.ln_1p() as f32],
+            ..ThicknessUniform::zeroed()
+        })
+    }
+
+    /// Whether this is the slab law's uniform.
+    pub fn is_slab(&self) -> bool {
+        self.slab_axes[0] > 0.0
     }
 }
 
@@ -51,6 +99,10 @@ pub struct ThicknessPass {
     layout: wgpu::BindGroupLayout,
     pipelines: Pipelines,
     uniform: wgpu::Buffer,
+    /// The slab law's table at the albedos (the uniform's, as bits) a frame last used it for;
+    /// a one-value stand-in binds in its place for the talk's term.
+    slab_table: Option<([u32; 3], wgpu::Buffer)>,
+    stand_in: wgpu::Buffer,
 }
 
 /// The targets the pass reads.
@@ -77,10 +129,13 @@ impl FramePass for ThicknessPass {
                 float_tex(3, false),
                 tex_entry(4, wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2Array),
                 uniform_entry(5, wgpu::ShaderStages::FRAGMENT),
+                storage_entry(6),
             ],
         );
         let uniform = uniform_buffer(device, "ThicknessPass::uniform", std::mem::size_of::<ThicknessUniform>());
-        ThicknessPass { layout, pipelines: Pipelines::default(), uniform }
+        let stand_in =
+            buffer_init(device, "ThicknessPass::stand_in", bytemuck::bytes_of(&0.0f32), wgpu::BufferUsages::STORAGE);
+        ThicknessPass { layout, pipelines: Pipelines::default(), uniform, slab_table: None, stand_in }
     }
 
     fn name(_: &ThicknessUniform) -> String {
@@ -106,6 +161,22 @@ impl FramePass for ThicknessPass {
         let [normal, albedo, depth, local] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth, local) = (normal?, albedo?, depth?, local?);
         let diffuse = targets.view(Target::Diffuse)?;
+        let key = [0, 1, 2].map(|c| uniform.slab_albedo[c].to_bits());
+        if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
+            let values =
+                slab_transmittance::medium_values(uniform.slab_albedo.map(f64::from)[..3].try_into().expect("3"))?;
+            let buffer = buffer_init(
+                &shared.device,
+                "ThicknessPass::slab_table",
+                bytemuck::cast_slice(&values),
+                wgpu::BufferUsages::STORAGE,
+            );
+            self.slab_table = Some((key, buffer));
+        }
+        let table = match &self.slab_table {
+            Some((_, buffer)) if uniform.is_slab() => buffer,
+            _ => &self.stand_in,
+        };
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ThicknessPass::group"),
             layout: &self.layout,
@@ -116,6 +187,7 @@ impl FramePass for ThicknessPass {
                 tex(3, &local),
                 tex(4, &rec.shadow_maps),
                 buf(5, &self.uniform),
+                buf(6, table),
             ],
         });
         let mut pass = rec.enc.begin("thickness", &[color_load(&diffuse)], None);

@@ -20,6 +20,9 @@ pub enum ThicknessVariant {
     Baked,
     /// Each light's shadow map, read in the thickness pass.
     ShadowMap,
+    /// Each light's shadow map, through the slab law ([`crate::slab_transmittance`]) in place of
+    /// the talk's term.
+    Slab,
 }
 
 /// What a scene and look need compiled.
@@ -72,7 +75,8 @@ impl Variant {
     /// Every variant, for validating all shader sources: the diffusion models' flags are
     /// (dipole, atlas) ∈ {(off, off), (on, off), (on, on)}; glitter only with layers.
     pub fn all() -> impl Iterator<Item = Variant> {
-        let thickness = [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap];
+        let thickness =
+            [ThicknessVariant::Off, ThicknessVariant::Baked, ThicknessVariant::ShadowMap, ThicknessVariant::Slab];
         (0..=MAX_LAYERS as u32).flat_map(move |layers| {
             (0..384u32).flat_map(move |bits| {
                 thickness.into_iter().map(move |thickness| Variant {
@@ -96,13 +100,14 @@ impl Variant {
     }
 
     /// The `//#if` flags of this variant, with their values.
-    fn flags(self, half_linear: bool) -> [(&'static str, bool); 16] {
+    fn flags(self, half_linear: bool) -> [(&'static str, bool); 17] {
         [
             ("DIPOLE", self.dipole),
             ("ATLAS", self.atlas),
             ("THICKNESS", self.thickness != ThicknessVariant::Off),
             ("THICKNESS_MAP", self.thickness == ThicknessVariant::Baked),
-            ("THICKNESS_LIGHT", self.thickness == ThicknessVariant::ShadowMap),
+            ("THICKNESS_LIGHT", matches!(self.thickness, ThicknessVariant::ShadowMap | ThicknessVariant::Slab)),
+            ("THICKNESS_SLAB", self.thickness == ThicknessVariant::Slab),
             ("LAYERS_A", self.layers > 0),
             ("LAYERS_B", self.layers > 4),
             ("SHADOWS", self.shadows),
@@ -184,6 +189,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "glitter" => Some(include_str!("../shaders/glitter.wgsl")),
         "coverage" => Some(include_str!("../shaders/coverage.wgsl")),
         "fibre" => Some(crate::fibre::WGSL_SCATTERING),
+        "slab" => Some(crate::slab_transmittance::WGSL),
         _ => None,
     }
 }

@@ -60,13 +60,13 @@ fn every_shader_variant_validates() {
             }
         }
     }
-    assert_eq!(Variant::all().count(), 9 * 384 * 3);
-    // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants, and
-    // the 8 with layers again with glitter; thickness: 3; lighting: 9 × shadows × env × 3
+    assert_eq!(Variant::all().count(), 9 * 384 * 4);
+    // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants (the
+    // slab law's is the shadow map's), and the 8 with layers again with glitter; thickness: 4; lighting: 9 × shadows × env × 3
     // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display × hair;
     // shadow, SSS, depth copy, edge overdraw, the three dipole passes and the atlas gather: 1
     // each; the atlas irradiance and the hair: shadows × env.
-    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 3 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 4 + 4;
+    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 4 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 4 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -283,6 +283,10 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("materials", offset_of!(ThicknessUniform, materials)),
                 ("falloff", offset_of!(ThicknessUniform, falloff)),
                 ("kind", offset_of!(ThicknessUniform, kind)),
+                ("slab_albedo", offset_of!(ThicknessUniform, slab_albedo)),
+                ("slab_kappa", offset_of!(ThicknessUniform, slab_kappa)),
+                ("slab_sigma_t", offset_of!(ThicknessUniform, slab_sigma_t)),
+                ("slab_axes", offset_of!(ThicknessUniform, slab_axes)),
             ],
         ),
         (

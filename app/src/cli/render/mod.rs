@@ -85,6 +85,11 @@ pub enum Subsurface {
     /// the blur: the kernel near where light entered, the thickness term through thin parts; its
     /// parameters fitted under the kernel where the --medium's file has them.
     ScreenSpaceThickness,
+    /// Light through thin parts as through a plane slab of the --medium, exactly (adding-doubling;
+    /// the thickness each light crossed from its shadow map): no fitted parameter.
+    Slab,
+    /// The screen-space kernel with the slab's light from behind added before the blur.
+    ScreenSpaceSlab,
     /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
     /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
@@ -142,6 +147,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             let kernel = job.scene.skin.subsurface.profile().filter(|_| combined).cloned();
             job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref(), kernel)?;
             job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
+        }
+        Subsurface::Slab | Subsurface::ScreenSpaceSlab => {
+            let combined = args.subsurface == Subsurface::ScreenSpaceSlab;
+            let kernel = job.scene.skin.subsurface.profile().filter(|_| combined).cloned();
+            job.scene.skin.subsurface = SubsurfaceModel::Slab { kernel };
         }
         Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,
         Subsurface::StandardDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Standard)?,

@@ -1,0 +1,173 @@
+//! The slab law on a real device (lavapipe on CI): the shader's transmission (shaders/slab.wgsl)
+//! against its CPU twin (`rouge_render::slab_transmittance::transmittance`, itself checked
+//! against adding-doubling), and the whole thickness pass on the backlit wedge against the slab's
+//! exact geometry: the light's path read from the shadow map, the entry face from its slope.
+
+use glam::Vec3;
+use rouge_model::look::Look;
+use rouge_model::medium::Medium;
+use rouge_model::mesh::load_mesh;
+use rouge_render::slab_transmittance::{WGSL, axes, kappa, medium_values, transmittance};
+use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
+use std::path::Path;
+
+const KERNEL: &str = r#"
+struct Medium { albedo: vec4<f32>, kappa: vec4<f32>, axes: vec4<f32> }
+@group(0) @binding(0) var<storage, read> slab_table: array<f32>;
+@group(0) @binding(1) var<storage, read> cases: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read_write> results: array<f32>;
+@group(0) @binding(3) var<uniform> medium: Medium;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&cases) { return; }
+    let c = cases[id.x];
+    let ch = u32(c.x);
+    results[id.x] = slab_transmittance(ch, medium.albedo[ch], medium.kappa[ch], c.y, c.z, c.w, medium.axes);
+}
+"#;
+
+/// The shader's T of every case (channel, τ, μ_v, μ_l) for a medium of reduced albedos `alpha`.
+fn on_gpu(gpu: &Gpu, alpha: [f64; 3], cases: &[[f32; 4]]) -> Vec<f32> {
+    use wgpu::util::DeviceExt;
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("slab twin"),
+        source: wgpu::ShaderSource::Wgsl(format!("{WGSL}{KERNEL}").into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("slab twin"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let ax = axes().expect("table");
+    let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
+    let uniform: [[f32; 4]; 3] =
+        [f(alpha), f(alpha.map(kappa)), [0.0, ax.taus as f32, ax.mus as f32, ax.tau_max.ln_1p() as f32]];
+    let init = |label: &str, bytes: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage })
+    };
+    let table = init("table", bytemuck::cast_slice(&medium_values(alpha).expect("table")), wgpu::BufferUsages::STORAGE);
+    let input = init("cases", bytemuck::cast_slice(cases), wgpu::BufferUsages::STORAGE);
+    let medium = init("medium", bytemuck::cast_slice(&uniform), wgpu::BufferUsages::UNIFORM);
+    let size = (cases.len() * 4) as u64;
+    let buffer = |label: &str, usage| {
+        device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
+    };
+    let output = buffer("results", wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC);
+    let readback = buffer("readback", wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("slab twin"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: table.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: input.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: output.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 3, resource: medium.as_entire_binding() },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("slab twin") });
+    {
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("slab twin"), timestamp_writes: None });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
+    gpu.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+    rx.recv().expect("mapping callback").expect("mapping");
+    let bytes = slice.get_mapped_range().expect("mapped range").to_vec();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+#[test]
+fn the_shaders_slab_transmission_matches_its_cpu_twin() {
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    // skin1's red, marble's blue and a dark channel: the albedo nodes' two ends and between.
+    let alpha = [0.961, 0.99764, 0.3];
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let cases: Vec<[f32; 4]> =
+        (0..3000).map(|i| [(i % 3) as f32, (next() * 64f32.ln_1p()).exp_m1(), next(), next()]).collect();
+    let got = on_gpu(&gpu, alpha, &cases);
+    let mut worst = 0.0f64;
+    for (c, g) in cases.iter().zip(&got) {
+        let want = transmittance(alpha[c[0] as usize], c[1] as f64, c[2] as f64, c[3] as f64).expect("domain");
+        assert!(g.is_finite(), "{c:?}: {g}");
+        // In radiance per unit E/π (μ_l·T), against a floor of 10⁻³ of it.
+        let err = c[3] as f64 * (*g as f64 - want).abs() / (c[3] as f64 * want).max(1e-3);
+        worst = worst.max(err);
+    }
+    eprintln!("{} cases: worst relative error {worst:.2e}", cases.len());
+    // f32 against f64: the shader's exp and log, and its single-scattering limit taken within
+    // 10⁻³ of equal cosines (10⁻⁶ on the CPU).
+    // (lavapipe: 2.2e-5.)
+    assert!(worst < 5e-4, "worst {worst}");
+}
+
+#[test]
+fn the_backlit_wedge_transmits_what_its_slab_does() {
+    let gpu = Gpu::headless().expect("a wgpu adapter");
+    let mesh = load_mesh(Some(Path::new("builtin:wedge")), 1.0, 0).expect("wedge");
+    let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
+    let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
+    let mut scene = Scene::rig(LightRig::Back);
+    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None }, ..skin };
+    scene.specular = false;
+    let size = 160;
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&mesh, scene.skin.albedo).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
+    let radiance = |r: &mut Renderer, scene: &Scene, at: Vec3| {
+        r.render(scene, &camera, size, size, false).expect("render");
+        let cap = r.capture().expect("capture");
+        let (px, py) = r.project(at).expect("in view");
+        cap.diffuse[(py as u32 * size + px as u32) as usize]
+    };
+    // The front face (z = 7.5) where the wedge is 6 mm thick along z; its back face slants by
+    // atan(14/60) and the light comes from (0.55, 0.3, −0.78).
+    let at = Vec3::new(-8.0, 0.0, 7.5);
+    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
+    let back_normal = Vec3::new(-14.0 / 60.0, 0.0, -1.0).normalize();
+    let mu_l = l.dot(back_normal) as f64;
+    // The slab's thickness is the distance from `at` to the back face's plane.
+    let on_back = Vec3::new(-30.0, 0.0, 6.5);
+    let depth_mm = (at - on_back).dot(-back_normal) as f64;
+    let mu_v = (camera.position() - at).normalize().z as f64;
+    let alpha = medium.reduced_albedo();
+    let got = radiance(&mut r, &scene, at);
+    for c in 0..3 {
+        let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
+        let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain");
+        // The shadow map's depth bias shortens the path by about 0.1 mm: 1-2% here.
+        let err = (got[c] as f64 - want).abs() / want;
+        eprintln!(
+            "channel {c}: {:.5} against the slab's {want:.5} ({:+.2}%)",
+            got[c],
+            100.0 * (got[c] as f64 / want - 1.0)
+        );
+        assert!(err < 0.03, "channel {c}: {} against {want} ({:.1}%)", got[c], 100.0 * err);
+    }
+    // Lit from the front the light crossed nothing: the term adds nothing.
+    let mut front = scene.clone();
+    front.lights = Scene::rig(LightRig::Front).lights;
+    front.lights[0].shadows = true;
+    let lambert = Scene { skin: Skin { subsurface: SubsurfaceModel::None, ..scene.skin.clone() }, ..front.clone() };
+    let (with, without) = (radiance(&mut r, &front, at), radiance(&mut r, &lambert, at));
+    for c in 0..3 {
+        assert!((with[c] - without[c]).abs() < 1e-3 * without[c], "{with:?} against {without:?}");
+    }
+}
