@@ -171,3 +171,35 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
         assert!((with[c] - without[c]).abs() < 1e-3 * without[c], "{with:?} against {without:?}");
     }
 }
+
+#[test]
+fn beyond_a_convex_terminator_the_slab_adds_nothing_the_kernel_should_carry() {
+    // The sphere (25 mm) lit from +x: a point 6° past the terminator sees the light cross a thin
+    // cap of the sphere entered at grazing, through a face turned the same way as its own. A
+    // slab of that cap's thickness would glow; the law fades it out (n·n_e → 1).
+    let gpu = Gpu::headless().expect("a wgpu adapter");
+    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
+    let medium = Medium::builtin("skin1").expect("skin1").with_eta(1.0).expect("η 1");
+    let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
+    let mut scene = Scene::white_light(Vec3::X);
+    scene.lights[0].shadows = true;
+    scene.specular = false;
+    let size = 160;
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&mesh, skin.albedo).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
+    let angle = 6f32.to_radians();
+    let at = Vec3::new(-angle.sin(), 0.0, angle.cos()) * 25.0;
+    let mut red = |subsurface: SubsurfaceModel| {
+        scene.skin = Skin { subsurface, ..skin.clone() };
+        r.render(&scene, &camera, size, size, false).expect("render");
+        let cap = r.capture().expect("capture");
+        let (px, py) = r.project(at).expect("in view");
+        cap.diffuse[(py as u32 * size + px as u32) as usize][0]
+    };
+    let (slab, none) = (red(SubsurfaceModel::Slab { kernel: None }), red(SubsurfaceModel::None));
+    // The cap there is about 2R·sin 6° = 5 mm long and 0.5 mm deep: as a slab, skin1 would send
+    // a tenth of the light of a lit face through it.
+    assert!((slab - none).abs() < 2e-3, "slab {slab} against none {none}");
+}

@@ -127,13 +127,19 @@ fn entry_normal(light: Light, world: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> v
 }
 
 // The slab law's radiance of one light (see the top of the file), 0 where the light met no
-// mesh before `world`.
+// mesh before `world` or the surface faces the light.
 fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     let d = light_path_mm(light, world);
     if d <= 0.0 {
         return vec3<f32>(0.0);
     }
     let arrival = light_arrival(light, world);
+    // The ray toward the light must start inside the mesh: where the surface faces the light,
+    // whatever the map saw first is another part in front of this one (a nose's shadow on the
+    // cheek), and the light it let through crossed air before arriving here.
+    if dot(n, arrival.l) >= 0.0 {
+        return vec3<f32>(0.0);
+    }
     let n_e = entry_normal(light, world, n, arrival.l);
     let mu_l = max(dot(n_e, arrival.l), 1e-3);
     let mu_v = clamp(dot(n, v), 0.0, 1.0);
@@ -147,7 +153,13 @@ fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> 
         let tau = params.slab_sigma_t[c] * depth_mm;
         t[c] = slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, params.slab_axes);
     }
-    return arrival.e * mu_l * t / PI * light.translucency.x;
+    // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
+    // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
+    // to nothing as the two faces turn the same way (n·n_e → 1: the thin cap beyond a convex
+    // terminator, lit at grazing over a strip narrower than the light spreads, which the kernel
+    // carries from the lit side).
+    let facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
+    return arrival.e * mu_l * t * (facing / PI) * light.translucency.x;
 }
 //#endif
 
