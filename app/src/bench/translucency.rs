@@ -333,6 +333,8 @@ fn square_label(r: &Row) -> Option<String> {
     match r.model.as_str() {
         "thickness" => Some(format!("thickness {} {}", text("source"), text("params"))),
         "screen-space+thickness" => Some(format!("kernel + thickness {} {}", text("source"), text("params"))),
+        "slab" => Some(format!("slab law, {}", text("diffuse"))),
+        "screen-space+slab" => Some("kernel + slab law".to_string()),
         "directional-dipole" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }
