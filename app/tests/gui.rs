@@ -167,6 +167,11 @@ fn the_subsurface_panel_switches_to_translucency_once_the_bake_lands() {
     h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessPerLight);
     h.run_steps(2);
     assert_eq!(h.state().subsurface_in_use(), ("thickness", false));
+    // The slab law under the kernel: skin1's medium, drawn without error.
+    h.state_mut().set_subsurface(SubsurfaceChoice::ScreenSpaceSlab);
+    h.run_steps(2);
+    assert_eq!(h.state().subsurface_in_use(), ("screen-space+slab", false));
+    assert!(h.state().message().is_none_or(|(ok, _)| *ok), "{:?}", h.state().message());
     h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessBaked);
     h.run_steps(2);
     // Until the bake lands the viewport keeps the screen-space kernel.
