@@ -144,8 +144,14 @@ pub(super) fn material(skin: &Skin) -> String {
             out.push_str(
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
                  and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
-                 face it entered from the map's slope; η = 1)",
+                 face it entered from the map's slope; exact at η = 1",
             );
+            match &skin.medium {
+                Some(m) if m.eta != 1.0 => {
+                    let _ = write!(out, ": the medium's η {} is not modelled by the slab)", m.eta);
+                }
+                _ => out.push(')'),
+            }
         }
         SubsurfaceModel::CubeAtlas { settings: a } => {
             let _ = write!(
