@@ -207,7 +207,9 @@ pub enum SubsurfaceModel {
     /// The slab law ([`crate::slab_transmittance`]): each light that crossed the mesh before a
     /// skin pixel lights it as a plane slab of the skin's medium, of the thickness the light
     /// crossed (its shadow map) and tilted as the face it entered (the map's slope), would: exact
-    /// transport, every order of scattering, no fitted parameter. The thickness pass draws it,
+    /// transport, every order of scattering, no fitted parameter. It fades out where the exit
+    /// face turns the same way as the entry face (past a convex terminator, the kernel's part)
+    /// and is off where the surface faces the light. The thickness pass draws it,
     /// with the local-thickness target for the material id. Needs `Skin::medium`, and lights
     /// that cast shadows; exact for an index-matched boundary (η = 1).
     Slab {

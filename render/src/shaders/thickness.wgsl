@@ -5,9 +5,9 @@
 // inside the mesh, read from the light's shadow map. The parameters come per material id.
 // The slab law (THICKNESS_SLAB, render/src/slab_transmittance.rs) replaces the talk's term for
 // the skin: the light through a plane slab of the thickness the light crossed, exactly,
-//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) / π per light,
-// μ_l the light's cosine on the face where it entered (the slope of the shadow map there),
-// d the distance it travelled inside, from the shadow map.
+//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · clamp(1 − n·n_e, 0, 1) / π per light,
+// μ_l the light's cosine on the face where it entered and n_e that face's normal (the slope of
+// the shadow map there), d the distance it travelled inside, from the shadow map.
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
