@@ -362,7 +362,7 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
     let timed = rows.iter().all(|r| r.gpu_ms.is_some());
     let x = |r: &Row| if timed { r.gpu_ms.unwrap_or(r.wall_ms) } else { r.wall_ms };
     let palette = [[31, 119, 180], [255, 127, 14], [44, 160, 44], [148, 103, 189], [23, 190, 207], [140, 86, 75]];
-    // One colour per thickness or dipole configuration in every chart.
+    // One colour per thickness, slab or dipole configuration in every chart (16 before any repeats).
     let mut thickness_labels: Vec<String> = Vec::new();
     for label in rows.iter().filter_map(square_label) {
         if !thickness_labels.contains(&label) {
@@ -380,6 +380,12 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
         [99, 121, 57],
         [214, 97, 107],
         [0, 0, 255],
+        [255, 127, 14],
+        [44, 160, 44],
+        [148, 103, 189],
+        [158, 218, 229],
+        [219, 219, 141],
+        [196, 156, 148],
     ];
     let charts: Vec<Chart> = scenes
         .iter()
