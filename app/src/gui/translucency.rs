@@ -40,7 +40,7 @@ fn label(choice: SubsurfaceChoice) -> &'static str {
         SubsurfaceChoice::ThicknessBaked => "Translucency (baked thickness)",
         SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
         SubsurfaceChoice::ScreenSpaceThickness => "Scattering + translucency (per light)",
-        SubsurfaceChoice::ScreenSpaceSlab => "Scattering + slab translucency (skin1, exact)",
+        SubsurfaceChoice::ScreenSpaceSlab => "Scattering + slab translucency (skin1)",
         SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
         SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
         SubsurfaceChoice::None => "None",
