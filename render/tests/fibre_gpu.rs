@@ -3,6 +3,8 @@
 //! device (lavapipe on CI): the WGSL function run in a compute shader over seeded random
 //! tangents, light and view directions, absorptions and roughnesses.
 
+mod common;
+
 use glam::Vec3;
 use rouge_render::Gpu;
 use rouge_render::fibre::{WGSL_SCATTERING, scattering, wgsl_constants};
@@ -40,55 +42,10 @@ fn direction(u: f32, w: f32) -> Vec3 {
 
 /// The GPU's scattering of every case.
 fn on_gpu(gpu: &Gpu, cases: &[Case]) -> Vec<[f32; 4]> {
-    let device = &gpu.device;
     let source = format!("{}{WGSL_SCATTERING}{KERNEL}", wgsl_constants());
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("fibre twin"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("fibre twin"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let storage = |label: &str, size: u64, usage: wgpu::BufferUsages| {
-        device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
-    };
-    let input_bytes: &[u8] = bytemuck::cast_slice(cases);
-    let input = storage("cases", input_bytes.len() as u64, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST);
-    gpu.queue.write_buffer(&input, 0, input_bytes);
-    let out_size = (cases.len() * 16) as u64;
-    let output = storage("results", out_size, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC);
-    let readback = storage("readback", out_size, wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("fibre twin"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: input.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: output.as_entire_binding() },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("fibre twin") });
-    {
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("fibre twin"), timestamp_writes: None });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_size);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
-    rx.recv().expect("mapping callback").expect("mapping");
-    let bytes = slice.get_mapped_range().expect("mapped range").to_vec();
+    let inputs = [(0, bytemuck::cast_slice(cases), wgpu::BufferUsages::STORAGE)];
+    let bytes =
+        common::run_kernel(gpu, "fibre twin", &source, &inputs, (1, (cases.len() * 16) as u64), cases.len() as u32);
     bytemuck::cast_slice(&bytes).to_vec()
 }
 

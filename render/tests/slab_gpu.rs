@@ -3,6 +3,8 @@
 //! against adding-doubling), and the whole thickness pass on the backlit wedge against the slab's
 //! exact geometry: the light's path read from the shadow map, the entry face from its slope.
 
+mod common;
+
 use glam::Vec3;
 use rouge_model::look::Look;
 use rouge_model::medium::Medium;
@@ -28,64 +30,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
 /// The shader's T of every case (channel, τ, μ_v, μ_l) for a medium of reduced albedos `alpha`.
 fn on_gpu(gpu: &Gpu, alpha: [f64; 3], cases: &[[f32; 4]]) -> Vec<f32> {
-    use wgpu::util::DeviceExt;
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("slab twin"),
-        source: wgpu::ShaderSource::Wgsl(format!("{WGSL}{KERNEL}").into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("slab twin"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
     let ax = axes().expect("table");
     let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
     let uniform: [[f32; 4]; 3] =
         [f(alpha), f(alpha.map(kappa)), [0.0, ax.taus as f32, ax.mus as f32, ax.tau_max.ln_1p() as f32]];
-    let init = |label: &str, bytes: &[u8], usage| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage })
-    };
-    let table = init("table", bytemuck::cast_slice(&medium_values(alpha).expect("table")), wgpu::BufferUsages::STORAGE);
-    let input = init("cases", bytemuck::cast_slice(cases), wgpu::BufferUsages::STORAGE);
-    let medium = init("medium", bytemuck::cast_slice(&uniform), wgpu::BufferUsages::UNIFORM);
-    let size = (cases.len() * 4) as u64;
-    let buffer = |label: &str, usage| {
-        device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
-    };
-    let output = buffer("results", wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC);
-    let readback = buffer("readback", wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("slab twin"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: table.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: input.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: output.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 3, resource: medium.as_entire_binding() },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("slab twin") });
-    {
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("slab twin"), timestamp_writes: None });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
-    rx.recv().expect("mapping callback").expect("mapping");
-    let bytes = slice.get_mapped_range().expect("mapped range").to_vec();
+    let table = medium_values(alpha).expect("table");
+    let inputs = [
+        (0, bytemuck::cast_slice(&table), wgpu::BufferUsages::STORAGE),
+        (1, bytemuck::cast_slice(cases), wgpu::BufferUsages::STORAGE),
+        (3, bytemuck::cast_slice(&uniform), wgpu::BufferUsages::UNIFORM),
+    ];
+    let source = format!("{WGSL}{KERNEL}");
+    let bytes =
+        common::run_kernel(gpu, "slab twin", &source, &inputs, (2, (cases.len() * 4) as u64), cases.len() as u32);
     bytemuck::cast_slice(&bytes).to_vec()
 }
 
@@ -117,26 +74,42 @@ fn the_shaders_slab_transmission_matches_its_cpu_twin() {
     assert!(worst < 5e-4, "worst {worst}");
 }
 
+/// A built-in mesh with a bare look, framed by the default camera at 160²: the skin's diffuse
+/// radiance at a point of it.
+struct View {
+    r: Renderer,
+    camera: Camera,
+}
+
+impl View {
+    const SIZE: u32 = 160;
+
+    fn new(gpu: &Gpu, mesh: &str, albedo: [f32; 3]) -> View {
+        let mesh = load_mesh(Some(Path::new(mesh)), 1.0, 0).expect("built-in mesh");
+        let mut r = Renderer::new(&gpu.device, &gpu.queue);
+        r.set_mesh(&mesh, albedo).expect("mesh");
+        r.set_look(&Look::bare()).expect("look");
+        let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
+        View { r, camera }
+    }
+
+    fn diffuse_at(&mut self, scene: &Scene, at: Vec3) -> [f32; 4] {
+        self.r.render(scene, &self.camera, Self::SIZE, Self::SIZE, false).expect("render");
+        let cap = self.r.capture().expect("capture");
+        let (px, py) = self.r.project(at).expect("in view");
+        cap.diffuse[(py as u32 * Self::SIZE + px as u32) as usize]
+    }
+}
+
 #[test]
 fn the_backlit_wedge_transmits_what_its_slab_does() {
     let gpu = Gpu::headless().expect("a wgpu adapter");
-    let mesh = load_mesh(Some(Path::new("builtin:wedge")), 1.0, 0).expect("wedge");
     let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::rig(LightRig::Back);
     scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None }, ..skin };
     scene.specular = false;
-    let size = 160;
-    let mut r = Renderer::new(&gpu.device, &gpu.queue);
-    r.set_mesh(&mesh, scene.skin.albedo).expect("mesh");
-    r.set_look(&Look::bare()).expect("look");
-    let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
-    let radiance = |r: &mut Renderer, scene: &Scene, at: Vec3| {
-        r.render(scene, &camera, size, size, false).expect("render");
-        let cap = r.capture().expect("capture");
-        let (px, py) = r.project(at).expect("in view");
-        cap.diffuse[(py as u32 * size + px as u32) as usize]
-    };
+    let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
     // The front face (z = 7.5) where the wedge is 6 mm thick along z; its back face slants by
     // atan(14/60) and the light comes from (0.55, 0.3, −0.78).
     let at = Vec3::new(-8.0, 0.0, 7.5);
@@ -146,9 +119,9 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     // The slab's thickness is the distance from `at` to the back face's plane.
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
     let depth_mm = (at - on_back).dot(-back_normal) as f64;
-    let mu_v = (camera.position() - at).normalize().z as f64;
+    let mu_v = (view.camera.position() - at).normalize().z as f64;
     let alpha = medium.reduced_albedo();
-    let got = radiance(&mut r, &scene, at);
+    let got = view.diffuse_at(&scene, at);
     for c in 0..3 {
         let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
         let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain");
@@ -166,7 +139,7 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     front.lights = Scene::rig(LightRig::Front).lights;
     front.lights[0].shadows = true;
     let lambert = Scene { skin: Skin { subsurface: SubsurfaceModel::None, ..scene.skin.clone() }, ..front.clone() };
-    let (with, without) = (radiance(&mut r, &front, at), radiance(&mut r, &lambert, at));
+    let (with, without) = (view.diffuse_at(&front, at), view.diffuse_at(&lambert, at));
     for c in 0..3 {
         assert!((with[c] - without[c]).abs() < 1e-3 * without[c], "{with:?} against {without:?}");
     }
@@ -178,25 +151,17 @@ fn beyond_a_convex_terminator_the_slab_adds_nothing_the_kernel_should_carry() {
     // cap of the sphere entered at grazing, through a face turned the same way as its own. A
     // slab of that cap's thickness would glow; the law fades it out (n·n_e → 1).
     let gpu = Gpu::headless().expect("a wgpu adapter");
-    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
     let medium = Medium::builtin("skin1").expect("skin1").with_eta(1.0).expect("η 1");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::white_light(Vec3::X);
     scene.lights[0].shadows = true;
     scene.specular = false;
-    let size = 160;
-    let mut r = Renderer::new(&gpu.device, &gpu.queue);
-    r.set_mesh(&mesh, skin.albedo).expect("mesh");
-    r.set_look(&Look::bare()).expect("look");
-    let camera = Camera::framing(&r.mesh_bounds().expect("bounds"), 0.0, 0.0);
+    let mut view = View::new(&gpu, "builtin:sphere", skin.albedo);
     let angle = 6f32.to_radians();
     let at = Vec3::new(-angle.sin(), 0.0, angle.cos()) * 25.0;
     let mut red = |subsurface: SubsurfaceModel| {
         scene.skin = Skin { subsurface, ..skin.clone() };
-        r.render(&scene, &camera, size, size, false).expect("render");
-        let cap = r.capture().expect("capture");
-        let (px, py) = r.project(at).expect("in view");
-        cap.diffuse[(py as u32 * size + px as u32) as usize][0]
+        view.diffuse_at(&scene, at)[0]
     };
     let (slab, none) = (red(SubsurfaceModel::Slab { kernel: None }), red(SubsurfaceModel::None));
     // The cap there is about 2R·sin 6° = 5 mm long and 0.5 mm deep: as a slab, skin1 would send
