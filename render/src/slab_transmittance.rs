@@ -143,14 +143,6 @@ pub fn axes() -> Result<Axes> {
     Ok(table()?.axes)
 }
 
-/// The whole grid of G = T_m·e^{κτ}, `[albedo][thickness][μ_v][μ_l]`.
-///
-/// # Errors
-/// [`RenderError::Invalid`] if the compiled-in table is malformed.
-pub fn values() -> Result<&'static [f32]> {
-    Ok(&table()?.g)
-}
-
 /// The grid at one medium's three reduced albedos, as the shader reads it:
 /// `[channel][thickness][μ_v][μ_l]`, each channel's block interpolated linearly in t between the
 /// albedo nodes around it (the first of [`transmittance`]'s four interpolations, so the shader's
@@ -285,7 +277,7 @@ mod tests {
     #[test]
     fn the_table_loads_and_its_kappa_is_this_module_s() {
         let ax = axes().expect("table");
-        assert_eq!(values().expect("values").len(), ax.albedos * ax.taus * ax.mus * ax.mus);
+        assert_eq!(table().expect("table").g.len(), ax.albedos * ax.taus * ax.mus * ax.mus);
         let medium = medium_values([1.0, 0.5, 0.0]).expect("in the domain");
         assert_eq!(medium.len(), 3 * ax.taus * ax.mus * ax.mus);
         assert!(medium_values([0.5, f64::NAN, 0.5]).is_err());

@@ -324,16 +324,12 @@ impl Planner {
             }
             ThicknessSource::Baked(_) => ThicknessVariant::Baked,
             ThicknessSource::ShadowMap { .. } => {
-                for (i, l) in scene.lights.iter().enumerate() {
-                    if !l.shadows {
-                        self.skip(
-                            format!("thickness translucency of light {i}"),
-                            "the shadow-map source reads the light's shadow map, and the light casts no shadow",
-                        );
-                    }
-                }
-                if shadow_maps == 0 {
-                    self.skip("thickness pass and local-thickness target", "no light has a shadow map");
+                let readers = ShadowMapReaders {
+                    term: "thickness translucency",
+                    why: "the shadow-map source reads the light's shadow map, and the light casts no shadow",
+                    none: "no light has a shadow map",
+                };
+                if !self.shadow_map_readers(scene, shadow_maps, readers) {
                     return Ok(None);
                 }
                 ThicknessVariant::ShadowMap
@@ -350,19 +346,30 @@ impl Planner {
                 "the slab model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
             )
         })?;
-        for (i, l) in scene.lights.iter().enumerate() {
-            if !l.shadows {
-                self.skip(
-                    format!("slab translucency of light {i}"),
-                    "the slab law reads the thickness the light crossed from its shadow map, and the light casts none",
-                );
-            }
-        }
-        if shadow_maps == 0 {
-            self.skip("thickness pass and local-thickness target", "no light has a shadow map for the slab law");
+        let readers = ShadowMapReaders {
+            term: "slab translucency",
+            why: "the slab law reads the thickness the light crossed from its shadow map, and the light casts none",
+            none: "no light has a shadow map for the slab law",
+        };
+        if !self.shadow_map_readers(scene, shadow_maps, readers) {
             return Ok(None);
         }
         Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium)?)))
+    }
+
+    /// For a thickness pass that reads the lights' shadow maps: each light without one gets no
+    /// `term` (the plan says `why`), and with none at all the pass and its target go (saying
+    /// `none`). Whether the pass runs.
+    fn shadow_map_readers(&mut self, scene: &Scene, shadow_maps: u32, readers: ShadowMapReaders) -> bool {
+        for (i, l) in scene.lights.iter().enumerate() {
+            if !l.shadows {
+                self.skip(format!("{} of light {i}", readers.term), readers.why);
+            }
+        }
+        if shadow_maps == 0 {
+            self.skip("thickness pass and local-thickness target", readers.none);
+        }
+        shadow_maps > 0
     }
 
     /// The dipole passes when the skin's model is a dipole: one light view per directional light
@@ -420,4 +427,15 @@ fn light_kind(kind: LightKind) -> &'static str {
         LightKind::Directional { .. } => "directional",
         LightKind::Point { .. } => "point",
     }
+}
+
+/// What the plan says of the lights a shadow-map thickness pass cannot read
+/// ([`Planner::shadow_map_readers`]).
+struct ShadowMapReaders {
+    /// The term a light without a shadow map does not get.
+    term: &'static str,
+    /// Why.
+    why: &'static str,
+    /// Why the pass goes when no light has a shadow map.
+    none: &'static str,
 }

@@ -163,8 +163,7 @@ impl FramePass for ThicknessPass {
         let diffuse = targets.view(Target::Diffuse)?;
         let key = [0, 1, 2].map(|c| uniform.slab_albedo[c].to_bits());
         if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
-            let values =
-                slab_transmittance::medium_values(uniform.slab_albedo.map(f64::from)[..3].try_into().expect("3"))?;
+            let values = slab_transmittance::medium_values(std::array::from_fn(|c| f64::from(uniform.slab_albedo[c])))?;
             let buffer = buffer_init(
                 &shared.device,
                 "ThicknessPass::slab_table",
