@@ -14,13 +14,12 @@ is the reference's own noise (0.0046 RMS).
 from __future__ import annotations
 
 import sys
-import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from thickness_figure import comparison_rows, figure_args, sheet  # noqa: E402
+from thickness_figure import comparison_figure  # noqa: E402
 
 SCENES = ["wedge-ketchup", "wedge-marble", "wedge-skimmilk", "hand-skin1-back"]
 MODELS = [
@@ -30,13 +29,9 @@ MODELS = [
 
 
 def main() -> None:
-    a = figure_args(__doc__, 192, ("--out", HERE.parent / "docs" / "images" / "slab_translucency.png"))
-    with tempfile.TemporaryDirectory() as tmp:
-        rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), lambda m: True)
     labels = ["Mitsuba 3", "thickness, fitted", "slab law", "|error| thickness", "|error| slab"]
-    a.out.parent.mkdir(parents=True, exist_ok=True)
-    sheet(labels, rows, a.size).save(a.out)
-    print(f"wrote {a.out}")
+    out = HERE.parent / "docs" / "images" / "slab_translucency.png"
+    comparison_figure(__doc__, out, SCENES, MODELS, labels, lambda m: True)
 
 
 if __name__ == "__main__":

@@ -111,14 +111,22 @@ def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
     return out
 
 
-def main() -> None:
-    a = figure_args(__doc__, 192, ("--out", HERE.parent / "docs" / "images" / "thickness_translucency.png"))
+def comparison_figure(doc: str, default_out: Path, scenes, models, labels: list[str], with_error, size: int = 192) -> None:
+    """A figure script's whole run: its command line (`figure_args`), the reference and each model
+    per scene with the errors `with_error` picks (`comparison_rows`), one contact sheet under
+    `labels` written to --out."""
+    a = figure_args(doc, size, ("--out", default_out))
     with tempfile.TemporaryDirectory() as tmp:
-        rows = comparison_rows(a.rouge, SCENES, MODELS, a.exposure, a.error_max, Path(tmp), lambda m: m != "none")
-    labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
+        rows = comparison_rows(a.rouge, scenes, models, a.exposure, a.error_max, Path(tmp), with_error)
     a.out.parent.mkdir(parents=True, exist_ok=True)
     sheet(labels, rows, a.size).save(a.out)
     print(f"wrote {a.out}")
+
+
+def main() -> None:
+    labels = ["Mitsuba 3", "none", "baked", "per light", "|error| baked", "|error| per light"]
+    out = HERE.parent / "docs" / "images" / "thickness_translucency.png"
+    comparison_figure(__doc__, out, SCENES, MODELS, labels, lambda m: m != "none")
 
 
 if __name__ == "__main__":
