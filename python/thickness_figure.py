@@ -111,7 +111,9 @@ def sheet(columns: list[str], rows: list[tuple[str, list]], size: int):
     return out
 
 
-def comparison_figure(doc: str, default_out: Path, scenes, models, labels: list[str], with_error, size: int = 192) -> None:
+def comparison_figure(
+    doc: str, default_out: Path, scenes, models, labels: list[str], with_error, size: int = 192
+) -> None:
     """A figure script's whole run: its command line (`figure_args`), the reference and each model
     per scene with the errors `with_error` picks (`comparison_rows`), one contact sheet under
     `labels` written to --out."""
