@@ -71,18 +71,34 @@ fn light_depth_mm(light: Light, d: f32) -> f32 {
     return near + d * (far - near);
 }
 
-// How far the light travelled inside the mesh before `world`: its depth from the light minus
-// the first surface the light met there (the shadow map), mm; 0 outside the map.
-fn light_path_mm(light: Light, world: vec3<f32>) -> f32 {
+// `world` in the light's shadow map: the texel it falls in, its distance from the light and that
+// of the first surface the light met there (mm); `inside` is false off the map.
+struct MapPoint {
+    texel: vec2<i32>,
+    depth_mm: f32,
+    first_mm: f32,
+    inside: bool,
+}
+
+fn map_point(light: Light, world: vec3<f32>) -> MapPoint {
+    var m: MapPoint;
     let p = light.shadow_view_proj * vec4<f32>(world, 1.0);
     let ndc = p.xyz / p.w;
     let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
-    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) || ndc.z > 1.0 {
-        return 0.0;
+    m.inside = all(uv >= vec2<f32>(0.0)) && all(uv < vec2<f32>(1.0)) && ndc.z <= 1.0;
+    if !m.inside {
+        return m;
     }
-    let size = vec2<f32>(textureDimensions(shadow_depths).xy);
-    let first = textureLoad(shadow_depths, vec2<i32>(uv * size), i32(light.shadow.x), 0).r;
-    return max(light_depth_mm(light, ndc.z) - light_depth_mm(light, first), 0.0);
+    m.texel = vec2<i32>(uv * vec2<f32>(textureDimensions(shadow_depths).xy));
+    m.depth_mm = light_depth_mm(light, ndc.z);
+    m.first_mm = light_depth_mm(light, textureLoad(shadow_depths, m.texel, i32(light.shadow.x), 0).r);
+    return m;
+}
+
+// How far the light travelled inside the mesh before the point: its depth from the light minus
+// the first surface's, mm; 0 off the map.
+fn light_path_mm(m: MapPoint) -> f32 {
+    return select(0.0, max(m.depth_mm - m.first_mm, 0.0), m.inside);
 }
 //#endif
 
@@ -93,43 +109,41 @@ fn first_mm(light: Light, c: vec2<i32>, size: vec2<i32>) -> f32 {
     return light_depth_mm(light, textureLoad(shadow_depths, k, i32(light.shadow.x), 0).r);
 }
 
-// The one-sided difference of smaller magnitude of the first surface's distance at texel c
-// along `step`, so that a silhouette's jump beside a face is not read as its slope.
-fn first_slope(light: Light, c: vec2<i32>, step: vec2<i32>, size: vec2<i32>) -> f32 {
-    let z = first_mm(light, c, size);
+// The one-sided difference of smaller magnitude of the first surface's distance beside texel c
+// (where it is z) along `step`, so that a silhouette's jump beside a face is not read as its
+// slope.
+fn first_slope(light: Light, c: vec2<i32>, z: f32, step: vec2<i32>, size: vec2<i32>) -> f32 {
     let ahead = first_mm(light, c + step, size) - z;
     let behind = z - first_mm(light, c - step, size);
     return select(behind, ahead, abs(ahead) < abs(behind));
 }
 
-// The outward normal of the face where the light entered the mesh above `world`, from the slope
-// of the first surface in the light's orthographic map: with s the slopes (mm of depth per mm)
-// along the map's right and down axes, n_e ∝ l + s_x·right + s_y·down. A point light's
+// The outward normal of the face where the light entered the mesh above the point `m`, from the
+// slope of the first surface in the light's orthographic map: with s the slopes (mm of depth per
+// mm) along the map's right and down axes, n_e ∝ l + s_x·right + s_y·down. A point light's
 // perspective map has no constant texel size; it takes the exit face's −n, exact for a slab
 // with parallel faces.
-fn entry_normal(light: Light, world: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
+fn entry_normal(light: Light, m: MapPoint, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
     if light.translucency.w > 0.5 {
         return -n;
     }
-    let p = light.shadow_view_proj * vec4<f32>(world, 1.0);
-    let uv = p.xy / p.w * vec2<f32>(0.5, -0.5) + 0.5;
     let size = vec2<i32>(textureDimensions(shadow_depths).xy);
-    let c = vec2<i32>(uv * vec2<f32>(size));
-    let m = light.shadow_view_proj;
+    let v = light.shadow_view_proj;
     // The gradients of the map's NDC x and y over the world; the NDC spans 2 over the map, and
     // its y runs up where the texels run down.
-    let gx = vec3<f32>(m[0].x, m[1].x, m[2].x);
-    let gy = vec3<f32>(m[0].y, m[1].y, m[2].y);
+    let gx = vec3<f32>(v[0].x, v[1].x, v[2].x);
+    let gy = vec3<f32>(v[0].y, v[1].y, v[2].y);
     let texel = vec2<f32>(2.0 / f32(size.x) / length(gx), 2.0 / f32(size.y) / length(gy));
-    let sx = first_slope(light, c, vec2<i32>(1, 0), size) / texel.x;
-    let sy = first_slope(light, c, vec2<i32>(0, 1), size) / texel.y;
+    let sx = first_slope(light, m.texel, m.first_mm, vec2<i32>(1, 0), size) / texel.x;
+    let sy = first_slope(light, m.texel, m.first_mm, vec2<i32>(0, 1), size) / texel.y;
     return normalize(l + sx * normalize(gx) - sy * normalize(gy));
 }
 
 // The slab law's radiance of one light (see the top of the file), 0 where the light met no
 // mesh before `world` or the surface faces the light.
 fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    let d = light_path_mm(light, world);
+    let m = map_point(light, world);
+    let d = light_path_mm(m);
     if d <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -140,7 +154,7 @@ fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> 
     if dot(n, arrival.l) >= 0.0 {
         return vec3<f32>(0.0);
     }
-    let n_e = entry_normal(light, world, n, arrival.l);
+    let n_e = entry_normal(light, m, n, arrival.l);
     let mu_l = max(dot(n_e, arrival.l), 1e-3);
     let mu_v = clamp(dot(n, v), 0.0, 1.0);
     // The slab's thickness: the distance from `world` to the plane the light entered. (Measured
@@ -173,7 +187,7 @@ fn lobe_sum(local: vec3<f32>, m: vec4<f32>, world: vec3<f32>, n: vec3<f32>, v: v
         if light.shadow.x < 0.0 {
             continue;
         }
-        t = falloff_weight(light_path_mm(light, world));
+        t = falloff_weight(light_path_mm(map_point(light, world)));
 //#endif
         let arrival = light_arrival(light, world);
         sum += arrival.e * t * translucency(arrival.l, n, v, m, light.translucency.x);
