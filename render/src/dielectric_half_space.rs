@@ -132,25 +132,34 @@ fn catmull_rom(t: f64) -> [f64; 4] {
     [-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t, 0.5 * t3 - 0.5 * t2]
 }
 
-/// The Catmull-Rom spline through `node(0..=n)` (n ≥ 1 intervals, spaced one apart) at `x` ∈
-/// [0, n], the missing outer node at an end extrapolated linearly (which keeps the spline exact
-/// for straight lines there).
-fn spline(x: f64, n: usize, node: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
+/// The Catmull-Rom spline through nodes `0..=n` (n ≥ 1 intervals, spaced one apart) at `x` ∈
+/// [0, n], as weights of the nodes: Σ w·node(i) over the pairs (i, w), a node may appear twice.
+/// The missing outer node at an end is extrapolated linearly (2·node(0) − node(1)), which keeps
+/// the spline exact for straight lines there. Shared with [`crate::dielectric_brdf`], whose
+/// table has the same axes.
+pub(crate) fn spline_weights(x: f64, n: usize) -> [(usize, f64); 6] {
     let i = (x.floor().max(0.0) as usize).min(n - 1);
-    let at = |m: isize| -> [f64; 2] {
-        let lerp = |a: [f64; 2], b: [f64; 2]| [2.0 * a[0] - b[0], 2.0 * a[1] - b[1]];
-        match m {
-            -1 => lerp(node(0), node(1.min(n))),
-            m if m as usize > n => lerp(node(n), node(n - 1)),
-            m => node(m as usize),
-        }
-    };
-    let mut sum = [0.0; 2];
-    for (d, w) in catmull_rom(x - i as f64).into_iter().enumerate() {
-        let v = at(i as isize - 1 + d as isize);
-        sum = [sum[0] + w * v[0], sum[1] + w * v[1]];
-    }
-    sum
+    let w = catmull_rom(x - i as f64);
+    // The nodes before and after the interval, each as two weighted nodes (the second with
+    // weight 0 inside the grid).
+    let before = if i == 0 { [(0, 2.0), (1, -1.0)] } else { [(i - 1, 1.0), (i - 1, 0.0)] };
+    let after = if i + 1 == n { [(n, 2.0), (n - 1, -1.0)] } else { [(i + 2, 1.0), (i + 2, 0.0)] };
+    [
+        (before[0].0, w[0] * before[0].1),
+        (before[1].0, w[0] * before[1].1),
+        (i, w[1]),
+        (i + 1, w[2]),
+        (after[0].0, w[3] * after[0].1),
+        (after[1].0, w[3] * after[1].1),
+    ]
+}
+
+/// [`spline_weights`] applied to the pairs `node(0..=n)`.
+fn spline(x: f64, n: usize, node: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
+    spline_weights(x, n).iter().fold([0.0; 2], |sum, &(i, w)| {
+        let v = node(i);
+        [sum[0] + w * v[0], sum[1] + w * v[1]]
+    })
 }
 
 /// The subsurface reflectances of a half-space of reduced albedo `alpha_prime` under a smooth
@@ -179,35 +188,6 @@ pub fn reflectance(alpha_prime: f64, eta: f64) -> Result<Reflectance> {
     let e_at = ((eta - ETA_RANGE.start()) / (ETA_RANGE.end() - ETA_RANGE.start())).sqrt() * (t.etas.len() - 1) as f64;
     let sum = spline(e_at, t.etas.len() - 1, |e| spline(t_at, t.steps, |k| t.values[e * nodes + k]));
     Ok(Reflectance { normal: sum[0].clamp(0.0, 1.0), diffuse: sum[1].clamp(0.0, 1.0) })
-}
-
-/// The single-scattering albedo ϖ whose index-matched half-space, with \[Hapke2002\]'s H as the
-/// GPU's `half-space` law evaluates it ([`crate::half_space::h_hapke`]), reflects at normal
-/// incidence what the half-space of `alpha_prime` under a boundary of `eta` does
-/// ([`reflectance`]): the albedo that law takes for a medium with η ≠ 1, so that its energy at
-/// normal incidence is exact while its angular shape stays the index-matched one (an
-/// approximation, measured in docs/BENCHMARKS.md, "The dielectric half-space"). At η = 1 it is
-/// `alpha_prime` itself.
-///
-/// # Errors
-/// As [`reflectance`].
-pub fn index_matched_albedo(alpha_prime: f64, eta: f64) -> Result<f64> {
-    let target = reflectance(alpha_prime, eta)?.normal;
-    if eta == 1.0 {
-        return Ok(alpha_prime);
-    }
-    // 1 − √(1 − ϖ)·H(1) rises from 0 to 1 with ϖ: bisection to f64's resolution.
-    let normal = |w: f64| 1.0 - (1.0 - w).sqrt() * crate::half_space::h_hapke(w, 1.0);
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    for _ in 0..64 {
-        let mid = 0.5 * (lo + hi);
-        if normal(mid) < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(0.5 * (lo + hi))
 }
 
 #[cfg(test)]

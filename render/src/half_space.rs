@@ -25,14 +25,12 @@
 //! agrees with Mitsuba 3's half-space radiance (data/reference/slab_albedo.json) within the
 //! path tracer's standard error on all twelve channels of four media (render/tests/half_space.rs).
 //!
-//! The GPU evaluates H with \[Hapke2002\]'s closed approximation ([`h_hapke`], eq. 13), with
-//! ϖ recovered per pixel from the material's albedo by Hapke's diffusive reflectance
-//! r₀ = (1 − γ)/(1 + γ) ([`albedo_from_r0`]), which inverts exactly; its error against the exact
-//! H is measured by `rouge bench half-space` (docs/BENCHMARKS.md).
+//! The GPU renders the law of any η from [`crate::dielectric_brdf`]'s adding-doubling table,
+//! which this module checks at η = 1 (`render/tests/dielectric_brdf.rs`).
 //!
 //! Domain: 0 ≤ ϖ ≤ 1, 0 ≤ μ, μ₀ ≤ 1 (arguments are clamped there). η = 1 only: a dielectric
-//! boundary changes both the H-equation and the exit distribution; its energy at normal and
-//! uniform incidence is [`crate::dielectric_half_space`]'s.
+//! boundary changes both the H-equation and the exit distribution ([`crate::dielectric_half_space`]
+//! and [`crate::dielectric_brdf`] give them).
 
 /// Composite Gauss-Legendre panels on [0, 1] for the H-equation: geometric towards 0.
 const PANELS: [(f64, f64); 5] = [(0.0, 1e-3), (1e-3, 1e-2), (1e-2, 0.1), (0.1, 0.4), (0.4, 1.0)];
@@ -150,29 +148,4 @@ impl HalfSpace {
         let moment: f64 = self.nodes.iter().map(|&(m, w, h)| w * m * h).sum();
         1.0 - 2.0 * self.gamma * moment
     }
-}
-
-/// Hapke's diffusive reflectance r₀ = (1 − γ)/(1 + γ), γ = √(1 − ϖ) (\[Hapke2002\] eq. 14): the
-/// material albedo the GPU's half-space law reads for single-scattering albedo `albedo`.
-pub fn r0_from_albedo(albedo: f64) -> f64 {
-    let gamma = (1.0 - unit_interval(albedo)).sqrt();
-    (1.0 - gamma) / (1.0 + gamma)
-}
-
-/// The inverse of [`r0_from_albedo`]: γ = (1 − r₀)/(1 + r₀), ϖ = 1 − γ², for r₀ ∈ [0, 1].
-pub fn albedo_from_r0(r0: f64) -> f64 {
-    let r0 = unit_interval(r0);
-    let gamma = (1.0 - r0) / (1.0 + r0);
-    1.0 - gamma * gamma
-}
-
-/// \[Hapke2002\] eq. 13: H(x) ≈ 1 / (1 − ϖx (r₀ + (1 − 2r₀x)/2 · ln((1 + x)/x))), the closed
-/// form `lighting.wgsl` evaluates (`half_space_h`). 1 at x = 0.
-pub fn h_hapke(albedo: f64, mu: f64) -> f64 {
-    let (albedo, x) = (unit_interval(albedo), unit_interval(mu));
-    if x <= 0.0 {
-        return 1.0;
-    }
-    let r0 = r0_from_albedo(albedo);
-    1.0 / (1.0 - albedo * x * (r0 + 0.5 * (1.0 - 2.0 * r0 * x) * ((1.0 + x) / x).ln()))
 }

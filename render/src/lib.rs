@@ -10,7 +10,8 @@
 //!   glTF 2.0 with the look baked into textures (`rouge export gltf`).
 //! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
 //!   [`diffusion`], [`half_space`] (the exact half-space under the diffusion profiles, η = 1) and
-//!   [`dielectric_half_space`] (its albedo under a dielectric boundary, the media's albedo),
+//!   [`dielectric_half_space`] (its albedo under a dielectric boundary, the media's albedo) with
+//!   [`dielectric_brdf`] (its angular law there, the `half-space` diffuse law's),
 //!   [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
 //!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
 //!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
@@ -23,6 +24,7 @@
 pub mod aa;
 pub mod aa_study;
 pub mod cube_atlas;
+pub mod dielectric_brdf;
 pub mod dielectric_half_space;
 pub mod diffusion;
 pub mod directional_dipole;

@@ -160,11 +160,13 @@ pub enum DiffuseLaw {
     /// measured colour.
     #[default]
     Lambert,
-    /// The exact transport of an isotropic half-space under an index-matched boundary
-    /// (\[Chandrasekhar1960\], [`crate::half_space`]): radiance E·ϖH(μ)H(μ₀)/(4π(μ + μ₀)) per light
-    /// and E·(1 − γH(μ))/π from the environment, with ϖ recovered per pixel from the albedo read
-    /// as Hapke's diffusive reflectance r₀ and H by \[Hapke2002\] eq. 13. Matches a path tracer's
-    /// half-space at every albedo, where the dipoles' totals fall 10-36% short at low albedo.
+    /// The exact transport of an isotropic half-space under the skin's boundary (η = the skin's
+    /// IOR, 1 to 3; adding-doubling's table, [`crate::dielectric_brdf`]; at η = 1
+    /// \[Chandrasekhar1960\]'s, [`crate::half_space`]): radiance E·πf(μ, μ₀)/π per light and
+    /// E·R(μ)/π from the environment, the albedo read per pixel as the normal-incidence
+    /// reflectance R(1), which is what [`Skin::medium_albedo`] is, so the law changes a skin's
+    /// angular shape and not its albedo. Matches a path tracer's half-space at every albedo,
+    /// where the dipoles' totals fall 10-36% short at low albedo.
     HalfSpace,
 }
 
@@ -321,21 +323,11 @@ impl Skin {
         })
     }
 
-    /// This skin under [`DiffuseLaw::HalfSpace`]. With a medium, the albedo becomes Hapke's r₀ of
-    /// each channel's reduced albedo α′ = σs′/σt′ ([`crate::half_space::r0_from_albedo`]), so that
-    /// the lighting pass recovers α′ exactly; under a boundary of η ≠ 1, of the albedo whose
-    /// index-matched half-space reflects as much at normal incidence
-    /// ([`crate::dielectric_half_space::index_matched_albedo`]). Without a medium, the albedo is
-    /// read as r₀ as it is.
+    /// This skin under [`DiffuseLaw::HalfSpace`]. The albedo stays: the law reads it as the
+    /// half-space's normal-incidence reflectance under a boundary of the skin's IOR, which a
+    /// medium's albedo is ([`Skin::medium_albedo`]) and a measured colour stands for.
     pub fn half_space(self) -> Skin {
-        let albedo = match &self.medium {
-            Some(m) => m.reduced_albedo().map(|alpha| {
-                let w = crate::dielectric_half_space::index_matched_albedo(alpha, m.eta).unwrap_or(alpha);
-                crate::half_space::r0_from_albedo(w) as f32
-            }),
-            None => self.albedo,
-        };
-        Skin { albedo, diffuse: DiffuseLaw::HalfSpace, ..self }
+        Skin { diffuse: DiffuseLaw::HalfSpace, ..self }
     }
 
     /// The ColorChecker's "light skin" or "dark skin" patch.

@@ -71,24 +71,3 @@ fn the_ends_of_the_domain_are_exact_and_outside_it_is_an_error() {
     }
     assert_eq!(*ETA_RANGE.start(), 1.0);
 }
-
-#[test]
-fn the_index_matched_albedo_reflects_what_the_dielectric_half_space_does_at_normal_incidence() {
-    use rouge_render::dielectric_half_space::index_matched_albedo;
-    use rouge_render::half_space::h_hapke;
-    for eta in [1.0, 1.3, 1.4, 2.0] {
-        for k in 0..=20 {
-            let alpha = 1.0 - (f64::from(k) / 20.0).powi(2);
-            let w = index_matched_albedo(alpha, eta).expect("in the domain");
-            assert!((0.0..=1.0).contains(&w) && w <= alpha + 1e-12, "η {eta}, α′ {alpha}: ϖ {w}");
-            let normal = 1.0 - (1.0 - w).sqrt() * h_hapke(w, 1.0);
-            let want = reflectance(alpha, eta).expect("in the domain").normal;
-            if eta == 1.0 {
-                assert_eq!(w, alpha);
-            } else {
-                assert!((normal - want).abs() < 1e-9, "η {eta}, α′ {alpha}: {normal} against {want}");
-            }
-        }
-    }
-    assert!(index_matched_albedo(0.5, 3.5).is_err());
-}

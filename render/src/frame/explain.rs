@@ -117,7 +117,9 @@ pub(super) fn material(skin: &Skin) -> String {
     });
     let how = match skin.diffuse {
         DiffuseLaw::Lambert => "",
-        DiffuseLaw::HalfSpace => " (Chandrasekhar's H by Hapke's eq. 13 in the lighting pass)",
+        DiffuseLaw::HalfSpace => {
+            " (adding-doubling's angular law under the boundary of η = the skin's IOR, a table in the lighting pass)"
+        }
     };
     let law = format!("diffuse law {}{how}", skin.diffuse.name());
     let mut out = format!(

@@ -240,7 +240,8 @@ impl FramePlan {
         }
         plan.gbuffer(variant);
         plan.glitter(uploaded.glitter, scene.specular);
-        plan.lighting(variant, uploaded.glitter);
+        let half_space_eta = plan.half_space_law(scene)?;
+        plan.lighting(variant, uploaded.glitter, half_space_eta);
         plan.subsurface_passes(variant, models);
         let kernel = plan.screen_space(scene)?;
         plan.hair(variant, uploaded.hair_strands, settings.hair_aa);

@@ -9,11 +9,12 @@ use crate::local_thickness::ThicknessSource;
 use crate::passes::cube_atlas::AtlasStep;
 use crate::passes::dipole::DipoleStep;
 use crate::passes::edge_overdraw::EdgeStep;
+use crate::passes::lighting::LightingStep;
 use crate::passes::shadow::ShadowStep;
 use crate::passes::sss::{Direction, SssStep};
 use crate::passes::thickness::ThicknessUniform;
 use crate::passes::{composite, gbuffer, lighting, skin_gather, thickness};
-use crate::scene::{LightKind, Scene, SubsurfaceModel};
+use crate::scene::{DiffuseLaw, LightKind, Scene, SubsurfaceModel};
 use crate::shader::{ThicknessVariant, Variant};
 use crate::sss::SeparableKernel;
 use crate::targets::Target;
@@ -133,8 +134,27 @@ impl Planner {
         }
     }
 
+    /// The skin's η when its diffuse law is `half-space`, whose table the lighting pass reads
+    /// ([`crate::dielectric_brdf`]); none under Lambert, and the plan says the table goes.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for an η outside the law's table (1 ≤ η ≤ 3).
+    pub fn half_space_law(&mut self, scene: &Scene) -> Result<Option<f32>> {
+        if scene.skin.diffuse != DiffuseLaw::HalfSpace {
+            self.skip("half-space law table", "the skin's diffuse law is Lambert");
+            return Ok(None);
+        }
+        let eta = scene.skin.ior;
+        if !crate::dielectric_half_space::ETA_RANGE.contains(&f64::from(eta)) {
+            return Err(RenderError::Invalid(format!(
+                "the half-space diffuse law is tabulated for 1 ≤ η ≤ 3; the skin's η is {eta}"
+            )));
+        }
+        Ok(Some(eta))
+    }
+
     /// Lighting through the cosmetic stack.
-    pub fn lighting(&mut self, variant: Variant, glitter: u8) {
+    pub fn lighting(&mut self, variant: Variant, glitter: u8, half_space_eta: Option<f32>) {
         let mut reads = targets(&lighting::inputs(variant));
         if variant.layers > 0 {
             reads.push(Resource::LayerTables);
@@ -151,7 +171,7 @@ impl Planner {
             self.skip("environment (SH) term", "the scene has no environment");
         }
         let writes = lighting::outputs(variant).into_iter().map(|t| (Resource::Target(t), Access::Replace)).collect();
-        self.push(Step::Lighting(()), reads, writes);
+        self.push(Step::Lighting(LightingStep { half_space_eta }), reads, writes);
     }
 
     /// The passes of the thickness, dipole or cube-atlas model, added to the diffuse radiance.

@@ -2,15 +2,26 @@
 //! transmittance from the layer tables, the irradiance of each light (with its shadow) and of
 //! the environment through the stack, and the specular lobes of skin and layers
 //! (\[Huang2013\] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
-//! radiance leaving at the surface, and, with layers, the stack's exit transmittance.
+//! radiance leaving at the surface, and, with layers, the stack's exit transmittance. Under the
+//! `half-space` diffuse law it reads that law's table at the skin's η
+//! ([`crate::dielectric_brdf::GpuTable`]), made and uploaded when η changes.
 
 use super::{FramePass, Pipelines, Recording, Shared};
+use crate::dielectric_brdf::GpuTable;
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::{HDR_FORMAT, Target};
 use crate::wgpu_util::{
-    float_tex, layout, sampler, sampler_entry, storage_entry, storage_texture_entry, tex, tex_entry,
+    buffer_init, float_tex, layout, sampler, sampler_entry, storage_entry, storage_texture_entry, tex, tex_entry,
 };
+
+/// What the plan gives the lighting pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightingStep {
+    /// The skin's η when its diffuse law is `half-space` (checked in [1, 3] by the plan), else
+    /// none: the law's table is then neither made nor uploaded.
+    pub half_space_eta: Option<f32>,
+}
 
 /// The lighting pass.
 #[derive(Debug)]
@@ -18,6 +29,8 @@ pub struct LightingPass {
     /// Without and with the exit transmittance's output.
     layouts: [wgpu::BindGroupLayout; 2],
     pipelines: Pipelines<wgpu::ComputePipeline>,
+    /// The half-space law's table and the η it is of (none: four zeros, for Lambert).
+    half_space: (Option<f32>, wgpu::Buffer),
 }
 
 /// The G-buffer targets a variant reads.
@@ -45,7 +58,7 @@ pub fn outputs(variant: Variant) -> Vec<Target> {
 }
 
 impl FramePass for LightingPass {
-    type Step = ();
+    type Step = LightingStep;
     const SHADER: PassShader = pass_shader!(LightingPass, "lighting.wgsl", |v| Variant {
         layers: v.layers,
         shadows: v.shadows,
@@ -68,6 +81,7 @@ impl FramePass for LightingPass {
             tex_entry(6, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
             sampler_entry(7, wgpu::SamplerBindingType::Comparison),
             tex_entry(8, wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
+            storage_entry(12),
         ]
         .map(|e| wgpu::BindGroupLayoutEntry { visibility: wgpu::ShaderStages::COMPUTE, ..e });
         // The outputs: diffuse and surface, and the exit transmittance with layers.
@@ -76,16 +90,27 @@ impl FramePass for LightingPass {
             entries.extend((0..outs).map(|i| storage_texture_entry(9 + i, HDR_FORMAT)));
             layout(&shared.device, "LightingPass::layout", &entries)
         });
-        LightingPass { layouts, pipelines: Pipelines::default() }
+        let none =
+            buffer_init(&shared.device, "LightingPass::half_space (none)", &[0u8; 16], wgpu::BufferUsages::STORAGE);
+        LightingPass { layouts, pipelines: Pipelines::default(), half_space: (None, none) }
     }
 
-    fn name(_: &()) -> String {
+    fn name(_: &LightingStep) -> String {
         "lighting".into()
     }
 
-    /// Records the pass from the G-buffer, the look's tables and the shadow maps.
-    fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
+    /// Records the pass from the G-buffer, the look's tables, the shadow maps and the half-space
+    /// law's table.
+    fn record(&mut self, rec: &mut Recording<'_>, step: &LightingStep) -> Result<()> {
         let (shared, targets) = (rec.shared, rec.targets);
+        if let Some(eta) = step.half_space_eta
+            && self.half_space.0 != Some(eta)
+        {
+            let table = GpuTable::new(f64::from(eta))?;
+            let bytes = bytemuck::cast_slice(&table.values);
+            let buffer = buffer_init(&shared.device, "LightingPass::half_space", bytes, wgpu::BufferUsages::STORAGE);
+            self.half_space = (Some(eta), buffer);
+        }
         let key = rec.key(&Self::SHADER);
         let outs = outputs(key);
         let layout = &self.layouts[outs.len() - 2];
@@ -109,6 +134,7 @@ impl FramePass for LightingPass {
             tex(6, &rec.shadow_maps),
             sampler(7, &shared.shadow_sampler),
             tex(8, glitter.as_ref().unwrap_or(&shared.dummy_uint)),
+            wgpu::BindGroupEntry { binding: 12, resource: self.half_space.1.as_entire_binding() },
         ];
         entries.extend(views.iter().enumerate().map(|(i, v)| tex(9 + i as u32, v)));
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {

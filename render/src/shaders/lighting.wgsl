@@ -28,6 +28,9 @@
 @group(1) @binding(5) var<storage, read> tables: array<vec4<f32>>;
 @group(1) @binding(6) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(7) var shadow_sampler: sampler_comparison;
+// The half-space diffuse law's table (`half_space_nodes` below; 4 zeros under Lambert).
+@group(1) @binding(12) var<storage, read> half_space_table: array<f32>;
+//#insert diffusion
 // The outputs (`LightingOut`): the pass is a compute pass, one invocation a pixel (on GPUs whose
 // graphics pipeline runs on a few of their SMs, such as the H100/H200, a full-screen fragment pass
 // took ten to thirty times as long: docs/BENCHMARKS.md, `rouge bench shading`).
@@ -142,15 +145,73 @@ fn cs_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
 //#endif
 }
 
-// The half-space diffuse law (render/src/half_space.rs): Chandrasekhar's H-function of an
-// isotropic half-space of single-scattering albedo w per channel, by [Hapke2002] eq. 13 with
-// r0 = (1 − γ)/(1 + γ), γ = √(1 − w) (within 1% of the exact H; 1 at x = 0).
-fn half_space_h(w: vec3<f32>, r0: vec3<f32>, x: f32) -> vec3<f32> {
-    if x <= 0.0 {
-        return vec3<f32>(1.0);
+// The half-space diffuse law (render/src/dielectric_brdf.rs, `GpuTable`, whose `pi_brdf` and
+// `reflectance` are these functions' CPU twins): adding-doubling's angular law of a half-space
+// under the skin's boundary, the albedo read as its normal-incidence reflectance r_n. The table:
+// a header (node count K, cosine count M, r_max, η), then per albedo node k (r_n = r_max·(k/(K −
+// 1))²) the M×M shape πf(μ, μ₀)(μ + μ₀)/(r_n T(μ) T(μ₀)) and the M exit values R(μ)/(r_n T(μ)),
+// T the boundary's Fresnel transmittance; cosines even in [0, 1].
+struct HalfSpaceNodes {
+    // Offset of each channel's lower node, and the upper node's weight.
+    lo: vec3<u32>,
+    f: vec3<f32>,
+}
+
+fn half_space_nodes(a: vec3<f32>) -> HalfSpaceNodes {
+    let last = half_space_table[0] - 1.0;
+    let m = u32(half_space_table[1]);
+    let at = sqrt(clamp(a / half_space_table[2], vec3<f32>(0.0), vec3<f32>(1.0))) * last;
+    let k = min(floor(at), vec3<f32>(last - 1.0));
+    return HalfSpaceNodes(4u + vec3<u32>(k) * (m * m + m), at - k);
+}
+
+// The boundary's Fresnel transmittance at external cosine mu (1 at η = 1: no boundary).
+fn half_space_t(mu: f32) -> f32 {
+    let eta = half_space_table[3];
+    return select(1.0 - fresnel_in(mu, eta), 1.0, eta <= 1.0);
+}
+
+// The M×M values at `base`, bilinearly at (x, y) ∈ [0, 1]².
+fn half_space_grid(base: u32, x: f32, y: f32) -> f32 {
+    let m = u32(half_space_table[1]);
+    let ax = x * f32(m - 1u);
+    let ay = y * f32(m - 1u);
+    let i = min(u32(ax), m - 2u);
+    let j = min(u32(ay), m - 2u);
+    let fx = ax - f32(i);
+    let fy = ay - f32(j);
+    let r0 = base + i * m + j;
+    let low = mix(half_space_table[r0], half_space_table[r0 + 1u], fy);
+    let high = mix(half_space_table[r0 + m], half_space_table[r0 + m + 1u], fy);
+    return mix(low, high, fx);
+}
+
+// πf(μ, μ₀) per channel of albedo a: radiance towards μ per unit irradiance from μ₀, times π.
+fn half_space_pi_f(n: HalfSpaceNodes, a: vec3<f32>, mu: f32, mu0: f32) -> vec3<f32> {
+    let per = u32(half_space_table[1]) * u32(half_space_table[1]) + u32(half_space_table[1]);
+    var shape = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c++) {
+        shape[c] = mix(half_space_grid(n.lo[c], mu, mu0), half_space_grid(n.lo[c] + per, mu, mu0), n.f[c]);
     }
-    let l = log((1.0 + x) / x);
-    return 1.0 / (1.0 - w * x * (r0 + 0.5 * (1.0 - 2.0 * r0 * x) * l));
+    return a * shape * (half_space_t(mu) * half_space_t(mu0) / max(mu + mu0, 1e-6));
+}
+
+// R(μ) per channel of albedo a: the light returned from μ (and, by reciprocity, the radiance
+// towards μ under a uniform sky of radiance 1).
+fn half_space_r(n: HalfSpaceNodes, a: vec3<f32>, mu: f32) -> vec3<f32> {
+    let m = u32(half_space_table[1]);
+    let per = m * m + m;
+    let at = mu * f32(m - 1u);
+    let i = min(u32(at), m - 2u);
+    let fi = at - f32(i);
+    var exit = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c++) {
+        let lo = n.lo[c] + m * m + i;
+        let below = mix(half_space_table[lo], half_space_table[lo + 1u], fi);
+        let above = mix(half_space_table[lo + per], half_space_table[lo + per + 1u], fi);
+        exit[c] = mix(below, above, n.f[c]);
+    }
+    return a * exit * half_space_t(mu);
 }
 
 fn lighting_at(frag: vec2<f32>) -> LightingOut {
@@ -218,17 +279,15 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     }
 //#endif
 
-    // The half-space law reads the albedo as Hapke's r0 and recovers w = 1 − γ², γ = (1 − r0)/(1 + r0);
-    // it weighs each light's irradiance by πf = wH(μ)H(μ₀)/(4(μ + μ₀)) and the environment's by
-    // R(μ) = 1 − γH(μ) (μ: the view's cosine, μ₀: the light's).
+    // The half-space law reads the albedo as the normal-incidence reflectance r_n; it weighs each
+    // light's irradiance by πf(μ, μ₀) and the environment's by R(μ) (μ: the view's cosine, μ₀:
+    // the light's).
     let half_space = frame.sss.w > 0.5 && is_skin;
-    let hs_r0 = clamp(albedo, vec3<f32>(0.0), vec3<f32>(1.0));
-    let hs_gamma = (1.0 - hs_r0) / (1.0 + hs_r0);
-    let hs_w = 1.0 - hs_gamma * hs_gamma;
+    let hs_a = clamp(albedo, vec3<f32>(0.0), vec3<f32>(1.0));
     let hs_mu = clamp(dot(n, v), 0.0, 1.0);
-    var hs_h_mu = vec3<f32>(1.0);
+    var hs_nodes = HalfSpaceNodes(vec3<u32>(0u), vec3<f32>(0.0));
     if half_space {
-        hs_h_mu = half_space_h(hs_w, hs_r0, hs_mu);
+        hs_nodes = half_space_nodes(hs_a);
     }
     // Σ over lights of irradiance × πf (used only by the half-space law).
     var weighted = vec3<f32>(0.0);
@@ -253,7 +312,7 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
         irradiance += e_n;
         if half_space {
             let mu0 = min(n_dot_l, 1.0);
-            weighted += e_n * hs_w * hs_h_mu * half_space_h(hs_w, hs_r0, mu0) / (4.0 * max(hs_mu + mu0, 1e-6));
+            weighted += e_n * half_space_pi_f(hs_nodes, hs_a, hs_mu, mu0);
         }
         if frame.skin.z > 0.0 {
             // The skin's lobes × its specular scale (the G-buffer normal's w: cavity × oiliness).
@@ -312,7 +371,9 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     let env_e = max(sh_irradiance(frame.sh, n), vec3<f32>(0.0));
     irradiance += env_e;
     skin_irradiance += env_e * skin_env;
-    skin_weighted += env_e * skin_env * (1.0 - hs_gamma * hs_h_mu);
+    if half_space {
+        skin_weighted += env_e * skin_env * half_space_r(hs_nodes, hs_a, hs_mu);
+    }
 //#endif
     // The albedo the skin's light enters with: under the half-space law, the irradiance-weighted
     // mean of πf over the lights and R(μ) for the environment, so that the stack below composes

@@ -108,11 +108,10 @@ pub struct SceneArgs {
     /// How the skin's light depends on the light's and the viewer's directions: `lambert`
     /// (the albedo in every direction; with a medium, its half-space's exact albedo under its η
     /// by adding-doubling, which the profile's total approximates), or `half-space`, the
-    /// exact transport of an isotropic half-space at an index-matched boundary from
-    /// Chandrasekhar's H-function (every albedo, single scattering included; with a medium its
-    /// reduced albedo, else the skin's albedo read as Hapke's diffusive reflectance r0). With a
-    /// medium of eta != 1 its albedo reflects the dielectric half-space's energy at normal
-    /// incidence, its angular shape stays the index-matched one.
+    /// exact transport of an isotropic half-space under the skin's boundary (η = the medium's,
+    /// else the skin's IOR) by adding-doubling: every albedo, single scattering, refraction and
+    /// the darker grazing exits a boundary makes. The albedo is the same under both laws, read as
+    /// the reflectance at normal incidence; only its angular shape differs.
     #[arg(long, value_enum, default_value_t = Diffuse::Lambert)]
     pub diffuse: Diffuse,
     /// Skin reflectance for the skin's colour: a CSV table (`wavelength_nm` or `wavelength` and
