@@ -294,7 +294,9 @@ impl Skin {
     /// A material of `medium` whose screen-space profile comes from `model` fitted by Gaussians
     /// ([`FittedProfile`]): the albedo is what the profile's total diffuse reflectance stands
     /// for, computed exactly ([`Skin::medium_albedo`]), the IOR the medium's η, the roughness
-    /// that of skin. Returns the fit too (its error is reported).
+    /// that of skin, and the diffuse law the medium's exact half-space ([`DiffuseLaw::HalfSpace`]:
+    /// closer to the path tracer than Lambert on every reference scene, docs/BENCHMARKS.md;
+    /// [`Skin::lambert`] for the other). Returns the fit too (its error is reported).
     pub fn from_medium(medium: &Medium, model: ProfileModel) -> (Skin, FittedProfile) {
         let fit = FittedProfile::of_medium(medium, model);
         let skin = Skin {
@@ -303,7 +305,7 @@ impl Skin {
             ior: medium.eta as f32,
             subsurface: SubsurfaceModel::ScreenSpace { profile: fit.profile.clone() },
             medium: Some(medium.clone()),
-            diffuse: DiffuseLaw::Lambert,
+            diffuse: DiffuseLaw::HalfSpace,
         };
         (skin, fit)
     }
@@ -328,6 +330,11 @@ impl Skin {
     /// medium's albedo is ([`Skin::medium_albedo`]) and a measured colour stands for.
     pub fn half_space(self) -> Skin {
         Skin { diffuse: DiffuseLaw::HalfSpace, ..self }
+    }
+
+    /// This skin under [`DiffuseLaw::Lambert`], its albedo unchanged.
+    pub fn lambert(self) -> Skin {
+        Skin { diffuse: DiffuseLaw::Lambert, ..self }
     }
 
     /// The ColorChecker's "light skin" or "dark skin" patch.

@@ -82,7 +82,7 @@ pub fn run(args: &AtlasBenchArgs) -> Result<()> {
     for (name, path, level, medium) in meshes {
         let medium = Medium::builtin(medium)?.with_eta(1.0)?;
         let mut scene = Scene::rig(LightRig::Back);
-        let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::ClassicDipole);
+        let skin = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::ClassicDipole).0.lambert();
         scene.skin = Skin { subsurface: SubsurfaceModel::CubeAtlas { settings }, ..skin };
         let job = RenderJob {
             mesh: path,

@@ -179,7 +179,8 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         loaded.mesh = as_referenced(&loaded.mesh);
         loaded.rest_mesh = loaded.rest_mesh.as_ref().map(as_referenced);
         let mut prepared = job.prepare_loaded(&loaded)?;
-        let (better, _) = Skin::from_medium(&medium, Profile::BetterDipole.model());
+        // Lambert unless a row says otherwise: the thickness fits were made under it.
+        let better = Skin::from_medium(&medium, Profile::BetterDipole.model()).0.lambert();
         // The combination's skin: the better dipole's kernel over the half-space law.
         let combined = better.clone().half_space();
         let sources = [true, false].map(|baked| {
@@ -228,7 +229,7 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         let plain = |model, params, skin, samples| Config { model, params, skin, samples, map: ThicknessMap::None };
         for &law in &args.diffuse {
             let half = law == Diffuse::HalfSpace;
-            let with_law = |skin: Skin| if half { skin.half_space() } else { skin };
+            let with_law = |skin: Skin| if half { skin.half_space() } else { skin.lambert() };
             let albedo = if half { "half-space" } else { "better-dipole" };
             configs.push(plain(
                 "none",

@@ -111,9 +111,11 @@ pub struct SceneArgs {
     /// exact transport of an isotropic half-space under the skin's boundary (η = the medium's,
     /// else the skin's IOR) by adding-doubling: every albedo, single scattering, refraction and
     /// the darker grazing exits a boundary makes. The albedo is the same under both laws, read as
-    /// the reflectance at normal incidence; only its angular shape differs.
-    #[arg(long, value_enum, default_value_t = Diffuse::Lambert)]
-    pub diffuse: Diffuse,
+    /// the reflectance at normal incidence; only its angular shape differs. Default: half-space
+    /// with a medium (--medium, --sigma-a/--sigma-s/--eta: it is that medium's exact transport,
+    /// closest to the path tracer on every scene, docs/BENCHMARKS.md), Lambert for a skin colour.
+    #[arg(long, value_enum)]
+    pub diffuse: Option<Diffuse>,
     /// Skin reflectance for the skin's colour: a CSV table (`wavelength_nm` or `wavelength` and
     /// one column per skin, or one skin per row) or a CGATS file, e.g. a measured skin of your
     /// own or one of python/skin_gamut.py's skins; the first skin unless --skin-sample names one.
@@ -211,7 +213,7 @@ pub enum Profile {
 pub enum Diffuse {
     /// Lambert: the albedo in every direction.
     Lambert,
-    /// The exact isotropic half-space (Chandrasekhar's H-function).
+    /// The exact transport of an isotropic half-space under the skin's boundary (adding-doubling).
     HalfSpace,
 }
 
@@ -324,8 +326,11 @@ impl SceneArgs {
             scene.skin = skin;
             fit = Some(fitted);
         }
-        if self.diffuse == Diffuse::HalfSpace {
-            scene.skin = scene.skin.clone().half_space();
+        // Without --diffuse the skin keeps its own law (a medium's is the half-space).
+        match self.diffuse {
+            Some(Diffuse::HalfSpace) => scene.skin = scene.skin.clone().half_space(),
+            Some(Diffuse::Lambert) => scene.skin = scene.skin.clone().lambert(),
+            None => {}
         }
         let job = RenderJob {
             mesh: self.mesh.clone(),
