@@ -106,10 +106,20 @@ def test_non_absorbing_medium_conserves_energy_in_both(rouge, rouge_bin, tmp_pat
     rough = mitsuba_image(rouge_bin, scene, "medium", tmp_path / "rough", spp=32)
     mean = float(rough.mean[..., :3][mask].mean())
     assert 0.95 < mean < 1.01, f"Mitsuba furnace, rough boundary: mean radiance {mean:.4f}"
-    ours = rouge_linear(rouge, [*scene, "--no-specular"], tmp_path / "furnace.exr")
+    ours = rouge_linear(rouge, [*scene, "--no-specular", "--diffuse", "lambert"], tmp_path / "furnace.exr")
     rouge_mean = float(ours[..., :3][mask].mean())
     transmitted = 1.0 - ((1.3 - 1.0) / (1.3 + 1.0)) ** 2
     assert abs(rouge_mean - transmitted) < 0.01, f"Rouge furnace: mean radiance {rouge_mean:.4f}, not {transmitted:.4f}"
+    # A medium's default law, the half-space under its boundary, lets in 1 − F(μ) at each exit
+    # cosine: the same at the centre of the disc, less towards the rim, where Fresnel sends more to
+    # the specular part (render/src/dielectric_brdf.rs).
+    law = rouge_linear(rouge, [*scene, "--no-specular"], tmp_path / "furnace_law.exr")
+    ys, xs = np.nonzero(mask)
+    r = np.hypot(ys - ys.mean(), xs - xs.mean()) / np.sqrt((smooth.mean[..., 3] > 0.5).sum() / np.pi)
+    centre = float(law[..., :3][ys[r < 0.3], xs[r < 0.3]].mean())
+    rim = float(law[..., :3][ys[r > 0.85], xs[r > 0.85]].mean())
+    assert abs(centre - transmitted) < 0.01, f"half-space law, centre: {centre:.4f}, not {transmitted:.4f}"
+    assert rim < centre - 0.02, f"half-space law: the rim ({rim:.4f}) is not darker than the centre ({centre:.4f})"
 
 
 def test_export_is_a_loadable_scene_of_the_same_size(rouge_bin, tmp_path):
