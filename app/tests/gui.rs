@@ -164,6 +164,15 @@ fn the_subsurface_panel_switches_to_translucency_once_the_bake_lands() {
     let data = tempfile::tempdir().expect("tempdir");
     let mut h = harness(data.path());
     assert_eq!(h.state().subsurface_in_use().0, "screen-space");
+    // The exact skin surface: the panel's checkbox, on and off again.
+    assert_eq!(h.state().diffuse_in_use(), "lambert");
+    h.get_by_label("Exact skin surface (half-space)").click_accesskit();
+    h.run_steps(2);
+    assert_eq!(h.state().diffuse_in_use(), "half-space");
+    assert!(h.state().document().is_modified() && h.state().message().is_none_or(|(ok, _)| *ok));
+    h.get_by_label("Exact skin surface (half-space)").click_accesskit();
+    h.run_steps(2);
+    assert_eq!(h.state().diffuse_in_use(), "lambert");
     h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessPerLight);
     h.run_steps(2);
     assert_eq!(h.state().subsurface_in_use(), ("thickness", false));

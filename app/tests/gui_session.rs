@@ -6,7 +6,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_kittest::wgpu::{WgpuTestRenderer, default_wgpu_setup};
 use egui_wgpu::WgpuSetup;
-use rouge_app::gui::{Options, RougeApp, SubsurfaceChoice, with_timestamp_queries};
+use rouge_app::gui::{DiffuseChoice, Options, RougeApp, SubsurfaceChoice, with_timestamp_queries};
 use rouge_model::document::Document;
 use std::path::{Path, PathBuf};
 
@@ -144,6 +144,10 @@ fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
     assert!(h.state().document().is_modified(), "another subsurface model is unsaved work");
     h.run_steps(2);
     assert_eq!(h.state().subsurface_in_use().0, "screen-space+thickness");
+    assert_eq!(h.state().diffuse_in_use(), "lambert", "Lambert by default");
+    h.state_mut().set_diffuse(DiffuseChoice::HalfSpace);
+    h.run_steps(2);
+    assert_eq!(h.state().diffuse_in_use(), "half-space");
     h.state_mut().save_project_to(&project).expect("save");
     assert_eq!(h.state().document().name, "Evening look", "a new project takes its folder's name");
     h.run_steps(2);
@@ -152,9 +156,10 @@ fn the_subsurface_model_and_the_projects_name_come_back_with_the_project() {
     let mut h = app(data.path(), Some(project.clone()), false);
     h.run_steps(2);
     let doc = h.state().document();
-    let want = ("Evening look", SubsurfaceChoice::ScreenSpaceThickness, false);
-    assert_eq!((doc.name.as_str(), doc.subsurface, doc.is_modified()), want);
+    let want = ("Evening look", SubsurfaceChoice::ScreenSpaceThickness, DiffuseChoice::HalfSpace, false);
+    assert_eq!((doc.name.as_str(), doc.subsurface, doc.diffuse, doc.is_modified()), want);
     assert_eq!(h.state().subsurface_in_use().0, "screen-space+thickness", "the viewport draws the saved model");
+    assert_eq!(h.state().diffuse_in_use(), "half-space", "and the saved diffuse law");
 }
 
 #[test]

@@ -36,7 +36,7 @@ pub use skin_panel::DEFAULT_SKIN_PX;
 mod skin_view;
 pub use skin_view::{FullBake, SkinBakeTimes};
 mod translucency;
-pub use translucency::SubsurfaceChoice;
+pub use translucency::{DiffuseChoice, SubsurfaceChoice};
 mod viewport;
 mod views;
 pub use views::HeatMapFrame;
@@ -265,6 +265,18 @@ impl RougeApp {
     pub fn set_subsurface(&mut self, choice: SubsurfaceChoice) {
         self.editor.document_mut().subsurface = choice;
         self.view.needs_render = true;
+    }
+
+    /// Chooses the skin's diffuse law in the viewport (the Subsurface panel's checkbox), the
+    /// document's: saved with the project, and unsaved work until then.
+    pub fn set_diffuse(&mut self, choice: DiffuseChoice) {
+        self.editor.document_mut().diffuse = choice;
+        self.view.needs_render = true;
+    }
+
+    /// The diffuse law the viewport's last frame used (`lambert`, `half-space`).
+    pub fn diffuse_in_use(&self) -> &'static str {
+        self.view.scene.skin.diffuse.name()
     }
 
     /// The subsurface model the viewport's last frame used (`screen-space`, `thickness`, `none`),

@@ -5,7 +5,9 @@
 //! cube-map atlas dipole (\[Benmounah2009\], with the paper's deformation test: the head morphed
 //! toward its bounding sphere, by hand or animated), or none. The bake runs on a
 //! background thread (cached on disk by mesh: instant the second time); until it lands the
-//! viewport keeps the screen-space kernel and says so.
+//! viewport keeps the screen-space kernel and says so. Under the model, a checkbox chooses how
+//! the skin returns light by angle: Lambert, or the exact half-space under its surface
+//! ([`rouge_render::dielectric_brdf`]); both are saved with the project.
 //!
 //! The app's skin is not a measured medium, so the translucency takes skin1's coefficients
 //! (\[Jensen2001\]: its σ_tr falloff) and the parameters fitted to the path tracer for skin1.
@@ -18,7 +20,7 @@ use rouge_render::job::bake_thickness_map;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 
 /// The subsurface models the viewport offers: the document's choice, saved with the project.
-pub use rouge_model::document::SubsurfaceChoice;
+pub use rouge_model::document::{DiffuseChoice, SubsurfaceChoice};
 
 /// The paper's deformation test in the viewport: the mesh morphed toward its bounding sphere.
 #[derive(Debug, Default)]
@@ -117,6 +119,10 @@ impl RougeApp {
             SubsurfaceChoice::DirectionalDipole | SubsurfaceChoice::CubeAtlas | SubsurfaceChoice::ScreenSpaceSlab
         );
         self.view.scene.skin.medium = physical.then(|| skin1().cloned()).flatten();
+        self.view.scene.skin.diffuse = match self.editor.document().diffuse {
+            DiffuseChoice::Lambert => rouge_render::DiffuseLaw::Lambert,
+            DiffuseChoice::HalfSpace => rouge_render::DiffuseLaw::HalfSpace,
+        };
         self.view.scene.skin.subsurface = match choice {
             SubsurfaceChoice::DirectionalDipole => SubsurfaceModel::Dipole {
                 kind: rouge_render::DipoleKind::Directional,
@@ -168,6 +174,20 @@ impl RougeApp {
             );
         if chosen != before {
             self.set_subsurface(chosen);
+        }
+        let mut exact = self.editor.document().diffuse == DiffuseChoice::HalfSpace;
+        let toggled = ui
+            .checkbox(&mut exact, "Exact skin surface (half-space)")
+            .on_hover_text(
+                "How the skin returns light by angle: the exact transport of a half-space of skin under \
+                 its surface (η 1.4, adding-doubling), darker towards grazing views and light, where the \
+                 surface reflects more, instead of the same in every direction (Lambert). The colour at \
+                 normal incidence stays. Closer to a path tracer on every scene measured \
+                 (docs/BENCHMARKS.md).",
+            )
+            .changed();
+        if toggled {
+            self.set_diffuse(if exact { DiffuseChoice::HalfSpace } else { DiffuseChoice::Lambert });
         }
         if chosen == SubsurfaceChoice::CubeAtlas {
             self.morph_controls(ui);

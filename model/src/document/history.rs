@@ -344,6 +344,7 @@ impl Document {
             || self.face != self.saved_face
             || self.name != self.saved_name
             || self.subsurface != self.saved_subsurface
+            || self.diffuse != self.saved_diffuse
             || !same_skin
     }
 }

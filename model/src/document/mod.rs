@@ -278,6 +278,20 @@ impl SubsurfaceChoice {
     }
 }
 
+/// How the viewport's skin returns light by angle, chosen in the app's Subsurface panel and saved
+/// with the project (`look.json`'s `project.diffuse`); the renderer's laws behind them are
+/// `rouge_render::DiffuseLaw`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DiffuseChoice {
+    /// The albedo in every direction (the default).
+    #[default]
+    Lambert,
+    /// The exact half-space under the skin's boundary (adding-doubling; darker towards grazing
+    /// exits, where the surface reflects more), with the same albedo at normal incidence.
+    HalfSpace,
+}
+
 /// The painting app's document. Edit the layers through the methods, which record undo steps;
 /// changing [`Document::layers`] directly bypasses the history.
 pub struct Document {
@@ -291,6 +305,11 @@ pub struct Document {
     pub subsurface: SubsurfaceChoice,
     /// The subsurface model as last saved (or opened), for [`Document::is_modified`].
     saved_subsurface: SubsurfaceChoice,
+    /// The skin's diffuse law in the viewport, saved with the project like
+    /// [`Document::subsurface`]; projects saved before it open with Lambert.
+    pub diffuse: DiffuseChoice,
+    /// The diffuse law as last saved (or opened), for [`Document::is_modified`].
+    saved_diffuse: DiffuseChoice,
     /// Layers, bottom (on the skin) to top.
     pub layers: Vec<PaintLayer>,
     /// The default head's expression and face shape the look is shown on (saved in the
@@ -342,6 +361,8 @@ impl Document {
             saved_name: look.name.clone(),
             subsurface: SubsurfaceChoice::default(),
             saved_subsurface: SubsurfaceChoice::default(),
+            diffuse: DiffuseChoice::default(),
+            saved_diffuse: DiffuseChoice::default(),
             layers: paint_layers(look),
             face: FacePose::default(),
             saved_face: FacePose::default(),

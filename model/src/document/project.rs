@@ -31,6 +31,7 @@ impl Document {
         self.saved_skin = self.skin.clone();
         self.saved_name = self.name.clone();
         self.saved_subsurface = self.subsurface;
+        self.saved_diffuse = self.diffuse;
         Ok(())
     }
 
@@ -62,6 +63,8 @@ impl Document {
         doc.saved_skin = doc.skin.clone();
         doc.subsurface = part.as_ref().and_then(|p| p.subsurface).unwrap_or_default();
         doc.saved_subsurface = doc.subsurface;
+        doc.diffuse = part.as_ref().and_then(|p| p.diffuse).unwrap_or_default();
+        doc.saved_diffuse = doc.diffuse;
         for (look_layer, layer) in look.layers.iter().zip(doc.layers.iter_mut()) {
             let ThicknessSource::Map { path, scale_mm: Some(scale) } = &look_layer.thickness else { continue };
             // The look holds map × scale_mm, and dividing by it again is not exact: read the
@@ -404,7 +407,7 @@ fn write_project_files(doc: &Document, dir: &Path, look_path: &Path, new: &mut N
     // `look.json` needs only the references; the maps themselves are in the files.
     let layers = doc.layers.iter().zip(&files).map(|(l, f)| look_layer(l, f, ThicknessMap::uniform(0.0))).collect();
     let look = Look { name: doc.name.clone(), layers, mascara: doc.mascara, brow_gel: doc.brow_gel };
-    let part = ProjectPart { face, skin, subsurface: Some(doc.subsurface) };
+    let part = ProjectPart { face, skin, subsurface: Some(doc.subsurface), diffuse: Some(doc.diffuse) };
     write_atomic(look_path, look.to_project_json(Some(&part)).as_bytes())
         .map_err(|e| ModelError::file(look_path, e))?;
     sync_dir(dir);

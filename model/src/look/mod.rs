@@ -181,6 +181,10 @@ pub struct ProjectPart {
     /// default (projects saved before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface: Option<crate::document::SubsurfaceChoice>,
+    /// The skin's diffuse law in the viewport (`lambert`, `half-space`); `None`: Lambert
+    /// (projects saved before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse: Option<crate::document::DiffuseChoice>,
 }
 
 fn yes() -> bool {
