@@ -8,7 +8,7 @@
 //! `cargo bench -p rouge-render --bench half_space`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rouge_render::dielectric_brdf::{GpuTable, held_out_points};
+use rouge_render::dielectric_brdf::{GpuLaw, GpuTable, held_out_points};
 use rouge_render::half_space::HalfSpace;
 use std::hint::black_box;
 
@@ -24,7 +24,7 @@ fn report_errors() {
     let (mut f_err, mut r_err) = (vec![], vec![]);
     for p in &points {
         if !tables.iter().any(|(e, _)| *e == p.eta) {
-            tables.push((p.eta, GpuTable::new(p.eta).expect("in the domain")));
+            tables.push((p.eta, GpuTable::new(GpuLaw { eta: p.eta, curvature: None }).expect("in the domain")));
         }
         let t = &tables.iter().find(|(e, _)| *e == p.eta).expect("made above").1;
         f_err.push((t.pi_brdf(p.r_normal, p.mu, p.mu0) / p.pi_f - 1.0).abs());
@@ -37,7 +37,7 @@ fn report_errors() {
          R median {rm:.1e}, p95 {r95:.1e}, worst {rw:.1e}",
         points.len()
     );
-    let table = GpuTable::new(1.0).expect("η = 1");
+    let table = GpuTable::new(GpuLaw { eta: 1.0, curvature: None }).expect("η = 1");
     let mut worst: f64 = 0.0;
     for i in 1..=20 {
         let hs = HalfSpace::new(1.0 - (f64::from(i) / 20.0).powi(3));
@@ -58,8 +58,10 @@ fn bench_half_space(c: &mut Criterion) {
     group.bench_function("solve H (80 nodes)", |b| b.iter(|| HalfSpace::new(black_box(0.84))));
     let hs = HalfSpace::new(0.84);
     group.bench_function("exact pi f, solved", |b| b.iter(|| hs.pi_brdf(black_box(0.37), black_box(0.8))));
-    group.bench_function("GPU table at eta 1.3 (made per eta)", |b| b.iter(|| GpuTable::new(black_box(1.3))));
-    let table = GpuTable::new(1.3).expect("η = 1.3");
+    group.bench_function("GPU table at eta 1.3 (made per eta)", |b| {
+        b.iter(|| GpuTable::new(GpuLaw { eta: black_box(1.3), curvature: None }))
+    });
+    let table = GpuTable::new(GpuLaw { eta: 1.3, curvature: None }).expect("η = 1.3");
     group.bench_function("GPU twin pi f, one channel", |b| {
         b.iter(|| table.pi_brdf(black_box(0.31), black_box(0.37), black_box(0.8)))
     });

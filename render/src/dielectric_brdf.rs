@@ -258,33 +258,57 @@ fn albedo_of(r_normal: f64, eta: f64) -> Result<f64> {
     Ok(0.5 * (lo + hi))
 }
 
-/// The half-space law of one η over the albedo r_n, for the lighting pass: a header of four
-/// floats (node count K, cosine count M, r_max, η), then per albedo node k (r_n = r_max·(k/(K −
-/// 1))², r_max = R(1) at α′ = 1) the shape's M×M values and exit's M (module doc). The shader
-/// (`lighting.wgsl`, `half_space_*`) interpolates linearly in √(r_n / r_max) and bilinearly in
-/// the cosines, as [`GpuTable::pi_brdf`] does here.
+/// What the half-space law's GPU table is made for: the skin's η, and for the curvature of its
+/// environment term ([`crate::curved_half_space`]) the medium's α′ and σt′ (mm⁻¹) per channel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GpuLaw {
+    /// The boundary's relative index.
+    pub eta: f64,
+    /// α′ and σt′ (mm⁻¹) per channel; none: no curvature term.
+    pub curvature: Option<[[f64; 2]; 3]>,
+}
+
+/// The half-space law of one η over the albedo r_n, for the lighting pass: a header of eight
+/// floats (node count K, cosine count M, r_max, η, curvature node count J (0 without the term),
+/// the largest |H| in mm⁻¹, 0, 0), then per albedo node k (r_n = r_max·(k/(K − 1))², r_max = R(1)
+/// at α′ = 1) the shape's M×M values and exit's M (module doc), then the curvature ratios per
+/// channel at J curvatures even in ±|H|max ([`crate::curved_half_space::gpu_ratios`]). The shader
+/// (`lighting.wgsl`, `half_space_*`) interpolates linearly in √(r_n / r_max) and bilinearly in the
+/// cosines, as [`GpuTable::pi_brdf`] does here.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GpuTable {
     /// The header and values, as uploaded.
     pub values: Vec<f32>,
 }
 
+/// Floats before the law's nodes.
+const HEADER: usize = 8;
+
 impl GpuTable {
-    /// The table at `eta`.
+    /// The table of `law`.
     ///
     /// # Errors
-    /// [`RenderError::Invalid`] naming η outside [1, 3], or if the reference does not load.
-    pub fn new(eta: f64) -> Result<GpuTable> {
+    /// [`RenderError::Invalid`] naming η outside [1, 3] or a medium the curvature term cannot take,
+    /// or if the reference does not load.
+    pub fn new(law: GpuLaw) -> Result<GpuTable> {
+        let eta = law.eta;
         check_domain(1.0, eta)?;
         let r_max = reflectance(1.0, eta)?.normal;
         let m = table()?.mu_nodes;
-        let mut values = vec![GPU_ALBEDO_NODES as f32, m as f32, r_max as f32, eta as f32];
+        let ratios = match law.curvature {
+            Some(c) => crate::curved_half_space::gpu_ratios(c.map(|[a, _]| a), c.map(|[_, s]| s), eta)?,
+            None => Vec::new(),
+        };
+        let j = ratios.len() / 3;
+        let h_max = crate::curved_half_space::MAX_CURVATURE_PER_MM as f32;
+        let mut values = vec![GPU_ALBEDO_NODES as f32, m as f32, r_max as f32, eta as f32, j as f32, h_max, 0.0, 0.0];
         for k in 0..GPU_ALBEDO_NODES {
             let s = k as f64 / (GPU_ALBEDO_NODES - 1) as f64;
             // At r_n = 0 the shape is single scattering's, the table's α′ → 0 limit.
             let alpha = if k == 0 { 0.0 } else { albedo_of(r_max * s * s, eta)? };
             values.extend(Law::new(alpha, eta)?.values.iter().map(|&v| v as f32));
         }
+        values.extend(ratios);
         Ok(GpuTable { values })
     }
 
@@ -300,8 +324,21 @@ impl GpuTable {
         let per = m * m + m;
         let at = (unit(r_normal / r_max)).sqrt() * (k_count - 1) as f64;
         let k = (at.floor() as usize).min(k_count - 2);
-        let node = |k: usize| &self.values[4 + k * per..][..per];
+        let node = |k: usize| &self.values[HEADER + k * per..][..per];
         (node(k), node(k + 1), at - k as f64)
+    }
+
+    /// The curvature term's ratio for `channel` at mean curvature `h_per_mm` (clamped), as the
+    /// shader interpolates it; 1 without the term.
+    pub fn curvature_ratio(&self, channel: usize, h_per_mm: f64) -> f64 {
+        let (k_count, m, _, _) = self.header();
+        let (j, h_max) = (self.values[4] as usize, f64::from(self.values[5]));
+        if j < 2 {
+            return 1.0;
+        }
+        let start = HEADER + k_count * (m * m + m) + channel.min(2) * j;
+        let h = if h_per_mm.is_nan() { 0.0 } else { h_per_mm.clamp(-h_max, h_max) };
+        linear(&self.values[start..start + j], 0.5 * (h / h_max + 1.0))
     }
 
     /// πf(μ, μ₀) of a pixel of albedo `r_normal`, as the shader computes it.

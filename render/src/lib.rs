@@ -11,7 +11,8 @@
 //! - The CPU models the passes run: [`sss`] (the diffusion profile and separable kernel),
 //!   [`diffusion`], [`half_space`] (the exact half-space under the diffusion profiles, η = 1) and
 //!   [`dielectric_half_space`] (its albedo under a dielectric boundary, the media's albedo) with
-//!   [`dielectric_brdf`] (its angular law there, the `half-space` diffuse law's),
+//!   [`dielectric_brdf`] (its angular law there, the `half-space` diffuse law's) and
+//!   [`curved_half_space`] (a curved surface of it under light from every side),
 //!   [`directional_dipole`], [`cube_atlas`], [`local_thickness`], [`env`](mod@env)
 //!   (environment maps and their spherical-harmonics irradiance, \[Benmounah2009\] section 4.1.2),
 //!   [`specular`], [`edges`] and [`silhouettes`] with [`aa`] (antialiasing).
@@ -24,6 +25,7 @@
 pub mod aa;
 pub mod aa_study;
 pub mod cube_atlas;
+pub mod curved_half_space;
 pub mod dielectric_brdf;
 pub mod dielectric_half_space;
 pub mod diffusion;

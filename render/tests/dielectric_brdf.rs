@@ -2,7 +2,7 @@
 //! adding-doubling off every grid, against Chandrasekhar's exact half-space at η = 1, and at the
 //! edges of its domain.
 
-use rouge_render::dielectric_brdf::{GpuTable, Law, held_out_points};
+use rouge_render::dielectric_brdf::{GpuLaw, GpuTable, Law, held_out_points};
 use rouge_render::half_space::HalfSpace;
 
 fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
@@ -22,7 +22,7 @@ fn the_law_and_the_gpu_table_agree_with_adding_doubling_off_every_grid() {
         law_f.push((law.pi_brdf(p.mu, p.mu0) / p.pi_f - 1.0).abs());
         law_r.push((law.reflectance(p.mu0) / p.r - 1.0).abs());
         if !tables.iter().any(|(e, _)| *e == p.eta) {
-            tables.push((p.eta, GpuTable::new(p.eta).expect("in the domain")));
+            tables.push((p.eta, GpuTable::new(GpuLaw { eta: p.eta, curvature: None }).expect("in the domain")));
         }
         let gpu = &tables.iter().find(|(e, _)| *e == p.eta).expect("made above").1;
         gpu_f.push((gpu.pi_brdf(p.r_normal, p.mu, p.mu0) / p.pi_f - 1.0).abs());
@@ -106,9 +106,9 @@ fn the_edges_of_the_domain_are_finite_or_errors_that_name_the_value() {
         let e = Law::new(alpha, eta).expect_err("outside").to_string();
         assert!(e.contains(word), "{e}");
     }
-    let e = GpuTable::new(f64::NAN).expect_err("outside").to_string();
+    let e = GpuTable::new(GpuLaw { eta: f64::NAN, curvature: None }).expect_err("outside").to_string();
     assert!(e.contains("NaN"), "{e}");
-    let t = GpuTable::new(1.3).expect("in the domain");
+    let t = GpuTable::new(GpuLaw { eta: 1.3, curvature: None }).expect("in the domain");
     for a in [0.0, 1e-9, 0.5, 0.983, 1.0, 5.0, -1.0, f64::NAN] {
         for mu in [0.0, 0.5, 1.0] {
             let (f, r) = (t.pi_brdf(a, mu, 1.0 - mu), t.reflectance(a, mu));

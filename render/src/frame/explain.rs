@@ -107,8 +107,9 @@ fn on_off(b: bool) -> &'static str {
     if b { "on" } else { "off" }
 }
 
-/// The skin material in words: its medium, albedo, subsurface model and the model's settings.
-pub(super) fn material(skin: &Skin) -> String {
+/// The skin material in words: its medium, albedo, diffuse law (`curved`: with the curvature of
+/// its environment term), subsurface model and the model's settings.
+pub(super) fn material(skin: &Skin, curved: bool) -> String {
     let medium = skin.medium.as_ref().map_or("no medium".to_string(), |m| {
         format!("medium {} (σa {:?}, σs′ {:?} mm⁻¹, η {})", m.name, m.sigma_a_per_mm, m.sigma_s_prime_per_mm, m.eta)
     });
@@ -117,6 +118,10 @@ pub(super) fn material(skin: &Skin) -> String {
     });
     let how = match skin.diffuse {
         DiffuseLaw::Lambert => "",
+        DiffuseLaw::HalfSpace if curved => {
+            " (adding-doubling's angular law under the boundary of η = the skin's IOR, a table in the lighting pass; \
+             the environment's term corrected per pixel for the surface's mean curvature)"
+        }
         DiffuseLaw::HalfSpace => {
             " (adding-doubling's angular law under the boundary of η = the skin's IOR, a table in the lighting pass)"
         }

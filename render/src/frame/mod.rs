@@ -240,8 +240,8 @@ impl FramePlan {
         }
         plan.gbuffer(variant);
         plan.glitter(uploaded.glitter, scene.specular);
-        let half_space_eta = plan.half_space_law(scene)?;
-        plan.lighting(variant, uploaded.glitter, half_space_eta);
+        let half_space = plan.half_space_law(scene)?;
+        plan.lighting(variant, uploaded.glitter, half_space);
         plan.subsurface_passes(variant, models);
         let kernel = plan.screen_space(scene)?;
         plan.hair(variant, uploaded.hair_strands, settings.hair_aa);
@@ -257,7 +257,7 @@ impl FramePlan {
             kernel,
             targets,
             constants: SceneConstants::new(scene),
-            material: explain::material(&scene.skin),
+            material: explain::material(&scene.skin, half_space.is_some_and(|l| l.curvature.is_some())),
         })
     }
 }

@@ -4,6 +4,7 @@
 use super::{Access, PlannedPass, Resource, Skipped, Step};
 use crate::aa::EdgeAa;
 use crate::cube_atlas::GlobalTerm;
+use crate::dielectric_brdf::GpuLaw;
 use crate::error::{RenderError, Result};
 use crate::local_thickness::ThicknessSource;
 use crate::passes::cube_atlas::AtlasStep;
@@ -134,27 +135,43 @@ impl Planner {
         }
     }
 
-    /// The skin's η when its diffuse law is `half-space`, whose table the lighting pass reads
-    /// ([`crate::dielectric_brdf`]); none under Lambert, and the plan says the table goes.
+    /// The half-space law's table when the skin's diffuse law is `half-space`
+    /// ([`crate::dielectric_brdf`]), with the curvature of its environment term when the skin has
+    /// a medium and the scene an environment ([`crate::curved_half_space`]); none under Lambert.
+    /// The plan says what goes.
     ///
     /// # Errors
     /// [`RenderError::Invalid`] for an η outside the law's table (1 ≤ η ≤ 3).
-    pub fn half_space_law(&mut self, scene: &Scene) -> Result<Option<f32>> {
+    pub fn half_space_law(&mut self, scene: &Scene) -> Result<Option<GpuLaw>> {
         if scene.skin.diffuse != DiffuseLaw::HalfSpace {
             self.skip("half-space law table", "the skin's diffuse law is Lambert");
             return Ok(None);
         }
-        let eta = scene.skin.ior;
-        if !crate::dielectric_half_space::ETA_RANGE.contains(&f64::from(eta)) {
+        let eta = f64::from(scene.skin.ior);
+        if !crate::dielectric_half_space::ETA_RANGE.contains(&eta) {
             return Err(RenderError::Invalid(format!(
                 "the half-space diffuse law is tabulated for 1 ≤ η ≤ 3; the skin's η is {eta}"
             )));
         }
-        Ok(Some(eta))
+        let curvature = match (&scene.skin.medium, scene.environment.is_some()) {
+            (Some(m), true) => {
+                let alpha = m.reduced_albedo();
+                Some(std::array::from_fn(|c| [alpha[c], m.sigma_a_per_mm[c] + m.sigma_s_prime_per_mm[c]]))
+            }
+            (None, _) => {
+                self.skip("curvature of the half-space law's environment term", "the skin has no medium");
+                None
+            }
+            (_, false) => {
+                self.skip("curvature of the half-space law's environment term", "the scene has no environment");
+                None
+            }
+        };
+        Ok(Some(GpuLaw { eta, curvature }))
     }
 
     /// Lighting through the cosmetic stack.
-    pub fn lighting(&mut self, variant: Variant, glitter: u8, half_space_eta: Option<f32>) {
+    pub fn lighting(&mut self, variant: Variant, glitter: u8, half_space: Option<GpuLaw>) {
         let mut reads = targets(&lighting::inputs(variant));
         if variant.layers > 0 {
             reads.push(Resource::LayerTables);
@@ -171,7 +188,7 @@ impl Planner {
             self.skip("environment (SH) term", "the scene has no environment");
         }
         let writes = lighting::outputs(variant).into_iter().map(|t| (Resource::Target(t), Access::Replace)).collect();
-        self.push(Step::Lighting(LightingStep { half_space_eta }), reads, writes);
+        self.push(Step::Lighting(LightingStep { half_space }), reads, writes);
     }
 
     /// The passes of the thickness, dipole or cube-atlas model, added to the diffuse radiance.

@@ -221,3 +221,38 @@ fn the_hair_pass_runs_only_for_a_mesh_with_strands() {
         assert!(plan.explain().contains("620 hair strands"), "{}", plan.explain());
     }
 }
+
+#[test]
+fn the_half_space_law_and_its_curvature_term_are_planned_only_where_they_apply() {
+    let up = uploaded(0);
+    let mut scene = Scene::studio();
+    let step = |plan: &FramePlan| match plan.passes.iter().find(|p| p.step.name() == "lighting").map(|p| &p.step) {
+        Some(Step::Lighting(s)) => *s,
+        other => panic!("no lighting step: {other:?}"),
+    };
+    // Lambert: no table.
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(step(&plan).half_space, None);
+    assert!(plan.explain().contains("half-space law table: the skin's diffuse law is Lambert"));
+    // The law without a medium: the table at the skin's IOR, no curvature term.
+    scene.skin = scene.skin.clone().half_space();
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    let law = step(&plan).half_space.expect("the law's table");
+    assert_eq!((law.eta, law.curvature), (f64::from(scene.skin.ior), None));
+    assert!(plan.explain().contains("environment term: the skin has no medium"), "{}", plan.explain());
+    // With a medium and the studio's environment: the term, and the plan says so.
+    scene.skin.medium = Some(rouge_model::medium::Medium::builtin("skin1").expect("skin1"));
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    let curvature = step(&plan).half_space.and_then(|l| l.curvature).expect("the curvature term");
+    assert!((curvature[0][1] - (0.032 + 0.74)).abs() < 1e-9, "σt′ of skin1's red: {curvature:?}");
+    assert!(plan.explain().contains("corrected per pixel for the surface's mean curvature"));
+    // Without an environment there is nothing for it to correct.
+    scene.environment = None;
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert_eq!(step(&plan).half_space.and_then(|l| l.curvature), None);
+    assert!(plan.explain().contains("environment term: the scene has no environment"));
+    // An IOR outside the table is an error that names it.
+    scene.skin.ior = 3.5;
+    let err = FramePlan::new(&scene, up, settings()).expect_err("η 3.5").to_string();
+    assert!(err.contains("3.5"), "{err}");
+}

@@ -4,10 +4,12 @@
 //! (\[Huang2013\] section 3, eq. 1-5). Writes the skin's diffuse radiance (to be scattered), the
 //! radiance leaving at the surface, and, with layers, the stack's exit transmittance. Under the
 //! `half-space` diffuse law it reads that law's table at the skin's η
-//! ([`crate::dielectric_brdf::GpuTable`]), made and uploaded when η changes.
+//! ([`crate::dielectric_brdf::GpuTable`]), made and uploaded when the law changes, and with the
+//! skin's medium and an environment, the curvature of the environment term per pixel
+//! ([`crate::curved_half_space`]).
 
 use super::{FramePass, Pipelines, Recording, Shared};
-use crate::dielectric_brdf::GpuTable;
+use crate::dielectric_brdf::{GpuLaw, GpuTable};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, pass_shader};
 use crate::targets::{HDR_FORMAT, Target};
@@ -18,9 +20,9 @@ use crate::wgpu_util::{
 /// What the plan gives the lighting pass.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightingStep {
-    /// The skin's η when its diffuse law is `half-space` (checked in [1, 3] by the plan), else
-    /// none: the law's table is then neither made nor uploaded.
-    pub half_space_eta: Option<f32>,
+    /// The half-space law's table when the skin's diffuse law is `half-space` (η checked in
+    /// [1, 3] by the plan), else none: the table is then neither made nor uploaded.
+    pub half_space: Option<GpuLaw>,
 }
 
 /// The lighting pass.
@@ -29,8 +31,8 @@ pub struct LightingPass {
     /// Without and with the exit transmittance's output.
     layouts: [wgpu::BindGroupLayout; 2],
     pipelines: Pipelines<wgpu::ComputePipeline>,
-    /// The half-space law's table and the η it is of (none: four zeros, for Lambert).
-    half_space: (Option<f32>, wgpu::Buffer),
+    /// The half-space law's table and what it is of (none: zeros, for Lambert).
+    half_space: (Option<GpuLaw>, wgpu::Buffer),
 }
 
 /// The G-buffer targets a variant reads.
@@ -103,13 +105,13 @@ impl FramePass for LightingPass {
     /// law's table.
     fn record(&mut self, rec: &mut Recording<'_>, step: &LightingStep) -> Result<()> {
         let (shared, targets) = (rec.shared, rec.targets);
-        if let Some(eta) = step.half_space_eta
-            && self.half_space.0 != Some(eta)
+        if let Some(law) = step.half_space
+            && self.half_space.0 != Some(law)
         {
-            let table = GpuTable::new(f64::from(eta))?;
+            let table = GpuTable::new(law)?;
             let bytes = bytemuck::cast_slice(&table.values);
             let buffer = buffer_init(&shared.device, "LightingPass::half_space", bytes, wgpu::BufferUsages::STORAGE);
-            self.half_space = (Some(eta), buffer);
+            self.half_space = (Some(law), buffer);
         }
         let key = rec.key(&Self::SHADER);
         let outs = outputs(key);

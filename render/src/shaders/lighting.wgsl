@@ -145,12 +145,14 @@ fn cs_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
 //#endif
 }
 
-// The half-space diffuse law (render/src/dielectric_brdf.rs, `GpuTable`, whose `pi_brdf` and
-// `reflectance` are these functions' CPU twins): adding-doubling's angular law of a half-space
-// under the skin's boundary, the albedo read as its normal-incidence reflectance r_n. The table:
-// a header (node count K, cosine count M, r_max, η), then per albedo node k (r_n = r_max·(k/(K −
-// 1))²) the M×M shape πf(μ, μ₀)(μ + μ₀)/(r_n T(μ) T(μ₀)) and the M exit values R(μ)/(r_n T(μ)),
-// T the boundary's Fresnel transmittance; cosines even in [0, 1].
+// The half-space diffuse law (render/src/dielectric_brdf.rs, `GpuTable`, whose `pi_brdf`,
+// `reflectance` and `curvature_ratio` are these functions' CPU twins): adding-doubling's angular
+// law of a half-space under the skin's boundary, the albedo read as its normal-incidence
+// reflectance r_n. The table: a header of 8 (node count K, cosine count M, r_max, η, curvature
+// node count J, the largest |H|), then per albedo node k (r_n = r_max·(k/(K − 1))²) the M×M shape
+// πf(μ, μ₀)(μ + μ₀)/(r_n T(μ) T(μ₀)) and the M exit values R(μ)/(r_n T(μ)), T the boundary's
+// Fresnel transmittance, cosines even in [0, 1]; then J ratios per channel of the environment
+// term's curvature correction (render/src/curved_half_space.rs), H even in ±|H|max.
 struct HalfSpaceNodes {
     // Offset of each channel's lower node, and the upper node's weight.
     lo: vec3<u32>,
@@ -162,7 +164,7 @@ fn half_space_nodes(a: vec3<f32>) -> HalfSpaceNodes {
     let m = u32(half_space_table[1]);
     let at = sqrt(clamp(a / half_space_table[2], vec3<f32>(0.0), vec3<f32>(1.0))) * last;
     let k = min(floor(at), vec3<f32>(last - 1.0));
-    return HalfSpaceNodes(4u + vec3<u32>(k) * (m * m + m), at - k);
+    return HalfSpaceNodes(8u + vec3<u32>(k) * (m * m + m), at - k);
 }
 
 // The boundary's Fresnel transmittance at external cosine mu (1 at η = 1: no boundary).
@@ -212,6 +214,78 @@ fn half_space_r(n: HalfSpaceNodes, a: vec3<f32>, mu: f32) -> vec3<f32> {
         exit[c] = mix(below, above, n.f[c]);
     }
     return a * exit * half_space_t(mu);
+}
+
+// The curvature correction of the environment term at mean curvature h (mm⁻¹), per channel.
+fn half_space_curvature(h: f32) -> vec3<f32> {
+    let j = u32(half_space_table[4]);
+    let h_max = half_space_table[5];
+    let m = u32(half_space_table[1]);
+    let start = 8u + u32(half_space_table[0]) * (m * m + m);
+    let at = (clamp(h, -h_max, h_max) / h_max * 0.5 + 0.5) * f32(j - 1u);
+    let i = min(u32(at), j - 2u);
+    let f = at - f32(i);
+    var out = vec3<f32>(1.0);
+    for (var c = 0u; c < 3u; c++) {
+        let o = start + c * j + i;
+        out[c] = mix(half_space_table[o], half_space_table[o + 1u], f);
+    }
+    return out;
+}
+
+// The surface's change toward the neighbouring pixel at offset d: position and normal, or none
+// off the skin's geometry.
+struct SurfaceStep {
+    dp: vec3<f32>,
+    dn: vec3<f32>,
+    ok: bool,
+}
+
+fn surface_step(p: vec2<i32>, d: vec2<i32>, world: vec3<f32>, n: vec3<f32>) -> SurfaceStep {
+    let q = p + d;
+    let size = vec2<i32>(textureDimensions(gb_normal));
+    var step = SurfaceStep(vec3<f32>(0.0), vec3<f32>(0.0), false);
+    if any(q < vec2<i32>(0)) || any(q >= size) {
+        return step;
+    }
+    let nd = textureLoad(gb_normal, q, 0);
+    if nd.w == 0.0 {
+        return step;
+    }
+    step.dp = world_at(vec2<f32>(q) + 0.5, textureLoad(gb_depth, q, 0).r) - world;
+    step.dn = normalize(nd.xyz) - n;
+    step.ok = true;
+    return step;
+}
+
+// Of the steps toward a and b, the one to the nearer point (a silhouette or a depth jump is on
+// the far side); dn = S dp holds for either sign.
+fn nearer_step(a: SurfaceStep, b: SurfaceStep) -> SurfaceStep {
+    if !b.ok || (a.ok && dot(a.dp, a.dp) <= dot(b.dp, b.dp)) {
+        return a;
+    }
+    return b;
+}
+
+// The mean curvature H (mm⁻¹, positive where convex) at the pixel: half the trace of the shape
+// operator dn = S dp, solved from one step in x and one in y (S = (PᵀP)⁻¹PᵀN in the steps' basis);
+// 0 where the pixel has no neighbour on the surface in either direction. CPU check:
+// render/tests/curved_half_space.rs (a sphere's 1/R).
+fn mean_curvature(p: vec2<i32>, world: vec3<f32>, n: vec3<f32>) -> f32 {
+    let x = nearer_step(surface_step(p, vec2<i32>(1, 0), world, n), surface_step(p, vec2<i32>(-1, 0), world, n));
+    let y = nearer_step(surface_step(p, vec2<i32>(0, 1), world, n), surface_step(p, vec2<i32>(0, -1), world, n));
+    if !(x.ok && y.ok) {
+        return 0.0;
+    }
+    let g00 = dot(x.dp, x.dp);
+    let g01 = dot(x.dp, y.dp);
+    let g11 = dot(y.dp, y.dp);
+    let det = g00 * g11 - g01 * g01;
+    if det <= 1e-12 * g00 * g11 {
+        return 0.0;
+    }
+    let trace = g11 * dot(x.dp, x.dn) - g01 * (dot(y.dp, x.dn) + dot(x.dp, y.dn)) + g00 * dot(y.dp, y.dn);
+    return 0.5 * trace / det;
 }
 
 fn lighting_at(frag: vec2<f32>) -> LightingOut {
@@ -372,7 +446,12 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     irradiance += env_e;
     skin_irradiance += env_e * skin_env;
     if half_space {
-        skin_weighted += env_e * skin_env * half_space_r(hs_nodes, hs_a, hs_mu);
+        var env_r = half_space_r(hs_nodes, hs_a, hs_mu);
+        // With the skin's medium: a convex surface under light from every side returns more.
+        if half_space_table[4] > 1.0 {
+            env_r *= half_space_curvature(mean_curvature(p, world, n));
+        }
+        skin_weighted += env_e * skin_env * env_r;
     }
 //#endif
     // The albedo the skin's light enters with: under the half-space law, the irradiance-weighted
