@@ -110,6 +110,16 @@ DIELECTRIC: dict[str, tuple[list[str], int, str]] = {
     "sphere100-skin1-env-eta1.3": dielectric(
         "skin1", "1.3", 1024,
         "a 100 mm sphere of skin1 behind a smooth boundary of eta 1.3, under a uniform white sky", "--mesh-scale", "4"),
+    # Rendered after the curvature term of the half-space law was fixed (render/src/
+    # curved_half_space.rs), to report it on scenes it was not developed on: another skin, a
+    # sphere of a finger's radius, and a medium whose mean free path is 2-6 mm.
+    "sphere-skin2-env-eta1.3": dielectric(
+        "skin2", "1.3", 1024, "a 25 mm sphere of skin2 behind a smooth boundary of eta 1.3, under a uniform white sky"),
+    "sphere10-skin1-env-eta1.3": dielectric(
+        "skin1", "1.3", 1024,
+        "a 10 mm sphere of skin1 behind a smooth boundary of eta 1.3, under a uniform white sky", "--mesh-scale", "0.4"),
+    "sphere-chicken1-env-eta1.3": dielectric(
+        "chicken1", "1.3", 1024, "a 25 mm sphere of chicken1 behind a smooth boundary of eta 1.3, under a uniform white sky"),
 }
 
 

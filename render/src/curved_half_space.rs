@@ -28,7 +28,8 @@
 //! 0.005 / 0.0004 / 0.0001) where the flat one is 25% low in red.
 //!
 //! Domain: uniform (diffuse) light only: under a light from one direction the light carried
-//! around a convex body is another matter (the kernel's and the translucency models'). Media with
+//! around a convex body is another matter (the kernel's and the translucency models'); the mesh's
+//! normals (the plan leaves the term out under a normal map or skin detail). Media with
 //! σt′ > 0, 1 ≤ η ≤ 3, |H| ≤ [`MAX_CURVATURE_PER_MM`] (clamped: radii under 2 mm are beyond the
 //! first-order argument for skin).
 

@@ -240,7 +240,7 @@ impl FramePlan {
         }
         plan.gbuffer(variant);
         plan.glitter(uploaded.glitter, scene.specular);
-        let half_space = plan.half_space_law(scene)?;
+        let half_space = plan.half_space_law(scene, variant.normal_map || variant.skin_detail)?;
         plan.lighting(variant, uploaded.glitter, half_space);
         plan.subsurface_passes(variant, models);
         let kernel = plan.screen_space(scene)?;

@@ -137,12 +137,13 @@ impl Planner {
 
     /// The half-space law's table when the skin's diffuse law is `half-space`
     /// ([`crate::dielectric_brdf`]), with the curvature of its environment term when the skin has
-    /// a medium and the scene an environment ([`crate::curved_half_space`]); none under Lambert.
-    /// The plan says what goes.
+    /// a medium and the scene an environment ([`crate::curved_half_space`]) and the G-buffer's
+    /// normals are the mesh's (`detail_normals`: a normal map or skin detail would put pores into
+    /// the curvature); none under Lambert. The plan says what goes.
     ///
     /// # Errors
     /// [`RenderError::Invalid`] for an η outside the law's table (1 ≤ η ≤ 3).
-    pub fn half_space_law(&mut self, scene: &Scene) -> Result<Option<GpuLaw>> {
+    pub fn half_space_law(&mut self, scene: &Scene, detail_normals: bool) -> Result<Option<GpuLaw>> {
         if scene.skin.diffuse != DiffuseLaw::HalfSpace {
             self.skip("half-space law table", "the skin's diffuse law is Lambert");
             return Ok(None);
@@ -153,17 +154,22 @@ impl Planner {
                 "the half-space diffuse law is tabulated for 1 ≤ η ≤ 3; the skin's η is {eta}"
             )));
         }
+        const TERM: &str = "curvature of the half-space law's environment term";
         let curvature = match (&scene.skin.medium, scene.environment.is_some()) {
+            (Some(_), true) if detail_normals => {
+                self.skip(TERM, "the G-buffer's normals carry a normal map or skin detail, not the mesh's curvature");
+                None
+            }
             (Some(m), true) => {
                 let alpha = m.reduced_albedo();
                 Some(std::array::from_fn(|c| [alpha[c], m.sigma_a_per_mm[c] + m.sigma_s_prime_per_mm[c]]))
             }
             (None, _) => {
-                self.skip("curvature of the half-space law's environment term", "the skin has no medium");
+                self.skip(TERM, "the skin has no medium");
                 None
             }
             (_, false) => {
-                self.skip("curvature of the half-space law's environment term", "the scene has no environment");
+                self.skip(TERM, "the scene has no environment");
                 None
             }
         };

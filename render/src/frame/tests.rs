@@ -246,6 +246,10 @@ fn the_half_space_law_and_its_curvature_term_are_planned_only_where_they_apply()
     let curvature = step(&plan).half_space.and_then(|l| l.curvature).expect("the curvature term");
     assert!((curvature[0][1] - (0.032 + 0.74)).abs() < 1e-9, "σt′ of skin1's red: {curvature:?}");
     assert!(plan.explain().contains("corrected per pixel for the surface's mean curvature"));
+    // Not from normals that carry pores.
+    let plan = FramePlan::new(&scene, Uploaded { skin_detail: true, ..up }, settings()).expect("plan");
+    assert_eq!(step(&plan).half_space.and_then(|l| l.curvature), None);
+    assert!(plan.explain().contains("carry a normal map or skin detail"));
     // Without an environment there is nothing for it to correct.
     scene.environment = None;
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");

@@ -258,22 +258,36 @@ fn surface_step(p: vec2<i32>, d: vec2<i32>, world: vec3<f32>, n: vec3<f32>) -> S
     return step;
 }
 
-// Of the steps toward a and b, the one to the nearer point (a silhouette or a depth jump is on
+// The change across the pixel from the steps toward a and b on opposite sides: the central
+// difference a − b where both are on the surface at similar distances (it averages the
+// triangles on both sides), else the step to the nearer point (a silhouette or a depth jump is on
 // the far side); dn = S dp holds for either sign.
-fn nearer_step(a: SurfaceStep, b: SurfaceStep) -> SurfaceStep {
+fn across(a: SurfaceStep, b: SurfaceStep) -> SurfaceStep {
+    if a.ok && b.ok {
+        let la = dot(a.dp, a.dp);
+        let lb = dot(b.dp, b.dp);
+        if max(la, lb) < 9.0 * min(la, lb) {
+            return SurfaceStep(a.dp - b.dp, a.dn - b.dn, true);
+        }
+    }
     if !b.ok || (a.ok && dot(a.dp, a.dp) <= dot(b.dp, b.dp)) {
         return a;
     }
     return b;
 }
 
+// How far (pixels) the curvature's differences reach on each side: two, so that a central
+// difference spans four pixels and the triangles' facets of interpolated normals average out.
+const CURVATURE_REACH: i32 = 2;
+
 // The mean curvature H (mm⁻¹, positive where convex) at the pixel: half the trace of the shape
-// operator dn = S dp, solved from one step in x and one in y (S = (PᵀP)⁻¹PᵀN in the steps' basis);
-// 0 where the pixel has no neighbour on the surface in either direction. CPU check:
-// render/tests/curved_half_space.rs (a sphere's 1/R).
+// operator dn = S dp, solved from one change in x and one in y (S = (PᵀP)⁻¹PᵀN in their basis);
+// 0 where the pixel has no neighbour on the surface in either direction. Checked on a sphere's
+// 1/R by render/tests/curved_half_space.rs.
 fn mean_curvature(p: vec2<i32>, world: vec3<f32>, n: vec3<f32>) -> f32 {
-    let x = nearer_step(surface_step(p, vec2<i32>(1, 0), world, n), surface_step(p, vec2<i32>(-1, 0), world, n));
-    let y = nearer_step(surface_step(p, vec2<i32>(0, 1), world, n), surface_step(p, vec2<i32>(0, -1), world, n));
+    let r = CURVATURE_REACH;
+    let x = across(surface_step(p, vec2<i32>(r, 0), world, n), surface_step(p, vec2<i32>(-r, 0), world, n));
+    let y = across(surface_step(p, vec2<i32>(0, r), world, n), surface_step(p, vec2<i32>(0, -r), world, n));
     if !(x.ok && y.ok) {
         return 0.0;
     }
