@@ -1,14 +1,17 @@
-//! A curved surface of a medium under light from every side: how much more (convex) or less
-//! (concave) it returns than the flat half-space of [`crate::dielectric_half_space`], from its
-//! mean curvature H (mm⁻¹, positive where convex).
+//! A curved surface of a medium under light from every side: how much more a convex one returns
+//! than the flat half-space of [`crate::dielectric_half_space`], from its mean curvature H (mm⁻¹,
+//! positive where convex).
 //!
 //! **The diffusive part.** Diffusion inside a sphere of radius R lit uniformly has fluence
 //! sinh(σ_tr r)/r, whose flux-to-fluence ratio at the surface is σ_tr·coth(σ_tr R) − 1/R instead
 //! of the half-space's σ_tr: the surface behaves as a half-space of the smaller transport
 //! coefficient, i.e. of the larger reduced albedo α′_eff = 1 − σ_eff²/(3σt′²) (σ_tr² = 3σaσt′).
-//! Outside a sphere (a concave surface, H < 0) the fluence e^{−σ_tr r}/r gives σ_tr + |H|. To
-//! first order both are σ_tr − H, so the correction is local: [`effective_albedo`] takes
-//! σ_eff = σ_tr·coth(σ_tr/H) − H for H > 0 and σ_tr − H otherwise.
+//! To first order that is σ_tr − H, so the correction is local: [`effective_albedo`] takes
+//! σ_eff = σ_tr·coth(σ_tr/H) − H, which goes to 0 with σ_tr (a medium that absorbs nothing returns
+//! everything, curved or not). Concave surfaces (H < 0) are left flat: the same argument outside a
+//! sphere (fluence e^{−σ_tr r}/r, σ_tr + |H|) loses light to an infinite medium that a closed body
+//! returns elsewhere, so that it would darken a non-absorbing body in a furnace, where the path
+//! tracer's radiance is exactly uniform; no reference here measures a concave surface.
 //!
 //! **Single scattering is exempt.** Light scattered once leaves within a mean free path of where it
 //! entered, where a surface whose radius is many mean free paths is flat; and at low albedo it is
@@ -32,8 +35,8 @@
 //! Domain: uniform (diffuse) light only: under a light from one direction the light carried
 //! around a convex body is another matter (the kernel's and the translucency models'); the mesh's
 //! normals (the plan leaves the term out under a normal map or skin detail). Media with
-//! σt′ > 0, 1 ≤ η ≤ 3, |H| ≤ [`MAX_CURVATURE_PER_MM`] (clamped: radii under 2 mm are beyond the
-//! first-order argument for skin).
+//! σt′ > 0, 1 ≤ η ≤ 3, 0 ≤ H ≤ [`MAX_CURVATURE_PER_MM`] (clamped: radii under 2 mm are beyond the
+//! first-order argument for skin; concave surfaces flat).
 
 use crate::dielectric_half_space::reflectance as flat_reflectance;
 use crate::diffusion::fresnel_dielectric;
@@ -56,13 +59,18 @@ pub fn single_scattering(eta: f64) -> f64 {
     t_in * 0.5 * sum
 }
 
-/// α′_eff of a surface of mean curvature `h_per_mm` (clamped to ±[`MAX_CURVATURE_PER_MM`]) in a
-/// medium of reduced albedo `alpha_prime` and σt′ = `sigma_t_per_mm` (module doc).
+/// α′_eff of a surface of mean curvature `h_per_mm` (clamped to [`MAX_CURVATURE_PER_MM`]; concave
+/// and NaN read as flat) in a medium of reduced albedo `alpha_prime` and σt′ = `sigma_t_per_mm`
+/// (module doc).
 pub fn effective_albedo(alpha_prime: f64, sigma_t_per_mm: f64, h_per_mm: f64) -> f64 {
-    let h = if h_per_mm.is_nan() { 0.0 } else { h_per_mm.clamp(-MAX_CURVATURE_PER_MM, MAX_CURVATURE_PER_MM) };
     let alpha = alpha_prime.clamp(0.0, 1.0);
+    if !(h_per_mm > 0.0) {
+        return alpha;
+    }
+    let h = h_per_mm.min(MAX_CURVATURE_PER_MM);
     let sigma_tr = sigma_t_per_mm * (3.0 * (1.0 - alpha)).sqrt();
-    let sigma_eff = if h > 0.0 && sigma_tr > 0.0 { sigma_tr / (sigma_tr / h).tanh() - h } else { sigma_tr - h };
+    // σ_tr·coth(σ_tr/H) − H, which falls to 0 with σ_tr (as σ_tr²/(3H)).
+    let sigma_eff = if sigma_tr > 0.0 { (sigma_tr / (sigma_tr / h).tanh() - h).max(0.0) } else { 0.0 };
     (1.0 - sigma_eff * sigma_eff / (3.0 * sigma_t_per_mm * sigma_t_per_mm)).clamp(0.0, 1.0)
 }
 
@@ -85,7 +93,8 @@ pub fn reflectance(alpha_prime: f64, sigma_t_per_mm: f64, eta: f64, h_per_mm: f6
     Ok((flat_reflectance(curved_alpha, eta)?.normal - c1 * (curved_alpha - alpha_prime)).clamp(0.0, 1.0))
 }
 
-/// Curvature nodes of the GPU's table, even in H over ±[`MAX_CURVATURE_PER_MM`].
+/// Curvature nodes of the GPU's table, even in H over ±[`MAX_CURVATURE_PER_MM`] (the concave
+/// half at ratio 1, so that the shader needs no branch).
 pub const GPU_CURVATURE_NODES: usize = 33;
 
 /// The ratio curved / flat per channel at [`GPU_CURVATURE_NODES`] curvatures even in

@@ -65,7 +65,10 @@ fn the_curved_surface_is_the_path_tracers_sphere_and_the_flat_one_is_not() {
 fn the_correction_is_monotone_in_curvature_and_finite_at_the_edges() {
     let (alpha, sigma_t) = (0.9, 1.0);
     let at = |h: f64| reflectance(alpha, sigma_t, 1.3, h).expect("in the domain");
-    assert!(at(-0.2) < at(0.0) && at(0.0) < at(0.1) && at(0.1) < at(0.3), "convex brighter, concave darker");
+    assert!(at(0.0) < at(0.1) && at(0.1) < at(0.3), "the more convex, the brighter");
+    assert_eq!(at(-0.2), at(0.0), "concave surfaces are left flat");
+    // A medium that absorbs nothing returns everything, curved or not (the furnace).
+    assert_eq!(effective_albedo(1.0, 0.2, 0.04), 1.0);
     assert_eq!(at(MAX_CURVATURE_PER_MM), at(10.0), "clamped");
     for (a, s, h) in [(0.0, 1.0, 0.3), (1.0, 1.0, 0.3), (1.0, 1.0, -0.3), (0.5, 1e-6, 0.5), (0.5, 1e3, f64::NAN)] {
         let r = reflectance(a, s, 1.3, h).expect("in the domain");
