@@ -64,7 +64,7 @@ pub fn single_scattering(eta: f64) -> f64 {
 /// (module doc).
 pub fn effective_albedo(alpha_prime: f64, sigma_t_per_mm: f64, h_per_mm: f64) -> f64 {
     let alpha = alpha_prime.clamp(0.0, 1.0);
-    if !(h_per_mm > 0.0) {
+    if h_per_mm.is_nan() || h_per_mm <= 0.0 {
         return alpha;
     }
     let h = h_per_mm.min(MAX_CURVATURE_PER_MM);
