@@ -81,15 +81,25 @@ pub fn effective_albedo(alpha_prime: f64, sigma_t_per_mm: f64, h_per_mm: f64) ->
 /// [`RenderError::Invalid`] naming the value for σt′ not finite and positive, or α′ or η outside
 /// [`flat_reflectance`]'s domain.
 pub fn reflectance(alpha_prime: f64, sigma_t_per_mm: f64, eta: f64, h_per_mm: f64) -> Result<f64> {
+    check(alpha_prime, sigma_t_per_mm, eta)?;
+    curved(alpha_prime, sigma_t_per_mm, eta, single_scattering(eta), h_per_mm)
+}
+
+/// [`reflectance`]'s domain: σt′ finite and positive, α′ and η as [`flat_reflectance`] takes them
+/// (whose error names the value).
+fn check(alpha_prime: f64, sigma_t_per_mm: f64, eta: f64) -> Result<()> {
     if !(sigma_t_per_mm.is_finite() && sigma_t_per_mm > 0.0) {
         return Err(RenderError::Invalid(format!(
             "σt′ {sigma_t_per_mm} mm⁻¹: the curvature correction needs a finite, positive σa + σs′"
         )));
     }
-    flat_reflectance(alpha_prime, eta)?;
-    // R(α′_eff) − c₁α′_eff + c₁α′: the curved surface's orders two and up, the flat one's first.
+    flat_reflectance(alpha_prime, eta).map(|_| ())
+}
+
+/// [`reflectance`] in its domain, with c₁ = [`single_scattering`]`(eta)` given: R(α′_eff) −
+/// c₁α′_eff + c₁α′, the curved surface's orders two and up and the flat one's first.
+fn curved(alpha_prime: f64, sigma_t_per_mm: f64, eta: f64, c1: f64, h_per_mm: f64) -> Result<f64> {
     let curved_alpha = effective_albedo(alpha_prime, sigma_t_per_mm, h_per_mm);
-    let c1 = single_scattering(eta);
     Ok((flat_reflectance(curved_alpha, eta)?.normal - c1 * (curved_alpha - alpha_prime)).clamp(0.0, 1.0))
 }
 
@@ -105,13 +115,16 @@ pub const GPU_CURVATURE_NODES: usize = 33;
 /// # Errors
 /// As [`reflectance`].
 pub fn gpu_ratios(alpha_prime: [f64; 3], sigma_t_per_mm: [f64; 3], eta: f64) -> Result<Vec<f32>> {
+    let c1 = single_scattering(eta);
     let mut out = Vec::with_capacity(3 * GPU_CURVATURE_NODES);
     for c in 0..3 {
-        let flat = reflectance(alpha_prime[c], sigma_t_per_mm[c], eta, 0.0)?;
+        let (alpha, sigma_t) = (alpha_prime[c], sigma_t_per_mm[c]);
+        check(alpha, sigma_t, eta)?;
+        let flat = curved(alpha, sigma_t, eta, c1, 0.0)?;
         for j in 0..GPU_CURVATURE_NODES {
             let h = MAX_CURVATURE_PER_MM * (2.0 * j as f64 / (GPU_CURVATURE_NODES - 1) as f64 - 1.0);
-            let curved = reflectance(alpha_prime[c], sigma_t_per_mm[c], eta, h)?;
-            out.push(if flat > 0.0 { (curved / flat) as f32 } else { 1.0 });
+            let ratio = curved(alpha, sigma_t, eta, c1, h)? / flat;
+            out.push(if flat > 0.0 { ratio as f32 } else { 1.0 });
         }
     }
     Ok(out)

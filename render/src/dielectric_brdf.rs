@@ -195,10 +195,6 @@ impl Law {
         Ok(Law { eta, r_normal: reflectance(alpha_prime, eta)?.normal, mu_nodes: t.mu_nodes, values })
     }
 
-    fn transmittance(&self, mu: f64) -> f64 {
-        transmittance(mu, self.eta)
-    }
-
     /// πf(μ, μ₀) for exit cosine `mu` and incidence cosine `mu0` (clamped to [0, 1]); 0 when
     /// both are 0.
     pub fn pi_brdf(&self, mu: f64, mu0: f64) -> f64 {
@@ -208,14 +204,14 @@ impl Law {
         }
         let m = self.mu_nodes;
         let shape = bilinear(&self.values[..m * m], m, mu, mu0);
-        self.r_normal * shape * self.transmittance(mu) * self.transmittance(mu0) / (mu + mu0)
+        self.r_normal * shape * transmittance(mu, self.eta) * transmittance(mu0, self.eta) / (mu + mu0)
     }
 
     /// R(μ₀) for incidence cosine `mu0` (clamped), the light returned in every direction; by
     /// reciprocity also the radiance towards μ₀ under a uniform sky of radiance 1.
     pub fn reflectance(&self, mu0: f64) -> f64 {
         let m = self.mu_nodes;
-        self.r_normal * linear(&self.values[m * m..], unit(mu0)) * self.transmittance(unit(mu0))
+        self.r_normal * linear(&self.values[m * m..], unit(mu0)) * transmittance(unit(mu0), self.eta)
     }
 }
 
@@ -326,19 +322,6 @@ impl GpuTable {
         let k = (at.floor() as usize).min(k_count - 2);
         let node = |k: usize| &self.values[HEADER + k * per..][..per];
         (node(k), node(k + 1), at - k as f64)
-    }
-
-    /// The curvature term's ratio for `channel` at mean curvature `h_per_mm` (clamped), as the
-    /// shader interpolates it; 1 without the term.
-    pub fn curvature_ratio(&self, channel: usize, h_per_mm: f64) -> f64 {
-        let (k_count, m, _, _) = self.header();
-        let (j, h_max) = (self.values[4] as usize, f64::from(self.values[5]));
-        if j < 2 {
-            return 1.0;
-        }
-        let start = HEADER + k_count * (m * m + m) + channel.min(2) * j;
-        let h = if h_per_mm.is_nan() { 0.0 } else { h_per_mm.clamp(-h_max, h_max) };
-        linear(&self.values[start..start + j], 0.5 * (h / h_max + 1.0))
     }
 
     /// πf(μ, μ₀) of a pixel of albedo `r_normal`, as the shader computes it.

@@ -3,14 +3,13 @@
 //! adding-doubling, its prediction against the Mitsuba 3 spheres at η = 1.3, the edges of its
 //! domain, and the lighting pass's per-pixel mean curvature on a real wgpu device.
 
-use rouge_model::look::Look;
+mod common;
+
 use rouge_model::medium::Medium;
-use rouge_model::mesh::load_mesh;
 use rouge_render::curved_half_space::{MAX_CURVATURE_PER_MM, effective_albedo, reflectance, single_scattering};
 use rouge_render::diffusion::ProfileModel;
 use rouge_render::env::ShIrradiance;
-use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
-use std::path::Path;
+use rouge_render::{Skin, SubsurfaceModel};
 
 #[test]
 fn single_scattering_is_chandrasekhars_at_eta_1_and_adding_doublings_first_order_at_1_3() {
@@ -85,21 +84,11 @@ fn the_correction_is_monotone_in_curvature_and_finite_at_the_edges() {
 /// The centre of the 25 mm sphere of skin1 (η 1.3) under a uniform sky of radiance 1, drawn by the
 /// lighting pass under the half-space law, per channel, and the sphere's radius (mm).
 fn sphere_centre(skin: Skin) -> ([f64; 3], f64) {
-    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
-    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
-    let mut r = Renderer::new(&gpu.device, &gpu.queue);
-    r.set_mesh(&mesh, skin.albedo).expect("mesh");
-    r.set_look(&Look::bare()).expect("look");
-    let mut scene = Scene::rig(LightRig::Front);
-    scene.lights.clear();
-    scene.specular = false;
-    scene.environment = Some(ShIrradiance::constant([1.0; 3]));
-    scene.skin = skin;
-    let bounds = r.mesh_bounds().expect("bounds");
-    let camera = Camera::framing(&bounds, 0.0, 0.0);
-    let size = 96usize;
-    r.render(&scene, &camera, size as u32, size as u32, false).expect("render");
-    let cap = r.capture().expect("capture");
+    let frame = common::front_sphere(skin, |scene| {
+        scene.lights.clear();
+        scene.environment = Some(ShIrradiance::constant([1.0; 3]));
+    });
+    let (cap, size) = (&frame.capture, frame.size);
     let mut sum = [0.0; 3];
     let mut n = 0;
     for py in size / 2 - 4..size / 2 + 4 {
@@ -110,7 +99,7 @@ fn sphere_centre(skin: Skin) -> ([f64; 3], f64) {
             n += 1;
         }
     }
-    (sum.map(|v| v / f64::from(n)), f64::from(bounds.size().x) / 2.0)
+    (sum.map(|v| v / f64::from(n)), f64::from(frame.bounds.size().x) / 2.0)
 }
 
 #[test]

@@ -3,12 +3,12 @@
 //! and Mitsuba 3's radiance from a half-space (python/gen_slab_reference.py); its identities; the
 //! lighting pass's half-space law on a real wgpu device, at η = 1 and under a boundary of η = 1.3.
 
-use rouge_model::look::Look;
+mod common;
+
 use rouge_model::medium::Medium;
-use rouge_model::mesh::load_mesh;
 use rouge_render::diffusion::ProfileModel;
 use rouge_render::half_space::HalfSpace;
-use rouge_render::{Camera, DiffuseLaw, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
+use rouge_render::{DiffuseLaw, Skin, SubsurfaceModel};
 use serde_json::Value;
 use std::path::Path;
 
@@ -109,28 +109,16 @@ fn out_of_domain_arguments_are_clamped_never_nan() {
 /// half-space per pixel: E·πf(μ, μ₀)/π with E = π, μ and μ₀ from the sphere's normal at the point
 /// the pixel sees. Returns the worst relative error over pixels with μ₀ > 0.3, per channel.
 fn sphere_error(skin: Skin, expected: impl Fn(usize, f64, f64) -> f64) -> f64 {
-    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
-    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
-    let mut r = Renderer::new(&gpu.device, &gpu.queue);
-    r.set_mesh(&mesh, skin.albedo).expect("mesh");
-    r.set_look(&Look::bare()).expect("look");
-    let mut scene = Scene::rig(LightRig::Front);
-    scene.lights[0].shadows = false;
-    scene.specular = false;
-    scene.skin = skin;
-    let bounds = r.mesh_bounds().expect("bounds");
-    let camera = Camera::framing(&bounds, 0.0, 0.0);
-    let size = 96u32;
-    r.render(&scene, &camera, size, size, false).expect("render");
-    let cap = r.capture().expect("capture");
-    let centre = bounds.center();
+    let frame = common::front_sphere(skin, |scene| scene.lights[0].shadows = false);
+    let (cap, camera, size) = (&frame.capture, &frame.camera, frame.size);
+    let centre = frame.bounds.center();
     let inv_view = camera.view().inverse();
     let light = glam::Vec3::Z;
     let mut worst: f64 = 0.0;
     let mut counted = 0;
-    for py in 0..size as usize {
-        for px in 0..size as usize {
-            let i = py * size as usize + px;
+    for py in 0..size {
+        for px in 0..size {
+            let i = py * size + px;
             let d = cap.diffuse[i];
             if d[3] < 0.5 {
                 continue;

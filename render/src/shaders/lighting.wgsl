@@ -145,10 +145,11 @@ fn cs_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
 //#endif
 }
 
-// The half-space diffuse law (render/src/dielectric_brdf.rs, `GpuTable`, whose `pi_brdf`,
-// `reflectance` and `curvature_ratio` are these functions' CPU twins): adding-doubling's angular
-// law of a half-space under the skin's boundary, the albedo read as its normal-incidence
-// reflectance r_n. The table: a header of 8 (node count K, cosine count M, r_max, η, curvature
+// The half-space diffuse law (render/src/dielectric_brdf.rs, `GpuTable`, whose `pi_brdf` and
+// `reflectance` are these functions' CPU twins; the curvature ratios are `gpu_ratios` of
+// render/src/curved_half_space.rs, checked on a sphere by render/tests/curved_half_space.rs):
+// adding-doubling's angular law of a half-space under the skin's boundary, the albedo read as its
+// normal-incidence reflectance r_n. The table: a header of 8 (node count K, cosine count M, r_max, η, curvature
 // node count J, the largest |H|), then per albedo node k (r_n = r_max·(k/(K − 1))²) the M×M shape
 // πf(μ, μ₀)(μ + μ₀)/(r_n T(μ) T(μ₀)) and the M exit values R(μ)/(r_n T(μ)), T the boundary's
 // Fresnel transmittance, cosines even in [0, 1]; then J ratios per channel of the environment
@@ -157,14 +158,18 @@ struct HalfSpaceNodes {
     // Offset of each channel's lower node, and the upper node's weight.
     lo: vec3<u32>,
     f: vec3<f32>,
+    // The view's cosine and the boundary's transmittance there (the same for every light).
+    mu: f32,
+    t_mu: f32,
 }
 
-fn half_space_nodes(a: vec3<f32>) -> HalfSpaceNodes {
+// A pixel's nodes: its albedo a per channel and the view's cosine mu.
+fn half_space_nodes(a: vec3<f32>, mu: f32) -> HalfSpaceNodes {
     let last = half_space_table[0] - 1.0;
     let m = u32(half_space_table[1]);
     let at = sqrt(clamp(a / half_space_table[2], vec3<f32>(0.0), vec3<f32>(1.0))) * last;
     let k = min(floor(at), vec3<f32>(last - 1.0));
-    return HalfSpaceNodes(8u + vec3<u32>(k) * (m * m + m), at - k);
+    return HalfSpaceNodes(8u + vec3<u32>(k) * (m * m + m), at - k, mu, half_space_t(mu));
 }
 
 // The boundary's Fresnel transmittance at external cosine mu (1 at η = 1: no boundary).
@@ -188,22 +193,24 @@ fn half_space_grid(base: u32, x: f32, y: f32) -> f32 {
     return mix(low, high, fx);
 }
 
-// πf(μ, μ₀) per channel of albedo a: radiance towards μ per unit irradiance from μ₀, times π.
-fn half_space_pi_f(n: HalfSpaceNodes, a: vec3<f32>, mu: f32, mu0: f32) -> vec3<f32> {
-    let per = u32(half_space_table[1]) * u32(half_space_table[1]) + u32(half_space_table[1]);
-    var shape = vec3<f32>(0.0);
-    for (var c = 0u; c < 3u; c++) {
-        shape[c] = mix(half_space_grid(n.lo[c], mu, mu0), half_space_grid(n.lo[c] + per, mu, mu0), n.f[c]);
-    }
-    return a * shape * (half_space_t(mu) * half_space_t(mu0) / max(mu + mu0, 1e-6));
-}
-
-// R(μ) per channel of albedo a: the light returned from μ (and, by reciprocity, the radiance
-// towards μ under a uniform sky of radiance 1).
-fn half_space_r(n: HalfSpaceNodes, a: vec3<f32>, mu: f32) -> vec3<f32> {
+// πf(μ, μ₀) per channel of albedo a: radiance towards the view's μ per unit irradiance from μ₀,
+// times π.
+fn half_space_pi_f(n: HalfSpaceNodes, a: vec3<f32>, mu0: f32) -> vec3<f32> {
     let m = u32(half_space_table[1]);
     let per = m * m + m;
-    let at = mu * f32(m - 1u);
+    var shape = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c++) {
+        shape[c] = mix(half_space_grid(n.lo[c], n.mu, mu0), half_space_grid(n.lo[c] + per, n.mu, mu0), n.f[c]);
+    }
+    return a * shape * (n.t_mu * half_space_t(mu0) / max(n.mu + mu0, 1e-6));
+}
+
+// R(μ) per channel of albedo a at the view's μ: the light returned from μ (and, by reciprocity,
+// the radiance towards μ under a uniform sky of radiance 1).
+fn half_space_r(n: HalfSpaceNodes, a: vec3<f32>) -> vec3<f32> {
+    let m = u32(half_space_table[1]);
+    let per = m * m + m;
+    let at = n.mu * f32(m - 1u);
     let i = min(u32(at), m - 2u);
     let fi = at - f32(i);
     var exit = vec3<f32>(0.0);
@@ -213,7 +220,7 @@ fn half_space_r(n: HalfSpaceNodes, a: vec3<f32>, mu: f32) -> vec3<f32> {
         let above = mix(half_space_table[lo + per], half_space_table[lo + per + 1u], fi);
         exit[c] = mix(below, above, n.f[c]);
     }
-    return a * exit * half_space_t(mu);
+    return a * exit * n.t_mu;
 }
 
 // The curvature correction of the environment term at mean curvature h (mm⁻¹), per channel.
@@ -373,9 +380,9 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     let half_space = frame.sss.w > 0.5 && is_skin;
     let hs_a = clamp(albedo, vec3<f32>(0.0), vec3<f32>(1.0));
     let hs_mu = clamp(dot(n, v), 0.0, 1.0);
-    var hs_nodes = HalfSpaceNodes(vec3<u32>(0u), vec3<f32>(0.0));
+    var hs_nodes = HalfSpaceNodes(vec3<u32>(0u), vec3<f32>(0.0), 0.0, 0.0);
     if half_space {
-        hs_nodes = half_space_nodes(hs_a);
+        hs_nodes = half_space_nodes(hs_a, hs_mu);
     }
     // Σ over lights of irradiance × πf (used only by the half-space law).
     var weighted = vec3<f32>(0.0);
@@ -400,7 +407,7 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
         irradiance += e_n;
         if half_space {
             let mu0 = min(n_dot_l, 1.0);
-            weighted += e_n * half_space_pi_f(hs_nodes, hs_a, hs_mu, mu0);
+            weighted += e_n * half_space_pi_f(hs_nodes, hs_a, mu0);
         }
         if frame.skin.z > 0.0 {
             // The skin's lobes × its specular scale (the G-buffer normal's w: cavity × oiliness).
@@ -460,7 +467,7 @@ fn lighting_at(frag: vec2<f32>) -> LightingOut {
     irradiance += env_e;
     skin_irradiance += env_e * skin_env;
     if half_space {
-        var env_r = half_space_r(hs_nodes, hs_a, hs_mu);
+        var env_r = half_space_r(hs_nodes, hs_a);
         // With the skin's medium: a convex surface under light from every side returns more.
         if half_space_table[4] > 1.0 {
             env_r *= half_space_curvature(mean_curvature(p, world, n));

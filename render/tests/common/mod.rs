@@ -1,8 +1,45 @@
 //! What the GPU twin tests share: a WGSL compute kernel run once over its cases on a real device
-//! (lavapipe on CI), its output read back.
+//! (lavapipe on CI), its output read back; and a frame of the builtin sphere seen from the front.
+//! (Each test crate uses part of it.)
+#![allow(dead_code)]
 
-use rouge_render::Gpu;
+use rouge_model::look::Look;
+use rouge_model::mesh::load_mesh;
+use rouge_render::renderer::FrameCapture;
+use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin};
+use std::path::Path;
 use wgpu::util::DeviceExt;
+
+/// A frame of the builtin sphere (radius 25 mm) and how it was seen.
+pub struct SphereFrame {
+    /// The frame's buffers (`diffuse`: the skin's radiance before scattering).
+    pub capture: FrameCapture,
+    /// The camera, framing the sphere from the front.
+    pub camera: Camera,
+    /// The sphere's bounds (mm).
+    pub bounds: rouge_model::mesh::Bounds,
+    /// Width and height (pixels).
+    pub size: usize,
+}
+
+/// The bare builtin sphere of `skin` at 96², without specular, seen from the front under the
+/// front rig as `light` changes it (its lights and environment).
+pub fn front_sphere(skin: Skin, light: impl FnOnce(&mut Scene)) -> SphereFrame {
+    let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
+    let mesh = load_mesh(Some(Path::new("builtin:sphere")), 1.0, 0).expect("sphere");
+    let mut r = Renderer::new(&gpu.device, &gpu.queue);
+    r.set_mesh(&mesh, skin.albedo).expect("mesh");
+    r.set_look(&Look::bare()).expect("look");
+    let mut scene = Scene::rig(LightRig::Front);
+    light(&mut scene);
+    scene.specular = false;
+    scene.skin = skin;
+    let bounds = r.mesh_bounds().expect("bounds");
+    let camera = Camera::framing(&bounds, 0.0, 0.0);
+    let size = 96;
+    r.render(&scene, &camera, size as u32, size as u32, false).expect("render");
+    SphereFrame { capture: r.capture().expect("capture"), camera, bounds, size }
+}
 
 /// Runs the entry point `main` of `source` (workgroup size 64) over `invocations` with the
 /// `inputs` bound in group 0 (binding, bytes, usage: storage or uniform) and a storage output of
