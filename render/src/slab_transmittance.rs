@@ -33,7 +33,9 @@
 //! included, is an error that names the value. The unscattered beam is not in T: a directional
 //! light seen through the slab is a delta the camera does not see.
 
+use crate::diffusion::{ProfileModel, medium_profiles};
 use crate::error::{RenderError, Result};
+use rouge_model::medium::Medium;
 use std::sync::OnceLock;
 
 /// The table's axes, as the shader indexes it: albedo (t), thickness (ln(1 + τ)), μ_v, μ_l.
@@ -268,6 +270,30 @@ pub fn transmittance(alpha_prime: f64, tau: f64, mu_v: f64, mu_l: f64) -> Result
         }
     }
     Ok(single_scattering(alpha_prime, tau, mu_v, mu_l) + g * (-kappa(alpha_prime) * tau).exp())
+}
+
+/// Samples per pixel and light of the hidden-entry gather.
+pub const HIDDEN_ENTRY_SAMPLES: u32 = 32;
+/// The gather's reach in diffusion lengths 1/σ_tr of the medium's most penetrating channel: the
+/// dipole there has fallen to e^{−4} of its near-field share.
+pub const HIDDEN_ENTRY_REACH_LENGTHS: f64 = 4.0;
+/// The most the gather reaches (mm): a centimetre-scale neighbourhood, the size of the parts
+/// (fingers, ears, a nose) whose hidden faces light what the camera sees.
+pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 20.0;
+
+/// The hidden-entry gather's constants for `medium` (shaders/thickness.wgsl `hidden_entry`, run
+/// with the slab law): the classic dipole per channel (α′, σ_tr, z_r, z_v), and (η, reach mm,
+/// samples, the radii's sampling rate mm⁻¹). The gather takes the light that entered the mesh
+/// near a pixel on faces the camera does not see (or sees at grazing, whose light the
+/// screen-space kernel undercounts by the view's cosine), beyond what the lighting pass's law
+/// already assumed there (the pixel's own irradiance all around), from the light's shadow map.
+pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
+    let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
+    let constants = profiles.map(|p| p.classic_constants().map(|v| v as f32));
+    let sigma_tr = profiles.iter().map(|p| p.classic_constants()[1]).fold(f64::INFINITY, f64::min);
+    let reach = (HIDDEN_ENTRY_REACH_LENGTHS / sigma_tr).min(HIDDEN_ENTRY_MAX_REACH_MM);
+    let rate = sigma_tr.max(HIDDEN_ENTRY_REACH_LENGTHS / reach);
+    (constants, [medium.eta as f32, reach as f32, HIDDEN_ENTRY_SAMPLES as f32, rate as f32])
 }
 
 #[cfg(test)]

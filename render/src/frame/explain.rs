@@ -151,7 +151,9 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
             out.push_str(
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
                  and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
-                 face it entered from the map's slope; exact at η = 1",
+                 face it entered from the map's slope; exact at η = 1; beside it, for directional lights, the light \
+                 entering faces the camera does not see within the medium's reach, from the map, carried by the \
+                 classic dipole (32 samples)",
             );
             match &skin.medium {
                 Some(m) if m.eta != 1.0 => {

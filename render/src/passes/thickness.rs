@@ -45,6 +45,11 @@ pub struct ThicknessUniform {
     pub slab_sigma_t: [f32; 4],
     /// The table's axes: albedo, thickness and cosine nodes, ln(1 + τ_max).
     pub slab_axes: [f32; 4],
+    /// The hidden-entry gather's classic dipole per channel: α′, σ_tr (mm⁻¹), z_r, z_v (mm)
+    /// ([`crate::diffusion::ChannelProfile::classic_constants`]).
+    pub gather_medium: [[f32; 4]; 3],
+    /// The hidden-entry gather: η, reach (mm), samples (0: off), the radii's sampling rate (mm⁻¹).
+    pub gather: [f32; 4],
 }
 
 impl ThicknessUniform {
@@ -75,6 +80,7 @@ impl ThicknessUniform {
             )));
         }
         let rgb = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
+        let (gather_medium, gather) = slab_transmittance::hidden_entry_constants(medium);
         let mut materials = [[0.0; 4]; MATERIAL_IDS];
         materials[SKIN_MATERIAL_ID] = [0.0, 1.0, 0.0, 0.0];
         Ok(ThicknessUniform {
@@ -83,6 +89,8 @@ impl ThicknessUniform {
             slab_kappa: rgb(alpha.map(slab_transmittance::kappa)),
             slab_sigma_t: rgb(sigma_t),
             slab_axes: [axes.albedos as f32, axes.taus as f32, axes.mus as f32, axes.tau_max.ln_1p() as f32],
+            gather_medium,
+            gather,
             ..ThicknessUniform::zeroed()
         })
     }

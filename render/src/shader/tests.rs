@@ -287,6 +287,8 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("slab_kappa", offset_of!(ThicknessUniform, slab_kappa)),
                 ("slab_sigma_t", offset_of!(ThicknessUniform, slab_sigma_t)),
                 ("slab_axes", offset_of!(ThicknessUniform, slab_axes)),
+                ("gather_medium", offset_of!(ThicknessUniform, gather_medium)),
+                ("gather", offset_of!(ThicknessUniform, gather)),
             ],
         ),
         (

@@ -75,11 +75,9 @@ fn holds(f: u32, x: vec3<f32>, n: vec3<f32>) -> bool {
     return abs(dot(n, p - x)) < 0.5 * texel + 0.01 && dot(n, stored_n) > 0.70710678;
 }
 
-// [Benmounah2009] Table 1 corrected (diffusion::ChannelProfile::classic_between), channel c.
+// [Benmounah2009] Table 1 corrected (diffusion.wgsl classic_between), channel c.
 fn rd_between(c: u32, xi: vec3<f32>, ni: vec3<f32>, xo: vec3<f32>) -> f32 {
-    let m = atlas.medium[c];
-    return m.x / (4.0 * PI) * (point_source_flux(m.z, length(xi - m.z * ni - xo), m.y)
-        + point_source_flux(m.w, length(xi + m.w * ni - xo), m.y));
+    return classic_between(atlas.medium[c], xi, ni, xo);
 }
 
 // ∫ R_d over a disk of radius a (diffusion::ChannelProfile::classic_disk_total), channel c.

@@ -82,9 +82,7 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
 // The classic dipole's R(r) for channel c (CPU: ChannelProfile::radial, ClassicDipole).
 fn classic_radial(c: u32, r: f32) -> f32 {
     let e = dipole.extra[c];
-    let s = dipole.classic[c];
-    return e.y / (4.0 * PI) * (point_source_flux(e.z, sqrt(r * r + e.z * e.z), s)
-        + point_source_flux(e.w, sqrt(r * r + e.w * e.w), s));
+    return dipole_radial(vec4<f32>(e.y, dipole.classic[c], e.z, e.w), r);
 }
 
 // The BSSRDF without the exit Fresnel term, per channel: light entering at xi (normal ni) from

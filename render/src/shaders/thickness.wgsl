@@ -29,11 +29,16 @@ struct ThicknessPass {
     slab_kappa: vec4<f32>,
     slab_sigma_t: vec4<f32>,
     slab_axes: vec4<f32>,
+    // The hidden-entry gather (slab law only): per channel the classic dipole's (α′, σ_tr, z_r,
+    // z_v); x η, y reach (mm), z samples (0: off), w the radii's sampling rate (mm⁻¹).
+    gather_medium: array<vec4<f32>, 3>,
+    gather: vec4<f32>,
 }
 @group(1) @binding(5) var<uniform> params: ThicknessPass;
 //#if THICKNESS_SLAB
 @group(1) @binding(6) var<storage, read> slab_table: array<f32>;
 //#insert slab
+//#insert diffusion
 //#endif
 
 // The talk's term over albedo × irradiance; CPU twin: local_thickness::translucency_term.
@@ -139,20 +144,28 @@ fn entry_normal(light: Light, m: MapPoint, n: vec3<f32>, l: vec3<f32>) -> vec3<f
     return normalize(l + sx * normalize(gx) - sy * normalize(gy));
 }
 
-// The slab law's radiance of one light (see the top of the file), 0 where the light met no
-// mesh before `world` or the surface faces the light.
-fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+// One light's slab radiance, and the share of the light leaving the point that the slab stands
+// for (`facing`); the hidden-entry gather takes the rest.
+struct SlabLight {
+    radiance: vec3<f32>,
+    facing: f32,
+}
+
+// The slab law's radiance of one light (see the top of the file), 0 (facing 0) where the light
+// met no mesh before `world` or the surface faces the light.
+fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
+    var out: SlabLight;
     let m = map_point(light, world);
     let d = light_path_mm(m);
     if d <= 0.0 {
-        return vec3<f32>(0.0);
+        return out;
     }
     let arrival = light_arrival(light, world);
     // The ray toward the light must start inside the mesh: where the surface faces the light,
     // whatever the map saw first is another part in front of this one (a nose's shadow on the
     // cheek), and the light it let through crossed air before arriving here.
     if dot(n, arrival.l) >= 0.0 {
-        return vec3<f32>(0.0);
+        return out;
     }
     let n_e = entry_normal(light, m, n, arrival.l);
     let mu_l = max(dot(n_e, arrival.l), 1e-3);
@@ -172,8 +185,108 @@ fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> 
     // to nothing as the two faces turn the same way (n·n_e → 1: the thin cap beyond a convex
     // terminator, lit at grazing over a strip narrower than the light spreads, which the kernel
     // carries from the lit side).
-    let facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
-    return arrival.e * mu_l * t * (facing / PI) * light.translucency.x;
+    out.facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
+    out.radiance = arrival.e * mu_l * t * (out.facing / PI) * light.translucency.x;
+    return out;
+}
+
+// Whether the camera sees the surface point `x` (outward normal `nx`): it faces the camera and
+// lies no deeper than the G-buffer's surface at its pixel, within `tol_mm` plus two pixels'
+// width there. Light entering where the camera sees is the lighting pass's (and the kernel's).
+fn seen_by_camera(x: vec3<f32>, nx: vec3<f32>, tol_mm: f32) -> bool {
+    if dot(nx, frame.camera_pos.xyz - x) <= 0.0 {
+        return false;
+    }
+    let clip = frame.view_proj * vec4<f32>(x, 1.0);
+    let ndc = clip.xyz / clip.w;
+    let frag = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.viewport.xy;
+    if any(frag < vec2<f32>(0.0)) || any(frag >= frame.viewport.xy) {
+        return false;
+    }
+    let stored = textureLoad(gb_depth, vec2<i32>(frag), 0).r;
+    if stored >= 1.0 {
+        return false;
+    }
+    let z = linear_depth(stored);
+    let pixel_mm = z / frame.projection.x;
+    return linear_depth(ndc.z) <= z + tol_mm + 2.0 * pixel_mm;
+}
+
+// The hidden-entry gather ([Dachsbacher2003]'s translucent shadow map, restricted to what the
+// G-buffer cannot see): the light of one directional light entering the mesh within
+// `params.gather.y` mm of `world` on faces the camera does not see, carried to `world` by the
+// classic dipole at their distance (diffusion.wgsl dipole_radial), leaving through a
+// Lambertian exit under the boundary:
+//   L = T(μ_v)/π · ∫ R(x_i → x) · T(μ_i) · E dA⊥,
+// dA⊥ the light map's area (a texel passes E·dA⊥ whatever the slope of the face it lights). The
+// radii are stratified by e^{−σρ} over [0, reach], the angles on the golden-angle spiral.
+fn hidden_entry(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    if light.translucency.w > 0.5 {
+        return vec3<f32>(0.0);
+    }
+    let p = light.shadow_view_proj * vec4<f32>(world, 1.0);
+    let ndc = p.xyz / p.w;
+    let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
+    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) || ndc.z > 1.0 {
+        return vec3<f32>(0.0);
+    }
+    let size = vec2<i32>(textureDimensions(shadow_depths).xy);
+    let vp = light.shadow_view_proj;
+    let gx = vec3<f32>(vp[0].x, vp[1].x, vp[2].x);
+    let gy = vec3<f32>(vp[0].y, vp[1].y, vp[2].y);
+    let ex = normalize(gx);
+    let ey = normalize(gy);
+    let texel_mm = max(2.0 / f32(size.x) / length(gx), 2.0 / f32(size.y) / length(gy));
+    let depth_mm = light_depth_mm(light, ndc.z);
+    let arrival = light_arrival(light, world);
+    let l = arrival.l;
+    let eta = params.gather.x;
+    let reach = params.gather.y;
+    let count = u32(params.gather.z);
+    let sigma = params.gather.w;
+    let kept = 1.0 - exp(-sigma * reach);
+    // The lighting pass's law lit the exit point's whole neighbourhood as the point itself (μ_o
+    // where the map's first surface is the point, else 0): the gather adds what the hidden
+    // entries received beyond that.
+    let mu_o = select(0.0, max(dot(n, l), 0.0), depth_mm - light_depth_mm(light, textureLoad(shadow_depths, vec2<i32>(uv * vec2<f32>(size)), i32(light.shadow.x), 0).r) < 2.0 * texel_mm);
+    var sum = vec3<f32>(0.0);
+    for (var j = 0u; j < count; j++) {
+        let u = (f32(j) + 0.5) / f32(count);
+        let rho = -log(1.0 - u * kept) / sigma;
+        // 2πρ/p(ρ), p(ρ) = σe^{−σρ}/kept: the map area each sample stands for, times N.
+        let area = 2.0 * PI * rho * kept / (sigma * exp(-sigma * rho));
+        let phi = f32(j) * 2.39996323;
+        let o = rho * vec2<f32>(cos(phi), sin(phi));
+        let uv_j = uv + vec2<f32>(o.x * length(gx), -o.y * length(gy)) * 0.5;
+        if any(uv_j < vec2<f32>(0.0)) || any(uv_j >= vec2<f32>(1.0)) {
+            continue;
+        }
+        var m: MapPoint;
+        m.texel = vec2<i32>(uv_j * vec2<f32>(size));
+        let stored = textureLoad(shadow_depths, m.texel, i32(light.shadow.x), 0).r;
+        if stored >= 1.0 {
+            continue;
+        }
+        m.first_mm = light_depth_mm(light, stored);
+        m.inside = true;
+        let xi = world + o.x * ex + o.y * ey - l * (m.first_mm - depth_mm);
+        let ni = entry_normal(light, m, n, l);
+        let mu_i = max(dot(ni, l), 0.25);
+        var unseen = 1.0 - mu_o / mu_i;
+        if seen_by_camera(xi, ni, 2.0 * texel_mm) {
+            unseen *= 1.0 - clamp(dot(ni, normalize(frame.camera_pos.xyz - xi)), 0.0, 1.0);
+        }
+        let t_in = 1.0 - fresnel_in(dot(ni, l), eta);
+        let r = length(xi - world);
+        let rd = vec3<f32>(
+            dipole_radial(params.gather_medium[0], r),
+            dipole_radial(params.gather_medium[1], r),
+            dipole_radial(params.gather_medium[2], r),
+        );
+        sum += rd * (t_in * area * unseen);
+    }
+    let t_out = 1.0 - fresnel_in(dot(n, v), eta);
+    return arrival.e * max(sum, vec3<f32>(0.0)) * (t_out / (PI * f32(count))) * light.translucency.x;
 }
 //#endif
 
@@ -211,7 +324,11 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     for (var li = 0u; li < frame.counts.x; li++) {
         let light = frame.lights[li];
         if light.shadow.x >= 0.0 {
-            sum += slab_radiance(light, world, n, v);
+            let slab = slab_radiance(light, world, n, v);
+            sum += slab.radiance;
+            if params.gather.z > 0.0 {
+                sum += (1.0 - slab.facing) * hidden_entry(light, world, n, v);
+            }
         }
     }
     return vec4<f32>(sum, 0.0);
