@@ -277,9 +277,10 @@ pub const HIDDEN_ENTRY_SAMPLES: u32 = 32;
 /// The gather's reach in diffusion lengths 1/σ_tr of the medium's most penetrating channel: the
 /// dipole there has fallen to e^{−4} of its near-field share.
 pub const HIDDEN_ENTRY_REACH_LENGTHS: f64 = 4.0;
-/// The most the gather reaches (mm): a centimetre-scale neighbourhood, the size of the parts
-/// (fingers, ears, a nose) whose hidden faces light what the camera sees.
-pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 20.0;
+/// The most the gather reaches (mm), for media that barely absorb (σ_tr → 0). The media here
+/// reach at most 74 mm (skim milk's red); capped at 20 mm the skim-milk sphere scored 2.56 ΔE,
+/// at 40 mm 2.35, at 80 mm 2.31 (docs/BENCHMARKS.md).
+pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 80.0;
 
 /// The hidden-entry gather's constants for `medium` (shaders/thickness.wgsl `hidden_entry`, run
 /// with the slab law): the classic dipole per channel (α′, σ_tr, z_r, z_v), and (η, reach mm,
