@@ -76,9 +76,11 @@ fn light_depth_mm(light: Light, d: f32) -> f32 {
     return near + d * (far - near);
 }
 
-// `world` in the light's shadow map: the texel it falls in, its distance from the light and that
-// of the first surface the light met there (mm); `inside` is false off the map.
+// `world` in the light's shadow map: where it falls (uv in [0, 1)) and the texel there, its
+// distance from the light and that of the first surface the light met there (mm); `inside` is
+// false off the map.
 struct MapPoint {
+    uv: vec2<f32>,
     texel: vec2<i32>,
     depth_mm: f32,
     first_mm: f32,
@@ -89,12 +91,12 @@ fn map_point(light: Light, world: vec3<f32>) -> MapPoint {
     var m: MapPoint;
     let p = light.shadow_view_proj * vec4<f32>(world, 1.0);
     let ndc = p.xyz / p.w;
-    let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
-    m.inside = all(uv >= vec2<f32>(0.0)) && all(uv < vec2<f32>(1.0)) && ndc.z <= 1.0;
+    m.uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
+    m.inside = all(m.uv >= vec2<f32>(0.0)) && all(m.uv < vec2<f32>(1.0)) && ndc.z <= 1.0;
     if !m.inside {
         return m;
     }
-    m.texel = vec2<i32>(uv * vec2<f32>(textureDimensions(shadow_depths).xy));
+    m.texel = vec2<i32>(m.uv * vec2<f32>(textureDimensions(shadow_depths).xy));
     m.depth_mm = light_depth_mm(light, ndc.z);
     m.first_mm = light_depth_mm(light, textureLoad(shadow_depths, m.texel, i32(light.shadow.x), 0).r);
     return m;
@@ -123,25 +125,43 @@ fn first_slope(light: Light, c: vec2<i32>, z: f32, step: vec2<i32>, size: vec2<i
     return select(behind, ahead, abs(ahead) < abs(behind));
 }
 
+// A light's orthographic map in the world: its unit axes along the NDC's x (right) and y (up;
+// the texels run down), the uv per mm along them, a texel's side (mm) and the map's size. Made
+// once per light and pixel: the gather reads it per sample.
+struct MapAxes {
+    right: vec3<f32>,
+    up: vec3<f32>,
+    uv_per_mm: vec2<f32>,
+    texel_mm: vec2<f32>,
+    size: vec2<i32>,
+}
+
+fn map_axes(light: Light) -> MapAxes {
+    var a: MapAxes;
+    a.size = vec2<i32>(textureDimensions(shadow_depths).xy);
+    let v = light.shadow_view_proj;
+    // The gradients of the map's NDC x and y over the world; the NDC spans 2 over the map.
+    let gx = vec3<f32>(v[0].x, v[1].x, v[2].x);
+    let gy = vec3<f32>(v[0].y, v[1].y, v[2].y);
+    a.right = normalize(gx);
+    a.up = normalize(gy);
+    a.uv_per_mm = 0.5 * vec2<f32>(length(gx), length(gy));
+    a.texel_mm = 1.0 / (vec2<f32>(a.size) * a.uv_per_mm);
+    return a;
+}
+
 // The outward normal of the face where the light entered the mesh above the point `m`, from the
 // slope of the first surface in the light's orthographic map: with s the slopes (mm of depth per
 // mm) along the map's right and down axes, n_e ∝ l + s_x·right + s_y·down. A point light's
 // perspective map has no constant texel size; it takes the exit face's −n, exact for a slab
 // with parallel faces.
-fn entry_normal(light: Light, m: MapPoint, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
+fn entry_normal(light: Light, axes: MapAxes, m: MapPoint, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
     if light.translucency.w > 0.5 {
         return -n;
     }
-    let size = vec2<i32>(textureDimensions(shadow_depths).xy);
-    let v = light.shadow_view_proj;
-    // The gradients of the map's NDC x and y over the world; the NDC spans 2 over the map, and
-    // its y runs up where the texels run down.
-    let gx = vec3<f32>(v[0].x, v[1].x, v[2].x);
-    let gy = vec3<f32>(v[0].y, v[1].y, v[2].y);
-    let texel = vec2<f32>(2.0 / f32(size.x) / length(gx), 2.0 / f32(size.y) / length(gy));
-    let sx = first_slope(light, m.texel, m.first_mm, vec2<i32>(1, 0), size) / texel.x;
-    let sy = first_slope(light, m.texel, m.first_mm, vec2<i32>(0, 1), size) / texel.y;
-    return normalize(l + sx * normalize(gx) - sy * normalize(gy));
+    let sx = first_slope(light, m.texel, m.first_mm, vec2<i32>(1, 0), axes.size) / axes.texel_mm.x;
+    let sy = first_slope(light, m.texel, m.first_mm, vec2<i32>(0, 1), axes.size) / axes.texel_mm.y;
+    return normalize(l + sx * axes.right - sy * axes.up);
 }
 
 // One light's slab radiance, and the share of the light leaving the point that the slab stands
@@ -151,11 +171,11 @@ struct SlabLight {
     facing: f32,
 }
 
-// The slab law's radiance of one light (see the top of the file), 0 (facing 0) where the light
-// met no mesh before `world` or the surface faces the light.
-fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
+// The slab law's radiance of one light (see the top of the file) at `world`, which falls at `m`
+// in its map; 0 (facing 0) where the light met no mesh before `world` or the surface faces the
+// light.
+fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
     var out: SlabLight;
-    let m = map_point(light, world);
     let d = light_path_mm(m);
     if d <= 0.0 {
         return out;
@@ -167,7 +187,7 @@ fn slab_radiance(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> 
     if dot(n, arrival.l) >= 0.0 {
         return out;
     }
-    let n_e = entry_normal(light, m, n, arrival.l);
+    let n_e = entry_normal(light, axes, m, n, arrival.l);
     let mu_l = max(dot(n_e, arrival.l), 1e-3);
     let mu_v = clamp(dot(n, v), 0.0, 1.0);
     // The slab's thickness: the distance from `world` to the plane the light entered. (Measured
@@ -220,24 +240,11 @@ fn seen_by_camera(x: vec3<f32>, nx: vec3<f32>, tol_mm: f32) -> bool {
 //   L = T(μ_v)/π · ∫ R(x_i → x) · T(μ_i) · E dA⊥,
 // dA⊥ the light map's area (a texel passes E·dA⊥ whatever the slope of the face it lights). The
 // radii are stratified by e^{−σρ} over [0, reach], the angles on the golden-angle spiral.
-fn hidden_entry(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    if light.translucency.w > 0.5 {
+fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    if light.translucency.w > 0.5 || !m.inside {
         return vec3<f32>(0.0);
     }
-    let p = light.shadow_view_proj * vec4<f32>(world, 1.0);
-    let ndc = p.xyz / p.w;
-    let uv = ndc.xy * vec2<f32>(0.5, -0.5) + 0.5;
-    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) || ndc.z > 1.0 {
-        return vec3<f32>(0.0);
-    }
-    let size = vec2<i32>(textureDimensions(shadow_depths).xy);
-    let vp = light.shadow_view_proj;
-    let gx = vec3<f32>(vp[0].x, vp[1].x, vp[2].x);
-    let gy = vec3<f32>(vp[0].y, vp[1].y, vp[2].y);
-    let ex = normalize(gx);
-    let ey = normalize(gy);
-    let texel_mm = max(2.0 / f32(size.x) / length(gx), 2.0 / f32(size.y) / length(gy));
-    let depth_mm = light_depth_mm(light, ndc.z);
+    let texel_mm = max(axes.texel_mm.x, axes.texel_mm.y);
     let arrival = light_arrival(light, world);
     let l = arrival.l;
     let eta = params.gather.x;
@@ -248,7 +255,7 @@ fn hidden_entry(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> v
     // The lighting pass's law lit the exit point's whole neighbourhood as the point itself (μ_o
     // where the map's first surface is the point, else 0): the gather adds what the hidden
     // entries received beyond that.
-    let mu_o = select(0.0, max(dot(n, l), 0.0), depth_mm - light_depth_mm(light, textureLoad(shadow_depths, vec2<i32>(uv * vec2<f32>(size)), i32(light.shadow.x), 0).r) < 2.0 * texel_mm);
+    let mu_o = select(0.0, max(dot(n, l), 0.0), light_path_mm(m) < 2.0 * texel_mm);
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < count; j++) {
         let u = (f32(j) + 0.5) / f32(count);
@@ -257,20 +264,20 @@ fn hidden_entry(light: Light, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> v
         let area = 2.0 * PI * rho * kept / (sigma * exp(-sigma * rho));
         let phi = f32(j) * 2.39996323;
         let o = rho * vec2<f32>(cos(phi), sin(phi));
-        let uv_j = uv + vec2<f32>(o.x * length(gx), -o.y * length(gy)) * 0.5;
-        if any(uv_j < vec2<f32>(0.0)) || any(uv_j >= vec2<f32>(1.0)) {
+        var e: MapPoint;
+        e.uv = m.uv + vec2<f32>(o.x, -o.y) * axes.uv_per_mm;
+        if any(e.uv < vec2<f32>(0.0)) || any(e.uv >= vec2<f32>(1.0)) {
             continue;
         }
-        var m: MapPoint;
-        m.texel = vec2<i32>(uv_j * vec2<f32>(size));
-        let stored = textureLoad(shadow_depths, m.texel, i32(light.shadow.x), 0).r;
+        e.texel = vec2<i32>(e.uv * vec2<f32>(axes.size));
+        let stored = textureLoad(shadow_depths, e.texel, i32(light.shadow.x), 0).r;
         if stored >= 1.0 {
             continue;
         }
-        m.first_mm = light_depth_mm(light, stored);
-        m.inside = true;
-        let xi = world + o.x * ex + o.y * ey - l * (m.first_mm - depth_mm);
-        let ni = entry_normal(light, m, n, l);
+        e.first_mm = light_depth_mm(light, stored);
+        e.inside = true;
+        let xi = world + o.x * axes.right + o.y * axes.up - l * (e.first_mm - m.depth_mm);
+        let ni = entry_normal(light, axes, e, n, l);
         let mu_i = max(dot(ni, l), 0.25);
         var unseen = 1.0 - mu_o / mu_i;
         if seen_by_camera(xi, ni, 2.0 * texel_mm) {
@@ -324,10 +331,14 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     for (var li = 0u; li < frame.counts.x; li++) {
         let light = frame.lights[li];
         if light.shadow.x >= 0.0 {
-            let slab = slab_radiance(light, world, n, v);
+            // Where `world` falls in the light's map, and the map's axes: for the slab and the
+            // gather alike.
+            let m = map_point(light, world);
+            let axes = map_axes(light);
+            let slab = slab_radiance(light, axes, m, world, n, v);
             sum += slab.radiance;
             if params.gather.z > 0.0 {
-                sum += (1.0 - slab.facing) * hidden_entry(light, world, n, v);
+                sum += (1.0 - slab.facing) * hidden_entry(light, axes, m, world, n, v);
             }
         }
     }
