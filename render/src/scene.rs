@@ -391,6 +391,20 @@ pub struct SssSettings {
     pub run_at_zero_width: bool,
 }
 
+impl SssSettings {
+    /// Whether the blur runs when the skin's model has a kernel: the width is not 0 (or the
+    /// test asks for it at 0).
+    pub fn runs(&self) -> bool {
+        self.width != 0.0 || self.run_at_zero_width
+    }
+
+    /// How far the kernel of `profile` reaches on the surface, mm: `range_sigmas` × the widest
+    /// Gaussian's σ × `width` ([`crate::sss::SeparableKernel::new`] puts its last samples there).
+    pub fn reach_mm(&self, profile: &DiffusionProfile) -> f32 {
+        self.range_sigmas * profile.max_sigma_mm() as f32 * self.width
+    }
+}
+
 impl Default for SssSettings {
     fn default() -> Self {
         SssSettings { width: 1.0, samples: 11, follow_mm: 3.0, range_sigmas: 3.0, run_at_zero_width: false }

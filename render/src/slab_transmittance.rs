@@ -285,21 +285,65 @@ pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 80.0;
 /// The hidden-entry gather's constants for `medium` (shaders/thickness.wgsl `hidden_entry`, run
 /// with the slab law): the classic dipole per channel (α′, σ_tr, z_r, z_v), and (η, reach mm,
 /// samples, the radii's sampling rate mm⁻¹). The gather takes the light that entered the mesh
-/// near a pixel on faces the camera does not see (or sees at grazing, whose light the
-/// screen-space kernel undercounts by the view's cosine), beyond what the lighting pass's law
-/// already assumed there (the pixel's own irradiance all around), from the light's shadow map.
+/// near a pixel on faces the camera does not see, and on faces it sees that the screen-space
+/// kernel does not carry (beyond its reach or depth, or all of them where no kernel runs) or
+/// undercounts (by the view's cosine), beyond what the lighting pass's law already assumed
+/// there (the pixel's own irradiance all around), from the light's shadow map.
+///
+/// The dipole's prefactor α′ is scaled by [`hidden_entry_albedo_scale`], so that R(r)'s total is
+/// the medium's exact albedo, as the kernel's is (issue 31 item 1).
 pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
     let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
-    let constants = profiles.map(|p| p.classic_constants().map(|v| v as f32));
+    let scale = hidden_entry_albedo_scale(medium);
+    let constants: [[f32; 4]; 3] = std::array::from_fn(|c| {
+        let mut k = profiles[c].classic_constants();
+        k[0] *= scale[c];
+        k.map(|v| v as f32)
+    });
     let sigma_tr = profiles.iter().map(|p| p.classic_constants()[1]).fold(f64::INFINITY, f64::min);
     let reach = (HIDDEN_ENTRY_REACH_LENGTHS / sigma_tr).min(HIDDEN_ENTRY_MAX_REACH_MM);
     let rate = sigma_tr.max(HIDDEN_ENTRY_REACH_LENGTHS / reach);
     (constants, [medium.eta as f32, reach as f32, HIDDEN_ENTRY_SAMPLES as f32, rate as f32])
 }
 
+/// Per channel, the medium's exact albedo (its half-space's reflectance at normal incidence by
+/// adding-doubling, [`crate::dielectric_half_space::reflectance`], the albedo the lighting pass
+/// and the kernel use) over the classic dipole's total Rd: the factor that closes the dipole's
+/// albedo gap (short by 15-37% for ketchup at η = 1, under 1% for marble and skim milk;
+/// docs/BENCHMARKS.md). 1 where the table does not reach the medium or Rd is 0.
+pub fn hidden_entry_albedo_scale(medium: &Medium) -> [f64; 3] {
+    let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
+    let alpha = medium.reduced_albedo();
+    std::array::from_fn(|c| {
+        let rd = profiles[c].total();
+        match crate::dielectric_half_space::reflectance(alpha[c], medium.eta) {
+            Ok(r) if rd > 0.0 && r.normal.is_finite() => r.normal / rd,
+            _ => 1.0,
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_gather_s_dipole_totals_the_exact_albedo() {
+        for (name, lo, hi) in [("ketchup", 1.1, 1.7), ("marble", 1.0, 1.01), ("skimmilk", 1.0, 1.01)] {
+            let medium = Medium::builtin(name).expect("built in").with_eta(1.0).expect("η 1");
+            let scale = hidden_entry_albedo_scale(&medium);
+            eprintln!("{name}: {scale:?}");
+            assert!(scale.iter().all(|s| (lo..hi).contains(s)), "{name}: {scale:?}");
+        }
+        // The constants carry it in the prefactor α′.
+        let medium = Medium::builtin("ketchup").expect("ketchup").with_eta(1.0).expect("η 1");
+        let (k, _) = hidden_entry_constants(&medium);
+        let alpha = medium.reduced_albedo();
+        let scale = hidden_entry_albedo_scale(&medium);
+        for c in 0..3 {
+            assert!((k[c][0] as f64 / (alpha[c] * scale[c]) - 1.0).abs() < 1e-6);
+        }
+    }
 
     #[test]
     fn the_table_loads_and_its_kappa_is_this_module_s() {

@@ -152,8 +152,9 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
                  and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
                  face it entered from the map's slope; exact at η = 1; beside it, for directional lights, the light \
-                 entering faces the camera does not see within the medium's reach, from the map, carried by the \
-                 classic dipole (32 samples)",
+                 entering within the medium's reach that neither the lighting nor the kernel carries (faces the \
+                 camera does not see, and seen ones beyond the kernel's reach or depth), from the map, carried by \
+                 the classic dipole (32 samples)",
             );
             match &skin.medium {
                 Some(m) if m.eta != 1.0 => {

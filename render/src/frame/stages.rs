@@ -254,7 +254,7 @@ impl Planner {
         };
         let sss = &scene.sss;
         let kernel = SeparableKernel::new(profile, sss.samples, sss.range_sigmas as f64)?;
-        if sss.width == 0.0 && !sss.run_at_zero_width {
+        if !sss.runs() {
             self.skip("SSS passes", "the SSS width is 0");
             return Ok(None);
         }
@@ -397,7 +397,11 @@ impl Planner {
         if !self.shadow_map_readers(scene, shadow_maps, readers) {
             return Ok(None);
         }
-        Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium)?)))
+        // The gather leaves to the screen-space kernel, where one runs, the light of the entries
+        // it reaches and follows in depth.
+        let sss = &scene.sss;
+        let kernel = scene.skin.subsurface.profile().filter(|_| sss.runs()).map(|p| (sss.reach_mm(p), sss.follow_mm));
+        Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium, kernel)?)))
     }
 
     /// For a thickness pass that reads the lights' shadow maps: each light without one gets no

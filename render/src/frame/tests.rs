@@ -148,13 +148,28 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     assert!(text.contains("subsurface slab (each shadowed light through a plane slab"), "{text}");
     // Marble's η of 1.5 is outside the law's exact domain, and the plan says so.
     assert!(text.contains("the medium's η 1.5 is not modelled by the slab"), "{text}");
-    // Under the kernel, before the blur.
-    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: Some(crate::sss::DiffusionProfile::skin()) };
+    // The gather knows which kernel carries the seen entries' light: none here.
+    let kernel = |plan: &FramePlan| {
+        plan.passes.iter().find_map(|p| if let Step::Thickness(u) = p.step { Some(u.screen_kernel) } else { None })
+    };
+    assert_eq!(kernel(&plan), Some([0.0; 4]));
+    // Under the kernel, before the blur; the gather leaves the kernel its reach (3σ of the
+    // profile's widest Gaussian, 8.2 mm for d'Eon's skin) and its depth-follow distance.
+    let profile = crate::sss::DiffusionProfile::skin();
+    let reach = 3.0 * profile.max_sigma_mm() as f32;
+    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: Some(profile) };
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
     assert_eq!(
         steps(&plan),
         ["shadow 0", "gbuffer", "lighting", "thickness", "sss horizontal", "sss vertical", "composite"]
     );
+    assert_eq!(kernel(&plan), Some([reach, 3.0, 0.0, 0.0]));
+    // At width 0 no kernel runs, and the gather takes all of the seen entries' excess.
+    scene.sss.width = 0.0;
+    let plan = FramePlan::new(&scene, up, settings()).expect("plan");
+    assert!(!steps(&plan).contains(&"sss horizontal".to_string()));
+    assert_eq!(kernel(&plan), Some([0.0; 4]));
+    scene.sss.width = 1.0;
     // No shadow map: no pass, and the plan says why.
     scene.lights[0].shadows = false;
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");

@@ -50,6 +50,10 @@ pub struct ThicknessUniform {
     pub gather_medium: [[f32; 4]; 3],
     /// The hidden-entry gather: η, reach (mm), samples (0: off), the radii's sampling rate (mm⁻¹).
     pub gather: [f32; 4],
+    /// The screen-space kernel the gather leaves the seen entries' light to: x its reach on the
+    /// surface (mm; 0 where no kernel runs), y the depth difference (mm) over which it stops
+    /// following a sample ([`crate::scene::SssSettings`]).
+    pub screen_kernel: [f32; 4],
 }
 
 impl ThicknessUniform {
@@ -64,12 +68,13 @@ impl ThicknessUniform {
         ThicknessUniform { materials, falloff, kind: [kind, 0, 0, 0], ..ThicknessUniform::zeroed() }
     }
 
-    /// The uniform of the slab law for a skin of `medium`.
+    /// The uniform of the slab law for a skin of `medium`, with the screen-space kernel's reach
+    /// and depth-follow distance (mm) where one runs.
     ///
     /// # Errors
     /// [`RenderError::Invalid`] if the compiled-in table is malformed, or the medium's
     /// coefficients give no finite reduced albedo and extinction.
-    pub fn slab(medium: &Medium) -> Result<ThicknessUniform> {
+    pub fn slab(medium: &Medium, kernel: Option<(f32, f32)>) -> Result<ThicknessUniform> {
         let axes = slab_transmittance::axes()?;
         let alpha = medium.reduced_albedo();
         let sigma_t: [f64; 3] = std::array::from_fn(|c| medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]);
@@ -91,6 +96,7 @@ impl ThicknessUniform {
             slab_axes: [axes.albedos as f32, axes.taus as f32, axes.mus as f32, axes.tau_max.ln_1p() as f32],
             gather_medium,
             gather,
+            screen_kernel: kernel.map_or([0.0; 4], |(reach, follow)| [reach, follow, 0.0, 0.0]),
             ..ThicknessUniform::zeroed()
         })
     }

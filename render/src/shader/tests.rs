@@ -289,6 +289,7 @@ fn uniform_layouts() -> Vec<UniformLayout> {
                 ("slab_axes", offset_of!(ThicknessUniform, slab_axes)),
                 ("gather_medium", offset_of!(ThicknessUniform, gather_medium)),
                 ("gather", offset_of!(ThicknessUniform, gather)),
+                ("screen_kernel", offset_of!(ThicknessUniform, screen_kernel)),
             ],
         ),
         (

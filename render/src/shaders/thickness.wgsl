@@ -33,6 +33,9 @@ struct ThicknessPass {
     // z_v); x η, y reach (mm), z samples (0: off), w the radii's sampling rate (mm⁻¹).
     gather_medium: array<vec4<f32>, 3>,
     gather: vec4<f32>,
+    // The screen-space kernel: x its reach on the surface (mm; 0: none runs), y the depth
+    // difference (mm) over which it stops following a sample.
+    screen_kernel: vec4<f32>,
 }
 @group(1) @binding(5) var<uniform> params: ThicknessPass;
 //#if THICKNESS_SLAB
@@ -210,6 +213,23 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     return out;
 }
 
+// The share of the light entering at `xi`, which the camera sees, that the screen-space kernel
+// carries to `world` (seen from the direction `v`): the kernel reaches `params.screen_kernel.x`
+// mm across the view and follows a sample in proportion to 1 − |Δz| / `params.screen_kernel.y`
+// of its depth difference ([Jimenez2015]'s rule, sss.wgsl); none where no kernel runs.
+fn kernel_share(xi: vec3<f32>, world: vec3<f32>, v: vec3<f32>) -> f32 {
+    let reach = params.screen_kernel.x;
+    if reach <= 0.0 {
+        return 0.0;
+    }
+    let d = xi - world;
+    let dz = dot(d, v);
+    if length(d - dz * v) > reach {
+        return 0.0;
+    }
+    return 1.0 - clamp(abs(dz) / max(params.screen_kernel.y, 1e-6), 0.0, 1.0);
+}
+
 // Whether the camera sees the surface point `x` (outward normal `nx`): it faces the camera and
 // lies no deeper than the G-buffer's surface at its pixel, within `tol_mm` plus two pixels'
 // width there. Light entering where the camera sees is the lighting pass's (and the kernel's).
@@ -281,7 +301,10 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
         let mu_i = max(dot(ni, l), 0.25);
         var unseen = 1.0 - mu_o / mu_i;
         if seen_by_camera(xi, ni, 2.0 * texel_mm) {
-            unseen *= 1.0 - clamp(dot(ni, normalize(frame.camera_pos.xyz - xi)), 0.0, 1.0);
+            // The kernel spreads a seen entry's light by its pixels' area, dA·μ_v: it misses
+            // 1 − μ_v of what it reaches and all of what it does not.
+            let mu_v = clamp(dot(ni, normalize(frame.camera_pos.xyz - xi)), 0.0, 1.0);
+            unseen *= 1.0 - kernel_share(xi, world, v) * mu_v;
         }
         let t_in = 1.0 - fresnel_in(dot(ni, l), eta);
         let r = length(xi - world);
@@ -337,7 +360,9 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             let axes = map_axes(light);
             let slab = slab_radiance(light, axes, m, world, n, v);
             sum += slab.radiance;
-            if params.gather.z > 0.0 {
+            // The gather takes the share the slab leaves: nothing where the light left
+            // through the face opposite the one it entered.
+            if params.gather.z > 0.0 && slab.facing < 1.0 {
                 sum += (1.0 - slab.facing) * hidden_entry(light, axes, m, world, n, v);
             }
         }
