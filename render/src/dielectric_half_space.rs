@@ -190,6 +190,14 @@ pub fn reflectance(alpha_prime: f64, eta: f64) -> Result<Reflectance> {
     Ok(Reflectance { normal: sum[0].clamp(0.0, 1.0), diffuse: sum[1].clamp(0.0, 1.0) })
 }
 
+/// The albedo of `medium` per channel: the [`Reflectance::normal`] of the half-space of its
+/// reduced albedo under its own η, which the skin's albedo and the diffusion models' totals
+/// stand for; `None` for a channel the table does not reach.
+pub fn medium_normal_reflectance(medium: &rouge_model::medium::Medium) -> [Option<f64>; 3] {
+    let alpha = medium.reduced_albedo();
+    std::array::from_fn(|c| reflectance(alpha[c], medium.eta).ok().map(|r| r.normal))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -317,12 +317,8 @@ impl Skin {
     /// dielectric half-space"). `fit`'s totals stand in only for a medium outside the table's
     /// domain, which [`Medium`]'s checks keep out.
     pub fn medium_albedo(medium: &Medium, fit: &FittedProfile) -> [f32; 3] {
-        let alpha = medium.reduced_albedo();
-        std::array::from_fn(|c| {
-            crate::dielectric_half_space::reflectance(alpha[c], medium.eta)
-                .map_or(fit.total[c], |r| r.normal)
-                .clamp(0.0, 1.0) as f32
-        })
+        let exact = crate::dielectric_half_space::medium_normal_reflectance(medium);
+        std::array::from_fn(|c| exact[c].unwrap_or(fit.total[c]).clamp(0.0, 1.0) as f32)
     }
 
     /// This skin under [`DiffuseLaw::HalfSpace`]. The albedo stays: the law reads it as the

@@ -33,7 +33,7 @@
 //! included, is an error that names the value. The unscattered beam is not in T: a directional
 //! light seen through the slab is a delta the camera does not see.
 
-use crate::diffusion::{ProfileModel, medium_profiles};
+use crate::diffusion::{ChannelProfile, ProfileModel, medium_profiles};
 use crate::error::{RenderError, Result};
 use rouge_model::medium::Medium;
 use std::sync::OnceLock;
@@ -294,7 +294,7 @@ pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 80.0;
 /// the medium's exact albedo, as the kernel's is (issue 31 item 1).
 pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
     let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
-    let scale = hidden_entry_albedo_scale(medium);
+    let scale = hidden_entry_albedo_scale(medium, &profiles);
     let constants: [[f32; 4]; 3] = std::array::from_fn(|c| {
         let mut k = profiles[c].classic_constants();
         k[0] *= scale[c];
@@ -307,17 +307,17 @@ pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
 }
 
 /// Per channel, the medium's exact albedo (its half-space's reflectance at normal incidence by
-/// adding-doubling, [`crate::dielectric_half_space::reflectance`], the albedo the lighting pass
-/// and the kernel use) over the classic dipole's total Rd: the factor that closes the dipole's
-/// albedo gap (short by 15-37% for ketchup at η = 1, under 1% for marble and skim milk;
-/// docs/BENCHMARKS.md). 1 where the table does not reach the medium or Rd is 0.
-pub fn hidden_entry_albedo_scale(medium: &Medium) -> [f64; 3] {
-    let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
-    let alpha = medium.reduced_albedo();
+/// adding-doubling, [`crate::dielectric_half_space::medium_normal_reflectance`], the albedo the
+/// lighting pass and the kernel use) over the total Rd of `classic`, the medium's classic
+/// dipole ([`medium_profiles`]): the factor that closes the dipole's albedo gap (short by 15-37%
+/// for ketchup at η = 1, under 1% for marble and skim milk; docs/BENCHMARKS.md). 1 where the
+/// table does not reach the medium or Rd is 0.
+pub fn hidden_entry_albedo_scale(medium: &Medium, classic: &[ChannelProfile; 3]) -> [f64; 3] {
+    let exact = crate::dielectric_half_space::medium_normal_reflectance(medium);
     std::array::from_fn(|c| {
-        let rd = profiles[c].total();
-        match crate::dielectric_half_space::reflectance(alpha[c], medium.eta) {
-            Ok(r) if rd > 0.0 && r.normal.is_finite() => r.normal / rd,
+        let rd = classic[c].total();
+        match exact[c] {
+            Some(albedo) if rd > 0.0 => albedo / rd,
             _ => 1.0,
         }
     })
@@ -331,7 +331,7 @@ mod tests {
     fn the_gather_s_dipole_totals_the_exact_albedo() {
         for (name, lo, hi) in [("ketchup", 1.1, 1.7), ("marble", 1.0, 1.01), ("skimmilk", 1.0, 1.01)] {
             let medium = Medium::builtin(name).expect("built in").with_eta(1.0).expect("η 1");
-            let scale = hidden_entry_albedo_scale(&medium);
+            let scale = hidden_entry_albedo_scale(&medium, &medium_profiles(&medium, ProfileModel::ClassicDipole));
             eprintln!("{name}: {scale:?}");
             assert!(scale.iter().all(|s| (lo..hi).contains(s)), "{name}: {scale:?}");
         }
@@ -339,7 +339,7 @@ mod tests {
         let medium = Medium::builtin("ketchup").expect("ketchup").with_eta(1.0).expect("η 1");
         let (k, _) = hidden_entry_constants(&medium);
         let alpha = medium.reduced_albedo();
-        let scale = hidden_entry_albedo_scale(&medium);
+        let scale = hidden_entry_albedo_scale(&medium, &medium_profiles(&medium, ProfileModel::ClassicDipole));
         for c in 0..3 {
             assert!((k[c][0] as f64 / (alpha[c] * scale[c]) - 1.0).abs() < 1e-6);
         }

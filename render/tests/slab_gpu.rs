@@ -193,9 +193,9 @@ struct Kernel {
 /// plane) of the exit point `x_o`, each entry weighted as the shader states (the excess over the
 /// exit point's own μ_o; where the screen-space `kernel` runs, seen from `eye`, a seen entry
 /// within its reach counts only for the share 1 − μ_v its pixels lose, in proportion as the
-/// kernel follows its depth, and in full otherwise), carried by the classic dipole R(r),
-/// (its total scaled to the medium's exact albedo), as radiance through an index-matched boundary: T(μ_v)/π · E ∫ R(|x_i − x_o|) w μ_i dA. A
-/// midpoint rule over 1000 × 2000 cells in (θ, φ).
+/// kernel follows its depth, and in full otherwise), carried by the classic dipole R(r) (its
+/// total scaled to the medium's exact albedo), as radiance through an index-matched boundary:
+/// T(μ_v)/π · E ∫ R(|x_i − x_o|) w μ_i dA. A midpoint rule over 1000 × 2000 cells in (θ, φ).
 fn gather_on_sphere(
     medium: &Medium,
     radius: f64,
@@ -209,10 +209,15 @@ fn gather_on_sphere(
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
-    let scale = rouge_render::slab_transmittance::hidden_entry_albedo_scale(medium);
+    let scale = rouge_render::slab_transmittance::hidden_entry_albedo_scale(medium, &profiles);
     let sigma_tr = profiles.iter().map(|p| p.classic_constants()[1]).fold(f64::INFINITY, f64::min);
     let reach = (HIDDEN_ENTRY_REACH_LENGTHS / sigma_tr).min(HIDDEN_ENTRY_MAX_REACH_MM);
     let n_o = x_o.map(|v| v / radius);
+    // The view direction at the exit point, along which the kernel measures depth.
+    let view = kernel.map(|k| {
+        let v = sub(k.eye, x_o);
+        v.map(|c| c / dot(v, v).sqrt())
+    });
     let mu_o = dot(n_o, l).max(0.0);
     let (nt, np) = (1000, 2000);
     let mut sum = [0.0; 3];
@@ -233,11 +238,9 @@ fn gather_on_sphere(
                 continue;
             }
             let mut w = 1.0 - mu_o / mu_i.max(0.25);
-            if let Some(k) = kernel {
+            if let (Some(k), Some(v)) = (kernel, view) {
                 let to_eye = sub(k.eye, x);
                 let mu_v = dot(n, to_eye) / dot(to_eye, to_eye).sqrt();
-                let v = sub(k.eye, x_o);
-                let v = v.map(|c| c / dot(v, v).sqrt());
                 let dz = dot(d, v);
                 let lateral = (dot(d, d) - dz * dz).max(0.0).sqrt();
                 let share = if lateral > k.reach_mm { 0.0 } else { 1.0 - (dz.abs() / k.follow_mm).min(1.0) };

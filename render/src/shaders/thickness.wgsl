@@ -213,16 +213,16 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     return out;
 }
 
-// The share of the light entering at `xi`, which the camera sees, that the screen-space kernel
-// carries to `world` (seen from the direction `v`): the kernel reaches `params.screen_kernel.x`
-// mm across the view and follows a sample in proportion to 1 − |Δz| / `params.screen_kernel.y`
-// of its depth difference ([Jimenez2015]'s rule, sss.wgsl); none where no kernel runs.
-fn kernel_share(xi: vec3<f32>, world: vec3<f32>, v: vec3<f32>) -> f32 {
+// The share of the light entering at an offset `d` from the exit point, where the camera sees
+// it, that the screen-space kernel carries there (seen from the direction `v`): the kernel
+// reaches `params.screen_kernel.x` mm across the view and follows a sample in proportion to
+// 1 − |Δz| / `params.screen_kernel.y` of its depth difference ([Jimenez2015]'s rule, sss.wgsl);
+// none where no kernel runs.
+fn kernel_share(d: vec3<f32>, v: vec3<f32>) -> f32 {
     let reach = params.screen_kernel.x;
     if reach <= 0.0 {
         return 0.0;
     }
-    let d = xi - world;
     let dz = dot(d, v);
     if length(d - dz * v) > reach {
         return 0.0;
@@ -299,15 +299,16 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
         let xi = world + o.x * axes.right + o.y * axes.up - l * (e.first_mm - m.depth_mm);
         let ni = entry_normal(light, axes, e, n, l);
         let mu_i = max(dot(ni, l), 0.25);
+        let d = xi - world;
         var unseen = 1.0 - mu_o / mu_i;
         if seen_by_camera(xi, ni, 2.0 * texel_mm) {
             // The kernel spreads a seen entry's light by its pixels' area, dA·μ_v: it misses
             // 1 − μ_v of what it reaches and all of what it does not.
             let mu_v = clamp(dot(ni, normalize(frame.camera_pos.xyz - xi)), 0.0, 1.0);
-            unseen *= 1.0 - kernel_share(xi, world, v) * mu_v;
+            unseen *= 1.0 - kernel_share(d, v) * mu_v;
         }
         let t_in = 1.0 - fresnel_in(dot(ni, l), eta);
-        let r = length(xi - world);
+        let r = length(d);
         let rd = vec3<f32>(
             dipole_radial(params.gather_medium[0], r),
             dipole_radial(params.gather_medium[1], r),
