@@ -12,7 +12,7 @@
 #      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
 #      error (citations are written \[Key\], not intra-doc links), then the golden frames again
 #      on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
-#   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure) into .venv;
+#   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure, dev profile) into .venv;
 #   5. runs the Python cross-checks against colour-science and 50-digit mpmath references,
 #      driving the real `rouge` binary and the `rouge` package.
 # Usage: bash tests/run.sh            (from anywhere; about 5-10 minutes on 2 cores from scratch)
@@ -76,7 +76,7 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
 
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 # The workspace step has built these test executables already. Selecting the targets again with
-# cargo (`--test frame`) resolves features for rouge-render alone and rebuilds wgpu and its
+# cargo (`--test render`) resolves features for rouge-render alone and rebuilds wgpu and its
 # dependencies (~4 min on 2 cores), so the executables are asked of the same workspace build
 # (`--no-run --message-format=json`, nothing rebuilds) and run directly.
 test_exe() {
@@ -96,17 +96,20 @@ if not found:
 print(found[0])
 ' "$1"
 }
-FRAME_EXE=$(test_exe frame)
-EDGES_EXE=$(test_exe edges)
-ATLAS_EXE=$(test_exe cube_atlas_gpu)
-# Test executables run from their package's directory under cargo; do the same here.
-(cd render && WGPU_BACKEND=gl "$FRAME_EXE" golden_default_look_and_bare_skin picking_and_captures)
-(cd render && WGPU_BACKEND=gl "$EDGES_EXE" a_turning_cube sorted_overdraw)
-(cd render && WGPU_BACKEND=gl "$ATLAS_EXE" the_gather_converges a_deformed_mesh light_reaches)
+RENDER_EXE=$(test_exe render)
+# Test executables run from their package's directory under cargo; do the same here. The
+# renderer's integration tests are one executable (render/tests/all.rs), a module per file.
+(cd render && WGPU_BACKEND=gl "$RENDER_EXE" frame::golden_default_look_and_bare_skin frame::picking_and_captures \
+  edges::a_turning_cube edges::sorted_overdraw \
+  cube_atlas_gpu::the_gather_converges cube_atlas_gpu::a_deformed_mesh cube_atlas_gpu::light_reaches)
 
-step "Python package \`rouge\` (py/): wheel built by maturin (release, rouge-measure + pyo3 only), installed into .venv"
+step "Python package \`rouge\` (py/): wheel built by maturin (dev profile, rouge-measure + pyo3 only), installed into .venv"
+# The dev profile reuses the dependencies the workspace test step compiled (pyo3, nalgebra, serde:
+# py/ is a workspace member), where --release compiled them all again (about 2-3 min on 2 cores);
+# rouge-measure itself is at opt-level 3 in the dev profile too (Cargo.toml), so the package's
+# numerics run as fast. A user's `pip install ./py` still builds a release wheel.
 rm -rf target/wheels
-.venv/bin/maturin build --release --locked -m py/Cargo.toml -o target/wheels
+.venv/bin/maturin build --profile dev --locked -m py/Cargo.toml -o target/wheels
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/rouge_cosmetics-*.whl
 
 step "pytest python/ (cross-checks against colour-science and mpmath)"

@@ -8,7 +8,7 @@ use egui_kittest::kittest::Queryable;
 use rouge_app::gui::RougeApp;
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::{beside_nose_tip, harness, harness_with_mesh};
 
 /// Screen points across the face's right cheek (image left of the nose), found from surface

@@ -10,7 +10,7 @@ use rouge_app::gui::{DiffuseChoice, Options, RougeApp, SubsurfaceChoice, with_ti
 use rouge_model::document::Document;
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::beside_nose_tip;
 
 fn app(data_dir: &Path, project: Option<PathBuf>, autosave: bool) -> Harness<'static, RougeApp> {

@@ -13,7 +13,7 @@ use rouge_model::mesh::targets::FacePose;
 use rouge_model::skin::{SkinBrush, SkinBrushKind, SkinConditions, SkinRecipe};
 use std::path::Path;
 
-mod common;
+use crate::common;
 use common::{beside_nose_tip, harness};
 
 /// Skin maps of `tone`, 512² (quick), without conditions.

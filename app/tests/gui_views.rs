@@ -10,7 +10,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, SnapshotOptions};
 use rouge_app::gui::RougeApp;
 
-mod common;
+use crate::common;
 use common::harness;
 
 fn button(h: &Harness<'static, RougeApp>, pos: Pos2, button: PointerButton, pressed: bool) {

@@ -10,7 +10,7 @@ use rouge_model::look::ThicknessMap;
 use rouge_model::mesh::load_mesh;
 use rouge_model::paint::{Brush, BrushMode, StrokeSpacer, SurfaceMap, TexelRect, apply_dab, apply_dab_split, stroke};
 
-mod common;
+use crate::common;
 use common::{SIZE, head};
 
 /// Texel coordinates (x, y), row 0 at the top.

@@ -13,7 +13,7 @@ use rouge_model::paint::{
     apply_dab, apply_dab_in_view, fill,
 };
 
-mod common;
+use crate::common;
 use common::{SIZE, head};
 
 fn blank() -> ThicknessMap {

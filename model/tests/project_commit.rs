@@ -223,8 +223,12 @@ fn save_until_killed(dir: &Path, from: u64) -> ! {
 /// last state it said it saved (`committed` if none).
 fn kill_one_child(dir: &Path, committed: u64, delay: Duration) -> u64 {
     let exe = std::env::current_exe().expect("the test binary");
+    // The test's name as libtest knows it: its module path without the crate (tests/all.rs makes
+    // this file a module of the crate's one test executable).
+    let module = module_path!().split_once("::").map_or("", |(_, m)| m);
+    let name = format!("{module}::sigkill_at_any_moment_of_a_save_leaves_the_old_or_the_new_project");
     let mut child = Command::new(exe)
-        .args(["sigkill_at_any_moment_of_a_save_leaves_the_old_or_the_new_project", "--exact", "--nocapture"])
+        .args([name.as_str(), "--exact", "--nocapture"])
         .env(CHILD_ENV, dir)
         .env(CHILD_FROM_ENV, (committed + 1).to_string())
         .stdout(Stdio::piped())

@@ -5,8 +5,7 @@
 
 use std::path::Path;
 
-#[path = "common/project.rs"]
-mod project;
+use crate::common::project;
 use project::project_file;
 use std::sync::Arc;
 

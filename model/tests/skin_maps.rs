@@ -2,8 +2,8 @@
 //! nowhere else, the same for a seed and not for another, every texel valid at amounts 0 and 1,
 //! and the maps saved in a project come back bit for bit (a project saved before them opens).
 //!
-//! `ROUGE_SKIN_FIGURE=docs/images/skin_maps.png cargo test -p rouge-model --test skin_maps
-//! figure` writes the figure of docs/SKIN.md ("Skin maps").
+//! `ROUGE_SKIN_FIGURE=docs/images/skin_maps.png cargo test -p rouge-model --test model
+//! skin_maps::figure` writes the figure of docs/SKIN.md ("Skin maps").
 
 use rouge_measure::skin::{SkinParams, skin_tone};
 use rouge_model::mesh::load_mesh;

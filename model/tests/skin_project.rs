@@ -6,8 +6,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-#[path = "common/project.rs"]
-mod project;
+use crate::common::project;
 use project::project_file;
 use std::sync::Arc;
 

@@ -3,7 +3,7 @@
 //! adding-doubling, its prediction against the Mitsuba 3 spheres at η = 1.3, the edges of its
 //! domain, and the lighting pass's per-pixel mean curvature on a real wgpu device.
 
-mod common;
+use crate::common;
 
 use rouge_model::medium::Medium;
 use rouge_render::curved_half_space::{MAX_CURVATURE_PER_MM, effective_albedo, reflectance, single_scattering};

@@ -3,7 +3,7 @@
 //! device (lavapipe on CI): the WGSL function run in a compute shader over seeded random
 //! tangents, light and view directions, absorptions and roughnesses.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use rouge_render::Gpu;

@@ -1,6 +1,6 @@
 //! Whole frames on a real wgpu device (Mesa lavapipe on CI): physics checks and golden images.
 //!
-//! `UPDATE_SNAPSHOTS=1 cargo test -p rouge-render --test frame` rewrites the golden PNGs in
+//! `UPDATE_SNAPSHOTS=1 cargo test -p rouge-render --test render frame::` rewrites the golden PNGs in
 //! render/tests/golden/ (look at them before committing).
 
 #![allow(clippy::needless_range_loop)] // RGB channels are indexed by number.

@@ -3,7 +3,7 @@
 //! and Mitsuba 3's radiance from a half-space (python/gen_slab_reference.py); its identities; the
 //! lighting pass's half-space law on a real wgpu device, at η = 1 and under a boundary of η = 1.3.
 
-mod common;
+use crate::common;
 
 use rouge_model::medium::Medium;
 use rouge_render::diffusion::ProfileModel;

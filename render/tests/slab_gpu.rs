@@ -3,7 +3,7 @@
 //! against adding-doubling), and the whole thickness pass on the backlit wedge against the slab's
 //! exact geometry: the light's path read from the shadow map, the entry face from its slope.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use rouge_model::look::Look;

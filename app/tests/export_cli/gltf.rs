@@ -4,7 +4,7 @@
 //! error and no warning (skipped, saying so, without node or `npm ci --prefix tests/gltf`), and
 //! bad options and unwritable paths fail with a message and leave no file behind.
 
-use crate::common::{root, rouge, stderr};
+use super::common::{root, rouge, stderr};
 use rouge_model::mesh::{Bounds, load_mesh};
 use rouge_render::gltf_export::export_job;
 use rouge_render::job::{LookChoice, RenderJob};

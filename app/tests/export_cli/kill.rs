@@ -7,7 +7,7 @@
 //! whose accessors ran past its new .bin. `ROUGE_KILL_ROUNDS` (default 6 per format) sets the
 //! kills.
 
-use crate::common::{root, rouge};
+use super::common::{root, rouge};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};

@@ -3,7 +3,7 @@
 //! paths fail naming them and leave no temporary file. MaterialX's own validation of the .mtlx is
 //! python/test_materialx_export.py (PyPI materialx).
 
-use crate::common::{names, rouge, stderr};
+use super::common::{names, rouge, stderr};
 use rouge_model::mesh::{Bounds, load_mesh};
 use rouge_render::job::{LookChoice, RenderJob};
 use std::path::Path;

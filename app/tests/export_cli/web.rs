@@ -4,7 +4,7 @@
 //! request, lists the look's products, and its slider shows two different faces (the bare skin,
 //! the look); bad options and unwritable paths fail naming them and leave no file behind.
 
-use crate::common::{names, root, rouge, stderr};
+use super::common::{names, root, rouge, stderr};
 use std::path::Path;
 use std::process::{Command, Output};
 

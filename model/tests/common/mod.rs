@@ -1,4 +1,6 @@
-//! What the paint tests share: the head they paint on.
+//! What the model's tests share: the head they paint on (here), and the skin projects (project.rs).
+
+pub mod project;
 
 use rouge_model::mesh::{TriangleMesh, load_mesh};
 use rouge_model::paint::SurfaceMap;

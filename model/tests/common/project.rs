@@ -1,5 +1,4 @@
-//! What the skin project tests share (included with `#[path]` by those that use it, so the
-//! paint tests' `common` stays free of it).
+//! What the skin project tests share (skin_edits.rs and skin_project.rs).
 
 use std::path::Path;
 
