@@ -116,5 +116,6 @@ step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into
 # target/debug/rouge; a separate `cargo build` would rebuild everything in the dev profile.
 test -x target/debug/rouge || cargo build -p rouge-app --locked
-ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q --durations=15
+# -n 2: both cores (pytest-xdist); every test writes only under its own tmp_path.
+ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q -n 2 --durations=15
 step "done"
