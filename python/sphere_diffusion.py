@@ -77,8 +77,9 @@ def normals(n: int, radius: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return hit, normal, (-d * normal).sum(-1)
 
 
-def sphere_exitance(mu: np.ndarray, sigma_a: float, sigma_s_prime: float, radius: float, albedo: float) -> np.ndarray:
-    """The sphere's diffuse exitance per unit irradiance along μ, scaled to `albedo` in the flat limit."""
+def sphere_orders(sigma_a: float, sigma_s_prime: float, radius: float, albedo: float) -> np.ndarray:
+    """Per Legendre order l: T_l·E_l, scaled to `albedo` in the flat limit (the sphere's diffuse
+    exitance per unit irradiance along μ is Σ_l of these times P_l(μ))."""
     from numpy.polynomial.legendre import leggauss
     from scipy.special import eval_legendre, spherical_in
 
@@ -88,15 +89,22 @@ def sphere_exitance(mu: np.ndarray, sigma_a: float, sigma_s_prime: float, radius
     t_inf = (1 - 2 * d * tr) / (1 + 2 * d * tr)
     nodes, weights = leggauss(800)
     flux = np.maximum(nodes, 0.0)
-    out = np.zeros_like(mu, dtype=float)
+    out = []
     for order in range(400):
         rho = tr * spherical_in(order, x, derivative=True) / spherical_in(order, x)
         t_l = (1 - 2 * d * rho) / (1 + 2 * d * rho)
         if t_l <= 0:
             break
         e_l = (2 * order + 1) / 2 * np.sum(weights * flux * eval_legendre(order, nodes))
-        out += t_l * e_l * eval_legendre(order, mu)
-    return out * albedo / t_inf
+        out.append(t_l * e_l * albedo / t_inf)
+    return np.array(out)
+
+
+def sphere_exitance(mu: np.ndarray, orders: np.ndarray) -> np.ndarray:
+    """Σ_l orders[l]·P_l(μ): the sphere's exitance per unit irradiance along μ."""
+    from scipy.special import eval_legendre
+
+    return sum(c * eval_legendre(order, mu) for order, c in enumerate(orders))
 
 
 def main() -> None:
@@ -129,6 +137,10 @@ def main() -> None:
     print(f"{a.scene}: {medium_name}, R = {SPHERE_RADIUS_MM} mm; mean radiance per μ bin (pixels facing the camera by > 0.3)")
     print("| μ | pixels | path tracer R / G / B | diffusion sphere | half-space law | sphere / path tracer | law / path tracer |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
+    orders = [
+        sphere_orders(medium["sigma_a_per_mm"][c], medium["sigma_s_prime_per_mm"][c], SPHERE_RADIUS_MM, albedo[c])
+        for c in range(3)
+    ]
     edges = np.linspace(mu[sel].min(), 1.0, a.bins + 1)
     fmt = lambda v: " / ".join(f"{x:.4f}" for x in v)  # noqa: E731
     ratio = lambda p, r: " / ".join(f"{x / y:.2f}" if y > 1e-4 else "-" for x, y in zip(p, r))  # noqa: E731
@@ -138,12 +150,7 @@ def main() -> None:
             continue
         m = mu[s]
         pt = ref[s][:, :3].mean(0)
-        sph = np.array(
-            [
-                sphere_exitance(m, medium["sigma_a_per_mm"][c], medium["sigma_s_prime_per_mm"][c], SPHERE_RADIUS_MM, albedo[c]).mean()
-                for c in range(3)
-            ]
-        )
+        sph = np.array([sphere_exitance(m, orders[c]).mean() for c in range(3)])
         hs = law[s].mean(0)
         print(f"| {m.mean():+.2f} | {int(s.sum())} | {fmt(pt)} | {fmt(sph)} | {fmt(hs)} | {ratio(sph, pt)} | {ratio(hs, pt)} |")
 
