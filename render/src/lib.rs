@@ -54,6 +54,7 @@ pub mod scene;
 pub(crate) mod shader;
 pub mod silhouettes;
 pub mod skin_study;
+pub mod slab_extent;
 pub mod slab_transmittance;
 pub mod specular;
 pub mod sss;

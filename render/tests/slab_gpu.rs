@@ -9,6 +9,7 @@ use glam::Vec3;
 use rouge_model::look::Look;
 use rouge_model::medium::Medium;
 use rouge_model::mesh::load_mesh;
+use rouge_render::slab_extent::{lateral_rates_per_mm, lit_extent};
 use rouge_render::slab_transmittance::{WGSL, axes, kappa, medium_values, transmittance};
 use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
 use std::path::Path;
@@ -101,6 +102,38 @@ impl View {
     }
 }
 
+/// Whether the line through `p` along `l` meets the convex `mesh` (every face's plane holds the
+/// mesh on its inner side): the light's map holds the mesh in that column.
+fn line_meets_convex(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> bool {
+    let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+    for face in &mesh.faces {
+        let n = mesh.normals[face.corners[0].normal as usize];
+        let q = mesh.positions[face.corners[0].position as usize];
+        // n·(p + t·l − q) ≤ 0 inside.
+        let (a, b) = (n.dot(l), n.dot(p - q));
+        if a.abs() < 1e-9 {
+            if b > 0.0 {
+                return false;
+            }
+        } else if a > 0.0 {
+            hi = hi.min(-b / a);
+        } else {
+            lo = lo.max(-b / a);
+        }
+    }
+    lo <= hi
+}
+
+/// The lit extent at `at` under the light toward `l` (exactly, `slab_extent::lit_extent`) for a
+/// slab `depth_mm` thick of `medium`, where `covered` says whether a column meets the mesh.
+fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: impl Fn(Vec3) -> bool) -> [f64; 3] {
+    let sigma_t: [f64; 3] = std::array::from_fn(|c| medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]);
+    let rates = lateral_rates_per_mm(sigma_t, medium.reduced_albedo().map(kappa), depth_mm);
+    let right = l.any_orthonormal_vector();
+    let up = l.cross(right);
+    lit_extent(rates, |x, y| covered(at + right * x as f32 + up * y as f32))
+}
+
 #[test]
 fn the_backlit_wedge_transmits_what_its_slab_does() {
     let gpu = Gpu::headless().expect("a wgpu adapter");
@@ -110,36 +143,51 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None }, ..skin };
     scene.specular = false;
     let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
-    // The front face (z = 7.5) where the wedge is 6 mm thick along z; its back face slants by
-    // atan(14/60) and the light comes from (0.55, 0.3, −0.78).
-    let at = Vec3::new(-8.0, 0.0, 7.5);
+    let wedge = rouge_model::mesh::shapes::wedge();
+    // On the front face (z = 7.5) where the wedge is 6 mm thick along z, in its middle and 3 mm
+    // above its bottom edge (the light comes from above: its path stays clear of that edge);
+    // the back face slants by atan(14/60) and the light comes from (0.55, 0.3, −0.78).
     let l = Vec3::new(0.55, 0.3, -0.78).normalize();
     let back_normal = Vec3::new(-14.0 / 60.0, 0.0, -1.0).normalize();
     let mu_l = l.dot(back_normal) as f64;
-    // The slab's thickness is the distance from `at` to the back face's plane.
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
-    let depth_mm = (at - on_back).dot(-back_normal) as f64;
-    let mu_v = (view.camera.position() - at).normalize().z as f64;
-    let alpha = medium.reduced_albedo();
-    let got = view.diffuse_at(&scene, at);
-    for c in 0..3 {
-        let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
-        let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain");
-        // The shadow map's depth bias shortens the path by about 0.1 mm: 1-2% here.
-        let err = (got[c] as f64 - want).abs() / want;
-        eprintln!(
-            "channel {c}: {:.5} against the slab's {want:.5} ({:+.2}%)",
-            got[c],
-            100.0 * (got[c] as f64 / want - 1.0)
-        );
-        assert!(err < 0.03, "channel {c}: {} against {want} ({:.1}%)", got[c], 100.0 * err);
+    let mut extents = Vec::new();
+    let middle = Vec3::new(-8.0, 0.0, 7.5);
+    for at in [middle, Vec3::new(-8.0, -17.0, 7.5)] {
+        // The slab's thickness is the distance from `at` to the back face's plane.
+        let depth_mm = (at - on_back).dot(-back_normal) as f64;
+        let mu_v = (view.camera.position() - at).normalize().z as f64;
+        let alpha = medium.reduced_albedo();
+        let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
+        let got = view.diffuse_at(&scene, at);
+        for c in 0..3 {
+            let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
+            let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c];
+            eprintln!(
+                "{at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}; {:+.2}%)",
+                got[c],
+                extent[c],
+                100.0 * (got[c] as f64 / want - 1.0)
+            );
+            // The shadow map's depth bias shortens the path by about 0.1 mm: 1-2% here (lavapipe:
+            // +0.9 / +1.0 / +1.2% in the middle). By the edge the hidden-entry gather adds the
+            // light of the share the slab does not stand for, 1 − 0.95 (lavapipe: +3.0 / +3.0 /
+            // +3.1%; without it +0.7 / +1.1 / +1.7%).
+            let err = (got[c] as f64 - want).abs() / want;
+            let allowed = if at == middle { 0.03 } else { 0.05 };
+            assert!(err < allowed, "{at}, channel {c}: {} against {want} ({:.1}%)", got[c], 100.0 * err);
+        }
+        extents.push(extent[0]);
     }
+    // The middle is lit all around; 3 mm from the edge (6 mm in the light's map, whose columns
+    // meet the bottom face too) 6% of the plane is missing in red.
+    assert!(extents[0] > 0.995 && extents[1] < 0.95, "{extents:?}");
     // Lit from the front the light crossed nothing: the term adds nothing.
     let mut front = scene.clone();
     front.lights = Scene::rig(LightRig::Front).lights;
     front.lights[0].shadows = true;
     let lambert = Scene { skin: Skin { subsurface: SubsurfaceModel::None, ..scene.skin.clone() }, ..front.clone() };
-    let (with, without) = (view.diffuse_at(&front, at), view.diffuse_at(&lambert, at));
+    let (with, without) = (view.diffuse_at(&front, middle), view.diffuse_at(&lambert, middle));
     for c in 0..3 {
         assert!((with[c] - without[c]).abs() < 1e-3 * without[c], "{with:?} against {without:?}");
     }
@@ -289,6 +337,9 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
     let (mu_l, facing) = (n_e.dot(toward) as f64, (1.0 - n.dot(n_e)) as f64);
     let mu_v = (view.camera.position() - at).normalize().dot(n) as f64;
     let alpha = medium.reduced_albedo();
+    // The slab's lit extent: the columns along the light that meet the sphere.
+    let depth_mm = inside_mm as f64 * mu_l;
+    let extent = exact_lit_extent(&medium, depth_mm, toward, at, |p| (p - p.dot(toward) * toward).length() < radius);
     // Without a kernel, and under the kernel of the medium's profile (the diffuse target the
     // view reads is the kernel's input, before the blur), made to follow depth over 20 mm so that
     // it carries a share of the seen entries here (over the default 3 mm it carries none).
@@ -304,22 +355,26 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         let got = view.diffuse_at(&scene, at);
         let gather = gather_on_sphere(&medium, radius as f64, f(toward), e, f(at), kernel);
         for c in 0..3 {
-            let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * inside_mm as f64 * mu_l;
-            let slab =
-                e * mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * facing / std::f64::consts::PI;
-            let want = slab + (1.0 - facing) * gather[c];
+            let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
+            let slab = e * mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c] * facing
+                / std::f64::consts::PI;
+            // The gather takes the share the slab does not stand for: 1 − facing × the lit
+            // extent over the channels.
+            let want = slab + (1.0 - facing * extent.iter().sum::<f64>() / 3.0) * gather[c];
             eprintln!(
-                "kernel {}, channel {c}: {:.5} against slab {slab:.5} + gather {:.5} = {want:.5}",
+                "kernel {}, channel {c}: {:.5} against slab {slab:.5} (lit extent {:.3}) + gather {:.5} = {want:.5}",
                 kernel.is_some(),
                 got[c],
+                extent[c],
                 gather[c]
             );
             assert!(
-                (1.0 - facing) * gather[c] > 0.1 * want,
+                (1.0 - facing * extent.iter().sum::<f64>() / 3.0) * gather[c] > 0.1 * want,
                 "channel {c}: the gather {} is too small to test here",
                 gather[c]
             );
-            // lavapipe without the kernel: +12% / +13% / +12% with 32 samples (before seen
+            // lavapipe without the kernel: +13% / +15% / +14% with the lit extent (+12% / +13% /
+            // +12% before it) with 32 samples (before seen
             // entries counted in full without a kernel, +10% / +10% / +9%; with the reach capped
             // at 20 mm, +15% and +10% in red with 512): the tessellated sphere's normals and the
             // shadow map's texels and slopes against the exact sphere. Under the kernel: +10% /

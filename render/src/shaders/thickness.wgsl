@@ -4,8 +4,9 @@
 // the G-buffer sampled, or, per light, the falloff w(d) of the distance d the light travelled
 // inside the mesh, read from the light's shadow map. The parameters come per material id.
 // The slab law (THICKNESS_SLAB, render/src/slab_transmittance.rs) replaces the talk's term for
-// the skin: the light through a plane slab of the thickness the light crossed, exactly,
-//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · clamp(1 − n·n_e, 0, 1) / π per light,
+// the skin: the light through a plane slab of the thickness the light crossed, exactly, times
+// the share f of that plane the light's map holds (render/src/slab_extent.rs),
+//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · f · clamp(1 − n·n_e, 0, 1) / π per light,
 // μ_l the light's cosine on the face where it entered and n_e that face's normal (the slope of
 // the shadow map there), d the distance it travelled inside, from the shadow map.
 
@@ -167,11 +168,51 @@ fn entry_normal(light: Light, axes: MapAxes, m: MapPoint, n: vec3<f32>, l: vec3<
     return normalize(l + sx * axes.right - sy * axes.up);
 }
 
-// One light's slab radiance, and the share of the light leaving the point that the slab stands
-// for (`facing`); the hidden-entry gather takes the rest.
+// The lit extent's radii in units of 1/q: the Gamma(2) distribution's quantiles at the 16
+// strata's midpoints, (j + ½)/16 (slab_extent::lit_extent_radii, whose test checks these).
+const LIT_EXTENT_RADII = array<f32, 16>(
+    0.273582, 0.511626, 0.701280, 0.876004, 1.046251, 1.217671, 1.394451, 1.580509,
+    1.780213, 1.999098, 2.244936, 2.529734, 2.874153, 3.319419, 3.970680, 5.307471,
+);
+
+// The slab law's lit extent per channel (render/src/slab_extent.rs, its converged twin): the
+// share of the lateral spread p(ρ) = q²/(2π) e^{−qρ} of the light crossing a slab `depth_mm`
+// thick, q = √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′), over the offsets in the light's map
+// around `m` where the map holds the mesh: 1 on a plane, less across a finger narrower than
+// the light spreads in it. Radii stratified in p of the channel that spreads furthest (q_min),
+// each channel weighted by its p over that one, (q/q_min)² e^{−(q − q_min)ρ}; angles on the
+// golden-angle spiral.
+fn lit_extent(light: Light, axes: MapAxes, m: MapPoint, depth_mm: f32) -> vec3<f32> {
+    let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
+    let span = depth_mm + vec3<f32>(4.0 / 3.0) / params.slab_sigma_t.xyz;
+    let q = sqrt(sigma * sigma + (PI / span) * (PI / span));
+    let q_min = min(q.x, min(q.y, q.z));
+    var lit = vec3<f32>(0.0);
+    var total = vec3<f32>(0.0);
+    for (var j = 0u; j < 16u; j++) {
+        let rho = LIT_EXTENT_RADII[j] / q_min;
+        let w = exp(-(q - q_min) * rho);
+        total += w;
+        let phi = f32(j) * 2.39996323;
+        let uv = m.uv + rho * vec2<f32>(cos(phi), -sin(phi)) * axes.uv_per_mm;
+        if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
+            continue;
+        }
+        let stored = textureLoad(shadow_depths, vec2<i32>(uv * vec2<f32>(axes.size)), i32(light.shadow.x), 0).r;
+        if stored < 1.0 {
+            lit += w;
+        }
+    }
+    return lit / max(total, vec3<f32>(1e-12));
+}
+
+// One light's slab radiance, how far the exit face turns from the entry face (`facing`), and
+// the share of the light leaving the point that the slab stands for (`share`: `facing` times
+// the lit extent, over the channels); the hidden-entry gather takes the rest.
 struct SlabLight {
     radiance: vec3<f32>,
     facing: f32,
+    share: f32,
 }
 
 // The slab law's radiance of one light (see the top of the file) at `world`, which falls at `m`
@@ -198,10 +239,12 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     // 2-3% closer to the path tracer, but light entering a face at right angles to the exit face
     // is lost: ΔE 4.6 → 6.5 on the marble wedge, 1.6 → 6.1 on the ketchup wedge.)
     let depth_mm = d * mu_l;
-    var t = vec3<f32>(0.0);
+    // The plane's share that is there: a finger is narrower than the light spreads in it.
+    let lit = lit_extent(light, axes, m, depth_mm);
+    var t = lit;
     for (var c = 0; c < 3; c++) {
         let tau = params.slab_sigma_t[c] * depth_mm;
-        t[c] = slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, params.slab_axes);
+        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, params.slab_axes);
     }
     // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
     // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
@@ -209,6 +252,8 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     // terminator, lit at grazing over a strip narrower than the light spreads, which the kernel
     // carries from the lit side).
     out.facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
+    // The slab stands for the light of the plane it assumes where that plane is there.
+    out.share = out.facing * dot(lit, vec3<f32>(1.0 / 3.0));
     out.radiance = arrival.e * mu_l * t * (out.facing / PI) * light.translucency.x;
     return out;
 }
@@ -362,9 +407,9 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             let slab = slab_radiance(light, axes, m, world, n, v);
             sum += slab.radiance;
             // The gather takes the share the slab leaves: nothing where the light left
-            // through the face opposite the one it entered.
-            if params.gather.z > 0.0 && slab.facing < 1.0 {
-                sum += (1.0 - slab.facing) * hidden_entry(light, axes, m, world, n, v);
+            // through the face opposite the one it entered, over a plane lit all around.
+            if params.gather.z > 0.0 && slab.share < 1.0 {
+                sum += (1.0 - slab.share) * hidden_entry(light, axes, m, world, n, v);
             }
         }
     }

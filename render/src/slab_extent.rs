@@ -1,0 +1,158 @@
+//! How much of the slab law's lit plane is there: the lit extent that scales the slab law
+//! ([`crate::slab_transmittance`]) where the part the light crosses is narrower than the light
+//! spreads in it (issue 31 item 4; docs/BENCHMARKS.md "The slab's lit extent").
+//!
+//! The slab law lights a pixel as a plane slab would: lit over its whole far face, the light
+//! that reaches the exit point entered within a few diffusion lengths of it on every side. A
+//! finger 9 mm wide, lit from behind, is a slab only along its length: across it, the light that
+//! would have entered beyond its sides is not there. The law over-lit the fingers' middles 1.5-2×
+//! (issue 31, the backlit hand).
+//!
+//! The light reaching the exit point through a slab comes from entry points spread across the
+//! plane at right angles to the light with a density p(ρ) about the point's own column. Diffusion
+//! between the slab's two extrapolated boundaries, L = d + 2z_b apart (z_b = 2D = 2/(3σt′) at an
+//! index-matched boundary), carries a lateral offset ρ with the slowest decay
+//! e^{−qρ}, q = √(σ² + (π/L)²) (the slab's fundamental mode: \[Contini1997\] §2, the lateral
+//! Fourier component k decays through the depth as √(σ² + k²) and the boundaries add (π/L)²), σ
+//! the medium's decay rate with depth (Case's κ·σt′, [`crate::slab_transmittance::kappa`], as the
+//! law's table takes out). Rouge takes the whole spread with that decay,
+//!
+//! ```text
+//! p(ρ) dA = q²/(2π) · e^{−qρ} dA      (∫ p dA = 1, mean radius 2/q)
+//! ```
+//!
+//! and counts the share of it where the light's shadow map sees the mesh: the lit extent
+//! f = ∫ p(ρ) · [the map's column at ρ holds the mesh] dA, 1 on a plane and ½ on a half-plane
+//! ([`lit_extent`]). The radiance is the slab law's × f per channel; σ differs per channel, so
+//! red (which spreads furthest) loses most on a thin finger.
+//!
+//! Domain and limits: the column's test is the shadow map's (anything on the light's ray counts,
+//! whether the light enters there before or after the exit plane); the kernel is the far field's
+//! (the near field, within ~L of the column, is more peaked: f is then a lower bound at an edge).
+//! Light entering a face beside the exit face (a wedge's top face near its front edge) is the
+//! law's own limit, not this module's: there f still removes what lies beyond the silhouette.
+//!
+//! The shader (`lit_extent` in shaders/thickness.wgsl) takes [`LIT_EXTENT_SAMPLES`] radii
+//! stratified in p of the channel that spreads furthest ([`lit_extent_radii`]) on the
+//! golden-angle spiral, and weights the other channels by their p over that one; this module is
+//! its converged twin, for the tests.
+
+/// Radii the shader samples per pixel and light (`LIT_EXTENT_RADII` in shaders/thickness.wgsl).
+pub const LIT_EXTENT_SAMPLES: usize = 16;
+
+/// The shader's radii in units of 1/q: p's quantiles at the midpoints of
+/// [`LIT_EXTENT_SAMPLES`] equal strata (p's radius is Gamma(2)-distributed in qρ).
+pub fn lit_extent_radii() -> [f64; LIT_EXTENT_SAMPLES] {
+    std::array::from_fn(|j| gamma2_quantile((j as f64 + 0.5) / LIT_EXTENT_SAMPLES as f64))
+}
+
+/// The lateral decay rate q (mm⁻¹) of the light crossing a slab `depth_mm` thick, per channel,
+/// for a medium of extinction `sigma_t_per_mm` (σa + σs′) and Case's decay rate `kappa` (per unit
+/// optical depth): √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′) (the module's doc). Finite and
+/// positive for finite σt′ > 0 and d ≥ 0.
+pub fn lateral_rates_per_mm(sigma_t_per_mm: [f64; 3], kappa: [f64; 3], depth_mm: f64) -> [f64; 3] {
+    std::array::from_fn(|c| {
+        let sigma = kappa[c] * sigma_t_per_mm[c];
+        let span = depth_mm.max(0.0) + 4.0 / (3.0 * sigma_t_per_mm[c]);
+        (sigma * sigma + (std::f64::consts::PI / span).powi(2)).sqrt()
+    })
+}
+
+/// The lit extent per channel: the share of p(ρ) (the module's doc) at `rates` (mm⁻¹) over the
+/// offsets (x, y) (mm, in the plane at right angles to the light) where `covered` holds. A
+/// midpoint rule in u = 1 − (1 + qρ)e^{−qρ} (2048 radii per channel) × 512 angles: converged to
+/// about 10⁻³ for the shapes of the tests. 1 where `covered` always holds.
+pub fn lit_extent(rates: [f64; 3], covered: impl Fn(f64, f64) -> bool) -> [f64; 3] {
+    const RADII: usize = 2048;
+    const ANGLES: usize = 512;
+    std::array::from_fn(|c| {
+        let q = rates[c];
+        let mut hit = 0usize;
+        for i in 0..RADII {
+            let rho = gamma2_quantile((i as f64 + 0.5) / RADII as f64) / q;
+            for k in 0..ANGLES {
+                let phi = std::f64::consts::TAU * (k as f64 + 0.5) / ANGLES as f64;
+                hit += usize::from(covered(rho * phi.cos(), rho * phi.sin()));
+            }
+        }
+        hit as f64 / (RADII * ANGLES) as f64
+    })
+}
+
+/// t with 1 − (1 + t)e^{−t} = u (the Gamma(2) distribution's quantile), by bisection: the
+/// distribution rises monotonically from 0 at t = 0, and (1 + t)e^{−t} ≤ e^{−t/2}·2 puts the
+/// root below 2 − 2 ln(1 − u).
+fn gamma2_quantile(u: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, 2.0 - 2.0 * (1.0 - u).ln());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if 1.0 - (1.0 + mid) * (-mid).exp() < u {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < 1e-14 * hi.max(1e-300) {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gamma_quantile_inverts_its_distribution() {
+        for u in [1e-6, 0.01, 0.5, 0.9, 0.999, 1.0 - 1e-9] {
+            let t = gamma2_quantile(u);
+            let back = 1.0 - (1.0 + t) * (-t).exp();
+            assert!((back - u).abs() < 1e-10, "u {u}: t {t} gives {back}");
+        }
+    }
+
+    #[test]
+    fn a_plane_is_all_there_a_half_plane_half_and_a_strip_by_its_width() {
+        let q = [0.2, 0.5, 1.0];
+        assert_eq!(lit_extent(q, |_, _| true), [1.0; 3]);
+        for f in lit_extent(q, |x, _| x > 0.0) {
+            assert!((f - 0.5).abs() < 1e-3, "{f}");
+        }
+        // A strip 9 mm wide (a finger) holds the disk of radius 4.5 mm, whose share is
+        // 1 − (1 + 4.5q)e^{−4.5q}, and not the plane: its share lies between, and grows with q.
+        let strip = lit_extent(q, |x, _| x.abs() < 4.5);
+        for c in 0..3 {
+            let t = q[c] * 4.5;
+            let disk = 1.0 - (1.0 + t) * (-t).exp();
+            assert!(disk < strip[c] && strip[c] < 1.0, "channel {c}: {} against the disk's {disk}", strip[c]);
+        }
+        assert!(strip[0] < strip[1] && strip[1] < strip[2], "{strip:?}");
+    }
+
+    #[test]
+    fn the_rate_is_the_medium_s_decay_in_a_thick_slab_and_the_boundaries_in_a_thin_one() {
+        // σt′ 2 mm⁻¹, κ 0.1: σ = 0.2 mm⁻¹.
+        let thick = lateral_rates_per_mm([2.0; 3], [0.1; 3], 1e6);
+        assert!((thick[0] - 0.2).abs() < 1e-6, "{thick:?}");
+        let thin = lateral_rates_per_mm([2.0; 3], [0.0; 3], 0.0);
+        assert!((thin[0] - std::f64::consts::PI * 1.5).abs() < 1e-12, "{thin:?}");
+        // A negative depth is a slab of none.
+        let none = lateral_rates_per_mm([2.0; 3], [0.1; 3], -1.0);
+        assert!((none[0] - (thin[0] * thin[0] + 0.04).sqrt()).abs() < 1e-12, "{none:?}");
+    }
+
+    #[test]
+    fn the_shader_samples_this_module_s_radii() {
+        let shader = include_str!("shaders/thickness.wgsl");
+        let start = shader.find("const LIT_EXTENT_RADII = array<f32, 16>(").expect("the shader's radii");
+        let body = &shader[start..];
+        let list = &body[body.find('(').expect("(") + 1..body.find(')').expect(")")];
+        let radii: Vec<f64> =
+            list.split(',').map(str::trim).filter(|v| !v.is_empty()).map(|v| v.parse().expect("a number")).collect();
+        let want = lit_extent_radii();
+        assert_eq!(radii.len(), want.len(), "{radii:?}");
+        for (got, want) in radii.iter().zip(want) {
+            assert!((got - want).abs() < 1e-6, "{got} against {want}");
+        }
+    }
+}
