@@ -5,7 +5,8 @@
 //! the local thickness and the material id ([`Target::LocalThickness`]), and the per-material
 //! parameters live in this pass's uniform, indexed by that id (the talk's material-id packing).
 //! Under the slab law ([`crate::scene::SubsurfaceModel::Slab`]) the same pass lights the skin as a
-//! plane slab of the thickness each light crossed ([`crate::slab_transmittance`]); its table is
+//! plane slab of the thickness each light crossed ([`crate::slab_transmittance`]), over the
+//! share of the slab's plane the light's map holds ([`crate::slab_extent`]); its table is
 //! uploaded the first time a frame needs it, and a one-value stand-in is bound otherwise.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
