@@ -26,7 +26,8 @@
 //! ([`lit_extent`]). The radiance is the slab law's × f per channel; σ differs per channel, so
 //! red (which spreads furthest) loses most on a thin finger.
 //!
-//! Domain and limits: the column's test is the shadow map's (anything on the light's ray counts,
+//! Domain and limits: directional lights (a point light's perspective map has no constant texel
+//! size, and its plane counts as whole, f = 1); the column's test is the shadow map's (anything on the light's ray counts,
 //! whether the light enters there before or after the exit plane); the kernel is the far field's
 //! (the near field, within ~L of the column, is more peaked: f is then a lower bound at an edge).
 //! Light entering a face beside the exit face (a wedge's top face near its front edge) is the

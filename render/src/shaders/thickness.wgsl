@@ -181,8 +181,12 @@ const LIT_EXTENT_RADII = array<f32, 16>(
 // around `m` where the map holds the mesh: 1 on a plane, less across a finger narrower than
 // the light spreads in it. Radii stratified in p of the channel that spreads furthest (q_min),
 // each channel weighted by its p over that one, (q/q_min)² e^{−(q − q_min)ρ}; angles on the
-// golden-angle spiral.
+// golden-angle spiral. A point light's perspective map has no constant texel size (as in
+// `entry_normal`): its plane counts as whole.
 fn lit_extent(light: Light, axes: MapAxes, m: MapPoint, depth_mm: f32) -> vec3<f32> {
+    if light.translucency.w > 0.5 {
+        return vec3<f32>(1.0);
+    }
     let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
     let span = depth_mm + vec3<f32>(4.0 / 3.0) / params.slab_sigma_t.xyz;
     let q = sqrt(sigma * sigma + (PI / span) * (PI / span));
