@@ -27,9 +27,10 @@
 //! red (which spreads furthest) loses most on a thin finger.
 //!
 //! Domain and limits: directional lights (a point light's perspective map has no constant texel
-//! size, and its plane counts as whole, f = 1); the column's test is the shadow map's (anything on the light's ray counts,
-//! whether the light enters there before or after the exit plane); the kernel is the far field's
-//! (the near field, within ~L of the column, is more peaked: f is then a lower bound at an edge).
+//! size, and its plane counts as whole, f = 1); the column's test is the shadow map's (anything
+//! on the light's ray counts, whether the light enters there before or after the exit plane);
+//! the kernel is the far field's (the near field, within ~L of the column, is more peaked: f is
+//! then a lower bound at an edge).
 //! Light entering a face beside the exit face (a wedge's top face near its front edge) is the
 //! law's own limit, not this module's: there f still removes what lies beyond the silhouette.
 //!
@@ -66,11 +67,13 @@ pub fn lateral_rates_per_mm(sigma_t_per_mm: [f64; 3], kappa: [f64; 3], depth_mm:
 pub fn lit_extent(rates: [f64; 3], covered: impl Fn(f64, f64) -> bool) -> [f64; 3] {
     const RADII: usize = 2048;
     const ANGLES: usize = 512;
+    // The radii in units of 1/q, the same for every channel.
+    let radii: Vec<f64> = (0..RADII).map(|i| gamma2_quantile((i as f64 + 0.5) / RADII as f64)).collect();
     std::array::from_fn(|c| {
         let q = rates[c];
         let mut hit = 0usize;
-        for i in 0..RADII {
-            let rho = gamma2_quantile((i as f64 + 0.5) / RADII as f64) / q;
+        for t in &radii {
+            let rho = t / q;
             for k in 0..ANGLES {
                 let phi = std::f64::consts::TAU * (k as f64 + 0.5) / ANGLES as f64;
                 hit += usize::from(covered(rho * phi.cos(), rho * phi.sin()));

@@ -153,11 +153,11 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
     let mut extents = Vec::new();
     let middle = Vec3::new(-8.0, 0.0, 7.5);
+    let alpha = medium.reduced_albedo();
     for at in [middle, Vec3::new(-8.0, -17.0, 7.5)] {
         // The slab's thickness is the distance from `at` to the back face's plane.
         let depth_mm = (at - on_back).dot(-back_normal) as f64;
         let mu_v = (view.camera.position() - at).normalize().z as f64;
-        let alpha = medium.reduced_albedo();
         let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
         let got = view.diffuse_at(&scene, at);
         for c in 0..3 {
@@ -340,6 +340,9 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
     // The slab's lit extent: the columns along the light that meet the sphere.
     let depth_mm = inside_mm as f64 * mu_l;
     let extent = exact_lit_extent(&medium, depth_mm, toward, at, |p| (p - p.dot(toward) * toward).length() < radius);
+    // The gather takes the share the slab does not stand for: 1 − facing × the lit extent over
+    // the channels.
+    let gather_share = 1.0 - facing * extent.iter().sum::<f64>() / 3.0;
     // Without a kernel, and under the kernel of the medium's profile (the diffuse target the
     // view reads is the kernel's input, before the blur), made to follow depth over 20 mm so that
     // it carries a share of the seen entries here (over the default 3 mm it carries none).
@@ -358,9 +361,7 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
             let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
             let slab = e * mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c] * facing
                 / std::f64::consts::PI;
-            // The gather takes the share the slab does not stand for: 1 − facing × the lit
-            // extent over the channels.
-            let want = slab + (1.0 - facing * extent.iter().sum::<f64>() / 3.0) * gather[c];
+            let want = slab + gather_share * gather[c];
             eprintln!(
                 "kernel {}, channel {c}: {:.5} against slab {slab:.5} (lit extent {:.3}) + gather {:.5} = {want:.5}",
                 kernel.is_some(),
@@ -369,13 +370,12 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
                 gather[c]
             );
             assert!(
-                (1.0 - facing * extent.iter().sum::<f64>() / 3.0) * gather[c] > 0.1 * want,
+                gather_share * gather[c] > 0.1 * want,
                 "channel {c}: the gather {} is too small to test here",
                 gather[c]
             );
-            // lavapipe without the kernel: +13% / +15% / +14% with the lit extent (+12% / +13% /
-            // +12% before it) with 32 samples (before seen
-            // entries counted in full without a kernel, +10% / +10% / +9%; with the reach capped
+            // lavapipe without the kernel, 32 samples: +13% / +15% / +14% with the lit extent
+            // (+12% / +13% / +12% before it; before seen entries counted in full without a kernel, +10% / +10% / +9%; with the reach capped
             // at 20 mm, +15% and +10% in red with 512): the tessellated sphere's normals and the
             // shadow map's texels and slopes against the exact sphere. Under the kernel: +10% /
             // +10% / +9%, the kernel's share taking 6% / 6% / 5% off the gather's total.
