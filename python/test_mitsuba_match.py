@@ -156,7 +156,7 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
     models = {"none", "screen-space", "thickness", "screen-space+thickness", "slab", "screen-space+slab",
-              "directional-dipole", "standard-dipole", "cube-atlas"}
+              "directional-dipole", "directional-dipole-mfp", "standard-dipole", "cube-atlas"}
     assert {r["model"] for r in rows} == models
     for r in rows:
         assert r["pixels"] > 1000 and np.isfinite([r["rmse"], r["delta_e_mean"], r["delta_e_p95"]]).all(), r

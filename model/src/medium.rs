@@ -258,13 +258,21 @@ impl Medium {
         std::array::from_fn(|c| s[c] / t[c])
     }
 
-    /// Reduced albedo α′ = σs′ / (σa + σs′) per channel: the single-scattering albedo of the
-    /// isotropic medium the similarity relation makes of this one (0 where σt′ = 0, which a
-    /// validated medium never has).
+    /// Reduced extinction σt′ = σa + σs′ per channel, mm⁻¹: the extinction of the isotropic
+    /// medium the similarity relation makes of this one (1/σt′ is its transport mean free path).
+    pub fn sigma_t_prime_per_mm(&self) -> [f64; 3] {
+        std::array::from_fn(|c| self.sigma_a_per_mm[c] + self.sigma_s_prime_per_mm[c])
+    }
+
+    /// Reduced albedo α′ = σs′ / σt′ per channel: the single-scattering albedo of the isotropic
+    /// medium the similarity relation makes of this one (0 where σt′ = 0, which a validated
+    /// medium never has).
     pub fn reduced_albedo(&self) -> [f64; 3] {
-        std::array::from_fn(|c| {
-            let sigma_t_prime = self.sigma_a_per_mm[c] + self.sigma_s_prime_per_mm[c];
-            if sigma_t_prime > 0.0 { self.sigma_s_prime_per_mm[c] / sigma_t_prime } else { 0.0 }
-        })
+        let sigma_t_prime = self.sigma_t_prime_per_mm();
+        std::array::from_fn(
+            |c| {
+                if sigma_t_prime[c] > 0.0 { self.sigma_s_prime_per_mm[c] / sigma_t_prime[c] } else { 0.0 }
+            },
+        )
     }
 }

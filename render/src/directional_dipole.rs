@@ -49,6 +49,24 @@
 //!
 //! Domain: σa ≥ 0, σ′s > 0, 1 ≤ η ≤ 3; any geometry (light from below the tangent plane at x_i,
 //! ω_i·n_i ≤ 0, gives 0). Diffusion is accurate for α′ near 1 and beyond a mean free path.
+//!
+//! # Its energy, and Rouge's correction ([`DipoleSource`])
+//! As published, the model reflects 1.3× the path tracer's energy from a flat half-space where
+//! α′ ≥ 0.99 and up to 54× as α′ falls (normal incidence, η = 1; docs/BENCHMARKS.md). Two causes,
+//! each measured on those totals (`render/tests/directional_dipole.rs`):
+//! - **The source's power.** A ray entering the medium scatters ∫σ′s e^{−σ′t s} ds = α′ of its
+//!   power; the fluence term C_φ e^{−σ_tr r}/(4π² D r) is that of a unit source. Multiplying by α′
+//!   takes the excess from 1.3-54× to 1.1-1.6×.
+//! - **The real source's distance floor.** S∞ grows as 1/d_r³ near the entry point and the
+//!   published d_r falls to D·μ₀ there (D ≈ 1/(3σ′t) where α′ → 1): the first-moment expansion of
+//!   the ray source about its entry point, valid where r ≫ 3D, is used where r → 0. Flooring d_r at
+//!   the mean free path, d_r² = r² + σ′t⁻² (where \[Jensen2001\] puts the real source), leaves
+//!   1.00-1.04× where α′ ≥ 0.99 and 1.09-1.13× for α′ 0.68-0.96, as close as the standard dipole.
+//!
+//! Keeping the published geometry with the floor moved out (Dμ₀ → μ₀/σ′t in the front-lit d_r)
+//! undershoots instead (0.58-0.75×): the cos β term then adds as much again, so the correction
+//! drops it. [`DipoleSource::MeanFreePath`] is that correction; [`DipoleSource::Published`] keeps
+//! the model as published.
 
 use crate::diffusion::{ChannelProfile, ProfileModel, fresnel_dielectric, fresnel_moment};
 use crate::error::{RenderError, Result};
@@ -74,8 +92,24 @@ pub struct DipoleChannel {
     pub c_phi: f64,
     /// C_E(η).
     pub c_e: f64,
-    /// The back-lit offset (3σ′_t)⁻², mm².
-    pub backlit_sq: f64,
+    /// The real source's distance floor, mm²: (3σ′_t)⁻² where back-lit as published; σ′_t⁻² in
+    /// every case for [`DipoleSource::MeanFreePath`].
+    pub floor_sq: f64,
+    /// The source's power: 1 as published, α′ for [`DipoleSource::MeanFreePath`].
+    pub power: f64,
+    /// Which source.
+    pub source: DipoleSource,
+}
+
+/// The directional dipole's real source (module doc, "Its energy").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum DipoleSource {
+    /// As \[Frisvad2014\] publishes it: unit power; d_r² = r² + Dμ₀(Dμ₀ − 2d_e cos β) front-lit,
+    /// r² + (3σ′_t)⁻² back-lit.
+    #[default]
+    Published,
+    /// Rouge's correction: power α′, and d_r² = r² + σ′_t⁻² whatever the light's side.
+    MeanFreePath,
 }
 
 /// The directional dipole of a medium.
@@ -140,8 +174,13 @@ pub fn refract_in(toward_light: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
 }
 
 impl DipoleChannel {
-    /// The constants for σa, σ′s (mm⁻¹) and η.
+    /// The published model's constants for σa, σ′s (mm⁻¹) and η.
     pub fn new(sigma_a: f64, sigma_s_prime: f64, eta: f64) -> DipoleChannel {
+        DipoleChannel::with_source(sigma_a, sigma_s_prime, eta, DipoleSource::Published)
+    }
+
+    /// The constants for σa, σ′s (mm⁻¹) and η with the real source `source`.
+    pub fn with_source(sigma_a: f64, sigma_s_prime: f64, eta: f64, source: DipoleSource) -> DipoleChannel {
         let sigma_t_prime = sigma_a + sigma_s_prime;
         let alpha_prime = sigma_s_prime / sigma_t_prime;
         let d = (2.0 * sigma_a + sigma_s_prime) / (3.0 * sigma_t_prime * sigma_t_prime);
@@ -155,7 +194,15 @@ impl DipoleChannel {
             a: (1.0 - c_e) / (2.0 * c_phi),
             c_phi,
             c_e,
-            backlit_sq: 1.0 / (9.0 * sigma_t_prime * sigma_t_prime),
+            floor_sq: match source {
+                DipoleSource::Published => 1.0 / (9.0 * sigma_t_prime * sigma_t_prime),
+                DipoleSource::MeanFreePath => 1.0 / (sigma_t_prime * sigma_t_prime),
+            },
+            power: match source {
+                DipoleSource::Published => 1.0,
+                DipoleSource::MeanFreePath => alpha_prime,
+            },
+            source,
         }
     }
 
@@ -172,26 +219,26 @@ impl DipoleChannel {
         (-s).exp() / (4.0 * PI * PI * r2 * r) * (self.c_phi * fluence - self.c_e * flux)
     }
 
-    /// The diffuse part S_d (clamped at 0) for refracted direction `w12`, before the exit
-    /// normalisation and the Fresnel transmittances.
+    /// The diffuse part S_d (clamped at 0, times the source's power) for refracted direction
+    /// `w12`, before the exit normalisation and the Fresnel transmittances.
     pub fn s_d(&self, g: &Geometry, w12: DVec3) -> f64 {
         let x = g.xo - g.xi;
         let r2 = x.length_squared();
         let ni_star = modified_normal(x, g.ni);
         let x_dot_w = x.dot(w12);
         let mu0 = -g.no.dot(w12);
-        let dr2 = if mu0 > 0.0 {
+        let dr2 = if mu0 > 0.0 && self.source == DipoleSource::Published {
             let cos_beta = -((r2 - x_dot_w * x_dot_w).max(0.0) / (r2 + self.de * self.de)).sqrt();
             let dmu = self.d * mu0;
             r2 + dmu * (dmu - 2.0 * self.de * cos_beta)
         } else {
-            r2 + self.backlit_sq
+            r2 + self.floor_sq
         };
         let wv = w12 - 2.0 * w12.dot(ni_star) * ni_star;
         let xv = x - 2.0 * self.a * self.de * ni_star;
         let real = self.s_infinite(x, w12, dr2.sqrt(), g.no);
         let virtual_ = self.s_infinite(xv, wv, xv.length(), g.no);
-        (real - virtual_).max(0.0)
+        self.power * (real - virtual_).max(0.0)
     }
 }
 
@@ -206,12 +253,17 @@ pub fn modified_normal(x: DVec3, ni: DVec3) -> DVec3 {
 }
 
 impl DirectionalDipole {
-    /// The directional dipole of `medium` (its σa, σ′s and η).
+    /// The directional dipole of `medium` (its σa, σ′s and η) as published.
     pub fn new(medium: &Medium) -> DirectionalDipole {
+        DirectionalDipole::with_source(medium, DipoleSource::Published)
+    }
+
+    /// The directional dipole of `medium` with the real source `source`.
+    pub fn with_source(medium: &Medium, source: DipoleSource) -> DirectionalDipole {
         let eta = medium.eta;
         DirectionalDipole {
             channels: std::array::from_fn(|c| {
-                DipoleChannel::new(medium.sigma_a_per_mm[c], medium.sigma_s_prime_per_mm[c], eta)
+                DipoleChannel::with_source(medium.sigma_a_per_mm[c], medium.sigma_s_prime_per_mm[c], eta, source)
             }),
             eta,
             exit_norm: 1.0 / (1.0 - 2.0 * fresnel_moment(eta, 1)),
@@ -261,8 +313,10 @@ pub const MAX_DIRECTIONS: usize = 32;
 /// Which BSSRDF the dipole passes gather.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DipoleKind {
-    /// \[Frisvad2014\]'s directional dipole.
+    /// \[Frisvad2014\]'s directional dipole, as published.
     Directional,
+    /// The directional dipole with Rouge's correction of its source ([`DipoleSource::MeanFreePath`]).
+    DirectionalMeanFreePath,
     /// \[Jensen2001\]'s standard (classic) dipole.
     Standard,
 }
@@ -272,7 +326,17 @@ impl DipoleKind {
     pub fn name(self) -> &'static str {
         match self {
             DipoleKind::Directional => "directional-dipole",
+            DipoleKind::DirectionalMeanFreePath => "directional-dipole-mfp",
             DipoleKind::Standard => "standard-dipole",
+        }
+    }
+
+    /// The directional dipole's source; `None` for the standard dipole.
+    pub fn source(self) -> Option<DipoleSource> {
+        match self {
+            DipoleKind::Directional => Some(DipoleSource::Published),
+            DipoleKind::DirectionalMeanFreePath => Some(DipoleSource::MeanFreePath),
+            DipoleKind::Standard => None,
         }
     }
 }

@@ -62,9 +62,9 @@ fn planar(s: impl Fn(f64) -> f64) -> f64 {
 fn the_gather_converges_to_the_bssrdf_integral_on_a_front_lit_face() {
     let gpu = Gpu::headless().expect("a wgpu adapter (install mesa-vulkan-drivers for lavapipe)");
     let m = marble();
-    let (standard, directional) = (standard_dipole_profiles(&m), DirectionalDipole::new(&m));
+    let standard = standard_dipole_profiles(&m);
     let settings = DipoleSettings { directions: 4, samples: 32, ..Default::default() };
-    for kind in [DipoleKind::Standard, DipoleKind::Directional] {
+    for kind in [DipoleKind::Standard, DipoleKind::Directional, DipoleKind::DirectionalMeanFreePath] {
         let images = frames(&gpu, &scene(kind, settings, LightRig::Front), 0.0, 12);
         let last = images.last().expect("frames");
         // The middle of the front face, 8×8 pixels.
@@ -78,9 +78,12 @@ fn the_gather_converges_to_the_bssrdf_integral_on_a_front_lit_face() {
             }
         }
         for (ch, got) in mean.iter().enumerate() {
-            let expected = match kind {
-                DipoleKind::Standard => planar(|r| standard_dipole_bssrdf(&standard, 1.0, &Geometry::planar(r))[ch]),
-                DipoleKind::Directional => planar(|r| directional.bssrdf(&Geometry::planar(r))[ch]),
+            let expected = match kind.source() {
+                None => planar(|r| standard_dipole_bssrdf(&standard, 1.0, &Geometry::planar(r))[ch]),
+                Some(source) => {
+                    let directional = DirectionalDipole::with_source(&m, source);
+                    planar(|r| directional.bssrdf(&Geometry::planar(r))[ch])
+                }
             };
             // The face is 60 × 40 mm, so a little of the far tail is missing; Monte Carlo noise.
             assert!((got - expected).abs() < 0.06 * expected, "{kind:?} channel {ch}: GPU {got}, CPU {expected}");

@@ -127,8 +127,7 @@ fn line_meets_convex(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> bool {
 /// The lit extent at `at` under the light toward `l` (exactly, `slab_extent::lit_extent`) for a
 /// slab `depth_mm` thick of `medium`, where `covered` says whether a column meets the mesh.
 fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: impl Fn(Vec3) -> bool) -> [f64; 3] {
-    let sigma_t: [f64; 3] = std::array::from_fn(|c| medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]);
-    let rates = lateral_rates_per_mm(sigma_t, medium.reduced_albedo().map(kappa), depth_mm);
+    let rates = lateral_rates_per_mm(medium.sigma_t_prime_per_mm(), medium.reduced_albedo().map(kappa), depth_mm);
     let right = l.any_orthonormal_vector();
     let up = l.cross(right);
     lit_extent(rates, |x, y| covered(at + right * x as f32 + up * y as f32))
@@ -161,7 +160,7 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
         let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
         let got = view.diffuse_at(&scene, at);
         for c in 0..3 {
-            let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
+            let tau = medium.sigma_t_prime_per_mm()[c] * depth_mm;
             let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c];
             eprintln!(
                 "{at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}; {:+.2}%)",
@@ -358,7 +357,7 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         let got = view.diffuse_at(&scene, at);
         let gather = gather_on_sphere(&medium, radius as f64, f(toward), e, f(at), kernel);
         for c in 0..3 {
-            let tau = (medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]) * depth_mm;
+            let tau = medium.sigma_t_prime_per_mm()[c] * depth_mm;
             let slab = e * mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c] * facing
                 / std::f64::consts::PI;
             let want = slab + gather_share * gather[c];

@@ -336,7 +336,7 @@ fn square_label(r: &Row) -> Option<String> {
         "screen-space+thickness" => Some(format!("kernel + thickness {} {}", text("source"), text("params"))),
         "slab" => Some(format!("slab law, {}", text("diffuse"))),
         "screen-space+slab" => Some("kernel + slab law".to_string()),
-        "directional-dipole" | "standard-dipole" => {
+        "directional-dipole" | "directional-dipole-mfp" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }
         "cube-atlas" => {

@@ -161,8 +161,8 @@ impl Planner {
                 None
             }
             (Some(m), true) => {
-                let alpha = m.reduced_albedo();
-                Some(std::array::from_fn(|c| [alpha[c], m.sigma_a_per_mm[c] + m.sigma_s_prime_per_mm[c]]))
+                let (alpha, sigma_t) = (m.reduced_albedo(), m.sigma_t_prime_per_mm());
+                Some(std::array::from_fn(|c| [alpha[c], sigma_t[c]]))
             }
             (None, _) => {
                 self.skip(TERM, "the skin has no medium");

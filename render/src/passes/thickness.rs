@@ -78,7 +78,7 @@ impl ThicknessUniform {
     pub fn slab(medium: &Medium, kernel: Option<(f32, f32)>) -> Result<ThicknessUniform> {
         let axes = slab_transmittance::axes()?;
         let alpha = medium.reduced_albedo();
-        let sigma_t: [f64; 3] = std::array::from_fn(|c| medium.sigma_a_per_mm[c] + medium.sigma_s_prime_per_mm[c]);
+        let sigma_t = medium.sigma_t_prime_per_mm();
         if let Some(c) = (0..3).find(|&c| !(sigma_t[c].is_finite() && sigma_t[c] > 0.0 && alpha[c].is_finite())) {
             return Err(RenderError::Invalid(format!(
                 "the slab law needs a finite, positive σa + σs′: {} has {} mm⁻¹ in channel {c}",

@@ -5,11 +5,13 @@
 struct DipolePass {
     // per channel c: x D (mm), y σ_tr (mm⁻¹), z d_e (mm), w A
     channel: array<vec4<f32>, 3>,
-    // per channel c: x (3σ′_t)⁻² (mm²), y α′, z classic z_r (mm), w classic z_v (mm)
+    // per channel c: x the directional dipole's distance floor (mm²: (3σ′_t)⁻² back-lit as
+    // published, σ′_t⁻² always for the mean-free-path source), y α′, z classic z_r (mm), w classic z_v (mm)
     extra: array<vec4<f32>, 3>,
     // x C_φ(η), y C_E(η), z 1/(4C_φ(1/η)), w η
     boundary: vec4<f32>,
-    // classic dipole σ_tr per channel (rgb), w: 1 for the directional dipole, 0 for the standard
+    // classic dipole σ_tr per channel (rgb), w: 0 the standard dipole, 1 the directional as
+    // published, 2 the directional with the mean-free-path source (power α′, floor σ′_t⁻²)
     classic: vec4<f32>,
     // x σ used for the exponential radial sampling (mm⁻¹), y samples N, z frame index (seed),
     // w largest sampling radius (mm)
@@ -56,8 +58,8 @@ fn modified_normal(x: vec3<f32>, ni: vec3<f32>) -> vec3<f32> {
     return cross(x * inverseSqrt(x2), normalize(c));
 }
 
-// The directional dipole's S_d/(4C_φ(1/η)) for channel c, w12 the refracted direction
-// (CPU: DipoleChannel::s_d times exit_norm).
+// The directional dipole's S_d/(4C_φ(1/η)) for channel c, w12 the refracted direction, times
+// the source's power (CPU: DipoleChannel::s_d times exit_norm).
 fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3<f32>, no: vec3<f32>) -> f32 {
     let ch = dipole.channel[c];
     let d = ch.x;
@@ -67,8 +69,9 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
     let ni_star = modified_normal(x, ni);
     let x_dot_w = dot(x, w12);
     let mu0 = -dot(no, w12);
+    let published = dipole.classic.w < 1.5;
     var dr2 = r2 + dipole.extra[c].x;
-    if mu0 > 0.0 {
+    if mu0 > 0.0 && published {
         let cos_beta = -sqrt(max(r2 - x_dot_w * x_dot_w, 0.0) / (r2 + de * de));
         let dmu = d * mu0;
         dr2 = r2 + dmu * (dmu - 2.0 * de * cos_beta);
@@ -76,7 +79,8 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
     let wv = w12 - 2.0 * dot(w12, ni_star) * ni_star;
     let xv = x - 2.0 * ch.w * de * ni_star;
     let sd = s_infinite(c, x, w12, sqrt(dr2), no) - s_infinite(c, xv, wv, length(xv), no);
-    return max(sd, 0.0) * dipole.boundary.z;
+    let power = select(dipole.extra[c].y, 1.0, published);
+    return power * max(sd, 0.0) * dipole.boundary.z;
 }
 
 // The classic dipole's R(r) for channel c (CPU: ChannelProfile::radial, ClassicDipole).

@@ -127,7 +127,11 @@ pub(super) fn dipole_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
         Config { model: kind.name(), params, skin, samples: 0, map: ThicknessMap::None }
     };
     let base = DipoleSettings::default();
-    let mut out = vec![config(DipoleKind::Directional, base), config(DipoleKind::Standard, base)];
+    let mut out = vec![
+        config(DipoleKind::Directional, base),
+        config(DipoleKind::DirectionalMeanFreePath, base),
+        config(DipoleKind::Standard, base),
+    ];
     if sweep {
         for samples in [1, 10, 50, 100] {
             for directions in [4, 8, 16, 32] {

@@ -95,6 +95,10 @@ pub enum Subsurface {
     /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
     /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
+    /// The directional dipole with Rouge's correction of its source: the ray's scattered power α′
+    /// and the real source a mean free path away (docs/BENCHMARKS.md: its planar energy 1.0-1.13×
+    /// the path tracer's where the published model's is 1.3-2.3×).
+    DirectionalDipoleMfp,
     /// Jensen's standard dipole ([Jensen2001]) in the same passes, for comparison.
     StandardDipole,
     /// Jensen's dipole gathered in a cube-map atlas of the --medium redrawn every frame
@@ -156,6 +160,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             job.scene.skin.subsurface = SubsurfaceModel::Slab { kernel };
         }
         Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,
+        Subsurface::DirectionalDipoleMfp => {
+            job.scene.skin.subsurface = args.dipole.model(DipoleKind::DirectionalMeanFreePath)?
+        }
         Subsurface::StandardDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Standard)?,
         Subsurface::CubeAtlas => job.scene.skin.subsurface = args.atlas.model()?,
     }

@@ -12,7 +12,9 @@ pub mod light;
 pub mod radiance;
 
 use crate::diffusion::{ChannelProfile, ProfileModel, medium_profiles};
-use crate::directional_dipole::{DipoleKind, DipoleSettings, DirectionalDipole, MAX_DIRECTIONS, direction};
+use crate::directional_dipole::{
+    DipoleKind, DipoleSettings, DipoleSource, DirectionalDipole, MAX_DIRECTIONS, direction,
+};
 use crate::scene::{LightKind, Scene};
 use crate::uniforms::{MAX_LIGHTS, orthographic_toward};
 use bytemuck::{Pod, Zeroable};
@@ -26,11 +28,12 @@ use rouge_model::mesh::Bounds;
 pub struct DipoleUniform {
     /// Per channel: D, σ_tr, d_e, A.
     pub channel: [[f32; 4]; 3],
-    /// Per channel: (3σ′_t)⁻², α′, classic z_r, classic z_v.
+    /// Per channel: the directional dipole's distance floor (mm²), α′, classic z_r, classic z_v.
     pub extra: [[f32; 4]; 3],
     /// C_φ(η), C_E(η), 1/(4C_φ(1/η)), η.
     pub boundary: [f32; 4],
-    /// Classic σ_tr per channel; w 1 directional, 0 standard.
+    /// Classic σ_tr per channel; w 0 standard, 1 directional as published, 2 directional with
+    /// the mean-free-path source.
     pub classic: [f32; 4],
     /// Sampling σ, N, frame index, largest radius (mm).
     pub sampling: [f32; 4],
@@ -124,7 +127,7 @@ impl DipoleUniform {
     /// The uniform of `step` around a mesh with `bounds`, for the samples of frame `frame_index`.
     pub fn new(step: &DipoleStep, bounds: &Bounds, frame_index: u32) -> DipoleUniform {
         let (kind, medium, settings) = (step.kind, &step.medium, &step.settings);
-        let dipole = DirectionalDipole::new(medium);
+        let dipole = DirectionalDipole::with_source(medium, kind.source().unwrap_or_default());
         let classic: [ChannelProfile; 3] = medium_profiles(medium, ProfileModel::ClassicDipole);
         let centre = bounds.center();
         let radius = (0.5 * bounds.size().length()).max(1e-3);
@@ -132,12 +135,16 @@ impl DipoleUniform {
         for (c, (ch, p)) in dipole.channels.iter().zip(&classic).enumerate() {
             u.channel[c] = [ch.d as f32, ch.sigma_tr as f32, ch.de as f32, ch.a as f32];
             let [alpha, sigma_tr, z_r, z_v] = p.classic_constants();
-            u.extra[c] = [ch.backlit_sq as f32, alpha as f32, z_r as f32, z_v as f32];
+            u.extra[c] = [ch.floor_sq as f32, alpha as f32, z_r as f32, z_v as f32];
             u.classic[c] = sigma_tr as f32;
         }
         let ch0 = dipole.channels[0];
         u.boundary = [ch0.c_phi as f32, ch0.c_e as f32, dipole.exit_norm as f32, medium.eta as f32];
-        u.classic[3] = if kind == DipoleKind::Directional { 1.0 } else { 0.0 };
+        u.classic[3] = match kind.source() {
+            None => 0.0,
+            Some(DipoleSource::Published) => 1.0,
+            Some(DipoleSource::MeanFreePath) => 2.0,
+        };
         // Sample by the slowest decay (the widest channel); reach 8 of its lengths.
         let sigma = dipole.channels.iter().map(|c| c.sigma_tr).fold(f64::INFINITY, f64::min).max(0.02) as f32;
         u.sampling = [sigma, settings.samples as f32, frame_index as f32, 8.0 / sigma];
