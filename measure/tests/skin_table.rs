@@ -68,3 +68,42 @@ fn the_edges_of_the_domain_give_colours_not_nan() {
     let t = SkinColorTable::new(&dense).expect("table");
     assert!(t.max()[4] < 0.3);
 }
+
+/// The table's bytes (for the cache on disk, rouge_model::skin::table_cache) read back as the
+/// same table, and every way they can be wrong is refused: another tone, a cut, another layout,
+/// a probe node the model now computes otherwise (a table of another model version).
+#[test]
+fn the_table_reads_back_from_its_bytes_and_refuses_what_is_not_it() {
+    let base = skin_tone("olive").expect("a built-in tone").params;
+    let table = SkinColorTable::new(&base).expect("table");
+    let bytes = table.to_bytes();
+    let back = SkinColorTable::from_bytes(&base, &bytes).expect("its own bytes");
+    assert_eq!(back.to_bytes(), bytes);
+    let mut state = 3u64;
+    for _ in 0..50 {
+        let p = SkinParams {
+            melanin_fraction: 0.3 * next(&mut state),
+            blood_fraction: 0.1 * next(&mut state),
+            epidermis_thickness_mm: 0.03 + 0.1 * next(&mut state),
+            ..base
+        };
+        assert_eq!(back.linear_srgb(&p), table.linear_srgb(&p));
+    }
+    let other = SkinParams { blood_fraction: base.blood_fraction + 1e-12, ..base };
+    assert!(SkinColorTable::from_bytes(&other, &bytes).is_none(), "another tone's table");
+    assert!(SkinColorTable::from_bytes(&base, &bytes[..bytes.len() - 1]).is_none(), "cut short");
+    assert!(SkinColorTable::from_bytes(&base, &[]).is_none(), "empty");
+    let mut layout = bytes.clone();
+    layout[8] ^= 1;
+    assert!(SkinColorTable::from_bytes(&base, &layout).is_none(), "another layout version");
+    // The header is 8 + 4 + 96 + 20 bytes, then 12 per node; node (count/2)/8 is the first of
+    // the 8 probes.
+    let count = (bytes.len() - 128) / 12;
+    let probe = 128 + 12 * ((count / 2) / 8);
+    let mut stale = bytes.clone();
+    stale[probe] ^= 1;
+    assert!(SkinColorTable::from_bytes(&base, &stale).is_none(), "a probe node the model disagrees with");
+    let mut nan = bytes.clone();
+    nan[128..132].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert!(SkinColorTable::from_bytes(&base, &nan).is_none(), "a NaN node");
+}

@@ -12,9 +12,11 @@
 //! - [`rect`]: the one texel-rectangle type.
 //! - [`skin`]: skin maps: the spectral skin model's parameters per texel, generated from a tone,
 //!   the default head's anatomy and skin conditions, saved in projects.
+//! - [`disk_cache`]: what the on-disk caches share (thickness bakes, skin colour tables).
 //! - [`thickness`]: local thickness baked per vertex by inward rays (\[BarreBrisebois2011\]), its
 //!   UV map and on-disk cache.
 
+pub mod disk_cache;
 pub mod document;
 pub mod error;
 pub mod hdr;

@@ -14,5 +14,6 @@ mod shapes;
 mod skin_edits;
 mod skin_maps;
 mod skin_project;
+mod skin_table_cache;
 mod targets;
 mod thickness;

@@ -52,21 +52,23 @@
 //!
 //! # Its energy, and Rouge's correction ([`DipoleSource`])
 //! As published, the model reflects 1.3× the path tracer's energy from a flat half-space where
-//! α′ ≥ 0.99 and up to 54× as α′ falls (normal incidence, η = 1; docs/BENCHMARKS.md). Two causes,
-//! each measured on those totals (`render/tests/directional_dipole.rs`):
+//! α′ ≥ 0.99 and up to 54× as α′ falls (normal incidence, η = 1), and 1.3-2.2× the exact
+//! half-space's albedo at every incidence (docs/BENCHMARKS.md). Two causes, each measured
+//! (`render/tests/directional_dipole.rs`):
 //! - **The source's power.** A ray entering the medium scatters ∫σ′s e^{−σ′t s} ds = α′ of its
 //!   power; the fluence term C_φ e^{−σ_tr r}/(4π² D r) is that of a unit source. Multiplying by α′
 //!   takes the excess from 1.3-54× to 1.1-1.6×.
-//! - **The real source's distance floor.** S∞ grows as 1/d_r³ near the entry point and the
-//!   published d_r falls to D·μ₀ there (D ≈ 1/(3σ′t) where α′ → 1): the first-moment expansion of
-//!   the ray source about its entry point, valid where r ≫ 3D, is used where r → 0. Flooring d_r at
-//!   the mean free path, d_r² = r² + σ′t⁻² (where \[Jensen2001\] puts the real source), leaves
-//!   1.00-1.04× where α′ ≥ 0.99 and 1.09-1.13× for α′ 0.68-0.96, as close as the standard dipole.
+//! - **The real source's depth.** S∞ grows as 1/d_r³ near the entry point, and the published d_r
+//!   falls to D·μ₀ there (D ≈ 1/(3σ′t) where α′ → 1): the first-moment expansion of the ray source
+//!   about its entry point, valid where r ≫ 3D, is used where r → 0. The ray's first scattering is
+//!   on average a mean free path along it, at depth μ₀/σ′t.
 //!
-//! Keeping the published geometry with the floor moved out (Dμ₀ → μ₀/σ′t in the front-lit d_r)
-//! undershoots instead (0.58-0.75×): the cos β term then adds as much again, so the correction
-//! drops it. [`DipoleSource::MeanFreePath`] is that correction; [`DipoleSource::Published`] keeps
-//! the model as published.
+//! [`DipoleSource::MeanFreePath`] multiplies by α′ and puts the real source at that depth:
+//! d_r² = r² + (μ₀/σ′t)² − 2Dμ₀ d_e cos β (the published (Dμ₀)² replaced, the cross term kept). Its
+//! total is 0.91-0.99× the exact half-space's at μ₀ from 1 to 0.15 where α′ ≥ 0.95, and 0.71-1.03×
+//! for α′ down to 0.68. Two other placements were measured and not kept: d_r² = r² + σ′t⁻²
+//! whatever μ₀ (1.00-1.04× at normal incidence, 0.3-0.5× at grazing incidence), and μ₀/σ′t in both
+//! terms (0.5-0.9×). [`DipoleSource::Published`] keeps the model as published.
 
 use crate::diffusion::{ChannelProfile, ProfileModel, fresnel_dielectric, fresnel_moment};
 use crate::error::{RenderError, Result};
@@ -92,8 +94,8 @@ pub struct DipoleChannel {
     pub c_phi: f64,
     /// C_E(η).
     pub c_e: f64,
-    /// The real source's distance floor, mm²: (3σ′_t)⁻² where back-lit as published; σ′_t⁻² in
-    /// every case for [`DipoleSource::MeanFreePath`].
+    /// The real source's distance floor where back-lit, mm²: (3σ′_t)⁻² as published, σ′_t⁻² for
+    /// [`DipoleSource::MeanFreePath`] (which also takes its front-lit depth from it).
     pub floor_sq: f64,
     /// The source's power: 1 as published, α′ for [`DipoleSource::MeanFreePath`].
     pub power: f64,
@@ -108,7 +110,8 @@ pub enum DipoleSource {
     /// r² + (3σ′_t)⁻² back-lit.
     #[default]
     Published,
-    /// Rouge's correction: power α′, and d_r² = r² + σ′_t⁻² whatever the light's side.
+    /// Rouge's correction: power α′; d_r² = r² + (μ₀/σ′_t)² − 2Dμ₀ d_e cos β front-lit (the real
+    /// source at the depth of the ray's mean free path), r² + σ′_t⁻² back-lit.
     MeanFreePath,
 }
 
@@ -227,10 +230,16 @@ impl DipoleChannel {
         let ni_star = modified_normal(x, g.ni);
         let x_dot_w = x.dot(w12);
         let mu0 = -g.no.dot(w12);
-        let dr2 = if mu0 > 0.0 && self.source == DipoleSource::Published {
+        let dr2 = if mu0 > 0.0 {
             let cos_beta = -((r2 - x_dot_w * x_dot_w).max(0.0) / (r2 + self.de * self.de)).sqrt();
             let dmu = self.d * mu0;
-            r2 + dmu * (dmu - 2.0 * self.de * cos_beta)
+            // The real source's depth below the exit point: D·μ₀ as published, μ₀/σ′t (the
+            // mean free path along the refracted ray) corrected; the cross term as published.
+            let depth_sq = match self.source {
+                DipoleSource::Published => dmu * dmu,
+                DipoleSource::MeanFreePath => mu0 * mu0 * self.floor_sq,
+            };
+            r2 + depth_sq - 2.0 * dmu * self.de * cos_beta
         } else {
             r2 + self.floor_sq
         };

@@ -143,12 +143,16 @@ fn skin_albedo(recipe: &SkinRecipe, face: Option<&FacePose>) -> Result<image::Rg
 }
 
 /// The skin colour table of skin maps whose base is `base` (`SkinColorTable::new`; about a
-/// second on two cores: build it once per tone and keep it).
+/// second on two cores), kept between runs in the cache directory
+/// ([`rouge_model::skin::table_cache`]): build it once per tone and keep it.
 ///
 /// # Errors
 /// [`RenderError::Invalid`] when the table cannot be built for `base`.
 pub fn skin_color_table(base: &rouge_measure::skin::SkinParams) -> Result<SkinColorTable> {
-    SkinColorTable::new(base).map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))
+    use rouge_model::skin::table_cache::{color_table_cached, default_table_dir};
+    color_table_cached(base, default_table_dir().as_deref())
+        .map(|(table, _)| table)
+        .map_err(|e| RenderError::Invalid(format!("skin maps: {e}")))
 }
 
 /// The skin's albedo texture baked from `maps` through `table` (made for the maps' base by

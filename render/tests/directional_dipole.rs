@@ -204,10 +204,12 @@ fn half_space_energy_against_the_path_tracer() {
             // overshoots there, by 1.3× (marble, skim milk) to 1.6× (skin1's red), and far more
             // as α′ falls. The bands below pin those findings, so a change in either shows.
             let alpha = m.reduced_albedo()[c];
-            // The corrected source (power α′, the real source a mean free path away): 1.00-1.04×
-            // where α′ ≥ 0.99, 1.09-1.13× for α′ 0.68-0.96 (skin1, ketchup's red); where α′ < 0.1
-            // (ketchup's green and blue, reflectances under 0.01) diffusion has little to say.
-            if alpha > 0.6 && !(0.97 * mc..1.16 * mc).contains(&mfp) {
+            // The corrected source (power α′, the real source at the mean free path's depth):
+            // measured 0.81-0.95× of the radiance meter's where α′ > 0.6 (its own share of the
+            // total below, against the exact hemispherical albedo, at every incidence); where
+            // α′ < 0.1 (ketchup's green and blue, reflectances under 0.01) diffusion has little
+            // to say.
+            if alpha > 0.6 && !(0.8 * mc..1.0 * mc).contains(&mfp) {
                 failures.push(format!("{name} channel {c}: corrected directional {mfp} vs path tracer {mc}"));
             }
             if alpha > 0.9 {
@@ -219,6 +221,60 @@ fn half_space_energy_against_the_path_tracer() {
                 }
             }
             assert!(dir.is_finite() && mfp.is_finite() && std.is_finite() && dir > 0.0 && mfp > 0.0);
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// π ∫ S dA over a flat half-space lit from `mu0` (η = 1, so the exit direction does not matter):
+/// the directional-hemispherical albedo, integrated over the plane in polar coordinates.
+fn oblique_albedo(dipole: &DirectionalDipole, c: usize, mu0: f64) -> f64 {
+    let l = 1.0 / dipole.channels[c].sigma_tr.max(0.05);
+    let wi = DVec3::new((1.0 - mu0 * mu0).sqrt(), 0.0, mu0);
+    let (n_r, n_phi) = (600, 96);
+    let mut sum = 0.0;
+    for k in 0..n_r {
+        let u = (k as f64 + 0.5) / n_r as f64;
+        let r = u / (1.0 - u) * l;
+        let dr = l / ((1.0 - u) * (1.0 - u)) / n_r as f64;
+        for j in 0..n_phi {
+            let phi = (j as f64 + 0.5) / n_phi as f64 * 2.0 * PI;
+            let g = Geometry { wi, xo: DVec3::new(r * phi.cos(), r * phi.sin(), 0.0), ..Geometry::planar(0.0) };
+            sum += dipole.bssrdf(&g)[c] * r * dr * 2.0 * PI / n_phi as f64;
+        }
+    }
+    PI * sum
+}
+
+/// The published model's excess holds at every incidence (1.3-2.2×), and the corrected source
+/// keeps its total near the exact half-space's at every incidence: the exact directional-
+/// hemispherical albedo 1 − H(μ₀)√(1 − α′) of an isotropic half-space at η = 1
+/// (`half_space::HalfSpace`, Chandrasekhar's H). Putting the real source a mean free path away
+/// whatever the light's angle (d_r² = r² + σ′t⁻²) was right at normal incidence and 0.3-0.5× at
+/// grazing incidence: the depth must follow μ₀.
+#[test]
+fn the_corrected_source_keeps_the_half_space_s_energy_at_every_incidence() {
+    let mut failures = Vec::new();
+    for (name, channels) in [("marble", &[0usize, 2][..]), ("skimmilk", &[0]), ("skin1", &[0, 1, 2]), ("ketchup", &[0])]
+    {
+        let m = medium(name, 1.0);
+        let (published, corrected) =
+            (DirectionalDipole::new(&m), DirectionalDipole::with_source(&m, DipoleSource::MeanFreePath));
+        for &c in channels {
+            let alpha = m.reduced_albedo()[c];
+            let exact = rouge_render::half_space::HalfSpace::new(alpha);
+            for mu0 in [1.0, 0.7, 0.4, 0.15] {
+                let want = exact.directional_reflectance(mu0);
+                let (p, k) = (oblique_albedo(&published, c, mu0) / want, oblique_albedo(&corrected, c, mu0) / want);
+                eprintln!("{name} {c} (α′ {alpha:.3}) μ₀ {mu0}: published {p:.3}×, corrected {k:.3}× of {want:.4}");
+                // Measured: the corrected 0.91-0.99× where α′ ≥ 0.95, down to 0.71× at normal
+                // incidence as α′ falls to 0.68 (diffusion's deficit at low albedo); published
+                // 1.29-2.18×.
+                let band = if alpha >= 0.95 { 0.88..1.05 } else { 0.65..1.1 };
+                if !band.contains(&k) || p < 1.25 {
+                    failures.push(format!("{name} {c} μ₀ {mu0}: published {p:.3}×, corrected {k:.3}×"));
+                }
+            }
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");

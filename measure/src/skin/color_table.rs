@@ -28,6 +28,14 @@ pub const MIN_EPIDERMIS_MM: f64 = 0.02;
 /// Smallest linear sRGB value stored (the logarithm's floor; no skin comes near it).
 const MIN_RGB: f64 = 1e-6;
 
+/// First bytes of [`SkinColorTable::to_bytes`].
+const BYTES_MAGIC: &[u8; 8] = b"ROUGE-ST";
+/// Version of that layout: bump it when the layout changes (a change of the model is caught by
+/// the probe nodes instead, [`SkinColorTable::from_bytes`]).
+const BYTES_VERSION: u32 = 1;
+/// Nodes [`SkinColorTable::from_bytes`] recomputes with the model (about 17 µs each).
+const PROBE_NODES: usize = 8;
+
 /// The table of one tone's scattering.
 #[derive(Clone, Debug)]
 pub struct SkinColorTable {
@@ -71,26 +79,6 @@ impl SkinColorTable {
         let mut max = [ranges[0].max * ranges[6].max, ranges[1].max, ranges[2].max, ranges[3].max, ranges[6].max];
         max[4] = max[4].min(base.max_epidermis_mm());
         let count: usize = NODES.iter().product();
-        let node_params = |i: usize| -> SkinParams {
-            let mut rest = i;
-            let mut v = [0.0; 5];
-            for axis in (0..5).rev() {
-                let k = rest % NODES[axis];
-                rest /= NODES[axis];
-                let t = k as f64 / (NODES[axis] - 1) as f64;
-                v[axis] =
-                    axis_min(axis) + (max[axis] - axis_min(axis)) * if square_root_axis(axis) { t * t } else { t };
-            }
-            SkinParams {
-                // A column no epidermis of this thickness can hold reads as the densest melanin.
-                melanin_fraction: (v[0] / v[4]).min(ranges[0].max),
-                pheomelanin_share: v[1],
-                blood_fraction: v[2],
-                oxygen_saturation: v[3],
-                epidermis_thickness_mm: v[4],
-                ..*base
-            }
-        };
         let colorimeter = Colorimeter::get(Viewing::D65_1931);
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 16);
         let chunk = count.div_ceil(threads);
@@ -102,8 +90,7 @@ impl SkinColorTable {
                 .map(|(c, out)| {
                     s.spawn(move || -> Result<(), SkinError> {
                         for (j, slot) in out.iter_mut().enumerate() {
-                            let r = node_params(c * chunk + j).reflectance()?;
-                            *slot = colorimeter.srgb_linear(&colorimeter.xyz(&r)).map(|v| v.max(MIN_RGB).ln() as f32);
+                            *slot = node_value(colorimeter, &node_params(base, &max, c * chunk + j))?;
                         }
                         Ok(())
                     })
@@ -157,4 +144,89 @@ impl SkinColorTable {
     pub fn max(&self) -> [f64; 5] {
         self.max
     }
+
+    /// The table as bytes, for a cache on disk (little-endian): magic, layout version u32, the
+    /// base's seven parameters f64 ([`SkinParams::to_array`]), the axes' upper ends f64 × 5, the
+    /// nodes per axis u32 × 5, then ln(linear sRGB) f32 × 3 per node. 1.3 MB.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(8 + 4 + 8 * 12 + 4 * 5 + 12 * self.rgb.len());
+        out.extend_from_slice(BYTES_MAGIC);
+        out.extend_from_slice(&BYTES_VERSION.to_le_bytes());
+        for v in self.base.to_array().iter().chain(&self.max) {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        for n in NODES {
+            out.extend_from_slice(&(n as u32).to_le_bytes());
+        }
+        for v in self.rgb.iter().flatten() {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+
+    /// The table [`SkinColorTable::to_bytes`] wrote for `base`, or `None` unless the bytes are
+    /// whole, of this layout, of `base` bit for bit, on the nodes [`SkinColorTable::new`] would
+    /// use, finite, and their probe nodes (8, spread over the table) equal the model's values
+    /// computed now bit for bit: a table written by another version of the skin model, or of the
+    /// colorimetry, is refused rather than read.
+    pub fn from_bytes(base: &SkinParams, bytes: &[u8]) -> Option<SkinColorTable> {
+        let count: usize = NODES.iter().product();
+        let header = 8 + 4 + 8 * 12 + 4 * 5;
+        if bytes.len() != header + 12 * count || &bytes[..8] != BYTES_MAGIC {
+            return None;
+        }
+        let word = |at: usize| u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+        let float = |at: usize| f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or([0xff; 8]));
+        if word(8) != BYTES_VERSION {
+            return None;
+        }
+        let stored: [f64; 12] = std::array::from_fn(|k| float(12 + 8 * k));
+        let same_base = stored[..7].iter().zip(base.to_array()).all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same_base || (0..5).any(|k| word(12 + 96 + 4 * k) as usize != NODES[k]) {
+            return None;
+        }
+        let max: [f64; 5] = std::array::from_fn(|k| stored[7 + k]);
+        let single = |at: usize| f32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+        let rgb: Vec<[f32; 3]> = (0..count).map(|i| std::array::from_fn(|c| single(header + 12 * i + 4 * c))).collect();
+        if !rgb.iter().flatten().all(|v| v.is_finite()) {
+            return None;
+        }
+        let colorimeter = Colorimeter::get(Viewing::D65_1931);
+        for k in 0..PROBE_NODES {
+            let i = (k * count + count / 2) / PROBE_NODES;
+            let fresh = node_value(colorimeter, &node_params(base, &max, i)).ok()?;
+            if fresh.map(f32::to_bits) != rgb[i].map(f32::to_bits) {
+                return None;
+            }
+        }
+        Some(SkinColorTable { base: *base, max, rgb })
+    }
+}
+
+/// The parameters at node `i` (the last axis fastest) of the table for `base` whose axes end
+/// at `max`.
+fn node_params(base: &SkinParams, max: &[f64; 5], i: usize) -> SkinParams {
+    let mut rest = i;
+    let mut v = [0.0; 5];
+    for axis in (0..5).rev() {
+        let k = rest % NODES[axis];
+        rest /= NODES[axis];
+        let t = k as f64 / (NODES[axis] - 1) as f64;
+        v[axis] = axis_min(axis) + (max[axis] - axis_min(axis)) * if square_root_axis(axis) { t * t } else { t };
+    }
+    SkinParams {
+        // A column no epidermis of this thickness can hold reads as the densest melanin.
+        melanin_fraction: (v[0] / v[4]).min(SkinParams::RANGES[0].max),
+        pheomelanin_share: v[1],
+        blood_fraction: v[2],
+        oxygen_saturation: v[3],
+        epidermis_thickness_mm: v[4],
+        ..*base
+    }
+}
+
+/// What the table stores for `p`: ln of its linear sRGB, floored at [`MIN_RGB`].
+fn node_value(colorimeter: &Colorimeter, p: &SkinParams) -> Result<[f32; 3], SkinError> {
+    let r = p.reflectance()?;
+    Ok(colorimeter.srgb_linear(&colorimeter.xyz(&r)).map(|v| v.max(MIN_RGB).ln() as f32))
 }

@@ -14,6 +14,7 @@
 //!   blood per texel) on top of the generated maps.
 //! - [`detail`] and [`wrinkles`]: the skin's microgeometry (pores, fine lines) and the default
 //!   head's expression wrinkles and lip furrows, for the renderer's G-buffer pass.
+//! - [`table_cache`]: each tone's skin colour table kept on disk between runs.
 //! - [`file`](mod@file): the maps as one multi-channel OpenEXR and the project's `skin.json`
 //!   ([`SkinRecipe`], [`ProjectSkin`]); docs/FORMATS.md.
 //!
@@ -28,6 +29,7 @@ pub mod detail;
 pub mod edits;
 pub mod file;
 pub mod generate;
+pub mod table_cache;
 pub mod wrinkles;
 
 pub use anatomy::AnatomyRegion;

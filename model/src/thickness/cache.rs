@@ -1,11 +1,11 @@
 //! The on-disk cache of bakes: keyed by mesh and settings, versioned, checksummed, written
-//! atomically.
+//! atomically ([`crate::disk_cache`]).
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::trace::splitmix64;
 use super::{BakeSettings, Falloff, LocalThickness, ThicknessError, bake_local_thickness, check_mesh};
+pub use crate::disk_cache::CacheUse;
+use crate::disk_cache::{WordHasher, hex, seal, unseal, write_atomically};
 use crate::mesh::TriangleMesh;
 
 /// First bytes of a cache file.
@@ -15,17 +15,6 @@ const CACHE_MAGIC: &[u8; 8] = b"ROUGE-LT";
 const CACHE_VERSION: u32 = 1;
 /// Bytes of a cache file before the per-vertex data.
 const CACHE_HEADER_BYTES: usize = 8 + 4 + 16 + 8 + 4 + 4 + 4 + 12 + 8 + 8;
-
-/// Whether [`bake_local_thickness_cached`] used its cache.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CacheUse {
-    /// Read from a valid cache file; nothing was traced.
-    Hit,
-    /// Baked (no file, or a corrupt, stale or mismatched one) and written to the cache.
-    Miss,
-    /// No cache directory: baked and not stored.
-    Off,
-}
 
 /// [`bake_local_thickness`] with an on-disk cache: `<dir>/<hex key>.bin`, the key a 128-bit hash
 /// of the mesh's positions, normals and indices (the normals steer the rays, so they are part of
@@ -56,54 +45,16 @@ pub fn bake_local_thickness_cached(
         return Ok((bake, CacheUse::Hit));
     }
     let bake = bake_local_thickness(mesh, settings)?;
-    let cache_error = |path: &Path, source| ThicknessError::Cache { path: path.to_path_buf(), source };
-    std::fs::create_dir_all(dir).map_err(|e| cache_error(dir, e))?;
-    let temp = dir.join(format!(".{}.{}.tmp", hex(&key), std::process::id()));
-    let written = std::fs::File::create(&temp).and_then(|mut f| {
-        f.write_all(&encode_cache(&bake, &key))?;
-        f.sync_all()
-    });
-    if let Err(e) = written.and_then(|()| std::fs::rename(&temp, &path)) {
-        let _ = std::fs::remove_file(&temp);
-        return Err(cache_error(&path, e));
-    }
+    write_atomically(dir, &format!("{}.bin", hex(&key)), &encode_cache(&bake, &key))
+        .map_err(|(path, source)| ThicknessError::Cache { path, source })?;
     Ok((bake, CacheUse::Miss))
 }
 
-/// The thickness cache directory: `$ROUGE_CACHE_DIR`, else `$XDG_CACHE_HOME/rouge/thickness`,
-/// else `~/.cache/rouge/thickness` (`$HOME`); `None` when none of them is set (empty counts as
-/// unset).
+/// The thickness cache directory: `$ROUGE_CACHE_DIR/thickness`, else
+/// `$XDG_CACHE_HOME/rouge/thickness`, else `~/.cache/rouge/thickness` (`$HOME`); `None` when none
+/// of them is set (empty counts as unset).
 pub fn default_cache_dir() -> Option<PathBuf> {
-    let var = |name: &str| std::env::var_os(name).filter(|v| !v.is_empty()).map(PathBuf::from);
-    var("ROUGE_CACHE_DIR")
-        .or_else(|| var("XDG_CACHE_HOME").map(|d| d.join("rouge").join("thickness")))
-        .or_else(|| var("HOME").map(|d| d.join(".cache").join("rouge").join("thickness")))
-}
-
-/// A two-lane 64-bit multiply-xorshift hash over 32-bit words: stable across platforms and
-/// Rust versions (unlike `std`'s `DefaultHasher`), for cache keys and file checksums. Not
-/// cryptographic: the cache header re-checks vertex count and settings.
-struct WordHasher([u64; 2]);
-
-impl WordHasher {
-    fn new() -> Self {
-        WordHasher([0x6a09_e667_f3bc_c908, 0xbb67_ae85_84ca_a73b])
-    }
-
-    fn word(&mut self, w: u32) {
-        let [a, b] = &mut self.0;
-        *a = (*a ^ u64::from(w)).wrapping_mul(0x0000_0100_0000_01b3).rotate_left(23);
-        *b = (*b ^ u64::from(w).rotate_left(17)).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (*b >> 29);
-    }
-
-    fn finish(&self) -> [u8; 16] {
-        let [a, b] = self.0;
-        let (a, b) = (splitmix64(a ^ b.rotate_left(32)), splitmix64(b ^ a));
-        let mut out = [0u8; 16];
-        out[..8].copy_from_slice(&a.to_le_bytes());
-        out[8..].copy_from_slice(&b.to_le_bytes());
-        out
-    }
+    crate::disk_cache::cache_dir("thickness")
 }
 
 /// The settings as the 32-bit words the key and the header store.
@@ -142,22 +93,6 @@ fn cache_key(mesh: &TriangleMesh, settings: &BakeSettings) -> [u8; 16] {
     h.finish()
 }
 
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
-
-/// The checksum of a cache file's contents before the checksum itself.
-fn checksum(bytes: &[u8]) -> [u8; 16] {
-    let mut h = WordHasher::new();
-    h.word(bytes.len() as u32);
-    for chunk in bytes.chunks(4) {
-        let mut w = [0u8; 4];
-        w[..chunk.len()].copy_from_slice(chunk);
-        h.word(u32::from_le_bytes(w));
-    }
-    h.finish()
-}
-
 /// Layout (little-endian): magic, version u32, key [16], vertex count u64, the settings words
 /// (rays, cutoff, falloff tag, 3 parameters; seed u64), bake seconds f64, mean chords f32 × n,
 /// values f32 × 3n, checksum [16].
@@ -179,9 +114,7 @@ fn encode_cache(bake: &LocalThickness, key: &[u8; 16]) -> Vec<u8> {
     for v in bake.value.iter().flatten() {
         out.extend_from_slice(&v.to_le_bytes());
     }
-    let sum = checksum(&out);
-    out.extend_from_slice(&sum);
-    out
+    seal(out)
 }
 
 /// The bake a cache file holds, when it is intact and for this key, vertex count and settings.
@@ -190,10 +123,7 @@ fn decode_cache(bytes: &[u8], key: &[u8; 16], n: usize, settings: &BakeSettings)
     if bytes.len() != expected {
         return None;
     }
-    let (body, sum) = bytes.split_at(bytes.len() - 16);
-    if checksum(body) != sum {
-        return None;
-    }
+    let body = unseal(bytes)?;
     let mut at = 0;
     let mut take = |len: usize| {
         let s = &body[at..at + len];

@@ -5,13 +5,14 @@
 struct DipolePass {
     // per channel c: x D (mm), y σ_tr (mm⁻¹), z d_e (mm), w A
     channel: array<vec4<f32>, 3>,
-    // per channel c: x the directional dipole's distance floor (mm²: (3σ′_t)⁻² back-lit as
-    // published, σ′_t⁻² always for the mean-free-path source), y α′, z classic z_r (mm), w classic z_v (mm)
+    // per channel c: x the directional dipole's back-lit distance floor (mm²: (3σ′_t)⁻² as
+    // published, σ′_t⁻² for the mean-free-path source, which also scales its front-lit depth by it),
+    // y α′, z classic z_r (mm), w classic z_v (mm)
     extra: array<vec4<f32>, 3>,
     // x C_φ(η), y C_E(η), z 1/(4C_φ(1/η)), w η
     boundary: vec4<f32>,
     // classic dipole σ_tr per channel (rgb), w: 0 the standard dipole, 1 the directional as
-    // published, 2 the directional with the mean-free-path source (power α′, floor σ′_t⁻²)
+    // published, 2 the directional with the mean-free-path source (power α′, depth μ₀/σ′_t)
     classic: vec4<f32>,
     // x σ used for the exponential radial sampling (mm⁻¹), y samples N, z frame index (seed),
     // w largest sampling radius (mm)
@@ -71,10 +72,12 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
     let mu0 = -dot(no, w12);
     let published = dipole.classic.w < 1.5;
     var dr2 = r2 + dipole.extra[c].x;
-    if mu0 > 0.0 && published {
+    if mu0 > 0.0 {
         let cos_beta = -sqrt(max(r2 - x_dot_w * x_dot_w, 0.0) / (r2 + de * de));
         let dmu = d * mu0;
-        dr2 = r2 + dmu * (dmu - 2.0 * de * cos_beta);
+        // The real source's depth: D·μ₀ as published, μ₀/σ′t with the mean-free-path source.
+        let depth_sq = select(mu0 * mu0 * dipole.extra[c].x, dmu * dmu, published);
+        dr2 = r2 + depth_sq - 2.0 * dmu * de * cos_beta;
     }
     let wv = w12 - 2.0 * dot(w12, ni_star) * ni_star;
     let xv = x - 2.0 * ch.w * de * ni_star;

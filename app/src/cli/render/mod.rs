@@ -96,8 +96,8 @@ pub enum Subsurface {
     /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
     /// The directional dipole with Rouge's correction of its source: the ray's scattered power α′
-    /// and the real source a mean free path away (docs/BENCHMARKS.md: its planar energy 1.0-1.13×
-    /// the path tracer's where the published model's is 1.3-2.3×).
+    /// and the real source at the depth of its mean free path (a flat half-space's energy
+    /// 0.7-1.0× the exact one's at every incidence, where the published model's is 1.3-2.2×).
     DirectionalDipoleMfp,
     /// Jensen's standard dipole ([Jensen2001]) in the same passes, for comparison.
     StandardDipole,
