@@ -66,9 +66,11 @@
 //! [`DipoleSource::MeanFreePath`] multiplies by α′ and puts the real source at that depth:
 //! d_r² = r² + (μ₀/σ′t)² − 2Dμ₀ d_e cos β (the published (Dμ₀)² replaced, the cross term kept). Its
 //! total is 0.91-0.99× the exact half-space's at μ₀ from 1 to 0.15 where α′ ≥ 0.95, and 0.71-1.03×
-//! for α′ down to 0.68. Two other placements were measured and not kept: d_r² = r² + σ′t⁻²
-//! whatever μ₀ (1.00-1.04× at normal incidence, 0.3-0.5× at grazing incidence), and μ₀/σ′t in both
-//! terms (0.5-0.9×). [`DipoleSource::Published`] keeps the model as published.
+//! for α′ down to 0.68. The back-lit branch (light heading toward the exit surface, through thin
+//! parts) keeps the published r² + (3σ′t)⁻²: σ′t⁻² there cost the backlit wedges 1.7-5.5 ΔE2000
+//! (docs/BENCHMARKS.md). Two other front-lit placements were measured and not kept:
+//! d_r² = r² + σ′t⁻² whatever μ₀ (1.00-1.04× at normal incidence, 0.3-0.5× at grazing incidence),
+//! and μ₀/σ′t in both terms (0.5-0.9×). [`DipoleSource::Published`] keeps the model as published.
 
 use crate::diffusion::{ChannelProfile, ProfileModel, fresnel_dielectric, fresnel_moment};
 use crate::error::{RenderError, Result};
@@ -94,9 +96,9 @@ pub struct DipoleChannel {
     pub c_phi: f64,
     /// C_E(η).
     pub c_e: f64,
-    /// The real source's distance floor where back-lit, mm²: (3σ′_t)⁻² as published, σ′_t⁻² for
-    /// [`DipoleSource::MeanFreePath`] (which also takes its front-lit depth from it).
-    pub floor_sq: f64,
+    /// The back-lit offset (3σ′_t)⁻², mm², of either source; [`DipoleSource::MeanFreePath`]'s
+    /// front-lit depth² (μ₀/σ′_t)² is 9μ₀² times it.
+    pub backlit_sq: f64,
     /// The source's power: 1 as published, α′ for [`DipoleSource::MeanFreePath`].
     pub power: f64,
     /// Which source.
@@ -111,7 +113,7 @@ pub enum DipoleSource {
     #[default]
     Published,
     /// Rouge's correction: power α′; d_r² = r² + (μ₀/σ′_t)² − 2Dμ₀ d_e cos β front-lit (the real
-    /// source at the depth of the ray's mean free path), r² + σ′_t⁻² back-lit.
+    /// source at the depth of the ray's mean free path), back-lit as published.
     MeanFreePath,
 }
 
@@ -197,10 +199,7 @@ impl DipoleChannel {
             a: (1.0 - c_e) / (2.0 * c_phi),
             c_phi,
             c_e,
-            floor_sq: match source {
-                DipoleSource::Published => 1.0 / (9.0 * sigma_t_prime * sigma_t_prime),
-                DipoleSource::MeanFreePath => 1.0 / (sigma_t_prime * sigma_t_prime),
-            },
+            backlit_sq: 1.0 / (9.0 * sigma_t_prime * sigma_t_prime),
             power: match source {
                 DipoleSource::Published => 1.0,
                 DipoleSource::MeanFreePath => alpha_prime,
@@ -237,11 +236,11 @@ impl DipoleChannel {
             // mean free path along the refracted ray) corrected; the cross term as published.
             let depth_sq = match self.source {
                 DipoleSource::Published => dmu * dmu,
-                DipoleSource::MeanFreePath => mu0 * mu0 * self.floor_sq,
+                DipoleSource::MeanFreePath => 9.0 * mu0 * mu0 * self.backlit_sq,
             };
             r2 + depth_sq - 2.0 * dmu * self.de * cos_beta
         } else {
-            r2 + self.floor_sq
+            r2 + self.backlit_sq
         };
         let wv = w12 - 2.0 * w12.dot(ni_star) * ni_star;
         let xv = x - 2.0 * self.a * self.de * ni_star;

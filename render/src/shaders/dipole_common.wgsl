@@ -5,9 +5,8 @@
 struct DipolePass {
     // per channel c: x D (mm), y σ_tr (mm⁻¹), z d_e (mm), w A
     channel: array<vec4<f32>, 3>,
-    // per channel c: x the directional dipole's back-lit distance floor (mm²: (3σ′_t)⁻² as
-    // published, σ′_t⁻² for the mean-free-path source, which also scales its front-lit depth by it),
-    // y α′, z classic z_r (mm), w classic z_v (mm)
+    // per channel c: x (3σ′_t)⁻² (mm²: the back-lit offset; 9μ₀² times it is the mean-free-path
+    // source's front-lit depth²), y α′, z classic z_r (mm), w classic z_v (mm)
     extra: array<vec4<f32>, 3>,
     // x C_φ(η), y C_E(η), z 1/(4C_φ(1/η)), w η
     boundary: vec4<f32>,
@@ -75,8 +74,9 @@ fn directional_sd(c: u32, xi: vec3<f32>, ni: vec3<f32>, w12: vec3<f32>, xo: vec3
     if mu0 > 0.0 {
         let cos_beta = -sqrt(max(r2 - x_dot_w * x_dot_w, 0.0) / (r2 + de * de));
         let dmu = d * mu0;
-        // The real source's depth: D·μ₀ as published, μ₀/σ′t with the mean-free-path source.
-        let depth_sq = select(mu0 * mu0 * dipole.extra[c].x, dmu * dmu, published);
+        // The real source's depth: D·μ₀ as published, μ₀/σ′t = 3μ₀·(3σ′t)⁻¹ with the
+        // mean-free-path source.
+        let depth_sq = select(9.0 * mu0 * mu0 * dipole.extra[c].x, dmu * dmu, published);
         dr2 = r2 + depth_sq - 2.0 * dmu * de * cos_beta;
     }
     let wv = w12 - 2.0 * dot(w12, ni_star) * ni_star;

@@ -28,7 +28,7 @@ use rouge_model::mesh::Bounds;
 pub struct DipoleUniform {
     /// Per channel: D, σ_tr, d_e, A.
     pub channel: [[f32; 4]; 3],
-    /// Per channel: the directional dipole's distance floor (mm²), α′, classic z_r, classic z_v.
+    /// Per channel: (3σ′_t)⁻², α′, classic z_r, classic z_v.
     pub extra: [[f32; 4]; 3],
     /// C_φ(η), C_E(η), 1/(4C_φ(1/η)), η.
     pub boundary: [f32; 4],
@@ -135,7 +135,7 @@ impl DipoleUniform {
         for (c, (ch, p)) in dipole.channels.iter().zip(&classic).enumerate() {
             u.channel[c] = [ch.d as f32, ch.sigma_tr as f32, ch.de as f32, ch.a as f32];
             let [alpha, sigma_tr, z_r, z_v] = p.classic_constants();
-            u.extra[c] = [ch.floor_sq as f32, alpha as f32, z_r as f32, z_v as f32];
+            u.extra[c] = [ch.backlit_sq as f32, alpha as f32, z_r as f32, z_v as f32];
             u.classic[c] = sigma_tr as f32;
         }
         let ch0 = dipole.channels[0];
