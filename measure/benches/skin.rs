@@ -47,6 +47,13 @@ fn bench(c: &mut Criterion) {
     g.bench_function("texel_colour_table", |b| b.iter(|| black_box(table.linear_srgb(black_box(&texel)))));
     g.sample_size(10);
     g.bench_function("colour_table_build", |b| b.iter(|| black_box(SkinColorTable::new(black_box(&p)))));
+    // The cache on disk (rouge_model::skin::table_cache): the bytes written, and read back with
+    // their 8 probe nodes recomputed by the exact model (a hit, less the file read).
+    let bytes = table.to_bytes();
+    g.bench_function("colour_table_to_bytes", |b| b.iter(|| black_box(table.to_bytes())));
+    g.bench_function("colour_table_from_bytes", |b| {
+        b.iter(|| black_box(SkinColorTable::from_bytes(black_box(&p), black_box(&bytes))))
+    });
     g.finish();
 }
 
