@@ -87,12 +87,15 @@ pub(crate) fn unseal(bytes: &[u8]) -> Option<&[u8]> {
 }
 
 /// Writes `bytes` to `dir/name` atomically, creating `dir`: a temporary file in `dir` (named
-/// after `name` and this process), synced, then renamed into place. On an error the temporary
+/// after `name`, this process and this write), synced, then renamed into place. On an error the temporary
 /// file is removed and the error says which path failed.
 pub(crate) fn write_atomically(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, (PathBuf, std::io::Error)> {
     std::fs::create_dir_all(dir).map_err(|e| (dir.to_path_buf(), e))?;
     let path = dir.join(name);
-    let temp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    // This process and a counter: two threads writing the same name never share a temporary.
+    static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let temp = dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()));
     let written = std::fs::File::create(&temp).and_then(|mut f| {
         f.write_all(bytes)?;
         f.sync_all()
