@@ -40,9 +40,9 @@ const SPHERES: [(&str, &str, f64, [f64; 3], f64); 6] = [
 fn the_curved_surface_is_the_path_tracers_sphere_and_the_flat_one_is_not() {
     for (name, medium, radius, reference, error) in SPHERES {
         let m = Medium::builtin(medium).expect("medium").with_eta(1.3).expect("η");
-        let alpha = m.reduced_albedo();
+        let (alpha, sigma_t) = (m.reduced_albedo(), m.sigma_t_prime_per_mm());
         for c in 0..3 {
-            let sigma_t = m.sigma_t_prime_per_mm()[c];
+            let sigma_t = sigma_t[c];
             let curved = reflectance(alpha[c], sigma_t, 1.3, 1.0 / radius).expect("in the domain");
             let flat = reflectance(alpha[c], sigma_t, 1.3, 0.0).expect("in the domain");
             // Four standard errors, 1.5% for the disc's spread of cosines, and 8% where single
@@ -109,9 +109,9 @@ fn the_lighting_pass_measures_the_spheres_curvature_and_corrects_its_sky() {
     let skin = Skin { subsurface: SubsurfaceModel::None, ..skin };
     let (got, radius) = sphere_centre(skin.clone());
     let (flat, _) = sphere_centre(Skin { medium: None, ..skin });
-    let alpha = medium.reduced_albedo();
+    let (alpha, sigma_t) = (medium.reduced_albedo(), medium.sigma_t_prime_per_mm());
     for c in 0..3 {
-        let sigma_t = medium.sigma_t_prime_per_mm()[c];
+        let sigma_t = sigma_t[c];
         let want = reflectance(alpha[c], sigma_t, 1.3, 1.0 / radius).expect("in the domain");
         let want_flat = reflectance(alpha[c], sigma_t, 1.3, 0.0).expect("in the domain");
         eprintln!("channel {c}: {:.4} (flat {:.4}) against {want:.4} (flat {want_flat:.4})", got[c], flat[c]);

@@ -162,9 +162,13 @@ fn the_front_and_back_lit_branches_meet_within_ten_percent_beyond_a_mean_free_pa
 /// π ∫ S dA over a flat half-space at normal incidence and exit (η = 1): the total diffuse
 /// reflectance a path tracer measures with a radiance meter looking straight down.
 fn planar_albedo(s: impl Fn(f64) -> f64, sigma_tr: f64) -> f64 {
-    // r = u/(1 − u) · L: the whole half-line, dense near 0.
+    radial_integral(s, sigma_tr, 20000)
+}
+
+/// π ∫ s(r) 2πr dr over the half-line on `n` points, r = u/(1 − u) · L (dense near 0), L the
+/// diffusion length 1/σ_tr.
+fn radial_integral(s: impl Fn(f64) -> f64, sigma_tr: f64, n: usize) -> f64 {
     let l = 1.0 / sigma_tr.max(0.05);
-    let n = 20000;
     let mut sum = 0.0;
     for k in 0..n {
         let u = (k as f64 + 0.5) / n as f64;
@@ -229,21 +233,20 @@ fn half_space_energy_against_the_path_tracer() {
 /// π ∫ S dA over a flat half-space lit from `mu0` (η = 1, so the exit direction does not matter):
 /// the directional-hemispherical albedo, integrated over the plane in polar coordinates.
 fn oblique_albedo(dipole: &DirectionalDipole, c: usize, mu0: f64) -> f64 {
-    let l = 1.0 / dipole.channels[c].sigma_tr.max(0.05);
     let wi = DVec3::new((1.0 - mu0 * mu0).sqrt(), 0.0, mu0);
-    let (n_r, n_phi) = (600, 96);
-    let mut sum = 0.0;
-    for k in 0..n_r {
-        let u = (k as f64 + 0.5) / n_r as f64;
-        let r = u / (1.0 - u) * l;
-        let dr = l / ((1.0 - u) * (1.0 - u)) / n_r as f64;
-        for j in 0..n_phi {
-            let phi = (j as f64 + 0.5) / n_phi as f64 * 2.0 * PI;
-            let g = Geometry { wi, xo: DVec3::new(r * phi.cos(), r * phi.sin(), 0.0), ..Geometry::planar(0.0) };
-            sum += dipole.bssrdf(&g)[c] * r * dr * 2.0 * PI / n_phi as f64;
-        }
-    }
-    PI * sum
+    let n_phi = 96;
+    // The exit point's angle averaged at each radius.
+    let around = |r: f64| {
+        (0..n_phi)
+            .map(|j| {
+                let phi = (j as f64 + 0.5) / n_phi as f64 * 2.0 * PI;
+                let g = Geometry { wi, xo: DVec3::new(r * phi.cos(), r * phi.sin(), 0.0), ..Geometry::planar(0.0) };
+                dipole.bssrdf(&g)[c]
+            })
+            .sum::<f64>()
+            / n_phi as f64
+    };
+    radial_integral(around, dipole.channels[c].sigma_tr, 600)
 }
 
 /// The published model's excess holds at every incidence (1.3-2.2×), and the corrected source

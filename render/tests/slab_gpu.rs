@@ -152,7 +152,7 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
     let mut extents = Vec::new();
     let middle = Vec3::new(-8.0, 0.0, 7.5);
-    let alpha = medium.reduced_albedo();
+    let (alpha, sigma_t) = (medium.reduced_albedo(), medium.sigma_t_prime_per_mm());
     for at in [middle, Vec3::new(-8.0, -17.0, 7.5)] {
         // The slab's thickness is the distance from `at` to the back face's plane.
         let depth_mm = (at - on_back).dot(-back_normal) as f64;
@@ -160,7 +160,7 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
         let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
         let got = view.diffuse_at(&scene, at);
         for c in 0..3 {
-            let tau = medium.sigma_t_prime_per_mm()[c] * depth_mm;
+            let tau = sigma_t[c] * depth_mm;
             let want = mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c];
             eprintln!(
                 "{at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}; {:+.2}%)",
@@ -342,6 +342,7 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
     // The gather takes the share the slab does not stand for: 1 − facing × the lit extent over
     // the channels.
     let gather_share = 1.0 - facing * extent.iter().sum::<f64>() / 3.0;
+    let sigma_t = medium.sigma_t_prime_per_mm();
     // Without a kernel, and under the kernel of the medium's profile (the diffuse target the
     // view reads is the kernel's input, before the blur), made to follow depth over 20 mm so that
     // it carries a share of the seen entries here (over the default 3 mm it carries none).
@@ -357,7 +358,7 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         let got = view.diffuse_at(&scene, at);
         let gather = gather_on_sphere(&medium, radius as f64, f(toward), e, f(at), kernel);
         for c in 0..3 {
-            let tau = medium.sigma_t_prime_per_mm()[c] * depth_mm;
+            let tau = sigma_t[c] * depth_mm;
             let slab = e * mu_l * transmittance(alpha[c], tau, mu_v, mu_l).expect("domain") * extent[c] * facing
                 / std::f64::consts::PI;
             let want = slab + gather_share * gather[c];

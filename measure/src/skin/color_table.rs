@@ -33,6 +33,8 @@ const BYTES_MAGIC: &[u8; 8] = b"ROUGE-ST";
 /// Version of that layout: bump it when the layout changes (a change of the model is caught by
 /// the probe nodes instead, [`SkinColorTable::from_bytes`]).
 const BYTES_VERSION: u32 = 1;
+/// Bytes before the nodes in [`SkinColorTable::to_bytes`]: magic, version, 12 f64, 5 u32.
+const BYTES_HEADER: usize = 8 + 4 + 8 * 12 + 4 * 5;
 /// Nodes [`SkinColorTable::from_bytes`] recomputes with the model (about 17 µs each).
 const PROBE_NODES: usize = 8;
 
@@ -149,7 +151,7 @@ impl SkinColorTable {
     /// base's seven parameters f64 ([`SkinParams::to_array`]), the axes' upper ends f64 × 5, the
     /// nodes per axis u32 × 5, then ln(linear sRGB) f32 × 3 per node. 1.3 MB.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(8 + 4 + 8 * 12 + 4 * 5 + 12 * self.rgb.len());
+        let mut out = Vec::with_capacity(BYTES_HEADER + 12 * self.rgb.len());
         out.extend_from_slice(BYTES_MAGIC);
         out.extend_from_slice(&BYTES_VERSION.to_le_bytes());
         for v in self.base.to_array().iter().chain(&self.max) {
@@ -161,6 +163,7 @@ impl SkinColorTable {
         for v in self.rgb.iter().flatten() {
             out.extend_from_slice(&v.to_le_bytes());
         }
+        debug_assert_eq!(out.len(), BYTES_HEADER + 12 * self.rgb.len());
         out
     }
 
@@ -171,7 +174,7 @@ impl SkinColorTable {
     /// colorimetry, is refused rather than read.
     pub fn from_bytes(base: &SkinParams, bytes: &[u8]) -> Option<SkinColorTable> {
         let count: usize = NODES.iter().product();
-        let header = 8 + 4 + 8 * 12 + 4 * 5;
+        let header = BYTES_HEADER;
         if bytes.len() != header + 12 * count || &bytes[..8] != BYTES_MAGIC {
             return None;
         }
