@@ -306,7 +306,8 @@ fn gather_on_sphere(
             }
         }
     }
-    sum.map(|s| e * s.max(0.0) / std::f64::consts::PI)
+    // Signed, as the shader's sum (past the terminator μ_o = 0 and every weight is positive).
+    sum.map(|s| e * s / std::f64::consts::PI)
 }
 
 #[test]
