@@ -78,6 +78,8 @@ fn cs_composite(@builtin(global_invocation_id) id: vec3<u32>) {
 //#if DISPLAY
     textureStore(out_image, p, vec4<f32>(display_encode(pbr_neutral(max(c * frame.projection.w, vec3<f32>(0.0)))), 1.0));
 //#else
-    textureStore(out_image, p, vec4<f32>(c, 1.0));
+    // Radiance is never negative; the hidden-entry gather's signed sum (thickness.wgsl) could
+    // take a noisy pixel below 0, and the display's branch clamps the same way.
+    textureStore(out_image, p, vec4<f32>(max(c, vec3<f32>(0.0)), 1.0));
 //#endif
 }
