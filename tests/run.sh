@@ -9,12 +9,12 @@
 #      node and npm are there, and Debian's chromium for the share page's test (app/tests/export_cli/web.rs);
 #   2. checks formatting and lints (cargo fmt --check, clippy -D warnings);
 #   3. runs the Rust tests of the whole workspace (unit, integration, proptests, doc tests), then
-#      checks the documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an
-#      error (citations are written \[Key\], not intra-doc links), then the golden frames again
-#      on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
+#      the golden frames again on wgpu's GL backend (WGPU_BACKEND=gl) against the same goldens;
 #   4. builds the Python package `rouge` (py/, a maturin wheel of rouge-measure, dev profile) into .venv;
 #   5. runs the Python cross-checks against colour-science and 50-digit mpmath references,
-#      driving the real `rouge` binary and the `rouge` package.
+#      driving the real `rouge` binary and the `rouge` package, and beside them checks the
+#      documentation: `cargo doc --no-deps --workspace` with every rustdoc warning an error
+#      (citations are written \[Key\], not intra-doc links).
 # Usage: bash tests/run.sh            (from anywhere; about 5-10 minutes on 2 cores from scratch)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -68,12 +68,6 @@ cargo clippy --workspace --all-targets --locked -- -D warnings
 step "cargo test (workspace)"
 cargo test --workspace --locked
 
-# rouge-measure's doc tests (its public functions carry examples that must run and pass) ran in
-# the workspace step above; `cargo test --doc -p rouge-measure` again would resolve features for
-# that crate alone and rebuild its dependencies for nothing.
-step "Documentation: cargo doc with rustdoc warnings as errors"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked
-
 step "Golden frames on wgpu's GL backend (Mesa llvmpipe through EGL)"
 # The workspace step has built these test executables already. Selecting the targets again with
 # cargo (`--test render`) resolves features for rouge-render alone and rebuilds wgpu and its
@@ -112,10 +106,29 @@ rm -rf target/wheels
 .venv/bin/maturin build --profile dev --locked -m py/Cargo.toml -o target/wheels
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/rouge_cosmetics-*.whl
 
-step "pytest python/ (cross-checks against colour-science and mpmath)"
 # `cargo test` has just built the `rouge` binary for the CLI tests (test profile) into
 # target/debug/rouge; a separate `cargo build` would rebuild everything in the dev profile.
 test -x target/debug/rouge || cargo build -p rouge-app --locked
+
+# rouge-measure's doc tests (its public functions carry examples that must run and pass) ran in
+# the workspace step above; `cargo test --doc -p rouge-measure` again would resolve features for
+# that crate alone and rebuild its dependencies for nothing.
+# rustdoc documents the crates one after another, mostly on one core, and needs nothing the
+# pytest step makes: it runs beside pytest (about a minute less in all), its output printed
+# after pytest's, and a failure of either fails the run.
+step "Documentation (cargo doc with rustdoc warnings as errors) beside pytest python/ (cross-checks against colour-science and mpmath)"
+DOC_LOG=target/doc-step.log
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace --locked >"$DOC_LOG" 2>&1 &
+doc_pid=$!
 # -n 2: both cores (pytest-xdist); every test writes only under its own tmp_path.
-ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q -n 2 --durations=15
+pytest_status=0
+ROUGE_BIN="$PWD/target/debug/rouge" .venv/bin/python -m pytest python -q -n 2 --durations=15 || pytest_status=$?
+doc_status=0
+wait "$doc_pid" || doc_status=$?
+step "cargo doc's output (exit status $doc_status)"
+cat "$DOC_LOG"
+if [ "$pytest_status" -ne 0 ] || [ "$doc_status" -ne 0 ]; then
+  echo "failed: pytest exit status $pytest_status, cargo doc exit status $doc_status" >&2
+  exit 1
+fi
 step "done"
