@@ -70,6 +70,6 @@ pub use gpu::Gpu;
 pub use gpu_mesh::HairAlbedo;
 pub use profiler::PassTiming;
 pub use renderer::Renderer;
-pub use scene::{Camera, DiffuseLaw, Light, LightKind, LightRig, Scene, Skin, SssSettings, SubsurfaceModel};
+pub use scene::{Camera, DiffuseLaw, Light, LightKind, LightRig, Scene, Skin, SlabThrough, SssSettings, SubsurfaceModel};
 pub use shader::{MAX_LAYERS, ThicknessVariant, Variant};
 pub use uniforms::{MAX_LIGHTS, SceneConstants};

@@ -219,6 +219,9 @@ pub enum SubsurfaceModel {
         /// With a profile, its screen-space kernel blurs the skin's diffuse radiance, the slab's
         /// light with it (`screen-space+slab`), as in [`SubsurfaceModel::Thickness`].
         kernel: Option<DiffusionProfile>,
+        /// What carries the light that crossed the mesh to a pixel facing away from a
+        /// directional light: the slab law, or the transmission gather.
+        through: SlabThrough,
     },
     /// The directional dipole (\[Frisvad2014\]) or the standard dipole (\[Jensen2001\]) of the
     /// skin's medium, gathered from light G-buffers into K radiance maps and combined per pixel
@@ -240,6 +243,34 @@ pub enum SubsurfaceModel {
     },
 }
 
+/// What carries, under [`SubsurfaceModel::Slab`], the light that crossed the mesh to a pixel
+/// facing away from a directional light (issue 31 item 4; docs/BENCHMARKS.md "The transmission
+/// gather"). Point lights and pixels facing the light take the slab law's path either way.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SlabThrough {
+    /// The slab law: a plane slab of the thickness the light crossed, exact, over the share of
+    /// its lit plane the light's map holds, and the hidden-entry gather for the rest. Best where
+    /// the body is wider than the light spreads in it (a wedge, a head).
+    #[default]
+    Law,
+    /// The transmission gather (shaders/thickness.wgsl `through_gather`): every entry the
+    /// light's map holds, carried to the pixel by the classic dipole's sources seen through the
+    /// exit face with its boundary image, at the medium's exact decay rate. No plane assumed:
+    /// best across a body narrower than the light spreads (a finger: the backlit hand 3.44 →
+    /// 2.35); diffusion, so it misses a low albedo's thin slab (the ketchup wedge).
+    Gather,
+}
+
+impl SlabThrough {
+    /// The uniform's `kind.y`: 1 for the transmission gather.
+    pub fn gpu_flag(self) -> u32 {
+        match self {
+            SlabThrough::Law => 0,
+            SlabThrough::Gather => 1,
+        }
+    }
+}
+
 impl SubsurfaceModel {
     /// The screen-space kernel of d'Eon's six-Gaussian skin profile (\[dEon2007\]), today's default.
     pub fn skin_screen_space() -> SubsurfaceModel {
@@ -253,8 +284,10 @@ impl SubsurfaceModel {
             SubsurfaceModel::ScreenSpace { .. } => "screen-space",
             SubsurfaceModel::Thickness { kernel: Some(_), .. } => "screen-space+thickness",
             SubsurfaceModel::Thickness { kernel: None, .. } => "thickness",
-            SubsurfaceModel::Slab { kernel: Some(_) } => "screen-space+slab",
-            SubsurfaceModel::Slab { kernel: None } => "slab",
+            SubsurfaceModel::Slab { kernel: Some(_), through: SlabThrough::Law } => "screen-space+slab",
+            SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Law } => "slab",
+            SubsurfaceModel::Slab { kernel: Some(_), through: SlabThrough::Gather } => "screen-space+slab-gather",
+            SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Gather } => "slab-gather",
             SubsurfaceModel::Dipole { kind, .. } => kind.name(),
             SubsurfaceModel::CubeAtlas { .. } => "cube-atlas",
         }
@@ -266,10 +299,10 @@ impl SubsurfaceModel {
         match self {
             SubsurfaceModel::ScreenSpace { profile }
             | SubsurfaceModel::Thickness { kernel: Some(profile), .. }
-            | SubsurfaceModel::Slab { kernel: Some(profile) } => Some(profile),
+            | SubsurfaceModel::Slab { kernel: Some(profile), .. } => Some(profile),
             SubsurfaceModel::None
             | SubsurfaceModel::Thickness { kernel: None, .. }
-            | SubsurfaceModel::Slab { kernel: None }
+            | SubsurfaceModel::Slab { kernel: None, .. }
             | SubsurfaceModel::Dipole { .. }
             | SubsurfaceModel::CubeAtlas { .. } => None,
         }

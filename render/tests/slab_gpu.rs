@@ -11,7 +11,7 @@ use rouge_model::medium::Medium;
 use rouge_model::mesh::load_mesh;
 use rouge_render::slab_extent::{lateral_rates_per_mm, lit_extent};
 use rouge_render::slab_transmittance::{WGSL, axes, kappa, medium_values, transmittance};
-use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SubsurfaceModel};
+use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SlabThrough, SubsurfaceModel};
 use std::path::Path;
 
 const KERNEL: &str = r#"
@@ -139,7 +139,7 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
     let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::rig(LightRig::Back);
-    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None }, ..skin };
+    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Law }, ..skin };
     scene.specular = false;
     let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
     let wedge = rouge_model::mesh::shapes::wedge();
@@ -214,7 +214,7 @@ fn beyond_a_convex_terminator_the_slab_adds_nothing_the_kernel_should_carry() {
     };
     let profile = skin.subsurface.profile().expect("the medium's profile").clone();
     let (slab, none) =
-        (red(SubsurfaceModel::Slab { kernel: Some(profile.clone()) }), red(SubsurfaceModel::ScreenSpace { profile }));
+        (red(SubsurfaceModel::Slab { kernel: Some(profile.clone()), through: SlabThrough::Law }), red(SubsurfaceModel::ScreenSpace { profile }));
     // The cap there is about 2R·sin 6° = 5 mm long and 0.5 mm deep: as a slab, skin1 would send
     // a tenth of the light of a lit face through it. The kernel's input (the diffuse target,
     // before the blur) is 0 there without the slab.
@@ -355,7 +355,7 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         eye: f(view.camera.position()),
     };
     for (kernel, gpu_kernel) in [(None, None), (Some(under), Some(profile))] {
-        scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: gpu_kernel }, ..skin.clone() };
+        scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: gpu_kernel, through: SlabThrough::Law }, ..skin.clone() };
         let got = view.diffuse_at(&scene, at);
         let gather = gather_on_sphere(&medium, radius as f64, f(toward), e, f(at), kernel);
         for c in 0..3 {

@@ -15,7 +15,7 @@
 use super::*;
 use rouge_model::medium::Medium;
 use rouge_model::thickness::UvMap;
-use rouge_render::SubsurfaceModel;
+use rouge_render::{SlabThrough, SubsurfaceModel};
 use rouge_render::job::bake_thickness_map;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 
@@ -136,7 +136,10 @@ impl RougeApp {
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false, false),
             SubsurfaceChoice::ScreenSpaceThickness => thickness_model(false, true),
             SubsurfaceChoice::ScreenSpaceSlab => {
-                SubsurfaceModel::Slab { kernel: SubsurfaceModel::skin_screen_space().profile().cloned() }
+                SubsurfaceModel::Slab {
+                    kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
+                    through: SlabThrough::Law,
+                }
             }
             SubsurfaceChoice::ThicknessBaked => match self.gpu.local_thickness {
                 LocalThicknessState::Ready => thickness_model(true, false),

@@ -2,7 +2,7 @@
 //! is skipped and why, and the skin material.
 
 use super::{Access, FramePlan, Resource};
-use crate::scene::{DiffuseLaw, Skin, SubsurfaceModel};
+use crate::scene::{DiffuseLaw, Skin, SlabThrough, SubsurfaceModel};
 use std::fmt::{self, Write as _};
 
 impl Resource {
@@ -147,7 +147,14 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
                 source.name()
             );
         }
-        SubsurfaceModel::Slab { .. } => {
+        SubsurfaceModel::Slab { through, .. } => {
+            if *through == SlabThrough::Gather {
+                out.push_str(
+                    " (the light that crossed the mesh to a pixel facing away from a directional light: every entry in \
+                     its shadow map within the medium's reach, carried by the classic dipole seen through the exit \
+                     face with its boundary image, at the medium's exact decay rate, 32 samples; elsewhere",
+                );
+            }
             out.push_str(
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
                  and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
@@ -161,6 +168,9 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
                     let _ = write!(out, ": the medium's η {} is not modelled by the slab)", m.eta);
                 }
                 _ => out.push(')'),
+            }
+            if *through == SlabThrough::Gather {
+                out.push(')');
             }
         }
         SubsurfaceModel::CubeAtlas { settings: a } => {

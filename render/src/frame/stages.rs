@@ -15,7 +15,7 @@ use crate::passes::shadow::ShadowStep;
 use crate::passes::sss::{Direction, SssStep};
 use crate::passes::thickness::ThicknessUniform;
 use crate::passes::{composite, gbuffer, lighting, skin_gather, thickness};
-use crate::scene::{DiffuseLaw, LightKind, Scene, SubsurfaceModel};
+use crate::scene::{DiffuseLaw, LightKind, Scene, SlabThrough, SubsurfaceModel};
 use crate::shader::{ThicknessVariant, Variant};
 use crate::sss::SeparableKernel;
 use crate::targets::Target;
@@ -401,7 +401,11 @@ impl Planner {
         // it reaches and follows in depth.
         let sss = &scene.sss;
         let kernel = scene.skin.subsurface.profile().filter(|_| sss.runs()).map(|p| (sss.reach_mm(p), sss.follow_mm));
-        Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium, kernel)?)))
+        let through = match &scene.skin.subsurface {
+            SubsurfaceModel::Slab { through, .. } => *through,
+            _ => SlabThrough::Law,
+        };
+        Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium, kernel, through)?)))
     }
 
     /// For a thickness pass that reads the lights' shadow maps: each light without one gets no

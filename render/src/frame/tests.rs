@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::local_thickness::ThicknessSource;
-use crate::scene::SubsurfaceModel;
+use crate::scene::{SlabThrough, SubsurfaceModel};
 use crate::shader::ThicknessVariant;
 use glam::Vec3;
 
@@ -130,7 +130,7 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
 fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() {
     let up = uploaded(0);
     let mut scene = Scene::rig(crate::scene::LightRig::Back);
-    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: None };
+    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Law };
     // No physical medium: an error that says how to give one.
     let err = FramePlan::new(&scene, up, settings()).expect_err("no medium");
     assert!(err.to_string().contains("--medium"), "{err}");
@@ -157,7 +157,7 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     // profile's widest Gaussian, 8.2 mm for d'Eon's skin) and its depth-follow distance.
     let profile = crate::sss::DiffusionProfile::skin();
     let reach = 3.0 * profile.max_sigma_mm() as f32;
-    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: Some(profile) };
+    scene.skin.subsurface = SubsurfaceModel::Slab { kernel: Some(profile), through: SlabThrough::Law };
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
     assert_eq!(
         steps(&plan),

@@ -12,6 +12,7 @@
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
 use crate::error::{RenderError, Result};
 use crate::local_thickness::TranslucencyParams;
+use crate::scene::SlabThrough;
 use crate::shader::{PassShader, Variant, pass_shader};
 use crate::slab_transmittance;
 use crate::targets::{HDR_FORMAT, Target};
@@ -36,7 +37,8 @@ pub struct ThicknessUniform {
     /// The shadow-map source's falloff: rgb rates per mm (exponential) or the exponent in x
     /// (power); w: the cutoff, mm.
     pub falloff: [f32; 4],
-    /// x: 1 for the exponential falloff, 0 for the power falloff.
+    /// x: 1 for the exponential falloff, 0 for the power falloff; y (slab law only): 1 for the
+    /// transmission gather ([`crate::scene::SlabThrough::gpu_flag`]).
     pub kind: [u32; 4],
     /// The slab law's reduced albedo α′ per channel (zero under the talk's term).
     pub slab_albedo: [f32; 4],
@@ -70,12 +72,13 @@ impl ThicknessUniform {
     }
 
     /// The uniform of the slab law for a skin of `medium`, with the screen-space kernel's reach
-    /// and depth-follow distance (mm) where one runs.
+    /// and depth-follow distance (mm) where one runs, and what carries the light that crossed
+    /// the mesh (`through`).
     ///
     /// # Errors
     /// [`RenderError::Invalid`] if the compiled-in table is malformed, or the medium's
     /// coefficients give no finite reduced albedo and extinction.
-    pub fn slab(medium: &Medium, kernel: Option<(f32, f32)>) -> Result<ThicknessUniform> {
+    pub fn slab(medium: &Medium, kernel: Option<(f32, f32)>, through: SlabThrough) -> Result<ThicknessUniform> {
         let axes = slab_transmittance::axes()?;
         let alpha = medium.reduced_albedo();
         let sigma_t = medium.sigma_t_prime_per_mm();
@@ -91,6 +94,7 @@ impl ThicknessUniform {
         materials[SKIN_MATERIAL_ID] = [0.0, 1.0, 0.0, 0.0];
         Ok(ThicknessUniform {
             materials,
+            kind: [0, through.gpu_flag(), 0, 0],
             slab_albedo: rgb(alpha),
             slab_kappa: rgb(alpha.map(slab_transmittance::kappa)),
             slab_sigma_t: rgb(sigma_t),

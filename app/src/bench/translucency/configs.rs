@@ -5,7 +5,7 @@ use rouge_model::medium::Medium;
 use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::{DipoleKind, DipoleSettings};
-use rouge_render::{Skin, SubsurfaceModel};
+use rouge_render::{SlabThrough, Skin, SubsurfaceModel};
 use serde_json::json;
 
 /// The thickness model's configurations: each source with the three.js defaults and, where the
@@ -177,24 +177,33 @@ pub(super) fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
 
 /// The slab law's configurations (`render/src/slab_transmittance.rs`, no parameter): alone over
 /// `lambert` (the medium's exact albedo) and over the half-space law, and under the kernel of
-/// `combined` (the better dipole, 11 samples, over the half-space law) as `screen-space+slab`.
+/// `combined` (the better dipole, 11 samples, over the half-space law) as `screen-space+slab`;
+/// and the transmission gather in its place ([`SlabThrough::Gather`]) alone over the half-space
+/// law and under the same kernel.
 pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
-    let alone = |skin: &Skin, diffuse: &str| Config {
-        model: "slab",
+    let alone = |skin: &Skin, diffuse: &str, through: SlabThrough| Config {
+        model: if through == SlabThrough::Gather { "slab-gather" } else { "slab" },
         params: json!({"diffuse": diffuse}),
-        skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: None }, ..skin.clone() },
+        skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through }, ..skin.clone() },
         samples: 0,
         map: ThicknessMap::None,
     };
-    let mut out = vec![alone(lambert, "lambert"), alone(&lambert.clone().half_space(), "half-space")];
+    let half_space = lambert.clone().half_space();
+    let mut out = vec![
+        alone(lambert, "lambert", SlabThrough::Law),
+        alone(&half_space, "half-space", SlabThrough::Law),
+        alone(&half_space, "half-space", SlabThrough::Gather),
+    ];
     if let Some(profile) = combined.subsurface.profile() {
-        out.push(Config {
-            model: "screen-space+slab",
-            params: json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"}),
-            skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: Some(profile.clone()) }, ..combined.clone() },
-            samples: COMBINATION_SAMPLES,
-            map: ThicknessMap::None,
-        });
+        for through in [SlabThrough::Law, SlabThrough::Gather] {
+            out.push(Config {
+                model: if through == SlabThrough::Gather { "screen-space+slab-gather" } else { "screen-space+slab" },
+                params: json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"}),
+                skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: Some(profile.clone()), through }, ..combined.clone() },
+                samples: COMBINATION_SAMPLES,
+                map: ThicknessMap::None,
+            });
+        }
     }
     out
 }

@@ -13,7 +13,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use rouge_model::thickness::CacheUse;
 use rouge_render::DipoleKind;
-use rouge_render::SubsurfaceModel;
+use rouge_render::{SlabThrough, SubsurfaceModel};
 use rouge_render::job::render_to_file;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -92,6 +92,14 @@ pub enum Subsurface {
     Slab,
     /// The screen-space kernel with the slab's light from behind added before the blur.
     ScreenSpaceSlab,
+    /// As slab, but the light that crossed the mesh to a pixel facing away from a directional
+    /// light is gathered from every entry in the light's shadow map and carried by the classic
+    /// dipole seen through the exit face (a transmission kernel), with no plane assumed: better
+    /// across bodies narrower than the light spreads (fingers), worse through thin slabs of a
+    /// low albedo (docs/BENCHMARKS.md "The transmission gather").
+    SlabGather,
+    /// The screen-space kernel with the transmission gather's light added before the blur.
+    ScreenSpaceSlabGather,
     /// The directional dipole ([Frisvad2014]) of the --medium, through light G-buffers and
     /// radiance maps ([DirDipoleThesis]); --dipole-frames accumulates samples.
     DirectionalDipole,
@@ -154,10 +162,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             job.scene.skin.subsurface = args.thickness.model(job.scene.skin.medium.as_ref(), kernel)?;
             job.thickness_bake_rest_pose = args.thickness.thickness_bake == BakePose::Rest;
         }
-        Subsurface::Slab | Subsurface::ScreenSpaceSlab => {
-            let combined = args.subsurface == Subsurface::ScreenSpaceSlab;
+        Subsurface::Slab | Subsurface::ScreenSpaceSlab | Subsurface::SlabGather | Subsurface::ScreenSpaceSlabGather => {
+            let combined = matches!(args.subsurface, Subsurface::ScreenSpaceSlab | Subsurface::ScreenSpaceSlabGather);
+            let through = match args.subsurface {
+                Subsurface::SlabGather | Subsurface::ScreenSpaceSlabGather => SlabThrough::Gather,
+                _ => SlabThrough::Law,
+            };
             let kernel = job.scene.skin.subsurface.profile().filter(|_| combined).cloned();
-            job.scene.skin.subsurface = SubsurfaceModel::Slab { kernel };
+            job.scene.skin.subsurface = SubsurfaceModel::Slab { kernel, through };
         }
         Subsurface::DirectionalDipole => job.scene.skin.subsurface = args.dipole.model(DipoleKind::Directional)?,
         Subsurface::DirectionalDipoleMfp => {
