@@ -190,6 +190,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "coverage" => Some(include_str!("../shaders/coverage.wgsl")),
         "fibre" => Some(crate::fibre::WGSL_SCATTERING),
         "slab" => Some(crate::slab_transmittance::WGSL),
+        "through" => Some(include_str!("../shaders/through.wgsl")),
         _ => None,
     }
 }
