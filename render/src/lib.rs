@@ -59,6 +59,7 @@ pub mod slab_transmittance;
 pub mod specular;
 pub mod sss;
 pub mod study;
+pub mod through_gather;
 pub mod targets;
 pub mod translucency;
 pub(crate) mod uniforms;

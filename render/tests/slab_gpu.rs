@@ -384,3 +384,68 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         }
     }
 }
+
+/// Where the line through `p` along `l` (toward the light) enters the convex `mesh`: the point
+/// furthest toward the light on it, and that face's outward normal; None if it misses.
+fn column_entry(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> Option<(Vec3, Vec3)> {
+    let (mut lo, mut hi, mut entry_normal) = (f32::NEG_INFINITY, f32::INFINITY, Vec3::ZERO);
+    for face in &mesh.faces {
+        let n = mesh.normals[face.corners[0].normal as usize];
+        let q = mesh.positions[face.corners[0].position as usize];
+        let (a, b) = (n.dot(l), n.dot(p - q));
+        if a.abs() < 1e-9 {
+            if b > 0.0 {
+                return None;
+            }
+        } else if a > 0.0 {
+            if -b / a < hi {
+                (hi, entry_normal) = (-b / a, n);
+            }
+        } else {
+            lo = lo.max(-b / a);
+        }
+    }
+    (lo <= hi).then_some((p + hi * l, entry_normal))
+}
+
+#[test]
+fn the_transmission_gather_through_the_backlit_wedge_is_its_kernels_integral() {
+    use glam::DVec3;
+    use rouge_render::through_gather::{through_channels, through_entry};
+    let gpu = Gpu::headless().expect("a wgpu adapter");
+    let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
+    let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
+    let mut scene = Scene::rig(LightRig::Back);
+    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Gather }, ..skin };
+    scene.specular = false;
+    let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
+    let wedge = rouge_model::mesh::shapes::wedge();
+    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
+    // The front face's middle, 6 mm in front of the slanted back face (as in the slab law's test).
+    let at = Vec3::new(-8.0, 0.0, 7.5);
+    let channels = through_channels(&medium);
+    let reach = rouge_render::slab_transmittance::hidden_entry_constants(&medium).1[1] as f64;
+    // ∫ K(x_i → at) dA⊥ over the light's map within the gather's reach, polar quadrature; every
+    // column's entry is where it meets the wedge nearest the light.
+    let (right, up) = (l.any_orthonormal_vector(), l.cross(l.any_orthonormal_vector()));
+    let (steps_r, steps_phi) = (800, 256);
+    let mut want = [0.0f64; 3];
+    for i in 0..steps_r {
+        let rho = reach * (i as f64 + 0.5) / steps_r as f64;
+        let area = 2.0 * std::f64::consts::PI * rho * (reach / steps_r as f64) / steps_phi as f64;
+        for j in 0..steps_phi {
+            let phi = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / steps_phi as f64;
+            let p = at + right * (rho * phi.cos()) as f32 + up * (rho * phi.sin()) as f32;
+            let Some((xi, ni)) = column_entry(&wedge, p, l) else { continue };
+            for c in 0..3 {
+                want[c] += area * through_entry(&channels[c], xi.as_dvec3(), ni.as_dvec3(), at.as_dvec3(), DVec3::Z);
+            }
+        }
+    }
+    let got = view.diffuse_at(&scene, at);
+    for c in 0..3 {
+        let err = got[c] as f64 / want[c] - 1.0;
+        eprintln!("channel {c}: {:.5} against the kernel's integral {:.5} ({:+.2}%)", got[c], want[c], 100.0 * err);
+        assert!(err.abs() < 0.1, "channel {c}: {} against {}", got[c], want[c]);
+    }
+}

@@ -43,6 +43,7 @@ fn label(choice: SubsurfaceChoice) -> &'static str {
         SubsurfaceChoice::ThicknessPerLight => "Translucency (per light)",
         SubsurfaceChoice::ScreenSpaceThickness => "Scattering + translucency (per light)",
         SubsurfaceChoice::ScreenSpaceSlab => "Scattering + slab translucency (skin1)",
+        SubsurfaceChoice::ScreenSpaceSlabGather => "Scattering + gathered translucency (skin1)",
         SubsurfaceChoice::DirectionalDipole => "Directional dipole (skin1)",
         SubsurfaceChoice::CubeAtlas => "Cube-map atlas dipole (skin1)",
         SubsurfaceChoice::None => "None",
@@ -116,7 +117,10 @@ impl RougeApp {
         // The dipoles and the slab law need a physical medium: the app's skin takes skin1's.
         let physical = matches!(
             choice,
-            SubsurfaceChoice::DirectionalDipole | SubsurfaceChoice::CubeAtlas | SubsurfaceChoice::ScreenSpaceSlab
+            SubsurfaceChoice::DirectionalDipole
+                | SubsurfaceChoice::CubeAtlas
+                | SubsurfaceChoice::ScreenSpaceSlab
+                | SubsurfaceChoice::ScreenSpaceSlabGather
         );
         self.view.scene.skin.medium = physical.then(|| skin1().cloned()).flatten();
         self.view.scene.skin.diffuse = match self.editor.document().diffuse {
@@ -135,12 +139,14 @@ impl RougeApp {
             SubsurfaceChoice::None => SubsurfaceModel::None,
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false, false),
             SubsurfaceChoice::ScreenSpaceThickness => thickness_model(false, true),
-            SubsurfaceChoice::ScreenSpaceSlab => {
-                SubsurfaceModel::Slab {
-                    kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
-                    through: SlabThrough::Law,
-                }
-            }
+            SubsurfaceChoice::ScreenSpaceSlab => SubsurfaceModel::Slab {
+                kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
+                through: SlabThrough::Law,
+            },
+            SubsurfaceChoice::ScreenSpaceSlabGather => SubsurfaceModel::Slab {
+                kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
+                through: SlabThrough::Gather,
+            },
             SubsurfaceChoice::ThicknessBaked => match self.gpu.local_thickness {
                 LocalThicknessState::Ready => thickness_model(true, false),
                 _ => SubsurfaceModel::skin_screen_space(),

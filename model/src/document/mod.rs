@@ -241,6 +241,10 @@ pub enum SubsurfaceChoice {
     /// The screen-space kernel and skin1's light through thin parts by the slab law (exact slab
     /// transport per light, no fitted parameter).
     ScreenSpaceSlab,
+    /// As [`SubsurfaceChoice::ScreenSpaceSlab`], with the transmission gather in the slab law's
+    /// place for light that crossed the mesh (every entry in the light's map, no plane assumed:
+    /// better through fingers and ears).
+    ScreenSpaceSlabGather,
     /// The directional dipole of skin1 (\[Frisvad2014\]), accumulated over frames while still.
     DirectionalDipole,
     /// Jensen's dipole of skin1 through the cube-map atlas redrawn every frame (\[Benmounah2009\]).
@@ -251,19 +255,21 @@ pub enum SubsurfaceChoice {
 
 impl SubsurfaceChoice {
     /// Every choice, in the order the app lists them.
-    pub const ALL: [SubsurfaceChoice; 8] = [
+    pub const ALL: [SubsurfaceChoice; 9] = [
         SubsurfaceChoice::ScreenSpace,
         SubsurfaceChoice::ThicknessBaked,
         SubsurfaceChoice::ThicknessPerLight,
         SubsurfaceChoice::ScreenSpaceThickness,
         SubsurfaceChoice::ScreenSpaceSlab,
+        SubsurfaceChoice::ScreenSpaceSlabGather,
         SubsurfaceChoice::DirectionalDipole,
         SubsurfaceChoice::CubeAtlas,
         SubsurfaceChoice::None,
     ];
 
     /// The name a project file gives it (`screen-space`, `thickness-baked`, `thickness-per-light`,
-    /// `screen-space-thickness`, `screen-space-slab`, `directional-dipole`, `cube-atlas`, `none`).
+    /// `screen-space-thickness`, `screen-space-slab`, `screen-space-slab-gather`,
+    /// `directional-dipole`, `cube-atlas`, `none`).
     pub fn name(self) -> &'static str {
         match self {
             SubsurfaceChoice::ScreenSpace => "screen-space",
@@ -271,6 +277,7 @@ impl SubsurfaceChoice {
             SubsurfaceChoice::ThicknessPerLight => "thickness-per-light",
             SubsurfaceChoice::ScreenSpaceThickness => "screen-space-thickness",
             SubsurfaceChoice::ScreenSpaceSlab => "screen-space-slab",
+            SubsurfaceChoice::ScreenSpaceSlabGather => "screen-space-slab-gather",
             SubsurfaceChoice::DirectionalDipole => "directional-dipole",
             SubsurfaceChoice::CubeAtlas => "cube-atlas",
             SubsurfaceChoice::None => "none",
