@@ -253,7 +253,8 @@ pub enum SlabThrough {
     /// the body is wider than the light spreads in it (a wedge, a head).
     #[default]
     Law,
-    /// The transmission gather (shaders/thickness.wgsl `through_gather`): every entry the
+    /// The transmission gather (the hidden-entry gather alone, with the kernel of
+    /// `shaders/through.wgsl`, [`crate::through_gather`]): every entry the
     /// light's map holds, carried to the pixel by the classic dipole's sources seen through the
     /// exit face with its boundary image, at the medium's exact decay rate. No plane assumed:
     /// best across a body narrower than the light spreads (a finger: the backlit hand 3.44 →

@@ -52,21 +52,23 @@ fn flux(h: f64, d: f64, sigma: f64) -> f64 {
 }
 
 /// F(s): a unit source at `s` seen through the exit face at `xo` (outward normal `no`), with its
-/// image across the face's extrapolated boundary `z_b` outside it.
-fn exit_flux(s: DVec3, xo: DVec3, no: DVec3, z_b: f64, sigma: f64) -> f64 {
+/// image across the face's extrapolated boundary `z_b` outside it; distances held at `floor_mm`
+/// (z_r) and above, as the shader's (`exit_flux` in shaders/through.wgsl says why).
+fn exit_flux(s: DVec3, xo: DVec3, no: DVec3, z_b: f64, sigma: f64, floor_mm: f64) -> f64 {
     let d = xo - s;
     let h = d.dot(no);
     let rho2 = (d.length_squared() - h * h).max(0.0);
     let h_image = h + 2.0 * z_b;
-    flux(h, (rho2 + h * h).sqrt(), sigma) + flux(h_image, (rho2 + h_image * h_image).sqrt(), sigma)
+    flux(h, (rho2 + h * h).sqrt().max(floor_mm), sigma)
+        + flux(h_image, (rho2 + h_image * h_image).sqrt().max(floor_mm), sigma)
 }
 
 /// K(x_i → x_o) per mm² of entry (module docs).
 pub fn through_entry(c: &ThroughChannel, xi: DVec3, ni: DVec3, xo: DVec3, no: DVec3) -> f64 {
     let [alpha, _, z_r, z_v] = c.classic;
     let z_b = 0.5 * (z_v - z_r);
-    let real = exit_flux(xi - z_r * ni, xo, no, z_b, c.decay_per_mm);
-    let virtual_source = exit_flux(xi + z_v * ni, xo, no, z_b, c.decay_per_mm);
+    let real = exit_flux(xi - z_r * ni, xo, no, z_b, c.decay_per_mm, z_r);
+    let virtual_source = exit_flux(xi + z_v * ni, xo, no, z_b, c.decay_per_mm, z_r);
     (alpha / (4.0 * std::f64::consts::PI) * (real - virtual_source)).max(0.0)
 }
 

@@ -133,15 +133,22 @@ fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: 
     lit_extent(rates, |x, y| covered(at + right * x as f32 + up * y as f32))
 }
 
-#[test]
-fn the_backlit_wedge_transmits_what_its_slab_does() {
-    let gpu = Gpu::headless().expect("a wgpu adapter");
+/// Marble (η 1) in the built-in wedge lit from behind, under the slab model with `through`
+/// carrying the light that crossed it; no specular.
+fn backlit_marble_wedge(gpu: &Gpu, through: SlabThrough) -> (Medium, Scene, View) {
     let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::rig(LightRig::Back);
-    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Law }, ..skin };
+    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through }, ..skin };
     scene.specular = false;
-    let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
+    let view = View::new(gpu, "builtin:wedge", scene.skin.albedo);
+    (medium, scene, view)
+}
+
+#[test]
+fn the_backlit_wedge_transmits_what_its_slab_does() {
+    let gpu = Gpu::headless().expect("a wgpu adapter");
+    let (medium, scene, mut view) = backlit_marble_wedge(&gpu, SlabThrough::Law);
     let wedge = rouge_model::mesh::shapes::wedge();
     // On the front face (z = 7.5) where the wedge is 6 mm thick along z, in its middle and 3 mm
     // above its bottom edge (the light comes from above: its path stays clear of that edge);
@@ -413,12 +420,7 @@ fn the_transmission_gather_through_the_backlit_wedge_is_its_kernels_integral() {
     use glam::DVec3;
     use rouge_render::through_gather::{through_channels, through_entry};
     let gpu = Gpu::headless().expect("a wgpu adapter");
-    let medium = Medium::builtin("marble").expect("marble").with_eta(1.0).expect("η 1");
-    let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
-    let mut scene = Scene::rig(LightRig::Back);
-    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Gather }, ..skin };
-    scene.specular = false;
-    let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
+    let (medium, scene, mut view) = backlit_marble_wedge(&gpu, SlabThrough::Gather);
     let wedge = rouge_model::mesh::shapes::wedge();
     let l = Vec3::new(0.55, 0.3, -0.78).normalize();
     // The front face's middle, 6 mm in front of the slanted back face (as in the slab law's test).

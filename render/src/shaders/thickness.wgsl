@@ -23,7 +23,8 @@ struct ThicknessPass {
     // shadow-map source: rgb the exponential rates per mm (or x the power exponent), w cutoff mm
     falloff: vec4<f32>,
     // x: 1 exponential falloff, 0 power falloff; y (slab law only): 1 where the light crosses
-    // the mesh, the transmission gather (`through_gather`) in place of the slab law
+    // the mesh to a pixel facing away from a directional light, the hidden-entry gather alone
+    // with the transmission kernel (through.wgsl) in place of the slab law
     kind: vec4<u32>,
     // The slab law's medium per channel: reduced albedo α′, Case's decay rate κ, and σt′ per mm;
     // the table's axes (slab.wgsl).
@@ -326,13 +327,18 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
     // where the map's first surface is the point, else 0): the gather adds what the hidden
     // entries received beyond that.
     let mu_o = select(0.0, max(dot(n, l), 0.0), light_path_mm(m) < 2.0 * texel_mm);
+    // Under the transmission gather, whose kernel is steeper, the spiral turns by a per-point
+    // angle: the same spiral at every pixel steps through the map's texels alike in neighbouring
+    // pixels and leaves a structured error (single bright pixels that the screen-space kernel
+    // spreads into its taps' lattice); turned, it is noise the kernel averages.
+    let turn = select(0.0, 2.0 * PI * fract(sin(dot(world, vec3<f32>(12.9898, 78.233, 37.719))) * 43758.5453), params.kind.y == 1u);
     var sum = vec3<f32>(0.0);
     for (var j = 0u; j < count; j++) {
         let u = (f32(j) + 0.5) / f32(count);
         let rho = -log(1.0 - u * kept) / sigma;
         // 2πρ/p(ρ), p(ρ) = σe^{−σρ}/kept: the map area each sample stands for, times N.
         let area = 2.0 * PI * rho * kept / (sigma * exp(-sigma * rho));
-        let phi = f32(j) * 2.39996323;
+        let phi = f32(j) * 2.39996323 + turn;
         let o = rho * vec2<f32>(cos(phi), sin(phi));
         var e: MapPoint;
         e.uv = m.uv + vec2<f32>(o.x, -o.y) * axes.uv_per_mm;
@@ -365,9 +371,9 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
             dipole_radial(params.gather_medium[2], r),
         );
         if params.kind.y == 1u {
-            // With the transmission gather, its kernel here too: an entry on a face turned
-            // from the pixel's (a finger's far side feeding its lit rim) is seen through the
-            // pixel's face.
+            // The transmission gather's kernel (through.wgsl), where chosen: an entry on a face
+            // turned from the pixel's (a finger's far side feeding its lit rim or its front) is
+            // seen through the pixel's own face.
             rd = through_entry3(xi, ni, world, n);
         }
         sum += rd * (t_in * area * unseen);
@@ -426,7 +432,10 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             // pixel facing away from a directional light; the slab law takes the rest.
             let crossed = dot(n, light_arrival(light, world).l) < 0.0;
             if params.kind.y == 1u && params.gather.z > 0.0 && crossed && light.translucency.w < 0.5 && m.inside {
-                sum += through_gather(light, axes, m, world, n, v);
+                // The gather alone, with the transmission kernel (`through_entry3`): every
+                // entry the map holds, no plane assumed. (A point light's perspective map has
+                // no constant texel size for the gather: the slab law serves it.)
+                sum += hidden_entry(light, axes, m, world, n, v);
                 continue;
             }
             let slab = slab_radiance(light, axes, m, world, n, v);
