@@ -59,8 +59,8 @@ pub mod slab_transmittance;
 pub mod specular;
 pub mod sss;
 pub mod study;
-pub mod through_gather;
 pub mod targets;
+pub mod through_gather;
 pub mod translucency;
 pub(crate) mod uniforms;
 pub(crate) mod wgpu_util;
@@ -71,6 +71,8 @@ pub use gpu::Gpu;
 pub use gpu_mesh::HairAlbedo;
 pub use profiler::PassTiming;
 pub use renderer::Renderer;
-pub use scene::{Camera, DiffuseLaw, Light, LightKind, LightRig, Scene, Skin, SlabThrough, SssSettings, SubsurfaceModel};
+pub use scene::{
+    Camera, DiffuseLaw, Light, LightKind, LightRig, Scene, Skin, SlabThrough, SssSettings, SubsurfaceModel,
+};
 pub use shader::{MAX_LAYERS, ThicknessVariant, Variant};
 pub use uniforms::{MAX_LIGHTS, SceneConstants};

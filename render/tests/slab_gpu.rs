@@ -220,8 +220,10 @@ fn beyond_a_convex_terminator_the_slab_adds_nothing_the_kernel_should_carry() {
         view.diffuse_at(&scene, at)[0]
     };
     let profile = skin.subsurface.profile().expect("the medium's profile").clone();
-    let (slab, none) =
-        (red(SubsurfaceModel::Slab { kernel: Some(profile.clone()), through: SlabThrough::Law }), red(SubsurfaceModel::ScreenSpace { profile }));
+    let (slab, none) = (
+        red(SubsurfaceModel::Slab { kernel: Some(profile.clone()), through: SlabThrough::Law }),
+        red(SubsurfaceModel::ScreenSpace { profile }),
+    );
     // The cap there is about 2R·sin 6° = 5 mm long and 0.5 mm deep: as a slab, skin1 would send
     // a tenth of the light of a lit face through it. The kernel's input (the diffuse target,
     // before the blur) is 0 there without the slab.
@@ -362,7 +364,10 @@ fn past_the_terminator_the_light_entering_beside_reaches_the_exit_as_the_dipole_
         eye: f(view.camera.position()),
     };
     for (kernel, gpu_kernel) in [(None, None), (Some(under), Some(profile))] {
-        scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: gpu_kernel, through: SlabThrough::Law }, ..skin.clone() };
+        scene.skin = Skin {
+            subsurface: SubsurfaceModel::Slab { kernel: gpu_kernel, through: SlabThrough::Law },
+            ..skin.clone()
+        };
         let got = view.diffuse_at(&scene, at);
         let gather = gather_on_sphere(&medium, radius as f64, f(toward), e, f(at), kernel);
         for c in 0..3 {
@@ -448,6 +453,8 @@ fn the_transmission_gather_through_the_backlit_wedge_is_its_kernels_integral() {
     for c in 0..3 {
         let err = got[c] as f64 / want[c] - 1.0;
         eprintln!("channel {c}: {:.5} against the kernel's integral {:.5} ({:+.2}%)", got[c], want[c], 100.0 * err);
-        assert!(err.abs() < 0.1, "channel {c}: {} against {}", got[c], want[c]);
+        // Lavapipe: −0.7 / −0.1 / +0.4%; 32 samples on a spiral turned per point against the
+        // converged integral.
+        assert!(err.abs() < 0.03, "channel {c}: {} against {}", got[c], want[c]);
     }
 }

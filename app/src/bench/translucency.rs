@@ -51,6 +51,10 @@ pub struct TranslucencyBenchArgs {
     /// square per thickness-translucency configuration.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Instead of running: read the rows a run wrote with --json from this file and draw
+    /// --plot from them (to redraw a plot without the run's quarter of an hour).
+    #[arg(long, requires = "plot")]
+    pub replot: Option<PathBuf>,
     /// Rays per vertex of the thickness model's local-thickness bake.
     #[arg(long, default_value_t = 64)]
     pub thickness_rays: u32,
@@ -93,7 +97,7 @@ struct Config {
 }
 
 /// One row of the table (../shared/DESIGN.md).
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, serde::Deserialize)]
 struct Row {
     scene: String,
     model: String,
@@ -147,6 +151,12 @@ fn sidecars(dir: &Path, only: &[String]) -> Result<Vec<(String, serde_json::Valu
 }
 
 pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
+    if let (Some(from), Some(path)) = (&args.replot, &args.plot) {
+        let text = std::fs::read_to_string(from).with_context(|| format!("--replot {}", from.display()))?;
+        let rows: Vec<Row> = serde_json::from_str(&text)
+            .with_context(|| format!("{}: not the rows of `rouge bench translucency --json`", from.display()))?;
+        return crate::write_output(path, &plot(&rows)?);
+    }
     if let Some(&n) = args.samples.iter().find(|&&n| !(3..=33).contains(&n) || n % 2 == 0) {
         bail!("--samples {n}: each count must be odd, 3-33");
     }
@@ -336,6 +346,8 @@ fn square_label(r: &Row) -> Option<String> {
         "screen-space+thickness" => Some(format!("kernel + thickness {} {}", text("source"), text("params"))),
         "slab" => Some(format!("slab law, {}", text("diffuse"))),
         "screen-space+slab" => Some("kernel + slab law".to_string()),
+        "slab-gather" => Some(format!("transmission gather, {}", text("diffuse"))),
+        "screen-space+slab-gather" => Some("kernel + transmission gather".to_string()),
         "directional-dipole" | "directional-dipole-mfp" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }

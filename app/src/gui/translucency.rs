@@ -15,9 +15,9 @@
 use super::*;
 use rouge_model::medium::Medium;
 use rouge_model::thickness::UvMap;
-use rouge_render::{SlabThrough, SubsurfaceModel};
 use rouge_render::job::bake_thickness_map;
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
+use rouge_render::{SlabThrough, SubsurfaceModel};
 
 /// The subsurface models the viewport offers: the document's choice, saved with the project.
 pub use rouge_model::document::{DiffuseChoice, SubsurfaceChoice};

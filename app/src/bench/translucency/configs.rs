@@ -5,7 +5,7 @@ use rouge_model::medium::Medium;
 use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::{DipoleKind, DipoleSettings};
-use rouge_render::{SlabThrough, Skin, SubsurfaceModel};
+use rouge_render::{Skin, SlabThrough, SubsurfaceModel};
 use serde_json::json;
 
 /// The thickness model's configurations: each source with the three.js defaults and, where the
@@ -199,7 +199,10 @@ pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
             out.push(Config {
                 model: if through == SlabThrough::Gather { "screen-space+slab-gather" } else { "screen-space+slab" },
                 params: json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"}),
-                skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: Some(profile.clone()), through }, ..combined.clone() },
+                skin: Skin {
+                    subsurface: SubsurfaceModel::Slab { kernel: Some(profile.clone()), through },
+                    ..combined.clone()
+                },
                 samples: COMBINATION_SAMPLES,
                 map: ThicknessMap::None,
             });

@@ -13,8 +13,8 @@ use anyhow::{Result, bail};
 use clap::Args;
 use rouge_model::thickness::CacheUse;
 use rouge_render::DipoleKind;
-use rouge_render::{SlabThrough, SubsurfaceModel};
 use rouge_render::job::render_to_file;
+use rouge_render::{SlabThrough, SubsurfaceModel};
 use std::path::PathBuf;
 use std::time::Instant;
 
