@@ -105,23 +105,7 @@ impl View {
 /// Whether the line through `p` along `l` meets the convex `mesh` (every face's plane holds the
 /// mesh on its inner side): the light's map holds the mesh in that column.
 fn line_meets_convex(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> bool {
-    let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
-    for face in &mesh.faces {
-        let n = mesh.normals[face.corners[0].normal as usize];
-        let q = mesh.positions[face.corners[0].position as usize];
-        // n·(p + t·l − q) ≤ 0 inside.
-        let (a, b) = (n.dot(l), n.dot(p - q));
-        if a.abs() < 1e-9 {
-            if b > 0.0 {
-                return false;
-            }
-        } else if a > 0.0 {
-            hi = hi.min(-b / a);
-        } else {
-            lo = lo.max(-b / a);
-        }
-    }
-    lo <= hi
+    column_entry(mesh, p, l).is_some()
 }
 
 /// The lit extent at `at` under the light toward `l` (exactly, `slab_extent::lit_extent`) for a
@@ -404,6 +388,7 @@ fn column_entry(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> Option<(Vec
     for face in &mesh.faces {
         let n = mesh.normals[face.corners[0].normal as usize];
         let q = mesh.positions[face.corners[0].position as usize];
+        // n·(p + t·l − q) ≤ 0 inside.
         let (a, b) = (n.dot(l), n.dot(p - q));
         if a.abs() < 1e-9 {
             if b > 0.0 {

@@ -27,13 +27,14 @@ fn exit_flux(s: vec3<f32>, xo: vec3<f32>, no: vec3<f32>, z_b: f32, sigma: f32, f
 // ([Jensen2001]: the real one z_r inside the entry face, the virtual one z_v outside it; `m` is
 // (α′, σ_tr, z_r, z_v)), each seen through the exit face with its image there (`exit_flux`), at
 // the medium's exact asymptotic decay `sigma` = κσt′ (Case's eigenvalue, the slab law's
-// [`slab_transmittance::kappa`]) in place of diffusion's σ_tr, which decays too fast as the
-// albedo falls (14% in green, 30% in blue for skin1). The projections on the exit's own normal
-// make it a transmission kernel: across a finger the exit face turns away from the entry face,
-// and the flux through it is not the entry plane's. Over a plane slab of thickness d at right
-// angles it totals α′/2 (e^{−σ(d−z_r)} + e^{−σ(d−z_r+2z_b)} − e^{−σ(d+z_v)} − e^{−σ(d+z_v+2z_b)}),
-// within 3-11% of the exact slab's diffuse transmittance in skin1's red from 7 to 15 mm
-// (adding-doubling, iadpython; docs/BENCHMARKS.md).
+// `slab_transmittance::kappa`) in place of diffusion's σ_tr, which decays too fast as the
+// albedo falls (2% in red, 7% in green, 16% in blue for skin1). The projections on the exit's
+// own normal make it a transmission kernel: across a finger the exit face turns away from the
+// entry face, and the flux through it is not the entry plane's. Over a plane slab of thickness
+// d ≥ 2z_r at right angles it totals
+// α′/2 (e^{−σ(d−z_r)} + e^{−σ(d−z_r+2z_b)} − e^{−σ(d+z_v)} − e^{−σ(d+z_v+2z_b)}); the exact
+// slab (adding-doubling) carries 1.01-1.05× that in skin1's red from 7 to 25 mm, 1.17-1.28× in
+// green, 1.50-1.86× in blue (render/src/through_gather.rs, docs/BENCHMARKS.md).
 fn through_entry(m: vec4<f32>, sigma: f32, xi: vec3<f32>, ni: vec3<f32>, xo: vec3<f32>, no: vec3<f32>) -> f32 {
     let z_b = 0.5 * (m.w - m.z);
     let real = exit_flux(xi - m.z * ni, xo, no, z_b, sigma, m.z);
