@@ -1,0 +1,93 @@
+"""Where a subsurface model's error sits on one translucency scene, by the reference's luminance
+(docs/BENCHMARKS.md "The transmission gather"): per bin of pixels (share of the reference's
+99th-percentile luminance), the count, the median cosines μ_o = n·v and μ_i = n·l of the
+surface there, the share of the path tracer's light that is single scattering, the model over
+the path tracer per channel, and the bin's mean ΔE2000.
+
+    .venv/bin/python python/translucency_pixel_bins.py --scene hand-skin1-back \
+        --model "--subsurface screen-space-slab --diffuse half-space"
+
+The cosines and the single scattering come from Mitsuba 3 (`scalar_rgb`, runs here) on the scene
+`rouge export mitsuba` writes from the sidecar's options: an `aov` render of the shading normals
+and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model renders with
+`rouge render` and the sidecar's options, `--no-specular`. Needs the release binary.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shlex
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import mitsuba_ref  # noqa: E402
+from reference_noise_floor import delta_e  # noqa: E402
+
+ROOT = HERE.parent
+BINS = [(0.5, None), (0.2, 0.5), (0.05, 0.2), (0.01, 0.05), (0.0, 0.01)]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", required=True, help="sidecar name in --references")
+    ap.add_argument("--references", default=str(ROOT / "data/reference/translucency"))
+    ap.add_argument("--model", required=True, help="rouge render options of the model")
+    ap.add_argument("--spp", type=int, default=64, help="samples per pixel of the single-scattering render")
+    ap.add_argument("--rouge", default=str(ROOT / "target/release/rouge"))
+    args = ap.parse_args()
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    refs = Path(args.references)
+    side = json.loads((refs / f"{args.scene}.json").read_text())
+    ref = mitsuba_ref.read_exr(refs / side["image"])
+    covered, r = ref[..., 3] > 0.999, ref[..., :3]
+    with tempfile.TemporaryDirectory() as tmp:
+        xml = mitsuba_ref.export(args.rouge, side["rouge_options"], "medium", Path(tmp) / "medium")
+        scene = mi.load_file(str(xml))
+        aov = np.array(mi.render(scene, integrator=mi.load_dict({"type": "aov", "aovs": "nn:sh_normal,pp:position"}), spp=4))
+        single = mi.load_dict({"type": "volpathmis", "max_depth": 2, "hide_emitters": True})
+        ss = np.array(mi.render(scene, integrator=single, spp=args.spp))[..., :3]
+        out = Path(tmp) / "model.exr"
+        cmd = [args.rouge, "render", *side["rouge_options"], *shlex.split(args.model), "--no-specular", "--out", str(out)]
+        subprocess.run(cmd, check=True, capture_output=True, cwd=ROOT)
+        model = mitsuba_ref.read_exr(out)[..., :3]
+        sensor = scene.sensors()[0]
+        camera = np.array(sensor.world_transform().translation())
+        emitter = next(e for e in scene.emitters() if e.is_environment() is False)
+        to_light = -np.array(emitter.world_transform() @ mi.Vector3f(0, 0, 1))
+    n, p = aov[..., :3], aov[..., 3:6]
+    v = camera - p
+    v /= np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
+    to_light /= np.linalg.norm(to_light)
+    mu_o, mu_i = (n * v).sum(-1), (n * to_light).sum(-1)
+    lum = r.mean(-1)
+    top = np.percentile(lum[covered], 99)
+    print(f"{args.scene}, {args.model}: mean ΔE2000 {delta_e(model[covered], r[covered]):.2f}")
+    print("| pixels (share of the brightest) | count | μ_o / μ_i (median) | single scattering / path tracer | model / path tracer | ΔE2000 |")
+    print("| --- | ---: | --- | --- | --- | ---: |")
+    for lo, hi in BINS:
+        m = covered & (lum >= lo * top) & (lum < (hi if hi is not None else np.inf) * top)
+        if m.sum() < 5:
+            continue
+        mean = np.maximum(r[m].mean(0), 1e-12)
+        s = ss[m].mean(0) / mean
+        k = model[m].mean(0) / mean
+        name = f"> {lo}" if hi is None else f"{lo}-{hi}"
+        print(
+            f"| {name} | {int(m.sum())} | {np.median(mu_o[m]):.2f} / {np.median(mu_i[m]):.2f} "
+            f"| {s[0]:.2f} / {s[1]:.2f} / {s[2]:.2f} | {k[0]:.2f} / {k[1]:.2f} / {k[2]:.2f} "
+            f"| {delta_e(model[m], r[m]):.1f} |"
+        )
+
+
+if __name__ == "__main__":
+    main()
