@@ -156,6 +156,7 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
     models = {"none", "screen-space", "thickness", "screen-space+thickness", "slab", "screen-space+slab",
+              "slab-gather", "screen-space+slab-gather",
               "directional-dipole", "directional-dipole-mfp", "standard-dipole", "cube-atlas"}
     assert {r["model"] for r in rows} == models
     for r in rows:
@@ -187,6 +188,19 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     assert all("thickness" in r["pass_ms"] for r in slab.values() if r["pass_ms"]), "no thickness pass time"
     kernel_slab = next(r for r in rows if r["model"] == "screen-space+slab")
     assert kernel_slab["rmse"] < slab["half-space"]["rmse"] < none["rmse"], (kernel_slab["rmse"], slab, none["rmse"])
+    # The transmission gather in the slab law's place: timed in the same pass; on a sphere, as wide
+    # as skim milk's light spreads, the law's plane is there and the law is closer
+    # (docs/BENCHMARKS.md "The transmission gather": RMSE 0.018 against 0.033).
+    gather = next(r for r in rows if r["model"] == "slab-gather")
+    kernel_gather = next(r for r in rows if r["model"] == "screen-space+slab-gather")
+    assert gather["params"] == {"diffuse": "half-space"}, gather["params"]
+    assert all("thickness" in r["pass_ms"] for r in (gather, kernel_gather) if r["pass_ms"]), "no thickness pass time"
+    assert kernel_slab["rmse"] < kernel_gather["rmse"], (kernel_slab["rmse"], kernel_gather["rmse"])
+    # The plot again from the rows alone (--replot), without a run.
+    again = tmp_path / "again.png"
+    p = rouge("bench", "translucency", "--replot", str(out), "--plot", str(again), timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert again.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # The cube atlas at its defaults: its two passes timed (the six faces summed), and on skim
     # milk's sphere within the noise of the standard dipole (docs/BENCHMARKS.md: 3.4 and 2.8 ΔE).
     atlas = next(r for r in rows if r["model"] == "cube-atlas")
