@@ -89,6 +89,13 @@ pub enum ProfileModel {
     Burley,
 }
 
+/// z(1 + σ_tr·d)e^{−σ_tr·d}/d³: the flux through a surface of a unit point source of the
+/// diffusion equation at depth (or height) `z_mm` below it and `d_mm` > 0 away, the term of
+/// \[Jensen2001\]'s dipole (the shaders' twin: `point_source_flux` in shaders/diffusion.wgsl).
+pub fn point_source_flux(z_mm: f64, d_mm: f64, sigma_tr: f64) -> f64 {
+    z_mm * (1.0 + sigma_tr * d_mm) * (-sigma_tr * d_mm).exp() / (d_mm * d_mm * d_mm)
+}
+
 impl ProfileModel {
     /// Every model, in the order of the benchmark table.
     pub const ALL: [ProfileModel; 3] = [ProfileModel::ClassicDipole, ProfileModel::BetterDipole, ProfileModel::Burley];
@@ -207,11 +214,9 @@ impl ChannelProfile {
     /// (outward normal `n_i`) and leaving at `x_o`. On a plane (x_o in x_i's tangent plane) it is
     /// [`ChannelProfile::radial`] of |x_o − x_i|. Classic constants whatever `self.model`.
     pub fn classic_between(&self, x_i: [f64; 3], n_i: [f64; 3], x_o: [f64; 3]) -> f64 {
-        let s = self.sigma_tr;
         let flux = |z: f64, side: f64| {
             let d2: f64 = (0..3).map(|k| (x_i[k] + side * z * n_i[k] - x_o[k]).powi(2)).sum();
-            let d = d2.sqrt().max(1e-12);
-            z * (1.0 + s * d) * (-s * d).exp() / (d * d * d)
+            point_source_flux(z, d2.sqrt().max(1e-12), self.sigma_tr)
         };
         self.alpha_prime / (4.0 * PI) * (flux(self.z_r, -1.0) + flux(self.z_v, 1.0))
     }
@@ -268,11 +273,7 @@ impl ChannelProfile {
     pub fn radial(&self, r_mm: f64) -> f64 {
         let r2 = r_mm * r_mm;
         let s = self.sigma_tr;
-        // z(1 + σd)e^{−σd}/d³: the flux of a point source at depth or height z.
-        let flux = |z: f64| {
-            let d = (r2 + z * z).sqrt();
-            z * (1.0 + s * d) * (-s * d).exp() / (d * d * d)
-        };
+        let flux = |z: f64| point_source_flux(z, (r2 + z * z).sqrt(), s);
         let fluence = |z: f64| {
             let d = (r2 + z * z).sqrt();
             (-s * d).exp() / d

@@ -35,6 +35,7 @@
 //! 1.50-1.86× in blue (α′ 0.68); through 2 mm the kernel carries 1.2× the exact slab's red
 //! (docs/BENCHMARKS.md "The transmission gather"; the tests below hold these).
 
+use crate::diffusion::point_source_flux;
 use glam::DVec3;
 
 /// One channel's constants: the classic dipole's (α′ scaled to the exact albedo, σ_tr, z_r, z_v)
@@ -47,13 +48,6 @@ pub struct ThroughChannel {
     pub decay_per_mm: f64,
 }
 
-/// (1 + σd)e^{−σd}/d³ times h: the flux through a plane of a unit point source h below it and d
-/// away.
-fn flux(h: f64, d: f64, sigma: f64) -> f64 {
-    let d = d.max(1e-9);
-    h * (1.0 + sigma * d) * (-sigma * d).exp() / (d * d * d)
-}
-
 /// F(s): a unit source at `s` seen through the exit face at `xo` (outward normal `no`), with its
 /// image across the face's extrapolated boundary `z_b` outside it; distances held at `floor_mm`
 /// (z_r) and above, as the shader's (`exit_flux` in shaders/through.wgsl says why).
@@ -62,8 +56,8 @@ fn exit_flux(s: DVec3, xo: DVec3, no: DVec3, z_b: f64, sigma: f64, floor_mm: f64
     let h = d.dot(no);
     let rho2 = (d.length_squared() - h * h).max(0.0);
     let h_image = h + 2.0 * z_b;
-    flux(h, (rho2 + h * h).sqrt().max(floor_mm), sigma)
-        + flux(h_image, (rho2 + h_image * h_image).sqrt().max(floor_mm), sigma)
+    point_source_flux(h, (rho2 + h * h).sqrt().max(floor_mm), sigma)
+        + point_source_flux(h_image, (rho2 + h_image * h_image).sqrt().max(floor_mm), sigma)
 }
 
 /// K(x_i → x_o) per mm² of entry (module docs).

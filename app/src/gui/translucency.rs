@@ -139,13 +139,13 @@ impl RougeApp {
             SubsurfaceChoice::None => SubsurfaceModel::None,
             SubsurfaceChoice::ThicknessPerLight => thickness_model(false, false),
             SubsurfaceChoice::ScreenSpaceThickness => thickness_model(false, true),
-            SubsurfaceChoice::ScreenSpaceSlab => SubsurfaceModel::Slab {
+            SubsurfaceChoice::ScreenSpaceSlab | SubsurfaceChoice::ScreenSpaceSlabGather => SubsurfaceModel::Slab {
                 kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
-                through: SlabThrough::Law,
-            },
-            SubsurfaceChoice::ScreenSpaceSlabGather => SubsurfaceModel::Slab {
-                kernel: SubsurfaceModel::skin_screen_space().profile().cloned(),
-                through: SlabThrough::Gather,
+                through: if choice == SubsurfaceChoice::ScreenSpaceSlabGather {
+                    SlabThrough::Gather
+                } else {
+                    SlabThrough::Law
+                },
             },
             SubsurfaceChoice::ThicknessBaked => match self.gpu.local_thickness {
                 LocalThicknessState::Ready => thickness_model(true, false),

@@ -346,7 +346,7 @@ impl Planner {
     ) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
         let (params, source) = match &scene.skin.subsurface {
             SubsurfaceModel::Thickness { params, source, .. } => (params, source),
-            SubsurfaceModel::Slab { .. } => return self.slab_model(scene, shadow_maps),
+            SubsurfaceModel::Slab { through, .. } => return self.slab_model(scene, shadow_maps, *through),
             _ => {
                 self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
                 return Ok(None);
@@ -383,7 +383,12 @@ impl Planner {
     }
 
     /// The slab law's thickness pass: the skin's medium, and a light with a shadow map.
-    fn slab_model(&mut self, scene: &Scene, shadow_maps: u32) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
+    fn slab_model(
+        &mut self,
+        scene: &Scene,
+        shadow_maps: u32,
+        through: SlabThrough,
+    ) -> Result<Option<(ThicknessVariant, ThicknessUniform)>> {
         let medium = scene.skin.medium.as_ref().ok_or_else(|| {
             RenderError::Invalid(
                 "the slab model needs the skin's physical medium (--medium, or --sigma-a/--sigma-s/--eta)".into(),
@@ -401,10 +406,6 @@ impl Planner {
         // it reaches and follows in depth.
         let sss = &scene.sss;
         let kernel = scene.skin.subsurface.profile().filter(|_| sss.runs()).map(|p| (sss.reach_mm(p), sss.follow_mm));
-        let through = match &scene.skin.subsurface {
-            SubsurfaceModel::Slab { through, .. } => *through,
-            _ => SlabThrough::Law,
-        };
         Ok(Some((ThicknessVariant::Slab, ThicknessUniform::slab(medium, kernel, through)?)))
     }
 

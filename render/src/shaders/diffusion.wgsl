@@ -15,7 +15,7 @@ fn fresnel_in(cos_i: f32, eta: f32) -> f32 {
 }
 
 // z(1 + σ_tr d)e^{−σ_tr d}/d³: the flux through the surface of a point source at depth (or
-// height) z seen at distance d, the term of [Jensen2001]'s dipole (CPU: diffusion::ChannelProfile).
+// height) z seen at distance d, the term of [Jensen2001]'s dipole (CPU: diffusion::point_source_flux).
 fn point_source_flux(z: f32, d_in: f32, sigma_tr: f32) -> f32 {
     let d = max(d_in, 1e-6);
     return z * (1.0 + sigma_tr * d) * exp(-sigma_tr * d) / (d * d * d);

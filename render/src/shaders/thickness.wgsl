@@ -430,8 +430,8 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             let axes = map_axes(light);
             // The transmission gather, where chosen, takes the light that crossed the mesh to a
             // pixel facing away from a directional light; the slab law takes the rest.
-            let crossed = dot(n, light_arrival(light, world).l) < 0.0;
-            if params.kind.y == 1u && params.gather.z > 0.0 && crossed && light.translucency.w < 0.5 && m.inside {
+            if params.kind.y == 1u && params.gather.z > 0.0 && light.translucency.w < 0.5 && m.inside
+                && dot(n, light_arrival(light, world).l) < 0.0 {
                 // The gather alone, with the transmission kernel (`through_entry3`): every
                 // entry the map holds, no plane assumed. (A point light's perspective map has
                 // no constant texel size for the gather: the slab law serves it.)

@@ -181,12 +181,15 @@ pub(super) fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
 /// and the transmission gather in its place ([`SlabThrough::Gather`]) alone over the half-space
 /// law and under the same kernel.
 pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
-    let alone = |skin: &Skin, diffuse: &str, through: SlabThrough| Config {
-        model: if through == SlabThrough::Gather { "slab-gather" } else { "slab" },
-        params: json!({"diffuse": diffuse}),
-        skin: Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through }, ..skin.clone() },
-        samples: 0,
-        map: ThicknessMap::None,
+    let alone = |skin: &Skin, diffuse: &str, through: SlabThrough| {
+        let subsurface = SubsurfaceModel::Slab { kernel: None, through };
+        Config {
+            model: subsurface.name(),
+            params: json!({"diffuse": diffuse}),
+            skin: Skin { subsurface, ..skin.clone() },
+            samples: 0,
+            map: ThicknessMap::None,
+        }
     };
     let half_space = lambert.clone().half_space();
     let mut out = vec![
@@ -196,13 +199,11 @@ pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
     ];
     if let Some(profile) = combined.subsurface.profile() {
         for through in [SlabThrough::Law, SlabThrough::Gather] {
+            let subsurface = SubsurfaceModel::Slab { kernel: Some(profile.clone()), through };
             out.push(Config {
-                model: if through == SlabThrough::Gather { "screen-space+slab-gather" } else { "screen-space+slab" },
+                model: subsurface.name(),
                 params: json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"}),
-                skin: Skin {
-                    subsurface: SubsurfaceModel::Slab { kernel: Some(profile.clone()), through },
-                    ..combined.clone()
-                },
+                skin: Skin { subsurface, ..combined.clone() },
                 samples: COMBINATION_SAMPLES,
                 map: ThicknessMap::None,
             });
