@@ -11,6 +11,9 @@ The cosines and the single scattering come from Mitsuba 3 (`scalar_rgb`, runs he
 `rouge export mitsuba` writes from the sidecar's options: an `aov` render of the shading normals
 and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model renders with
 `rouge render` and the sidecar's options, `--no-specular`. Needs the release binary.
+
+`--screen-bounce R,G,B` also estimates the light one part's glow gives another by one bounce
+(the fingers facing each other; docs/BENCHMARKS.md "What is left on the hand").
 """
 
 from __future__ import annotations
@@ -42,6 +45,14 @@ def main() -> None:
     ap.add_argument("--model", required=True, help="rouge render options of the model")
     ap.add_argument("--spp", type=int, default=64, help="samples per pixel of the single-scattering render")
     ap.add_argument("--rouge", default=str(ROOT / "target/release/rouge"))
+    ap.add_argument(
+        "--screen-bounce",
+        metavar="R,G,B",
+        help="also estimate the light one body's glow gives another (the fingers facing each other): the "
+        "path tracer's own radiance of the pixels the camera sees, as Lambertian sources, lighting every "
+        "pixel facing away from the light, which sends back that irradiance times the medium's total "
+        "diffuse reflectance R,G,B over π (e.g. 0.60,0.35,0.20 for skin1 at η = 1)",
+    )
     args = ap.parse_args()
     import mitsuba as mi
 
@@ -87,6 +98,68 @@ def main() -> None:
             f"| {s[0]:.2f} / {s[1]:.2f} / {s[2]:.2f} | {k[0]:.2f} / {k[1]:.2f} / {k[2]:.2f} "
             f"| {delta_e(model[m], r[m]):.1f} |"
         )
+    if args.screen_bounce:
+        albedo = np.array([float(x) for x in args.screen_bounce.split(",")])
+        if albedo.shape != (3,) or not np.all((albedo >= 0) & (albedo <= 1)):
+            sys.exit(f"--screen-bounce {args.screen_bounce}: three reflectances in [0, 1], R,G,B")
+        screen_bounce(covered, r, model, n, p, mu_i, albedo)
+
+
+def screen_bounce(covered, r, model, n, p, mu_i, albedo) -> None:
+    """Prints [`bounce_estimate`]'s effect on the model's score and where it is largest."""
+    bounce = bounce_estimate(covered, r, n, p, mu_i, albedo)
+    with_bounce = model + bounce
+    receivers = covered & (mu_i < 0)
+    print()
+    print(f"visible glow's one bounce: mean ΔE2000 {delta_e(model[covered], r[covered]):.2f} → "
+          f"{delta_e(with_bounce[covered], r[covered]):.2f} with it added to the model")
+    print("| pixels facing away from the light | count | path tracer | model | the bounce |")
+    print("| --- | ---: | --- | --- | --- |")
+    rims = receivers & (mu_i < -0.6) & (irradiance_share(bounce, r) > 0.2)
+    for name, m in [("all (μ_i < 0)", receivers), ("where the bounce is over 20% of the path tracer", rims)]:
+        if m.sum() < 5:
+            continue
+        f = lambda a: " / ".join(f"{c:.4f}" for c in a[m].mean(0))  # noqa: E731
+        print(f"| {name} | {int(m.sum())} | {f(r)} | {f(model)} | {f(bounce)} |")
+
+
+def bounce_estimate(covered, r, n, p, mu_i, albedo):
+    """What the camera's visible glow lights by one bounce (see --screen-bounce), per pixel:
+    sources are the covered pixels whose four neighbours are covered, radiance `r`, of area
+    |∂p/∂x × ∂p/∂y| (`p` the positions, mm); receivers every pixel with μ_i < 0, irradiance
+    E = Σ L_j cos θ_i cos θ_j dA_j / r² over the sources more than 1 mm away that face it, no
+    occlusion; the bounce is E · albedo / π. A lower bound on what the path tracer has (faces
+    the camera does not see glow too)."""
+    dx, dy = np.zeros_like(p), np.zeros_like(p)
+    dx[:, 1:-1], dy[1:-1] = (p[:, 2:] - p[:, :-2]) / 2, (p[2:] - p[:-2]) / 2
+    area = np.linalg.norm(np.cross(dx, dy), axis=-1)
+    inner = covered.copy()
+    inner[:, 1:-1] &= covered[:, 2:] & covered[:, :-2]
+    inner[1:-1] &= covered[2:] & covered[:-2]
+    inner[[0, -1]] = False
+    inner[:, [0, -1]] = False
+    lum = r.mean(-1)
+    sources = inner & (lum > 0.02 * np.percentile(lum[covered], 99))
+    src_p, src_n, src_l, src_a = p[sources], n[sources], r[sources], area[sources]
+    receivers = covered & (mu_i < 0)
+    at = np.argwhere(receivers)
+    irradiance = np.zeros((len(at), 3))
+    for k in range(0, len(at), 2000):
+        y, x = at[k : k + 2000, 0], at[k : k + 2000, 1]
+        d = src_p[None] - p[y, x][:, None]
+        dist = np.maximum(np.linalg.norm(d, axis=-1), 1e-9)
+        w = d / dist[..., None]
+        cos_i, cos_j = (n[y, x][:, None] * w).sum(-1), -(src_n[None] * w).sum(-1)
+        g = np.where((cos_i > 0) & (cos_j > 0) & (dist > 1.0), cos_i * cos_j / dist**2, 0.0) * src_a[None]
+        irradiance[k : k + 2000] = g @ src_l
+    bounce = np.zeros_like(r)
+    bounce[receivers] = irradiance * albedo / np.pi
+    return bounce
+
+
+def irradiance_share(bounce, r):
+    """The bounce's red over the path tracer's, per pixel."""
+    return bounce[..., 0] / np.maximum(r[..., 0], 1e-9)
 
 
 if __name__ == "__main__":
