@@ -49,9 +49,16 @@ def main() -> None:
         "--screen-bounce",
         metavar="R,G,B",
         help="also estimate the light one body's glow gives another (the fingers facing each other): the "
-        "path tracer's own radiance of the pixels the camera sees, as Lambertian sources, lighting every "
-        "pixel facing away from the light, which sends back that irradiance times the medium's total "
-        "diffuse reflectance R,G,B over π (e.g. 0.60,0.35,0.20 for skin1 at η = 1)",
+        "radiance of the pixels the camera sees (--bounce-from), as Lambertian sources, lighting every "
+        "pixel, which sends back that irradiance times the medium's total diffuse reflectance R,G,B over π "
+        "(e.g. 0.60,0.35,0.20 for skin1 at η = 1)",
+    )
+    ap.add_argument(
+        "--bounce-from",
+        choices=["reference", "model"],
+        default="reference",
+        help="whose radiance lights the bounce: the path tracer's (what a perfect model would give) or the "
+        "model's own (what a pass inside Rouge would have)",
     )
     args = ap.parse_args()
     import mitsuba as mi
@@ -102,31 +109,37 @@ def main() -> None:
         albedo = np.array([float(x) for x in args.screen_bounce.split(",")])
         if albedo.shape != (3,) or not np.all((albedo >= 0) & (albedo <= 1)):
             sys.exit(f"--screen-bounce {args.screen_bounce}: three reflectances in [0, 1], R,G,B")
-        screen_bounce(covered, r, model, n, p, mu_i, albedo)
+        source = r if args.bounce_from == "reference" else model
+        screen_bounce(covered, r, model, n, p, mu_i, albedo, source)
 
 
-def screen_bounce(covered, r, model, n, p, mu_i, albedo) -> None:
+def screen_bounce(covered, r, model, n, p, mu_i, albedo, source) -> None:
     """Prints [`bounce_estimate`]'s effect on the model's score and where it is largest."""
-    bounce = bounce_estimate(covered, r, n, p, mu_i, albedo)
+    bounce = bounce_estimate(covered, source, n, p, albedo)
     with_bounce = model + bounce
     receivers = covered & (mu_i < 0)
     print()
     print(f"visible glow's one bounce: mean ΔE2000 {delta_e(model[covered], r[covered]):.2f} → "
           f"{delta_e(with_bounce[covered], r[covered]):.2f} with it added to the model")
-    print("| pixels facing away from the light | count | path tracer | model | the bounce |")
+    print("| pixels | count | path tracer | model | the bounce |")
     print("| --- | ---: | --- | --- | --- |")
-    rims = receivers & (mu_i < -0.6) & (irradiance_share(bounce, r) > 0.2)
-    for name, m in [("all (μ_i < 0)", receivers), ("where the bounce is over 20% of the path tracer", rims)]:
+    rims = receivers & (mu_i < -0.6) & (r[..., 0] > 1e-3) & (irradiance_share(bounce, r) > 0.2)
+    rows = [
+        ("all", covered),
+        ("facing away from the light (μ_i < 0)", receivers),
+        ("μ_i < −0.6, lit by the path tracer, where the bounce is over 20% of it", rims),
+    ]
+    for name, m in rows:
         if m.sum() < 5:
             continue
         f = lambda a: " / ".join(f"{c:.4f}" for c in a[m].mean(0))  # noqa: E731
         print(f"| {name} | {int(m.sum())} | {f(r)} | {f(model)} | {f(bounce)} |")
 
 
-def bounce_estimate(covered, r, n, p, mu_i, albedo):
+def bounce_estimate(covered, r, n, p, albedo):
     """What the camera's visible glow lights by one bounce (see --screen-bounce), per pixel:
     sources are the covered pixels whose four neighbours are covered, radiance `r`, of area
-    |∂p/∂x × ∂p/∂y| (`p` the positions, mm); receivers every pixel with μ_i < 0, irradiance
+    |∂p/∂x × ∂p/∂y| (`p` the positions, mm); receivers every covered pixel, irradiance
     E = Σ L_j cos θ_i cos θ_j dA_j / r² over the sources more than 1 mm away that face it, no
     occlusion; the bounce is E · albedo / π. A lower bound on what the path tracer has (faces
     the camera does not see glow too)."""
@@ -141,17 +154,18 @@ def bounce_estimate(covered, r, n, p, mu_i, albedo):
     lum = r.mean(-1)
     sources = inner & (lum > 0.02 * np.percentile(lum[covered], 99))
     src_p, src_n, src_l, src_a = p[sources], n[sources], r[sources], area[sources]
-    receivers = covered & (mu_i < 0)
+    receivers = covered
     at = np.argwhere(receivers)
     irradiance = np.zeros((len(at), 3))
-    for k in range(0, len(at), 2000):
-        y, x = at[k : k + 2000, 0], at[k : k + 2000, 1]
+    chunk = max(1, 4_000_000 // max(len(src_p), 1))
+    for k in range(0, len(at), chunk):
+        y, x = at[k : k + chunk, 0], at[k : k + chunk, 1]
         d = src_p[None] - p[y, x][:, None]
         dist = np.maximum(np.linalg.norm(d, axis=-1), 1e-9)
         w = d / dist[..., None]
         cos_i, cos_j = (n[y, x][:, None] * w).sum(-1), -(src_n[None] * w).sum(-1)
         g = np.where((cos_i > 0) & (cos_j > 0) & (dist > 1.0), cos_i * cos_j / dist**2, 0.0) * src_a[None]
-        irradiance[k : k + 2000] = g @ src_l
+        irradiance[k : k + chunk] = g @ src_l
     bounce = np.zeros_like(r)
     bounce[receivers] = irradiance * albedo / np.pi
     return bounce

@@ -165,4 +165,45 @@ mod tests {
         eprintln!("d 2 mm, red: the kernel {thin:.4}, the exact slab {exact:.4}");
         assert!(thin > 1.1 * exact, "{thin} against {exact}");
     }
+
+    #[test]
+    fn at_the_edges_of_its_domain_the_kernel_is_finite_and_never_negative() {
+        // Every built-in medium (from ketchup's α′ 0.2 in blue to media that barely absorb), and
+        // the degenerate geometry a mesh gives: the entry on the exit, the exit on a source (a
+        // fingertip thinner than z_r), the exit facing the entry or away from it, side-on,
+        // metres apart.
+        for name in rouge_model::medium::BUILTIN_MEDIA {
+            let medium = Medium::builtin(name).expect("built in").with_eta(1.0).expect("η 1");
+            for c in through_channels(&medium) {
+                assert!(c.decay_per_mm.is_finite() && c.decay_per_mm >= 0.0, "{name}: {c:?}");
+                let [_, _, z_r, z_v] = c.classic;
+                let (xi, ni) = (DVec3::ZERO, DVec3::Z);
+                let exits = [
+                    (DVec3::ZERO, DVec3::Z),
+                    (DVec3::ZERO, DVec3::NEG_Z),
+                    (DVec3::new(0.0, 0.0, -z_r), DVec3::NEG_Z),
+                    (DVec3::new(0.0, 0.0, z_v), DVec3::Z),
+                    (DVec3::new(3.0, 0.0, -0.1), DVec3::X),
+                    (DVec3::new(0.0, 0.0, -10.0), DVec3::Z),
+                    (DVec3::new(0.0, 0.0, -2000.0), DVec3::NEG_Z),
+                    (DVec3::new(1e6, 0.0, 0.0), DVec3::NEG_Z),
+                ];
+                let z_b = 0.5 * (z_v - z_r);
+                for (xo, no) in exits {
+                    let k = through_entry(&c, xi, ni, xo, no);
+                    assert!(k.is_finite() && k >= 0.0, "{name}, exit {xo} {no}: {k}");
+                    // Each source's term too: the final clamp would hide a NaN on the CPU, and
+                    // WGSL's max need not.
+                    for s in [xi - z_r * ni, xi + z_v * ni] {
+                        let f = exit_flux(s, xo, no, z_b, c.decay_per_mm, z_r);
+                        assert!(f.is_finite(), "{name}, source {s}, exit {xo} {no}: {f}");
+                    }
+                }
+                for d in [0.0, 1e-6, 1.0, 1e3, 1e6] {
+                    let t = plane_total(&c, d);
+                    assert!(t.is_finite(), "{name}, d {d}: {t}");
+                }
+            }
+        }
+    }
 }
