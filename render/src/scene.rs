@@ -258,7 +258,8 @@ pub enum SlabThrough {
     /// light's map holds, carried to the pixel by the classic dipole's sources seen through the
     /// exit face with its boundary image, at the medium's exact decay rate. No plane assumed:
     /// best across a body narrower than the light spreads (a finger: the backlit hand 3.44 →
-    /// 2.35); diffusion, so it misses a low albedo's thin slab (the ketchup wedge).
+    /// 2.17 ΔE2000); diffusion, so it misses a low albedo's thin slab (the ketchup wedge). Its
+    /// gather takes [`crate::slab_transmittance::TRANSMISSION_GATHER_SAMPLES`] samples.
     Gather,
 }
 
@@ -268,6 +269,14 @@ impl SlabThrough {
         match self {
             SlabThrough::Law => 0,
             SlabThrough::Gather => 1,
+        }
+    }
+
+    /// The gather's samples per pixel and light under this choice.
+    pub fn gather_samples(self) -> u32 {
+        match self {
+            SlabThrough::Law => crate::slab_transmittance::HIDDEN_ENTRY_SAMPLES,
+            SlabThrough::Gather => crate::slab_transmittance::TRANSMISSION_GATHER_SAMPLES,
         }
     }
 }

@@ -149,19 +149,23 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
         }
         SubsurfaceModel::Slab { through, .. } => {
             if *through == SlabThrough::Gather {
-                out.push_str(
+                let _ = write!(
+                    out,
                     " (the light that crossed the mesh to a pixel facing away from a directional light: every entry in \
                      its shadow map within the medium's reach, carried by the classic dipole seen through the exit \
-                     face with its boundary image, at the medium's exact decay rate, 32 samples; elsewhere",
+                     face with its boundary image, at the medium's exact decay rate, {} samples; elsewhere",
+                    through.gather_samples()
                 );
             }
-            out.push_str(
+            let _ = write!(
+                out,
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
                  and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
                  face it entered from the map's slope; exact at η = 1; beside it, for directional lights, the light \
                  entering within the medium's reach that neither the lighting nor the kernel carries (faces the \
                  camera does not see, and seen ones beyond the kernel's reach or depth), from the map, carried by \
-                 the classic dipole (32 samples)",
+                 the classic dipole ({} samples)",
+                through.gather_samples()
             );
             match &skin.medium {
                 Some(m) if m.eta != 1.0 => {
