@@ -26,8 +26,8 @@ def test_one_source_pixel_lights_a_facing_pixel_by_the_inverse_square_law():
     albedo = np.array([0.6, 0.35, 0.2])
     bounce = bounce_estimate(covered, r, n, p, albedo)
     np.testing.assert_allclose(bounce[4, 4], albedo / 25.0 / np.pi, rtol=1e-9)
-    # The sources, side by side in one plane, light each other not at all, and turning the receiver away from the
-    # source leaves it dark.
+    # The sources, side by side in one plane, light each other not at all, and turning the
+    # receiver away from the source leaves it dark.
     assert np.all(bounce[2, 2] == 0)
     n[4, 4] = (0, 0, 1)
     assert np.all(bounce_estimate(covered, r, n, p, albedo)[4, 4] == 0)

@@ -13,7 +13,7 @@ and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model
 `rouge render` and the sidecar's options, `--no-specular`. Needs the release binary.
 
 `--screen-bounce R,G,B` also estimates the light one part's glow gives another by one bounce
-(the fingers facing each other; docs/BENCHMARKS.md "What is left on the hand").
+(the fingers facing each other; docs/BENCHMARKS.md "The next try, measured").
 """
 
 from __future__ import annotations
@@ -123,7 +123,7 @@ def screen_bounce(covered, r, model, n, p, mu_i, albedo, source) -> None:
           f"{delta_e(with_bounce[covered], r[covered]):.2f} with it added to the model")
     print("| pixels | count | path tracer | model | the bounce |")
     print("| --- | ---: | --- | --- | --- |")
-    rims = receivers & (mu_i < -0.6) & (r[..., 0] > 1e-3) & (irradiance_share(bounce, r) > 0.2)
+    rims = receivers & (mu_i < -0.6) & (r[..., 0] > 1e-3) & (bounce[..., 0] > 0.2 * r[..., 0])
     rows = [
         ("all", covered),
         ("facing away from the light (μ_i < 0)", receivers),
@@ -154,8 +154,7 @@ def bounce_estimate(covered, r, n, p, albedo):
     lum = r.mean(-1)
     sources = inner & (lum > 0.02 * np.percentile(lum[covered], 99))
     src_p, src_n, src_l, src_a = p[sources], n[sources], r[sources], area[sources]
-    receivers = covered
-    at = np.argwhere(receivers)
+    at = np.argwhere(covered)
     irradiance = np.zeros((len(at), 3))
     chunk = max(1, 4_000_000 // max(len(src_p), 1))
     for k in range(0, len(at), chunk):
@@ -167,13 +166,8 @@ def bounce_estimate(covered, r, n, p, albedo):
         g = np.where((cos_i > 0) & (cos_j > 0) & (dist > 1.0), cos_i * cos_j / dist**2, 0.0) * src_a[None]
         irradiance[k : k + chunk] = g @ src_l
     bounce = np.zeros_like(r)
-    bounce[receivers] = irradiance * albedo / np.pi
+    bounce[covered] = irradiance * albedo / np.pi
     return bounce
-
-
-def irradiance_share(bounce, r):
-    """The bounce's red over the path tracer's, per pixel."""
-    return bounce[..., 0] / np.maximum(r[..., 0], 1e-9)
 
 
 if __name__ == "__main__":

@@ -289,7 +289,7 @@ pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 80.0;
 
 /// The hidden-entry gather's constants for `medium` (shaders/thickness.wgsl `hidden_entry`, run
 /// with the slab law): the classic dipole per channel (α′, σ_tr, z_r, z_v), and (η, reach mm,
-/// samples, the radii's sampling rate mm⁻¹). The gather takes the light that entered the mesh
+/// `samples` per pixel and light, the radii's sampling rate mm⁻¹). The gather takes the light that entered the mesh
 /// near a pixel on faces the camera does not see, and on faces it sees that the screen-space
 /// kernel does not carry (beyond its reach or depth, or all of them where no kernel runs) or
 /// undercounts (by the view's cosine), beyond what the lighting pass's law already assumed
@@ -297,7 +297,7 @@ pub const HIDDEN_ENTRY_MAX_REACH_MM: f64 = 80.0;
 ///
 /// The dipole's prefactor α′ is scaled by [`hidden_entry_albedo_scale`], so that R(r)'s total is
 /// the medium's exact albedo, as the kernel's is (issue 31 item 1).
-pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
+pub fn hidden_entry_constants(medium: &Medium, samples: u32) -> ([[f32; 4]; 3], [f32; 4]) {
     let profiles = medium_profiles(medium, ProfileModel::ClassicDipole);
     let scale = hidden_entry_albedo_scale(medium, &profiles);
     let constants: [[f32; 4]; 3] = std::array::from_fn(|c| {
@@ -308,7 +308,7 @@ pub fn hidden_entry_constants(medium: &Medium) -> ([[f32; 4]; 3], [f32; 4]) {
     let sigma_tr = profiles.iter().map(|p| p.classic_constants()[1]).fold(f64::INFINITY, f64::min);
     let reach = (HIDDEN_ENTRY_REACH_LENGTHS / sigma_tr).min(HIDDEN_ENTRY_MAX_REACH_MM);
     let rate = sigma_tr.max(HIDDEN_ENTRY_REACH_LENGTHS / reach);
-    (constants, [medium.eta as f32, reach as f32, HIDDEN_ENTRY_SAMPLES as f32, rate as f32])
+    (constants, [medium.eta as f32, reach as f32, samples as f32, rate as f32])
 }
 
 /// Per channel, the medium's exact albedo (its half-space's reflectance at normal incidence by
@@ -342,7 +342,7 @@ mod tests {
         }
         // The constants carry it in the prefactor α′.
         let medium = Medium::builtin("ketchup").expect("ketchup").with_eta(1.0).expect("η 1");
-        let (k, _) = hidden_entry_constants(&medium);
+        let (k, _) = hidden_entry_constants(&medium, HIDDEN_ENTRY_SAMPLES);
         let alpha = medium.reduced_albedo();
         let scale = hidden_entry_albedo_scale(&medium, &medium_profiles(&medium, ProfileModel::ClassicDipole));
         for c in 0..3 {

@@ -93,7 +93,8 @@ pub fn exact_slab_total(alpha_prime: f64, tau: f64) -> Option<f64> {
 /// The gather's constants of `medium` per channel, as the thickness pass's uniform holds them
 /// (`gather_medium`, and κσt′ from `slab_kappa` and `slab_sigma_t`).
 pub fn through_channels(medium: &rouge_model::medium::Medium) -> [ThroughChannel; 3] {
-    let (classic, _) = crate::slab_transmittance::hidden_entry_constants(medium);
+    let samples = crate::slab_transmittance::TRANSMISSION_GATHER_SAMPLES;
+    let (classic, _) = crate::slab_transmittance::hidden_entry_constants(medium, samples);
     let alpha = medium.reduced_albedo();
     let sigma_t = medium.sigma_t_prime_per_mm();
     std::array::from_fn(|c| ThroughChannel {

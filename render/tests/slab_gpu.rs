@@ -416,7 +416,8 @@ fn the_transmission_gather_through_the_backlit_wedge_is_its_kernels_integral() {
     // The front face's middle, 6 mm in front of the slanted back face (as in the slab law's test).
     let at = Vec3::new(-8.0, 0.0, 7.5);
     let channels = through_channels(&medium);
-    let reach = rouge_render::slab_transmittance::hidden_entry_constants(&medium).1[1] as f64;
+    let samples = rouge_render::slab_transmittance::TRANSMISSION_GATHER_SAMPLES;
+    let reach = rouge_render::slab_transmittance::hidden_entry_constants(&medium, samples).1[1] as f64;
     // ∫ K(x_i → at) dA⊥ over the light's map within the gather's reach, polar quadrature; every
     // column's entry is where it meets the wedge nearest the light.
     let (right, up) = (l.any_orthonormal_vector(), l.cross(l.any_orthonormal_vector()));

@@ -89,8 +89,7 @@ impl ThicknessUniform {
             )));
         }
         let rgb = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
-        let (gather_medium, mut gather) = slab_transmittance::hidden_entry_constants(medium);
-        gather[2] = through.gather_samples() as f32;
+        let (gather_medium, gather) = slab_transmittance::hidden_entry_constants(medium, through.gather_samples());
         let mut materials = [[0.0; 4]; MATERIAL_IDS];
         materials[SKIN_MATERIAL_ID] = [0.0, 1.0, 0.0, 0.0];
         Ok(ThicknessUniform {
