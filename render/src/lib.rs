@@ -24,6 +24,7 @@
 
 pub mod aa;
 pub mod aa_study;
+pub mod bounce;
 pub mod cube_atlas;
 pub mod curved_half_space;
 pub mod dielectric_brdf;

@@ -35,6 +35,8 @@ pub use readback::{FrameCapture, FrameDepth, ThicknessImage};
 struct LastFrame {
     variant: Variant,
     sss_ran: bool,
+    /// The bounce pass ran ([`crate::Target::Bounced`] holds the skin radiance composed).
+    bounce_ran: bool,
     view: FrameView,
     /// The depth buffer, read once per frame on the first pick.
     depth: std::sync::Mutex<Option<std::sync::Arc<Vec<f32>>>>,
@@ -531,7 +533,14 @@ impl Renderer {
             None => Vec::new(),
         };
         let variant = plan.variant;
-        *last = Some(LastFrame { variant, sss_ran: plan.kernel.is_some(), view, depth: std::sync::Mutex::new(None) });
+        let bounce_ran = plan.targets.contains(&crate::targets::Target::Bounced);
+        *last = Some(LastFrame {
+            variant,
+            sss_ran: plan.kernel.is_some(),
+            bounce_ran,
+            view,
+            depth: std::sync::Mutex::new(None),
+        });
         let out = if variant.display { Target::Display } else { Target::Linear };
         targets.get(out).cloned().ok_or_else(|| RenderError::Gpu("the output target was not created".into()))
     }

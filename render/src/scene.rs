@@ -477,6 +477,9 @@ pub struct Scene {
     pub skin: Skin,
     /// Scattering.
     pub sss: SssSettings,
+    /// One bounce of the skin's glow between parts that face each other ([`crate::bounce`]);
+    /// `None`: no bounce pass.
+    pub bounce: Option<crate::bounce::BounceSettings>,
     /// Specular lobes on (skin and layers).
     pub specular: bool,
     /// Exposure applied before tone mapping (display output only).
@@ -513,6 +516,7 @@ impl Scene {
             environment: Some(ShIrradiance::studio()),
             skin: Skin::default(),
             sss: SssSettings::default(),
+            bounce: None,
             specular: true,
             exposure: 1.0,
             background: [0.16, 0.17, 0.19],

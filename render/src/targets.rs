@@ -128,6 +128,10 @@ pub enum Target {
     SssScratch,
     /// Skin radiance after scattering.
     Scattered,
+    /// The irradiance of one bounce between facing parts, per pixel (the bounce pass's gather).
+    BounceLight,
+    /// Skin radiance with one bounce between facing parts added (the bounce pass's output).
+    Bounced,
     /// Radiance that leaves at the surface.
     Surface,
     /// Transmittance of the cosmetic stack toward the viewer.
@@ -154,6 +158,8 @@ impl Target {
             Target::Diffuse => "diffuse",
             Target::SssScratch => "sss scratch",
             Target::Scattered => "scattered",
+            Target::BounceLight => "bounce light",
+            Target::Bounced => "bounced",
             Target::Surface => "surface",
             Target::ExitT => "exit T",
             Target::Display => "display",
@@ -217,6 +223,8 @@ impl TargetPool {
                     target,
                     Target::SssScratch
                         | Target::Scattered
+                        | Target::BounceLight
+                        | Target::Bounced
                         | Target::Diffuse
                         | Target::Surface
                         | Target::ExitT

@@ -2,6 +2,7 @@
 //! (one compile and link of the crate and its dependencies for all of them; see tests/run.sh).
 //! Run one file's tests with `cargo test -p rouge-render --test render <file>::`.
 
+mod bounce_gpu;
 mod common;
 mod cube_atlas_gpu;
 mod curved_half_space;

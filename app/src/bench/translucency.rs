@@ -88,12 +88,15 @@ enum ThicknessMap {
 }
 
 /// One configuration of a scene.
+#[derive(Clone)]
 struct Config {
     model: &'static str,
     params: serde_json::Value,
     skin: Skin,
     samples: u32,
     map: ThicknessMap,
+    /// The bounce between facing parts, when the row has it.
+    bounce: Option<rouge_render::bounce::BounceSettings>,
 }
 
 /// One row of the table (../shared/DESIGN.md).
@@ -236,7 +239,14 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             continue;
         }
         let mut configs: Vec<Config> = Vec::new();
-        let plain = |model, params, skin, samples| Config { model, params, skin, samples, map: ThicknessMap::None };
+        let plain = |model, params, skin, samples| Config {
+            model,
+            params,
+            skin,
+            samples,
+            map: ThicknessMap::None,
+            bounce: None,
+        };
         for &law in &args.diffuse {
             let half = law == Diffuse::HalfSpace;
             let with_law = |skin: Skin| if half { skin.half_space() } else { skin.lambert() };
@@ -268,10 +278,11 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
         configs.extend(slab_configs(&better, &combined));
         configs.extend(dipole_configs(&better, args.dipole_sweep));
         configs.extend(atlas_configs(&better, args.atlas_sweep));
-        for Config { model, params, skin, samples, map } in configs {
+        for Config { model, params, skin, samples, map, bounce } in configs {
             prepared.renderer.set_mesh(&loaded.mesh, skin.albedo)?;
             upload(&mut prepared, map)?;
             prepared.scene.skin = skin;
+            prepared.scene.bounce = bounce;
             if samples > 0 {
                 prepared.scene.sss.samples = samples;
             }
@@ -348,6 +359,8 @@ fn square_label(r: &Row) -> Option<String> {
         "screen-space+slab" => Some("kernel + slab law".to_string()),
         "slab-gather" => Some(format!("transmission gather, {}", text("diffuse"))),
         "screen-space+slab-gather" => Some("kernel + transmission gather".to_string()),
+        "screen-space+slab+bounce" => Some("kernel + slab law + bounce".to_string()),
+        "screen-space+slab-gather+bounce" => Some("kernel + transmission gather + bounce".to_string()),
         "directional-dipole" | "directional-dipole-mfp" | "standard-dipole" => {
             Some(format!("{} N{} K{}", r.model, number("samples"), number("directions")))
         }

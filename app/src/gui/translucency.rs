@@ -7,7 +7,8 @@
 //! background thread (cached on disk by mesh: instant the second time); until it lands the
 //! viewport keeps the screen-space kernel and says so. Under the model, a checkbox chooses how
 //! the skin returns light by angle: Lambert, or the exact half-space under its surface
-//! ([`rouge_render::dielectric_brdf`]); both are saved with the project.
+//! ([`rouge_render::dielectric_brdf`]); both are saved with the project. A second checkbox adds
+//! the light between surfaces ([`rouge_render::bounce`]), a view setting like the environment.
 //!
 //! The app's skin is not a measured medium, so the translucency takes skin1's coefficients
 //! (\[Jensen2001\]: its σ_tr falloff) and the parameters fitted to the path tracer for skin1.
@@ -197,6 +198,19 @@ impl RougeApp {
             .changed();
         if toggled {
             self.set_diffuse(if exact { DiffuseChoice::HalfSpace } else { DiffuseChoice::Lambert });
+        }
+        let mut bounce = self.view.scene.bounce.is_some();
+        let toggled = ui
+            .checkbox(&mut bounce, "Light between surfaces")
+            .on_hover_text(
+                "One bounce of the skin's glow onto the skin facing it: the nose lit by the cheek, the \
+                 sides of the fingers by each other. Screen space: only what the viewport shows glows. \
+                 A view setting, not saved.",
+            )
+            .changed();
+        if toggled {
+            self.view.scene.bounce = bounce.then(rouge_render::bounce::BounceSettings::default);
+            self.view.needs_render = true;
         }
         if chosen == SubsurfaceChoice::CubeAtlas {
             self.morph_controls(ui);

@@ -12,7 +12,8 @@
 //!
 //! [`FramePlan::new`] reads like the frame: validation, then one stage per part of it
 //! (`stages.rs`): shadows, the subsurface model's settings, the variant, the G-buffer, lighting,
-//! the subsurface model's passes, the hair, composition, edge overdraw. The render targets are the ones
+//! the subsurface model's passes, the bounce between facing parts, the blur, the hair,
+//! composition, edge overdraw. The render targets are the ones
 //! the passes read or write.
 
 mod explain;
@@ -206,7 +207,8 @@ impl FramePlan {
     ///
     /// # Errors
     /// [`RenderError::Invalid`] for a zero or oversized image, too many lights, a negative or
-    /// non-finite SSS width, or an SSS sample count or range the kernel refuses.
+    /// non-finite SSS width, an SSS sample count or range the kernel refuses, or bounce settings
+    /// out of range.
     pub fn new(scene: &Scene, uploaded: Uploaded, settings: FrameSettings) -> Result<FramePlan> {
         validate(scene, settings)?;
         let mut plan = stages::Planner::default();
@@ -243,9 +245,11 @@ impl FramePlan {
         let half_space = plan.half_space_law(scene, variant.normal_map || variant.skin_detail)?;
         plan.lighting(variant, uploaded.glitter, half_space);
         plan.subsurface_passes(variant, models);
-        let kernel = plan.screen_space(scene)?;
+        let skin = plan.bounce(scene, variant)?;
+        let kernel = plan.screen_space(scene, skin)?;
+        let skin = if kernel.is_some() { Target::Scattered } else { skin };
         plan.hair(variant, uploaded.hair_strands, settings.hair_aa);
-        plan.composite(variant, kernel.is_some());
+        plan.composite(variant, skin);
         plan.edge_overdraw(settings.aa, variant.display);
         let targets = plan.targets();
         Ok(FramePlan {

@@ -14,7 +14,7 @@ use crate::passes::lighting::LightingStep;
 use crate::passes::shadow::ShadowStep;
 use crate::passes::sss::{Direction, SssStep};
 use crate::passes::thickness::ThicknessUniform;
-use crate::passes::{composite, gbuffer, lighting, skin_gather, thickness};
+use crate::passes::{bounce, composite, gbuffer, lighting, skin_gather, thickness};
 use crate::scene::{DiffuseLaw, LightKind, Scene, SlabThrough, SubsurfaceModel};
 use crate::shader::{ThicknessVariant, Variant};
 use crate::sss::SeparableKernel;
@@ -245,9 +245,9 @@ impl Planner {
         }
     }
 
-    /// The screen-space blur when the skin's model is screen-space and the width is not 0; its
-    /// kernel, or why it does not run.
-    pub fn screen_space(&mut self, scene: &Scene) -> Result<Option<SeparableKernel>> {
+    /// The screen-space blur of `skin` (the diffuse or bounced radiance) when the skin's model is
+    /// screen-space and the width is not 0; its kernel, or why it does not run.
+    pub fn screen_space(&mut self, scene: &Scene, skin: Target) -> Result<Option<SeparableKernel>> {
         let Some(profile) = scene.skin.subsurface.profile() else {
             self.skip("SSS passes", format!("the skin's subsurface model is {}", scene.skin.subsurface.name()));
             return Ok(None);
@@ -259,8 +259,8 @@ impl Planner {
             return Ok(None);
         }
         for direction in [Direction::Horizontal, Direction::Vertical] {
-            let (src, dst) = direction.targets();
-            let step = SssStep::new(direction, &kernel, sss.width, sss.follow_mm, sss.samples);
+            let (src, dst) = direction.targets(skin);
+            let step = SssStep::new((direction, skin), &kernel, sss.width, sss.follow_mm, sss.samples);
             self.push(Step::Sss(step), targets(&[src, Target::Depth]), vec![(Resource::Target(dst), Access::Replace)]);
         }
         Ok(Some(kernel))
@@ -285,9 +285,31 @@ impl Planner {
         );
     }
 
-    /// Composition of the skin radiance (scattered when the blur ran) with the surface radiance.
-    pub fn composite(&mut self, variant: Variant, scattered: bool) {
-        let skin = if scattered { Target::Scattered } else { Target::Diffuse };
+    /// The bounce between facing parts when the scene asks for it (settings checked), adding to
+    /// the skin's diffuse radiance before the blur, which spreads the bounced light as it does
+    /// the light that entered from the lights and averages the bounce's per-pixel noise; returns
+    /// the skin radiance the blur or the composite reads.
+    ///
+    /// # Errors
+    /// [`RenderError::Invalid`] for settings out of range.
+    pub fn bounce(&mut self, scene: &Scene, variant: Variant) -> Result<Target> {
+        let Some(settings) = scene.bounce else {
+            self.skip("bounce pass and its targets", "light between surfaces is off");
+            return Ok(Target::Diffuse);
+        };
+        settings.check()?;
+        let mut reads = bounce::inputs().to_vec();
+        if variant.layers > 0 {
+            reads.push(Target::ExitT);
+        }
+        let writes = [Target::BounceLight, Target::Bounced].map(|t| (Resource::Target(t), Access::Replace)).to_vec();
+        self.push(Step::Bounce(settings), targets(&reads), writes);
+        Ok(Target::Bounced)
+    }
+
+    /// Composition of the skin radiance `skin` (diffuse, scattered or bounced) with the surface
+    /// radiance.
+    pub fn composite(&mut self, variant: Variant, skin: Target) {
         let mut reads = vec![skin, Target::Surface, Target::Normal];
         if variant.layers > 0 {
             reads.push(Target::ExitT);

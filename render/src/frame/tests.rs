@@ -275,3 +275,32 @@ fn the_half_space_law_and_its_curvature_term_are_planned_only_where_they_apply()
     let err = FramePlan::new(&scene, up, settings()).expect_err("η 3.5").to_string();
     assert!(err.contains("3.5"), "{err}");
 }
+
+#[test]
+fn the_bounce_runs_only_when_asked_and_the_blur_reads_its_output() {
+    let mut scene = Scene::studio();
+    let plan = FramePlan::new(&scene, uploaded(3), settings()).expect("plan");
+    assert!(!plan.targets.contains(&Target::Bounced) && !plan.targets.contains(&Target::BounceLight));
+    assert!(plan.explain().contains("bounce pass and its targets: light between surfaces is off"));
+    scene.bounce = Some(crate::bounce::BounceSettings::default());
+    let plan = FramePlan::new(&scene, uploaded(3), settings()).expect("plan");
+    assert_eq!(
+        steps(&plan),
+        ["shadow 0", "gbuffer", "lighting", "bounce", "sss horizontal", "sss vertical", "composite"]
+    );
+    // It adds to the diffuse radiance, and reads the stack's T of the 3 layers; the blur starts
+    // from its output.
+    for r in [Target::Diffuse, Target::Normal, Target::Albedo, Target::Depth, Target::ExitT] {
+        assert!(read(&plan, 3, Resource::Target(r)), "{r:?}");
+    }
+    assert!(read(&plan, 4, Resource::Target(Target::Bounced)) && !read(&plan, 4, Resource::Target(Target::Diffuse)));
+    assert_eq!(plan.passes[6].step, Step::Composite(Target::Scattered));
+    // Without the blur, the composite reads it.
+    scene.skin.subsurface = SubsurfaceModel::None;
+    let plan = FramePlan::new(&scene, uploaded(0), settings()).expect("plan");
+    assert!(!read(&plan, 3, Resource::Target(Target::ExitT)));
+    assert_eq!(plan.passes[4].step, Step::Composite(Target::Bounced));
+    scene.bounce = Some(crate::bounce::BounceSettings { samples: 0, ..Default::default() });
+    let e = FramePlan::new(&scene, uploaded(0), settings()).expect_err("no samples").to_string();
+    assert!(e.contains("bounce samples 0"), "{e}");
+}

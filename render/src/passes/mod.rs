@@ -13,6 +13,7 @@
 //!
 //! How to add a pass: docs/ARCHITECTURE.md, "How to add a pass".
 
+pub mod bounce;
 pub mod composite;
 pub mod cube_atlas;
 pub mod depth_copy;
@@ -120,6 +121,8 @@ frame_passes! {
     AtlasGather => atlas_gather: cube_atlas::gather::AtlasGatherPass,
     /// One direction of the screen-space scattering blur.
     Sss => sss: sss::SssPass,
+    /// One bounce of the skin's glow between parts that face each other.
+    Bounce => bounce: bounce::BouncePass,
     /// The lashes and brows as fibres, into the hair target the composite lays over the frame.
     Hair => hair: hair::HairPass,
     /// Composition of the skin radiance (diffuse or scattered) with the surface radiance.

@@ -28,7 +28,7 @@ pub struct SssUniform {
 /// The blur's direction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Direction {
-    /// Along x: diffuse → scratch.
+    /// Along x: the skin radiance (diffuse or bounced) → scratch.
     Horizontal,
     /// Along y: scratch → scattered.
     Vertical,
@@ -42,10 +42,11 @@ impl Direction {
         }
     }
 
-    /// Input and output targets.
-    pub fn targets(self) -> (Target, Target) {
+    /// Input and output targets, the horizontal pass reading `skin` (the diffuse radiance, or
+    /// the bounced one when the bounce ran).
+    pub fn targets(self, skin: Target) -> (Target, Target) {
         match self {
-            Direction::Horizontal => (Target::Diffuse, Target::SssScratch),
+            Direction::Horizontal => (skin, Target::SssScratch),
             Direction::Vertical => (Target::SssScratch, Target::Scattered),
         }
     }
@@ -72,19 +73,28 @@ pub struct SssPass {
 pub struct SssStep {
     /// The direction.
     pub direction: Direction,
+    /// The skin radiance the blur starts from ([`Direction::targets`]).
+    pub skin: Target,
     /// Its uniform: the kernel's samples, the width and the depth following.
     pub uniform: SssUniform,
 }
 
 impl SssStep {
-    /// The step of `direction`: `kernel` scaled by `width`, `follow_mm` of depth, `count` samples.
-    pub fn new(direction: Direction, kernel: &SeparableKernel, width: f32, follow_mm: f32, count: u32) -> SssStep {
+    /// The step of `direction` from the skin radiance `skin`: `kernel` scaled by `width`,
+    /// `follow_mm` of depth, `count` samples.
+    pub fn new(
+        (direction, skin): (Direction, Target),
+        kernel: &SeparableKernel,
+        width: f32,
+        follow_mm: f32,
+        count: u32,
+    ) -> SssStep {
         let [x, y] = match direction {
             Direction::Horizontal => [1.0, 0.0],
             Direction::Vertical => [0.0, 1.0],
         };
         let uniform = SssUniform { dir: [x, y, width, follow_mm], count: [count, 0, 0, 0], samples: kernel.to_gpu() };
-        SssStep { direction, uniform }
+        SssStep { direction, skin, uniform }
     }
 }
 
@@ -126,7 +136,7 @@ impl FramePass for SssPass {
         shared.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&step.uniform));
         let pipeline =
             self.pipelines.get_or_build_compute(shared, (&Self::SHADER, Variant::BARE), &self.layout, "cs_sss")?;
-        let (src, dst) = direction.targets();
+        let (src, dst) = direction.targets(step.skin);
         let (src, dst, depth) = (targets.view(src)?, targets.view(dst)?, targets.view(Target::Depth)?);
         let group = shared.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("SssPass::group"),

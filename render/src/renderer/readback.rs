@@ -20,6 +20,11 @@ pub struct FrameCapture {
     pub diffuse: Vec<[f32; 4]>,
     /// Skin radiance after scattering (equal to `diffuse` when the blur did not run).
     pub scattered: Vec<[f32; 4]>,
+    /// Skin radiance with the bounce between facing parts added, when the bounce pass ran
+    /// ([`crate::bounce`]).
+    pub bounced: Option<Vec<[f32; 4]>>,
+    /// World normal (w: coverage).
+    pub normal: Vec<[f32; 4]>,
     /// Surface radiance.
     pub surface: Vec<[f32; 4]>,
     /// Stack transmittance (1 without layers).
@@ -213,6 +218,7 @@ impl Renderer {
             |target: Target| -> Result<Vec<[f32; 4]>> { Ok(crate::wgpu_util::halves_to_f32(&self.read(target, 8)?)) };
         let diffuse = half4(Target::Diffuse)?;
         let scattered = if last.sss_ran { half4(Target::Scattered)? } else { diffuse.clone() };
+        let bounced = if last.bounce_ran { Some(half4(Target::Bounced)?) } else { None };
         let layers = last.variant.layers;
         let exit_t = if layers > 0 { half4(Target::ExitT)? } else { vec![[1.0; 4]; diffuse.len()] };
         let thickness = if layers > 0 { half4(Target::ThicknessA)? } else { vec![[0.0; 4]; diffuse.len()] };
@@ -225,6 +231,8 @@ impl Renderer {
             height: h as usize,
             diffuse,
             scattered,
+            bounced,
+            normal: half4(Target::Normal)?,
             surface: half4(Target::Surface)?,
             exit_t,
             thickness,

@@ -64,9 +64,9 @@ fn every_shader_variant_validates() {
     // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants (the
     // slab law's is the shadow map's), and the 8 with layers again with glitter; thickness: 4; lighting: 9 × shadows × env × 3
     // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display × hair;
-    // shadow, SSS, depth copy, edge overdraw, the three dipole passes and the atlas gather: 1
-    // each; the atlas irradiance and the hair: shadows × env.
-    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 4 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 4 + 4;
+    // shadow, SSS, depth copy, edge overdraw, the three dipole passes, the atlas gather and the
+    // bounce: 1 each; the atlas irradiance and the hair: shadows × env.
+    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 4 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 1 + 4 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 
@@ -152,6 +152,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
     let hair = parse(&crate::passes::hair::HairPass::SHADER, variant);
     let dipole = parse(&DipoleRadiancePass::SHADER, variant);
     let atlas = parse(&AtlasGatherPass::SHADER, variant);
+    let bounce = parse(&crate::passes::bounce::BouncePass::SHADER, variant);
     for (name, size, fields) in uniform_layouts() {
         let module = match name {
             "SssPass" => &sss,
@@ -160,6 +161,7 @@ fn rust_and_wgsl_uniform_layouts_match() {
             "HairPass" => &hair,
             "DipolePass" => &dipole,
             "AtlasPass" => &atlas,
+            "BouncePass" => &bounce,
             _ => &lighting,
         };
         let mut layouter = naga::proc::Layouter::default();
@@ -184,9 +186,11 @@ type UniformLayout = (&'static str, usize, Vec<(&'static str, usize)>);
 
 /// Field offsets of the uniforms, for the layout test against naga's view of the WGSL.
 fn uniform_layouts() -> Vec<UniformLayout> {
+    use crate::passes::bounce::BounceUniform;
     use crate::passes::hair::HairUniform;
     use std::mem::{offset_of, size_of};
     vec![
+        ("BouncePass", size_of::<BounceUniform>(), vec![("params", offset_of!(BounceUniform, params))]),
         (
             "HairPass",
             size_of::<HairUniform>(),

@@ -2,6 +2,7 @@
 
 use super::{Config, ThicknessMap};
 use rouge_model::medium::Medium;
+use rouge_render::bounce::BounceSettings;
 use rouge_render::cube_atlas::{AtlasSettings, GlobalTerm, OcclusionTest, Reach};
 use rouge_render::local_thickness::{ThicknessSource, TranslucencyParams};
 use rouge_render::{DipoleKind, DipoleSettings};
@@ -44,7 +45,7 @@ pub(super) fn thickness_configs(
                     subsurface: SubsurfaceModel::Thickness { params, source: source.clone(), kernel: None },
                     ..skin.clone()
                 };
-                out.push(Config { model: "thickness", params: p, skin, samples: 0, map });
+                out.push(Config { model: "thickness", params: p, skin, samples: 0, map, bounce: None });
             }
         }
     }
@@ -108,6 +109,7 @@ pub(super) fn combination_configs(
                 skin: Skin { subsurface, ..skin.clone() },
                 samples: COMBINATION_SAMPLES,
                 map,
+                bounce: None,
             }
         })
         .collect()
@@ -124,7 +126,7 @@ pub(super) fn dipole_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
             "fixes": [settings.shrink, settings.intrusion, settings.world_bias],
         });
         let skin = Skin { subsurface: SubsurfaceModel::Dipole { kind, settings }, ..skin.clone() };
-        Config { model: kind.name(), params, skin, samples: 0, map: ThicknessMap::None }
+        Config { model: kind.name(), params, skin, samples: 0, map: ThicknessMap::None, bounce: None }
     };
     let base = DipoleSettings::default();
     let mut out = vec![
@@ -157,7 +159,7 @@ pub(super) fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
             "global": settings.global.name(),
         });
         let skin = Skin { subsurface: SubsurfaceModel::CubeAtlas { settings }, ..skin.clone() };
-        Config { model: "cube-atlas", params, skin, samples: 0, map: ThicknessMap::None }
+        Config { model: "cube-atlas", params, skin, samples: 0, map: ThicknessMap::None, bounce: None }
     };
     let base = AtlasSettings::default();
     let mut out = vec![config(base)];
@@ -179,7 +181,8 @@ pub(super) fn atlas_configs(skin: &Skin, sweep: bool) -> Vec<Config> {
 /// `lambert` (the medium's exact albedo) and over the half-space law, and under the kernel of
 /// `combined` (the better dipole, 11 samples, over the half-space law) as `screen-space+slab`;
 /// and the transmission gather in its place ([`SlabThrough::Gather`]) alone over the half-space
-/// law and under the same kernel.
+/// law and under the same kernel; both combinations also with the bounce between facing parts
+/// (`+bounce`, [`BounceSettings::default`]).
 pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
     let alone = |skin: &Skin, diffuse: &str, through: SlabThrough| {
         let subsurface = SubsurfaceModel::Slab { kernel: None, through };
@@ -189,6 +192,7 @@ pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
             skin: Skin { subsurface, ..skin.clone() },
             samples: 0,
             map: ThicknessMap::None,
+            bounce: None,
         }
     };
     let half_space = lambert.clone().half_space();
@@ -198,15 +202,25 @@ pub(super) fn slab_configs(lambert: &Skin, combined: &Skin) -> Vec<Config> {
         alone(&half_space, "half-space", SlabThrough::Gather),
     ];
     if let Some(profile) = combined.subsurface.profile() {
-        for through in [SlabThrough::Law, SlabThrough::Gather] {
+        let bounce = BounceSettings::default();
+        let with_bounce =
+            [(SlabThrough::Law, "screen-space+slab+bounce"), (SlabThrough::Gather, "screen-space+slab-gather+bounce")];
+        for (through, bounced) in with_bounce {
             let subsurface = SubsurfaceModel::Slab { kernel: Some(profile.clone()), through };
-            out.push(Config {
+            let params = json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"});
+            let config = Config {
                 model: subsurface.name(),
-                params: json!({"profile": "better-dipole", "samples": COMBINATION_SAMPLES, "diffuse": "half-space"}),
+                params: params.clone(),
                 skin: Skin { subsurface, ..combined.clone() },
                 samples: COMBINATION_SAMPLES,
                 map: ThicknessMap::None,
-            });
+                bounce: None,
+            };
+            // The same with light between surfaces (render/src/bounce.rs).
+            let mut params = params;
+            params["bounce"] = json!({"samples": bounce.samples, "reach_mm": bounce.reach_mm});
+            let with = Config { model: bounced, params, bounce: Some(bounce), ..config.clone() };
+            out.extend([config, with]);
         }
     }
     out

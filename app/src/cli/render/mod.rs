@@ -13,6 +13,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use rouge_model::thickness::CacheUse;
 use rouge_render::DipoleKind;
+use rouge_render::bounce::BounceSettings;
 use rouge_render::job::render_to_file;
 use rouge_render::{SlabThrough, SubsurfaceModel};
 use std::path::PathBuf;
@@ -44,6 +45,18 @@ pub struct RenderArgs {
     /// --morph, --expression; [Benmounah2009]), or none (the diffuse light stays where it entered).
     #[arg(long, value_enum, default_value_t = Subsurface::ScreenSpace)]
     pub subsurface: Subsurface,
+    /// Light between surfaces: one bounce of the skin's glow from each part the camera sees to
+    /// every skin part facing it (a finger's far side lit by the next finger, the nose by the
+    /// cheek), which no subsurface model carries; screen space, no occlusion (render/src/bounce.rs).
+    /// Off: the frame plan runs no bounce pass.
+    #[arg(long)]
+    pub bounce: bool,
+    /// Screen samples per pixel of --bounce (1-256).
+    #[arg(long, default_value_t = BounceSettings::default().samples, requires = "bounce")]
+    pub bounce_samples: u32,
+    /// How far --bounce looks for light, mm.
+    #[arg(long, default_value_t = BounceSettings::default().reach_mm, requires = "bounce")]
+    pub bounce_reach: f32,
     #[command(flatten)]
     pub thickness: ThicknessArgs,
     #[command(flatten)]
@@ -149,6 +162,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     job.scene.sss.width = args.sss_width;
     job.scene.sss.samples = args.sss_samples;
+    if args.bounce {
+        let settings =
+            BounceSettings { samples: args.bounce_samples, reach_mm: args.bounce_reach, ..BounceSettings::default() };
+        settings.check()?;
+        job.scene.bounce = Some(settings);
+    }
     job.scene.exposure = args.exposure;
     job.scene.specular = !args.no_specular;
     // The material's own kernel (d'Eon's skin profile, or the medium's fitted profile), or none.
