@@ -156,7 +156,7 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000, "the plot is not a PNG with content"
     rows = json.loads(out.read_text())
     models = {"none", "screen-space", "thickness", "screen-space+thickness", "slab", "screen-space+slab",
-              "slab-gather", "screen-space+slab-gather",
+              "slab-gather", "screen-space+slab-gather", "screen-space+slab+bounce", "screen-space+slab-gather+bounce",
               "directional-dipole", "directional-dipole-mfp", "standard-dipole", "cube-atlas"}
     assert {r["model"] for r in rows} == models
     for r in rows:
@@ -196,6 +196,13 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     assert gather["params"] == {"diffuse": "half-space"}, gather["params"]
     assert all("thickness" in r["pass_ms"] for r in (gather, kernel_gather) if r["pass_ms"]), "no thickness pass time"
     assert kernel_slab["rmse"] < kernel_gather["rmse"], (kernel_slab["rmse"], kernel_gather["rmse"])
+    # The light between surfaces: its two dispatches timed; a sphere is convex, no two of its
+    # points face each other, so it adds nothing (docs/BENCHMARKS.md "Light between surfaces").
+    for base, bounced in ((kernel_slab, "screen-space+slab+bounce"), (kernel_gather, "screen-space+slab-gather+bounce")):
+        row = next(r for r in rows if r["model"] == bounced)
+        assert row["params"]["bounce"]["samples"] == 64, row["params"]
+        assert not row["pass_ms"] or {"bounce gather", "bounce add"} <= set(row["pass_ms"]), row["pass_ms"]
+        assert abs(row["delta_e_mean"] - base["delta_e_mean"]) < 0.01, (row["delta_e_mean"], base["delta_e_mean"])
     # The plot again from the rows alone (--replot), without a run.
     again = tmp_path / "again.png"
     p = rouge("bench", "translucency", "--replot", str(out), "--plot", str(again), timeout=120)

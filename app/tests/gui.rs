@@ -173,6 +173,17 @@ fn the_subsurface_panel_switches_to_translucency_once_the_bake_lands() {
     h.get_by_label("Exact skin surface (half-space)").click_accesskit();
     h.run_steps(2);
     assert_eq!(h.state().diffuse_in_use(), "lambert");
+    // The light between surfaces: a view setting, drawn without error, not a change to the
+    // document.
+    let modified = h.state().document().is_modified();
+    assert!(!h.state().bounce_in_use());
+    h.get_by_label("Light between surfaces").click_accesskit();
+    h.run_steps(2);
+    assert!(h.state().bounce_in_use() && h.state().message().is_none_or(|(ok, _)| *ok));
+    assert_eq!(h.state().document().is_modified(), modified);
+    h.get_by_label("Light between surfaces").click_accesskit();
+    h.run_steps(2);
+    assert!(!h.state().bounce_in_use());
     h.state_mut().set_subsurface(SubsurfaceChoice::ThicknessPerLight);
     h.run_steps(2);
     assert_eq!(h.state().subsurface_in_use(), ("thickness", false));

@@ -279,6 +279,11 @@ impl RougeApp {
         self.view.scene.skin.diffuse.name()
     }
 
+    /// Whether the viewport draws the light between surfaces (the Subsurface panel's checkbox).
+    pub fn bounce_in_use(&self) -> bool {
+        self.view.scene.bounce.is_some()
+    }
+
     /// The subsurface model the viewport's last frame used (`screen-space`, `thickness`, `none`),
     /// and whether a local-thickness bake is still running.
     pub fn subsurface_in_use(&self) -> (&'static str, bool) {

@@ -286,7 +286,15 @@ fn the_bounce_runs_only_when_asked_and_the_blur_reads_its_output() {
     let plan = FramePlan::new(&scene, uploaded(3), settings()).expect("plan");
     assert_eq!(
         steps(&plan),
-        ["shadow 0", "gbuffer", "lighting", "bounce", "sss horizontal", "sss vertical", "composite"]
+        [
+            "shadow 0",
+            "gbuffer",
+            "lighting",
+            "bounce (64 samples to 100 mm)",
+            "sss horizontal",
+            "sss vertical",
+            "composite"
+        ]
     );
     // It adds to the diffuse radiance, and reads the stack's T of the 3 layers; the blur starts
     // from its output.

@@ -53,8 +53,10 @@ impl FramePass for BouncePass {
         BouncePass { layout, gather: Pipelines::default(), add: Pipelines::default(), uniform }
     }
 
-    fn name(_: &BounceSettings) -> String {
-        "bounce".into()
+    /// `bounce (64 samples to 100 mm)`; its two dispatches are timed as `bounce gather` and
+    /// `bounce add`.
+    fn name(s: &BounceSettings) -> String {
+        format!("bounce ({} samples to {} mm)", s.samples, s.reach_mm)
     }
 
     /// Writes the uniform and records the two dispatches: every pixel of
