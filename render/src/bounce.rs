@@ -4,7 +4,7 @@
 //! entering and leaving one body (docs/TRANSLUCENCY.md, "Light between surfaces";
 //! docs/BENCHMARKS.md, "Light between surfaces, as a pass").
 //!
-//! **The estimate** (shaders/bounce.wgsl, run by [`crate::passes::bounce`]): the skin pixels the
+//! **The estimate** (shaders/bounce.wgsl, run by render/src/passes/bounce.rs): the skin pixels the
 //! camera sees are Lambertian sources of the radiance L_q the frame gave them (the lighting pass's
 //! and the subsurface model's, through the cosmetic stack's T; before the screen-space blur, which
 //! moves light but keeps its total), and each skin pixel p receives their irradiance with no
@@ -30,8 +30,8 @@
 //! facing parts are narrow on screen (a finger's side), so few samples find them and each pixel's
 //! estimate is noisy: the irradiance is averaged over the 5×5 pixels around p that lie on its
 //! surface (within `near` plus two pixels of its plane, normals within 60°) before it is sent
-//! back, and is added before the blur. On the backlit hand (mean ΔE2000 against Mitsuba 3, kernel
-//! + transmission gather): 2.17 without the bounce, 1.99 / 1.96 / 1.97 at 32 / 64 / 128 samples
+//! back, and is added before the blur. On the backlit hand (mean ΔE2000 against Mitsuba 3, the
+//! kernel with the transmission gather): 2.17 without the bounce, 1.97 / 1.96 / 1.98 at 32 / 64 / 128 samples
 //! (docs/BENCHMARKS.md "Light between surfaces, as a pass", which also has it unaveraged and
 //! after the blur).
 //!
