@@ -3,7 +3,7 @@
 //! pixel (`python/translucency_pixel_bins.py`'s `bounce_estimate`, written again here), and the
 //! shader's source areas against the positions' finite differences.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::Vec3;
 use rouge_model::look::Look;
 use rouge_model::mesh::load_mesh;
 use rouge_render::bounce::BounceSettings;
@@ -29,16 +29,8 @@ fn frame(gpu: &Gpu, mesh: &str, settings: BounceSettings) -> (FrameCapture, Vec<
     scene.bounce = Some(settings);
     r.render(&scene, &camera, SIZE, SIZE, false).expect("render");
     let cap = r.capture().expect("capture");
-    let depth = r.depth_image().expect("depth");
-    let inverse: Mat4 = depth.view_proj.inverse();
-    let positions = (0..(SIZE * SIZE) as usize)
-        .map(|i| {
-            let (x, y) = ((i as u32 % SIZE) as f32 + 0.5, (i as u32 / SIZE) as f32 + 0.5);
-            let ndc = Vec4::new(x / SIZE as f32 * 2.0 - 1.0, 1.0 - y / SIZE as f32 * 2.0, depth.depth[i], 1.0);
-            let w = inverse * ndc;
-            w.truncate() / w.w
-        })
-        .collect();
+    // The background's pixels have no position (never read: they are not covered).
+    let positions = (0..SIZE * SIZE).map(|i| r.pick(i % SIZE, i / SIZE).expect("pick").unwrap_or(Vec3::ZERO)).collect();
     (cap, positions, camera.position())
 }
 

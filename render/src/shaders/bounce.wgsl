@@ -24,14 +24,22 @@ struct BouncePass {
 // The gathered irradiance (the add pass's input; a stand-in in the gather).
 @group(1) @binding(7) var gathered: texture_2d<f32>;
 
-// A skin pixel as a source or receiver: world position (mm), unit normal, view depth (mm), the
-// stack's transmittance; ok is false where there is no skin.
+// A skin pixel as a source or receiver: world position (mm), unit normal, view depth (mm); ok
+// is false where there is no skin.
 struct Glow {
     x: vec3<f32>,
     n: vec3<f32>,
     z: f32,
-    t: vec3<f32>,
     ok: bool,
+}
+
+// The cosmetic stack's transmittance at pixel p (1 without layers): read for the sources' light
+// out and the receiver's light in, not for the add pass's neighbours.
+fn stack_t(p: vec2<i32>) -> vec3<f32> {
+    if frame.counts.y > 0u {
+        return textureLoad(gb_exit_t, p, 0).rgb;
+    }
+    return vec3<f32>(1.0);
 }
 
 fn glow_at(p: vec2<i32>) -> Glow {
@@ -45,10 +53,6 @@ fn glow_at(p: vec2<i32>) -> Glow {
     g.n = normalize(nd.xyz);
     g.x = world_at(vec2<f32>(p) + 0.5, d);
     g.z = max(linear_depth(d), 1e-3);
-    g.t = vec3<f32>(1.0);
-    if frame.counts.y > 0u {
-        g.t = textureLoad(gb_exit_t, p, 0).rgb;
-    }
     return g;
 }
 
@@ -97,7 +101,7 @@ fn irradiance(p: vec2<i32>, r: Glow) -> vec3<f32> {
         let mu = max(dot(s.n, to_eye) / ell, bounce.params.w);
         // The pixel's area on the surface, mm²: solid angle (z/ℓ)³/f² times ℓ², over μ.
         let area = s.z * s.z * s.z / (ell * f * f * mu);
-        let l = textureLoad(skin, q, 0).rgb * s.t;
+        let l = textureLoad(skin, q, 0).rgb * stack_t(q);
         // Times rs², the inverse of the sample's density up to the constant below.
         sum += l * (cos_r * cos_s * area / (dist * dist) * rs * rs);
     }
@@ -156,5 +160,5 @@ fn cs_bounce_add(@builtin(global_invocation_id) id: vec3<u32>) {
     // The pixel itself always counts: weight ≥ 1.
     let e = sum / max(weight, 1.0);
     let albedo = textureLoad(gb_albedo, p, 0).rgb;
-    textureStore(out, p, vec4<f32>(own.rgb + e * albedo * r.t / PI, own.a));
+    textureStore(out, p, vec4<f32>(own.rgb + e * albedo * stack_t(p) / PI, own.a));
 }

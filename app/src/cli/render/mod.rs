@@ -165,7 +165,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if args.bounce {
         let settings =
             BounceSettings { samples: args.bounce_samples, reach_mm: args.bounce_reach, ..BounceSettings::default() };
-        settings.check()?;
+        settings.check().map_err(|e| anyhow::anyhow!("--bounce-*: {e}"))?;
         job.scene.bounce = Some(settings);
     }
     job.scene.exposure = args.exposure;
