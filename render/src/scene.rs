@@ -214,7 +214,8 @@ pub enum SubsurfaceModel {
     /// face turns the same way as the entry face (past a convex terminator, the kernel's part)
     /// and is off where the surface faces the light. The thickness pass draws it,
     /// with the local-thickness target for the material id. Needs `Skin::medium`, and lights
-    /// that cast shadows; exact for an index-matched boundary (η = 1).
+    /// that cast shadows; the plane slab is exact under the medium's boundary for 1 ≤ η ≤ 1.6
+    /// ([`crate::slab_transmittance`]).
     Slab {
         /// With a profile, its screen-space kernel blurs the skin's diffuse radiance, the slab's
         /// light with it (`screen-space+slab`), as in [`SubsurfaceModel::Thickness`].

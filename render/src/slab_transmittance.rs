@@ -3,44 +3,64 @@
 //! as the slab of its local thickness would be.
 //!
 //! A slab of reduced optical thickness τ = (σa + σs′)·d and reduced albedo α′ = σs′/(σa + σs′)
-//! (isotropic scattering, the media's similarity-relation form), index-matched on both faces
-//! (η = 1, as the references of docs/TRANSLUCENCY.md), lit on its far face by collimated light of
-//! irradiance E (at normal incidence) arriving at cosine μ_l to that face's normal, sends toward
-//! the exit cosine μ_v the scattered radiance
+//! (isotropic scattering, the media's similarity-relation form), under a smooth boundary of
+//! relative index η on both faces (air outside; η = 1 is index-matched, as the references of
+//! docs/TRANSLUCENCY.md), lit on its far face by collimated light of irradiance E (at normal
+//! incidence) arriving at the external cosine μ_l to that face's normal, sends toward the external
+//! exit cosine μ_v the scattered radiance
 //!
 //! ```text
-//! L = E · μ_l · T(μ_v, μ_l; α′, τ) / π,   T = T₁ + T_m
+//! L = E · μ_l · T(μ_v, μ_l; α′, τ, η) / π,   T = T₁ + T_m
 //! ```
 //!
-//! - T₁, light scattered once, in closed form (\[Chandrasekhar1960\] ch. 1, the transmitted
-//!   intensity of once-scattered light): α′/4 · (e^{−τ/μ_l} − e^{−τ/μ_v})/(μ_l − μ_v), and
-//!   α′/4 · τe^{−τ/μ}/μ² where the cosines meet ([`single_scattering`]).
-//! - T_m, every higher order, from adding-doubling (\[Prahl1993\], iadpython 0.5.3):
+//! - T₁, light scattered once, in closed form ([`single_scattering`]): it enters through the
+//!   face (Fresnel transmittance T_F(μ_l)), refracts to ν = √(1 − (1 − μ²)/η²), scatters once
+//!   (\[Chandrasekhar1960\] ch. 1, the transmitted intensity of once-scattered light:
+//!   α′/4 · (e^{−τ/ν_l} − e^{−τ/ν_v})/(ν_l − ν_v), and α′/4 · τe^{−τ/ν}/ν² where the cosines
+//!   meet) and leaves (T_F(μ_v), and 1/η² as the radiance's solid angle widens):
+//!   T₁ = T_F(μ_v)·T_F(μ_l)·(T₁ᵢₙ(ν_v, ν_l) + T₁ᵣ)/η². T₁ᵣ holds the two once-scattered paths that
+//!   meet one internal reflection (the beam reflected by the exit face, F(μ_l), then scattered
+//!   back toward it; the light scattered toward the entry face and reflected there, F(μ_v)):
+//!   α′/4 · (1 − e^{−τ(1/ν_v + 1/ν_l)})/(ν_v + ν_l) · (F(μ_l)e^{−τ/ν_l} + F(μ_v)e^{−τ/ν_v}). At
+//!   η = 1, ν = μ, T_F = 1 and F = 0.
+//! - T_m, every higher order and every internal reflection, from adding-doubling
+//!   (\[Prahl1993\], iadpython 0.5.3, its matrices over internal cosines taken to external ones):
 //!   `python/gen_slab_transmittance.py` writes `data/reference/slab_transmittance.json`, the
-//!   grid of G = T_m · e^{κτ} over 25 albedos even in t = (1 − α′)^¼, 32 thicknesses even in
-//!   ln(1 + τ) up to τ = 256, and 9 × 9 cosines even in [0, 1]. κ(α′) is Case's discrete
-//!   eigenvalue ([`kappa`]), the slowest decay of transport with depth, so G varies slowly and
-//!   interpolates linearly: quadrilinear here; the renderer interpolates the albedo once per
-//!   medium on the CPU ([`medium_values`]) and the other three axes per pixel
-//!   (`shaders/slab.wgsl`), which is the same sum.
+//!   grid of G = T_m · e^{κτ}/(T_F(μ_v)·T_F(μ_l)) over 7 η even in √(η − 1) from 1 to 1.6,
+//!   25 albedos even in t = (1 − α′)^¼, 32 thicknesses even in ln(1 + τ) up to τ = 256, and
+//!   9 × 9 external cosines even in [0, 1]. κ(α′) is Case's discrete eigenvalue ([`kappa`]), the
+//!   slowest decay of transport with depth, and the faces' transmittances fall steeply toward
+//!   grazing, so with both taken out G varies slowly: Catmull-Rom in √(η − 1) (as the dielectric
+//!   tables, [`crate::dielectric_half_space`]), linear in the other four axes. The renderer
+//!   interpolates η and the albedo once per medium on the CPU ([`medium_values`]) and the other
+//!   three axes per pixel (`shaders/slab.wgsl`), which is the same sum.
 //!
-//! Accuracy, on the 240 points off the grid the script computes independently (24 quadrature
-//! angles, other nodes): within the figures of docs/BENCHMARKS.md ("The slab law"), worst for
-//! slabs under 0.2 mean free paths at grazing cosines; `render/tests/slab_transmittance.rs`.
+//! Accuracy, on the 420 points off the grid the script computes independently (24 quadrature
+//! angles, other nodes; 60 per η at η = 1, 1.05, 1.2, 1.33, 1.37, 1.44 and 1.55): within the
+//! figures of docs/BENCHMARKS.md ("The slab law" and "The slab law under a dielectric
+//! boundary"), worst for slabs under 0.2 mean free paths at grazing cosines and just above η = 1;
+//! `render/tests/slab_transmittance.rs`.
 //!
-//! Domain: 0 ≤ α′ ≤ 1, τ ≥ 0 (beyond τ = 256 G is held at its last node: an upper bound where
-//! the light left is below 10⁻⁶ for every medium of data/media/), 0 ≤ μ ≤ 1; anything else, NaN
-//! included, is an error that names the value. The unscattered beam is not in T: a directional
-//! light seen through the slab is a delta the camera does not see.
+//! Domain: 0 ≤ α′ ≤ 1, 1 ≤ η ≤ 1.6 (every medium of data/media/ is at 1.3), τ ≥ 0 (beyond
+//! τ = 256 G is held at its last node: an upper bound where the light left is below 10⁻⁶ for
+//! every medium of data/media/), 0 ≤ μ ≤ 1; anything else, NaN included, is an error that names
+//! the value. The unscattered beam is not in T: a directional light seen through the slab is a
+//! delta the camera does not see.
 
-use crate::diffusion::{ChannelProfile, ProfileModel, medium_profiles};
+use crate::dielectric_half_space::spline_weights;
+use crate::diffusion::{ChannelProfile, ProfileModel, fresnel_dielectric, medium_profiles};
 use crate::error::{RenderError, Result};
 use rouge_model::medium::Medium;
 use std::sync::OnceLock;
 
-/// The table's axes, as the shader indexes it: albedo (t), thickness (ln(1 + τ)), μ_v, μ_l.
+/// The table's axes, as the shader indexes it: (η and albedo, interpolated on the CPU per
+/// medium), thickness (ln(1 + τ)), μ_v, μ_l.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Axes {
+    /// Index nodes, even in √(η − 1) from 1 to [`Axes::eta_max`].
+    pub etas: usize,
+    /// The last index node's η.
+    pub eta_max: f64,
     /// Albedo nodes, even in t = (1 − α′)^¼.
     pub albedos: usize,
     /// Thickness nodes, even in ln(1 + τ).
@@ -54,6 +74,8 @@ pub struct Axes {
 /// One point of the adding-doubling reference off the grid.
 #[derive(Clone, Debug, serde::Deserialize)]
 pub struct SlabPoint {
+    /// The faces' relative index η.
+    pub eta: f64,
     /// Reduced albedo α′.
     pub albedo: f64,
     /// Reduced optical thickness τ.
@@ -62,12 +84,13 @@ pub struct SlabPoint {
     pub mu_v: f64,
     /// Incidence cosine.
     pub mu_l: f64,
-    /// T(μ_v, μ_l; α′, τ), scattered light only.
+    /// T(μ_v, μ_l; α′, τ, η), scattered light only.
     pub t: f64,
 }
 
 #[derive(serde::Deserialize)]
 struct Reference {
+    etas: Vec<f64>,
     albedo_nodes: usize,
     tau_nodes: usize,
     tau_max: f64,
@@ -84,7 +107,7 @@ pub const WGSL: &str = include_str!("shaders/slab.wgsl");
 const REFERENCE_JSON: &str = include_str!("../../data/reference/slab_transmittance.json");
 const FILE: &str = "data/reference/slab_transmittance.json";
 
-/// The table unfolded: `g[((a · taus + k) · mus + v) · mus + l]`.
+/// The table unfolded: `g[(((e · albedos + a) · taus + k) · mus + v) · mus + l]`.
 struct Table {
     axes: Axes,
     g: Vec<f32>,
@@ -92,10 +115,18 @@ struct Table {
 
 fn load() -> std::result::Result<Table, String> {
     let r: Reference = serde_json::from_str(REFERENCE_JSON).map_err(|e| e.to_string())?;
-    let (a, n, m) = (r.albedo_nodes, r.tau_nodes, r.mu_nodes);
+    let (e, a, n, m) = (r.etas.len(), r.albedo_nodes, r.tau_nodes, r.mu_nodes);
     let upper = m * (m + 1) / 2;
-    if a < 2 || n < 2 || m < 2 || r.g.len() != a * n * upper || r.kappa.len() != a {
-        return Err(format!("{} values for {a} albedos × {n} thicknesses × {upper} cosine pairs", r.g.len()));
+    if e < 2 || a < 2 || n < 2 || m < 2 || r.g.len() != e * a * n * upper || r.kappa.len() != a {
+        return Err(format!("{} values for {e} η × {a} albedos × {n} thicknesses × {upper} cosine pairs", r.g.len()));
+    }
+    let eta_max = r.etas[e - 1];
+    // The nodes must be those the interpolation assumes: even in √(η − 1) from 1.
+    for (i, eta) in r.etas.iter().enumerate() {
+        let ours = 1.0 + (eta_max - 1.0) * (i as f64 / (e - 1) as f64).powi(2);
+        if (eta - ours).abs() > 1e-9 {
+            return Err(format!("η node {i} is {eta}, not {ours} (even in √(η − 1) from 1 to {eta_max})"));
+        }
     }
     if let Some(i) = r.g.iter().position(|v| !v.is_finite()) {
         return Err(format!("value {i} is not finite"));
@@ -108,7 +139,7 @@ fn load() -> std::result::Result<Table, String> {
             return Err(format!("κ at albedo node {i} is {k}, this module's {ours}"));
         }
     }
-    let mut g = vec![0.0f32; a * n * m * m];
+    let mut g = vec![0.0f32; e * a * n * m * m];
     for (block, values) in r.g.chunks(upper).enumerate() {
         let mut pair = values.iter();
         for v in 0..m {
@@ -119,7 +150,7 @@ fn load() -> std::result::Result<Table, String> {
             }
         }
     }
-    Ok(Table { axes: Axes { albedos: a, taus: n, mus: m, tau_max: r.tau_max }, g })
+    Ok(Table { axes: Axes { etas: e, eta_max, albedos: a, taus: n, mus: m, tau_max: r.tau_max }, g })
 }
 
 fn table() -> Result<&'static Table> {
@@ -145,25 +176,56 @@ pub fn axes() -> Result<Axes> {
     Ok(table()?.axes)
 }
 
-/// The grid at one medium's three reduced albedos, as the shader reads it:
-/// `[channel][thickness][μ_v][μ_l]`, each channel's block interpolated linearly in t between the
-/// albedo nodes around it (the first of [`transmittance`]'s four interpolations, so the shader's
-/// remaining three give the same value).
+/// The grid at one medium's three reduced albedos and its index η, as the shader reads it:
+/// `[channel][thickness][μ_v][μ_l]`, each channel's block interpolated in η (Catmull-Rom in
+/// √(η − 1)) and linearly in t between the albedo nodes around it (the first two of
+/// [`transmittance`]'s interpolations, so the shader's remaining three give the same value).
 ///
 /// # Errors
-/// [`RenderError::Invalid`] naming an albedo outside [0, 1], or a malformed table.
-pub fn medium_values(alpha_prime: [f64; 3]) -> Result<Vec<f32>> {
+/// [`RenderError::Invalid`] naming an albedo outside [0, 1] or an η outside the table, or a
+/// malformed table.
+pub fn medium_values(alpha_prime: [f64; 3], eta: f64) -> Result<Vec<f32>> {
     let t = table()?;
     let ax = t.axes;
     let block = ax.taus * ax.mus * ax.mus;
+    let etas = eta_weights(eta, ax)?;
     let mut out = Vec::with_capacity(3 * block);
     for a in alpha_prime {
         check("albedo", a, (0.0..=1.0).contains(&a), "is outside [0, 1]")?;
         let (ia, fa) = cell((1.0 - a).powf(0.25), ax.albedos);
-        let (lo, hi) = (&t.g[ia * block..(ia + 1) * block], &t.g[(ia + 1) * block..(ia + 2) * block]);
-        out.extend(lo.iter().zip(hi).map(|(l, h)| ((1.0 - fa) * *l as f64 + fa * *h as f64) as f32));
+        let mut values = vec![0.0f64; block];
+        for &(e, we) in &etas {
+            for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
+                let start = (e * ax.albedos + ia + da) * block;
+                for (v, g) in values.iter_mut().zip(&t.g[start..start + block]) {
+                    *v += we * wa * f64::from(*g);
+                }
+            }
+        }
+        out.extend(values.iter().map(|v| *v as f32));
     }
     Ok(out)
+}
+
+/// The η nodes and their Catmull-Rom weights at `eta` (a node may appear twice, with weight 0).
+fn eta_weights(eta: f64, ax: Axes) -> Result<[(usize, f64); 6]> {
+    check("index η", eta, (1.0..=ax.eta_max).contains(&eta), &format!("is outside the table's [1, {}]", ax.eta_max))?;
+    let x = ((eta - 1.0) / (ax.eta_max - 1.0)).sqrt() * (ax.etas - 1) as f64;
+    Ok(spline_weights(x, ax.etas - 1))
+}
+
+/// The internal cosine of light refracted into index `eta` at the external cosine `mu`.
+fn refracted(mu: f64, eta: f64) -> f64 {
+    (1.0 - (1.0 - mu * mu) / (eta * eta)).max(0.0).sqrt()
+}
+
+/// T_F(μ_v)·T_F(μ_l): the light's Fresnel transmittance into the slab and out of it (1 at
+/// η = 1, grazing included).
+fn boundary(eta: f64, mu_v: f64, mu_l: f64) -> f64 {
+    if eta == 1.0 {
+        return 1.0;
+    }
+    (1.0 - fresnel_dielectric(mu_v, eta)) * (1.0 - fresnel_dielectric(mu_l, eta))
 }
 
 /// Case's discrete eigenvalue of isotropic scattering at albedo α′ as a decay rate κ = 1/ν₀
@@ -214,11 +276,25 @@ pub fn kappa(alpha_prime: f64) -> f64 {
     u.tanh()
 }
 
-/// T₁: the once-scattered share of T in closed form (see the module's doc). 0 at a cosine of 0.
-pub fn single_scattering(alpha_prime: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
+/// T₁: the once-scattered share of T in closed form (see the module's doc), at external cosines
+/// under a boundary of index `eta`. 0 at a cosine of 0.
+pub fn single_scattering(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
     if mu_v <= 0.0 || mu_l <= 0.0 {
         return 0.0;
     }
+    if eta == 1.0 {
+        return single_inside(alpha_prime, tau, mu_v, mu_l);
+    }
+    let (nu_v, nu_l) = (refracted(mu_v, eta), refracted(mu_l, eta));
+    let (f_v, f_l) = (fresnel_dielectric(mu_v, eta), fresnel_dielectric(mu_l, eta));
+    // The two paths with one internal reflection (module doc); ν ≥ √(1 − 1/η²) > 0 here.
+    let back = alpha_prime / 4.0 * -(-tau * (1.0 / nu_v + 1.0 / nu_l)).exp_m1() / (nu_v + nu_l);
+    let reflected = back * (f_l * (-tau / nu_l).exp() + f_v * (-tau / nu_v).exp());
+    (1.0 - f_v) * (1.0 - f_l) * (single_inside(alpha_prime, tau, nu_v, nu_l) + reflected) / (eta * eta)
+}
+
+/// Single scattering between internal cosines (\[Chandrasekhar1960\] ch. 1).
+fn single_inside(alpha_prime: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
     let (ev, el) = ((-tau / mu_v).exp(), (-tau / mu_l).exp());
     let d = mu_l - mu_v;
     let t = if d.abs() < 1e-6 * mu_v.max(mu_l) {
@@ -242,34 +318,38 @@ fn cell(x: f64, n: usize) -> (usize, f64) {
     (i, s - i as f64)
 }
 
-/// T(μ_v, μ_l; α′, τ), the scattered transmission (see the module's doc): T₁ exactly, T_m from
-/// the table, quadrilinear as the shader.
+/// T(μ_v, μ_l; α′, τ, η), the scattered transmission (see the module's doc): T₁ exactly, T_m
+/// from the table, Catmull-Rom in η and quadrilinear in the rest, as the renderer.
 ///
 /// # Errors
 /// [`RenderError::Invalid`] naming the value outside the domain.
-pub fn transmittance(alpha_prime: f64, tau: f64, mu_v: f64, mu_l: f64) -> Result<f64> {
+pub fn transmittance(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64) -> Result<f64> {
     check("albedo", alpha_prime, (0.0..=1.0).contains(&alpha_prime), "is outside [0, 1]")?;
     check("optical thickness", tau, tau >= 0.0 && tau.is_finite(), "must be finite and ≥ 0")?;
     check("exit cosine", mu_v, (0.0..=1.0).contains(&mu_v), "is outside [0, 1]")?;
     check("incidence cosine", mu_l, (0.0..=1.0).contains(&mu_l), "is outside [0, 1]")?;
     let t = table()?;
     let ax = t.axes;
+    let etas = eta_weights(eta, ax)?;
     let (ia, fa) = cell((1.0 - alpha_prime).powf(0.25), ax.albedos);
     let (ik, fk) = cell(tau.ln_1p() / ax.tau_max.ln_1p(), ax.taus);
     let (iv, fv) = cell(mu_v, ax.mus);
     let (il, fl) = cell(mu_l, ax.mus);
     let mut g = 0.0;
-    for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
-        for (dk, wk) in [(0, 1.0 - fk), (1, fk)] {
-            for (dv, wv) in [(0, 1.0 - fv), (1, fv)] {
-                for (dl, wl) in [(0, 1.0 - fl), (1, fl)] {
-                    let i = (((ia + da) * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus + il + dl;
-                    g += wa * wk * wv * wl * t.g[i] as f64;
+    for &(e, we) in &etas {
+        for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
+            for (dk, wk) in [(0, 1.0 - fk), (1, fk)] {
+                for (dv, wv) in [(0, 1.0 - fv), (1, fv)] {
+                    for (dl, wl) in [(0, 1.0 - fl), (1, fl)] {
+                        let i = ((((e * ax.albedos + ia + da) * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus) + il + dl;
+                        g += we * wa * wk * wv * wl * f64::from(t.g[i]);
+                    }
                 }
             }
         }
     }
-    Ok(single_scattering(alpha_prime, tau, mu_v, mu_l) + g * (-kappa(alpha_prime) * tau).exp())
+    let multiple = g * (-kappa(alpha_prime) * tau).exp() * boundary(eta, mu_v, mu_l);
+    Ok(single_scattering(alpha_prime, eta, tau, mu_v, mu_l) + multiple)
 }
 
 /// Samples per pixel and light of the hidden-entry gather.
@@ -353,10 +433,19 @@ mod tests {
     #[test]
     fn the_table_loads_and_its_kappa_is_this_module_s() {
         let ax = axes().expect("table");
-        assert_eq!(table().expect("table").g.len(), ax.albedos * ax.taus * ax.mus * ax.mus);
-        let medium = medium_values([1.0, 0.5, 0.0]).expect("in the domain");
+        assert_eq!(table().expect("table").g.len(), ax.etas * ax.albedos * ax.taus * ax.mus * ax.mus);
+        let medium = medium_values([1.0, 0.5, 0.0], 1.3).expect("in the domain");
         assert_eq!(medium.len(), 3 * ax.taus * ax.mus * ax.mus);
-        assert!(medium_values([0.5, f64::NAN, 0.5]).is_err());
+        assert!(medium_values([0.5, f64::NAN, 0.5], 1.3).is_err());
+        assert!(medium_values([0.5, 0.5, 0.5], 0.9).expect_err("η < 1").to_string().contains("index η 0.9"));
+        // At an η node the spline is that node's block: η = 1 is the index-matched table.
+        let block = ax.taus * ax.mus * ax.mus;
+        let first = medium_values([1.0, 1.0, 1.0], 1.0).expect("η 1");
+        assert_eq!(&first[..block], &table().expect("table").g[..block]);
+        let last = medium_values([1.0, 1.0, 1.0], ax.eta_max).expect("last η");
+        let start = (ax.etas - 1) * ax.albedos * block;
+        let stored = &table().expect("table").g[start..start + block];
+        assert!(last[..block].iter().zip(stored).all(|(a, b)| (a - b).abs() <= 1e-6 * b.abs().max(1e-6)));
     }
 
     #[test]
@@ -373,14 +462,16 @@ mod tests {
 
     #[test]
     fn outside_the_domain_is_an_error_naming_the_value() {
-        for (a, tau, mv, ml, word) in [
-            (f64::NAN, 1.0, 0.5, 0.5, "albedo"),
-            (0.5, -1.0, 0.5, 0.5, "optical thickness"),
-            (0.5, f64::INFINITY, 0.5, 0.5, "optical thickness"),
-            (0.5, 1.0, 1.5, 0.5, "exit cosine"),
-            (0.5, 1.0, 0.5, f64::NAN, "incidence cosine"),
+        for (a, eta, tau, mv, ml, word) in [
+            (f64::NAN, 1.0, 1.0, 0.5, 0.5, "albedo"),
+            (0.5, 1.0, -1.0, 0.5, 0.5, "optical thickness"),
+            (0.5, 1.0, f64::INFINITY, 0.5, 0.5, "optical thickness"),
+            (0.5, 1.0, 1.0, 1.5, 0.5, "exit cosine"),
+            (0.5, 1.0, 1.0, 0.5, f64::NAN, "incidence cosine"),
+            (0.5, 1.61, 1.0, 0.5, 0.5, "index η 1.61"),
+            (0.5, f64::NAN, 1.0, 0.5, 0.5, "index η NaN"),
         ] {
-            let e = transmittance(a, tau, mv, ml).expect_err("outside").to_string();
+            let e = transmittance(a, eta, tau, mv, ml).expect_err("outside").to_string();
             assert!(e.contains(word), "{e}");
         }
     }

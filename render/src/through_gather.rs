@@ -77,7 +77,8 @@ pub fn plane_total(c: &ThroughChannel, d_mm: f64) -> f64 {
     0.5 * alpha * (e(d_mm - z_r) + e(d_mm - z_r + 2.0 * z_b) - e(d_mm + z_v) - e(d_mm + z_v + 2.0 * z_b))
 }
 
-/// The exact slab's diffuse transmittance at normal incidence, scattered light only: 2∫T(μ, 1)μ dμ
+/// The exact index-matched slab's diffuse transmittance at normal incidence, scattered light
+/// only: 2∫T(μ, 1)μ dμ
 /// of the slab law's table (adding-doubling; [`crate::slab_transmittance::transmittance`]),
 /// midpoint rule on 32 cosines. None outside the table's domain.
 pub fn exact_slab_total(alpha_prime: f64, tau: f64) -> Option<f64> {
@@ -85,7 +86,7 @@ pub fn exact_slab_total(alpha_prime: f64, tau: f64) -> Option<f64> {
     (0..n)
         .map(|i| {
             let mu = (i as f64 + 0.5) / n as f64;
-            crate::slab_transmittance::transmittance(alpha_prime, tau, mu, 1.0).ok().map(|t| 2.0 * t * mu / n as f64)
+            crate::slab_transmittance::transmittance(alpha_prime, 1.0, tau, mu, 1.0).ok().map(|t| 2.0 * t * mu / n as f64)
         })
         .sum()
 }

@@ -160,19 +160,15 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
             let _ = write!(
                 out,
                 " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
-                 and adding-doubling's table of the rest; the thickness the light crossed from its shadow map, the \
-                 face it entered from the map's slope; exact at η = 1; beside it, for directional lights, the light \
+                 and adding-doubling's table of the rest, under the medium's boundary (η {}: the faces' Fresnel \
+                 transmittance and the light they hold inside); the thickness the light crossed from its shadow map, \
+                 the face it entered from the map's slope; beside it, for directional lights, the light \
                  entering within the medium's reach that neither the lighting nor the kernel carries (faces the \
                  camera does not see, and seen ones beyond the kernel's reach or depth), from the map, carried by \
-                 the classic dipole ({} samples)",
+                 the classic dipole ({} samples))",
+                skin.medium.as_ref().map_or(1.0, |m| m.eta),
                 through.gather_samples()
             );
-            match &skin.medium {
-                Some(m) if m.eta != 1.0 => {
-                    let _ = write!(out, ": the medium's η {} is not modelled by the slab)", m.eta);
-                }
-                _ => out.push(')'),
-            }
             if *through == SlabThrough::Gather {
                 out.push(')');
             }

@@ -146,8 +146,13 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     assert!(!plan.passes.iter().any(|p| p.reads.contains(&Resource::LocalThicknessMap)));
     let text = plan.explain();
     assert!(text.contains("subsurface slab (each shadowed light through a plane slab"), "{text}");
-    // Marble's η of 1.5 is outside the law's exact domain, and the plan says so.
-    assert!(text.contains("the medium's η 1.5 is not modelled by the slab"), "{text}");
+    // Marble's η of 1.5: the law's table holds the boundary, and the plan says at which η.
+    assert!(text.contains("under the medium's boundary (η 1.5:"), "{text}");
+    // Past the table's last η the plan is refused, naming the medium's η.
+    let mut dense = scene.clone();
+    dense.skin.medium = Some(rouge_model::medium::Medium::builtin("marble").expect("marble").with_eta(2.0).expect("η 2"));
+    let err = FramePlan::new(&dense, up, settings()).expect_err("η 2 is past the table");
+    assert!(err.to_string().contains("covers η from 1 to 1.6: marble has η 2"), "{err}");
     // The gather knows which kernel carries the seen entries' light: none here.
     let kernel = |plan: &FramePlan| {
         plan.passes.iter().find_map(|p| if let Step::Thickness(u) = p.step { Some(u.screen_kernel) } else { None })

@@ -46,7 +46,8 @@ pub struct ThicknessUniform {
     pub slab_kappa: [f32; 4],
     /// σt′ = σa + σs′ per channel, mm⁻¹.
     pub slab_sigma_t: [f32; 4],
-    /// The table's axes: albedo, thickness and cosine nodes, ln(1 + τ_max).
+    /// x the skin's index η (the table is interpolated at it per medium, and the shader's single
+    /// scattering refracts by it), then the table's thickness and cosine nodes, ln(1 + τ_max).
     pub slab_axes: [f32; 4],
     /// The hidden-entry gather's classic dipole per channel: α′, σ_tr (mm⁻¹), z_r, z_v (mm)
     /// ([`crate::diffusion::ChannelProfile::classic_constants`]).
@@ -77,7 +78,7 @@ impl ThicknessUniform {
     ///
     /// # Errors
     /// [`RenderError::Invalid`] if the compiled-in table is malformed, or the medium's
-    /// coefficients give no finite reduced albedo and extinction.
+    /// coefficients give no finite reduced albedo and extinction, or its η is outside the table.
     pub fn slab(medium: &Medium, kernel: Option<(f32, f32)>, through: SlabThrough) -> Result<ThicknessUniform> {
         let axes = slab_transmittance::axes()?;
         let alpha = medium.reduced_albedo();
@@ -86,6 +87,12 @@ impl ThicknessUniform {
             return Err(RenderError::Invalid(format!(
                 "the slab law needs a finite, positive σa + σs′: {} has {} mm⁻¹ in channel {c}",
                 medium.name, sigma_t[c]
+            )));
+        }
+        if !(1.0..=axes.eta_max).contains(&medium.eta) {
+            return Err(RenderError::Invalid(format!(
+                "the slab law's table covers η from 1 to {}: {} has η {}",
+                axes.eta_max, medium.name, medium.eta
             )));
         }
         let rgb = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
@@ -98,7 +105,7 @@ impl ThicknessUniform {
             slab_albedo: rgb(alpha),
             slab_kappa: rgb(alpha.map(slab_transmittance::kappa)),
             slab_sigma_t: rgb(sigma_t),
-            slab_axes: [axes.albedos as f32, axes.taus as f32, axes.mus as f32, axes.tau_max.ln_1p() as f32],
+            slab_axes: [medium.eta as f32, axes.taus as f32, axes.mus as f32, axes.tau_max.ln_1p() as f32],
             gather_medium,
             gather,
             screen_kernel: kernel.map_or([0.0; 4], |(reach, follow)| [reach, follow, 0.0, 0.0]),
@@ -118,9 +125,9 @@ pub struct ThicknessPass {
     layout: wgpu::BindGroupLayout,
     pipelines: Pipelines,
     uniform: wgpu::Buffer,
-    /// The slab law's table at the albedos (the uniform's, as bits) a frame last used it for;
+    /// The slab law's table at the albedos and η (the uniform's, as bits) a frame last used it for;
     /// a one-value stand-in binds in its place for the talk's term.
-    slab_table: Option<([u32; 3], wgpu::Buffer)>,
+    slab_table: Option<([u32; 4], wgpu::Buffer)>,
     stand_in: wgpu::Buffer,
 }
 
@@ -180,9 +187,10 @@ impl FramePass for ThicknessPass {
         let [normal, albedo, depth, local] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth, local) = (normal?, albedo?, depth?, local?);
         let diffuse = targets.view(Target::Diffuse)?;
-        let key = [0, 1, 2].map(|c| uniform.slab_albedo[c].to_bits());
+        let key = [0, 1, 2, 3].map(|c| if c < 3 { uniform.slab_albedo[c] } else { uniform.slab_axes[0] }.to_bits());
         if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
-            let values = slab_transmittance::medium_values(std::array::from_fn(|c| f64::from(uniform.slab_albedo[c])))?;
+            let albedo = std::array::from_fn(|c| f64::from(uniform.slab_albedo[c]));
+            let values = slab_transmittance::medium_values(albedo, f64::from(uniform.slab_axes[0]))?;
             let buffer = buffer_init(
                 &shared.device,
                 "ThicknessPass::slab_table",

@@ -1,9 +1,10 @@
-// The slab law's transmission T(μ_v, μ_l; α′, τ) (render/src/slab_transmittance.rs, the CPU
-// twin, with the same taps): single scattering in closed form plus adding-doubling's higher
-// orders, G = T_m·e^{κτ}, read trilinearly from `slab_table`, the medium's channels' grids
-// (slab_transmittance::medium_values, already interpolated at each channel's albedo), laid out
-// [channel][thickness][μ_v][μ_l]. `axes`: y the thickness nodes (even in ln(1 + τ)), z the
-// cosine nodes (even in [0, 1]), w ln(1 + τ_max).
+// The slab law's transmission T(μ_v, μ_l; α′, τ, η) (render/src/slab_transmittance.rs, the CPU
+// twin, with the same taps): single scattering under the boundary in closed form plus
+// adding-doubling's higher orders, G = T_m·e^{κτ}/(T_F(μ_v)·T_F(μ_l)), read trilinearly from
+// `slab_table`, the medium's channels' grids (slab_transmittance::medium_values, already
+// interpolated at the skin's η and each channel's albedo), laid out
+// [channel][thickness][μ_v][μ_l]. `axes`: x η, y the thickness nodes (even in ln(1 + τ)),
+// z the cosine nodes (even in [0, 1]), w ln(1 + τ_max). Needs fresnel_in (diffusion.wgsl).
 
 // The node below x ∈ [0, 1] on n even nodes, and the weight of the one above.
 fn slab_cell(x: f32, n: f32) -> vec2<f32> {
@@ -12,17 +13,47 @@ fn slab_cell(x: f32, n: f32) -> vec2<f32> {
     return vec2<f32>(i, s - i);
 }
 
-// T₁: α′/4 (e^{−τ/μ_l} − e^{−τ/μ_v})/(μ_l − μ_v), its limit where the cosines meet.
-fn slab_single(a: f32, tau: f32, mu_v: f32, mu_l: f32) -> f32 {
+// Single scattering between internal cosines: α′/4 (e^{−τ/ν_l} − e^{−τ/ν_v})/(ν_l − ν_v), its
+// limit where the cosines meet.
+fn slab_single_inside(a: f32, tau: f32, nu_v: f32, nu_l: f32) -> f32 {
+    let d = nu_l - nu_v;
+    if abs(d) < 1e-3 * max(nu_v, nu_l) {
+        let nu = 0.5 * (nu_v + nu_l);
+        return 0.25 * a * tau * exp(-tau / nu) / (nu * nu);
+    }
+    return 0.25 * a * (exp(-tau / nu_l) - exp(-tau / nu_v)) / d;
+}
+
+// T_F(μ_v)·T_F(μ_l), 1 at η = 1 (grazing included).
+fn slab_boundary(eta: f32, mu_v: f32, mu_l: f32) -> f32 {
+    if eta == 1.0 {
+        return 1.0;
+    }
+    return (1.0 - fresnel_in(mu_v, eta)) * (1.0 - fresnel_in(mu_l, eta));
+}
+
+// The internal cosine of light refracted into index η at external cosine μ.
+fn slab_refracted(mu: f32, eta: f32) -> f32 {
+    return sqrt(max(1.0 - (1.0 - mu * mu) / (eta * eta), 0.0));
+}
+
+// T₁ under the boundary: T_F(μ_v)·T_F(μ_l)·(T₁(ν_v, ν_l) + the two once-scattered paths with
+// one internal reflection)/η² (the CPU twin's doc), 0 at a cosine of 0.
+fn slab_single(a: f32, eta: f32, tau: f32, mu_v: f32, mu_l: f32) -> f32 {
     if mu_v <= 0.0 || mu_l <= 0.0 {
         return 0.0;
     }
-    let d = mu_l - mu_v;
-    if abs(d) < 1e-3 * max(mu_v, mu_l) {
-        let mu = 0.5 * (mu_v + mu_l);
-        return 0.25 * a * tau * exp(-tau / mu) / (mu * mu);
+    if eta == 1.0 {
+        return slab_single_inside(a, tau, mu_v, mu_l);
     }
-    return 0.25 * a * (exp(-tau / mu_l) - exp(-tau / mu_v)) / d;
+    let nu_v = slab_refracted(mu_v, eta);
+    let nu_l = slab_refracted(mu_l, eta);
+    let f_v = fresnel_in(mu_v, eta);
+    let f_l = fresnel_in(mu_l, eta);
+    // The two paths with one internal reflection; ν ≥ √(1 − 1/η²) > 0 here.
+    let back = 0.25 * a * (1.0 - exp(-tau * (1.0 / nu_v + 1.0 / nu_l))) / (nu_v + nu_l);
+    let reflected = back * (f_l * exp(-tau / nu_l) + f_v * exp(-tau / nu_v));
+    return (1.0 - f_v) * (1.0 - f_l) * (slab_single_inside(a, tau, nu_v, nu_l) + reflected) / (eta * eta);
 }
 
 fn slab_weight(c: vec2<f32>, upper: u32) -> f32 {
@@ -47,5 +78,6 @@ fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_
             }
         }
     }
-    return slab_single(a, tau, mu_v, mu_l) + g * exp(-kappa * tau);
+    let eta = axes.x;
+    return slab_single(a, eta, tau, mu_v, mu_l) + g * exp(-kappa * tau) * slab_boundary(eta, mu_v, mu_l);
 }
