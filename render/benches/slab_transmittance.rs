@@ -27,7 +27,8 @@ fn bench(c: &mut Criterion) {
     // The index-matched law where the faces are dielectric: what the boundary is worth.
     let matched = |p: &SlabPoint| transmittance(p.albedo, 1.0, p.tau, p.mu_v, p.mu_l).expect("in the domain");
     let dielectric: Vec<SlabPoint> = points.iter().filter(|p| p.eta >= 1.3).cloned().collect();
-    for (name, f) in [("table, η ≥ 1.3", &table as &dyn Fn(&SlabPoint) -> f64), ("the η = 1 table, η ≥ 1.3", &matched)] {
+    for (name, f) in [("table, η ≥ 1.3", &table as &dyn Fn(&SlabPoint) -> f64), ("the η = 1 table, η ≥ 1.3", &matched)]
+    {
         let (median, worst, rel) = errors(&dielectric, f);
         eprintln!(
             "{name}: μ_l·|ΔT| median {median:.2e}, worst {worst:.2e}; relative (T > 10⁻³) median {:.2}% over {} points",
@@ -48,12 +49,24 @@ fn bench(c: &mut Criterion) {
         let p = p.clone();
         c.bench_function(&format!("slab transmittance, table, {name}"), |b| {
             b.iter(|| {
-                transmittance(black_box(p.albedo), black_box(p.eta), black_box(p.tau), black_box(p.mu_v), black_box(p.mu_l))
+                transmittance(
+                    black_box(p.albedo),
+                    black_box(p.eta),
+                    black_box(p.tau),
+                    black_box(p.mu_v),
+                    black_box(p.mu_l),
+                )
             })
         });
         c.bench_function(&format!("slab transmittance, single scattering alone, {name}"), |b| {
             b.iter(|| {
-                single_scattering(black_box(p.albedo), black_box(p.eta), black_box(p.tau), black_box(p.mu_v), black_box(p.mu_l))
+                single_scattering(
+                    black_box(p.albedo),
+                    black_box(p.eta),
+                    black_box(p.tau),
+                    black_box(p.mu_v),
+                    black_box(p.mu_l),
+                )
             })
         });
     }

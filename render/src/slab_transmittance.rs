@@ -194,7 +194,7 @@ pub fn medium_values(alpha_prime: [f64; 3], eta: f64) -> Result<Vec<f32>> {
         check("albedo", a, (0.0..=1.0).contains(&a), "is outside [0, 1]")?;
         let (ia, fa) = cell((1.0 - a).powf(0.25), ax.albedos);
         let mut values = vec![0.0f64; block];
-        for &(e, we) in &etas {
+        for &(e, we) in etas.iter().filter(|(_, w)| *w != 0.0) {
             for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
                 let start = (e * ax.albedos + ia + da) * block;
                 for (v, g) in values.iter_mut().zip(&t.g[start..start + block]) {
@@ -336,12 +336,14 @@ pub fn transmittance(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64)
     let (iv, fv) = cell(mu_v, ax.mus);
     let (il, fl) = cell(mu_l, ax.mus);
     let mut g = 0.0;
-    for &(e, we) in &etas {
+    // (At a node, or with the spline's doubled end nodes, most of the six weights are 0.)
+    for &(e, we) in etas.iter().filter(|(_, w)| *w != 0.0) {
         for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
             for (dk, wk) in [(0, 1.0 - fk), (1, fk)] {
                 for (dv, wv) in [(0, 1.0 - fv), (1, fv)] {
                     for (dl, wl) in [(0, 1.0 - fl), (1, fl)] {
-                        let i = ((((e * ax.albedos + ia + da) * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus) + il + dl;
+                        let i =
+                            ((((e * ax.albedos + ia + da) * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus) + il + dl;
                         g += we * wa * wk * wv * wl * f64::from(t.g[i]);
                     }
                 }

@@ -69,8 +69,7 @@ fn the_shaders_slab_transmission_matches_its_cpu_twin() {
         let got = on_gpu(&gpu, alpha, eta, &cases);
         let mut worst = 0.0f64;
         for (c, g) in cases.iter().zip(&got) {
-            let want =
-                transmittance(alpha[c[0] as usize], eta, c[1] as f64, c[2] as f64, c[3] as f64).expect("domain");
+            let want = transmittance(alpha[c[0] as usize], eta, c[1] as f64, c[2] as f64, c[3] as f64).expect("domain");
             assert!(g.is_finite(), "η {eta}, {c:?}: {g}");
             // In radiance per unit E/π (μ_l·T), against a floor of 10⁻³ of it.
             let err = c[3] as f64 * (*g as f64 - want).abs() / (c[3] as f64 * want).max(1e-3);

@@ -40,7 +40,7 @@ fn the_table_follows_adding_doubling_off_its_grid() {
     assert!(points.len() >= 400, "{} points", points.len());
     let mut etas: Vec<f64> = points.iter().map(|p| p.eta).collect();
     etas.dedup();
-    assert!(etas.len() >= 7 && etas.iter().any(|&e| e == 1.0), "{etas:?}");
+    assert!(etas.len() >= 7 && etas.contains(&1.0), "{etas:?}");
     for eta in etas {
         let at: Vec<&SlabPoint> = points.iter().filter(|p| p.eta == eta).collect();
         let (radiance, relative, thick) = errors(&at);

@@ -150,7 +150,8 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     assert!(text.contains("under the medium's boundary (η 1.5:"), "{text}");
     // Past the table's last η the plan is refused, naming the medium's η.
     let mut dense = scene.clone();
-    dense.skin.medium = Some(rouge_model::medium::Medium::builtin("marble").expect("marble").with_eta(2.0).expect("η 2"));
+    dense.skin.medium =
+        Some(rouge_model::medium::Medium::builtin("marble").expect("marble").with_eta(2.0).expect("η 2"));
     let err = FramePlan::new(&dense, up, settings()).expect_err("η 2 is past the table");
     assert!(err.to_string().contains("covers η from 1 to 1.6: marble has η 2"), "{err}");
     // The gather knows which kernel carries the seen entries' light: none here.
