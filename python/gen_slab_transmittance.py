@@ -24,7 +24,7 @@ grid of cosines follows; kappa(a') is the slowest decay of transport in the slab
 eigenvalue: a'/(2 kappa) ln((1 + kappa)/(1 - kappa)) = 1), which turns an exponential fall over
 tau into a slowly varying function that interpolates linearly; T_F, the faces' Fresnel
 transmittances, fall steeply toward grazing, and divided out leave the radiance just inside,
-which varies slowly. "check" holds 60 points per eta off the grid (7 eta, 5 of them between
+which varies slowly. "check" holds 60 points per eta off the grid (7 eta, 6 of them between
 nodes) computed independently (24 quadrature angles, whose nodes are not the table's) to
 measure the interpolation.
 

@@ -214,9 +214,11 @@ fn eta_weights(eta: f64, ax: Axes) -> Result<[(usize, f64); 6]> {
     Ok(spline_weights(x, ax.etas - 1))
 }
 
-/// The internal cosine of light refracted into index `eta` at the external cosine `mu`.
+/// The internal cosine of light refracted into index `eta` at the external cosine `mu`, held at
+/// 10⁻⁴ and above as the shader's (whose f32 loses it to cancellation at grazing just above η = 1,
+/// where the faces pass nothing).
 fn refracted(mu: f64, eta: f64) -> f64 {
-    (1.0 - (1.0 - mu * mu) / (eta * eta)).max(0.0).sqrt()
+    (1.0 - (1.0 - mu * mu) / (eta * eta)).max(0.0).sqrt().max(1e-4)
 }
 
 /// T_F(μ_v)·T_F(μ_l): the light's Fresnel transmittance into the slab and out of it (1 at

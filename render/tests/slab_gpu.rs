@@ -64,8 +64,9 @@ fn the_shaders_slab_transmission_matches_its_cpu_twin() {
     };
     let cases: Vec<[f32; 4]> =
         (0..3000).map(|i| [(i % 3) as f32, (next() * 64f32.ln_1p()).exp_m1(), next(), next()]).collect();
-    // Index-matched, skin's index between the table's nodes, and the table's last node.
-    for eta in [1.0, 1.33, 1.6] {
+    // Index-matched, just above it (f32's cancellation at grazing), skin's index between the
+    // table's nodes, and the table's last node.
+    for eta in [1.0, 1.000001, 1.33, 1.6] {
         let got = on_gpu(&gpu, alpha, eta, &cases);
         let mut worst = 0.0f64;
         for (c, g) in cases.iter().zip(&got) {
@@ -78,8 +79,11 @@ fn the_shaders_slab_transmission_matches_its_cpu_twin() {
         eprintln!("η {eta}, {} cases: worst relative error {worst:.2e}", cases.len());
         // f32 against f64: the shader's exp and log, and its single-scattering limit taken
         // within 10⁻³ of equal cosines (10⁻⁶ on the CPU).
-        // (lavapipe: 2.2e-5 at η 1.)
-        assert!(worst < 5e-4, "η {eta}: worst {worst}");
+        // (lavapipe: 2.2e-5 at η 1, 6.2e-5 at 1.33, 7.5e-5 at 1.6.) Just above η = 1 the
+        // refracted cosine 1 − (1 − μ²)/η² cancels in f32 near grazing (lavapipe: 2.4e-3); what
+        // matters there is that it stays finite.
+        let allowed = if eta > 1.0 && eta < 1.001 { 1e-2 } else { 5e-4 };
+        assert!(worst < allowed, "η {eta}: worst {worst}");
     }
 }
 

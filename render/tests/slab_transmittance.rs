@@ -2,7 +2,7 @@
 //! (`render/src/slab_transmittance.rs`, `data/reference/slab_transmittance.json`, made by
 //! `python/gen_slab_transmittance.py` with iadpython): the points were computed at 24
 //! quadrature angles, whose cosines are none of the table's nodes, at random albedos and
-//! thicknesses, 60 at each of seven indices η (five of them between the table's η nodes).
+//! thicknesses, 60 at each of seven indices η (six of them between the table's η nodes).
 
 use rouge_render::slab_transmittance::{SlabPoint, axes, held_out_points, kappa, single_scattering, transmittance};
 

@@ -32,9 +32,10 @@ fn slab_boundary(eta: f32, mu_v: f32, mu_l: f32) -> f32 {
     return (1.0 - fresnel_in(mu_v, eta)) * (1.0 - fresnel_in(mu_l, eta));
 }
 
-// The internal cosine of light refracted into index η at external cosine μ.
+// The internal cosine of light refracted into index η at external cosine μ, held at 10⁻⁴ and
+// above (just above η = 1, f32 loses it to cancellation at grazing; the faces pass nothing there).
 fn slab_refracted(mu: f32, eta: f32) -> f32 {
-    return sqrt(max(1.0 - (1.0 - mu * mu) / (eta * eta), 0.0));
+    return max(sqrt(max(1.0 - (1.0 - mu * mu) / (eta * eta), 0.0)), 1e-4);
 }
 
 // T₁ under the boundary: T_F(μ_v)·T_F(μ_l)·(T₁(ν_v, ν_l) + the two once-scattered paths with
