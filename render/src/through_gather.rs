@@ -173,9 +173,9 @@ mod tests {
     #[test]
     fn under_skins_boundary_the_kernel_follows_the_exact_slab_as_at_eta_one() {
         // The gather under a boundary of index η (shaders/thickness.wgsl `hidden_entry`): the
-        // kernel at the medium's η (its dipole's extrapolated boundary), times the entry's
-        // Fresnel transmittance at normal incidence, leaving through a Lambertian exit behind the
-        // face (the hemisphere's mean Fresnel transmittance 1 − 2∫Fμ dμ). Against the exact slab
+        // kernel at the medium's η (its dipole's extrapolated boundary, its prefactor with the
+        // exit's normalisation), times the entry's Fresnel transmittance at normal incidence,
+        // leaving through the face with 1 − F(μ_o) (over the hemisphere 1 − 2∫Fμ dμ). Against the exact slab
         // under the same faces, the ratio should stay what it is at η = 1.
         let ratios = |eta: f64, d: f64| -> [f64; 3] {
             let medium = Medium::builtin("skin1").expect("skin1").with_eta(eta).expect("η");
@@ -196,11 +196,11 @@ mod tests {
             let (matched, skin) = (ratios(1.0, d), ratios(1.3, d));
             let change: [f64; 3] = std::array::from_fn(|c| skin[c] / matched[c]);
             eprintln!("d {d} mm: exact over the kernel at η 1 {matched:.3?}, at η 1.3 {skin:.3?} ({change:.3?})");
-            // (This machine: 1.086-1.089 in red, 1.036-1.040 in green, 1.002-1.013 in blue: under
-            // skin's boundary the kernel carries up to 9% less red than the exact slab, beside
-            // what it carries at η = 1; docs/BENCHMARKS.md "The slab law under a dielectric
-            // boundary".)
-            assert!(change.iter().all(|r| (0.97..1.12).contains(r)), "d {d}: {change:?}");
+            // (Before the exit was normalised, `exit_normalisation`: 1.086-1.089 in red,
+            // 1.036-1.040 in green, 1.002-1.013 in blue, the kernel up to 9% short of the exact
+            // slab in red beside what it carries at η = 1; docs/BENCHMARKS.md "The slab law under
+            // a dielectric boundary".)
+            assert!(change.iter().all(|r| (0.93..1.05).contains(r)), "d {d}: {change:?}");
         }
     }
 
