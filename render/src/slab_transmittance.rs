@@ -188,18 +188,12 @@ pub fn medium_values(alpha_prime: [f64; 3], eta: f64) -> Result<Vec<f32>> {
     let t = table()?;
     let ax = t.axes;
     let block = ax.taus * ax.mus * ax.mus;
-    let etas = eta_weights(eta, ax)?;
     let mut out = Vec::with_capacity(3 * block);
     for a in alpha_prime {
-        check("albedo", a, (0.0..=1.0).contains(&a), "is outside [0, 1]")?;
-        let (ia, fa) = cell((1.0 - a).powf(0.25), ax.albedos);
         let mut values = vec![0.0f64; block];
-        for &(e, we) in etas.iter().filter(|(_, w)| *w != 0.0) {
-            for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
-                let start = (e * ax.albedos + ia + da) * block;
-                for (v, g) in values.iter_mut().zip(&t.g[start..start + block]) {
-                    *v += we * wa * f64::from(*g);
-                }
+        for (b, w) in block_weights(a, eta, ax)? {
+            for (v, g) in values.iter_mut().zip(&t.g[b * block..(b + 1) * block]) {
+                *v += w * f64::from(*g);
             }
         }
         out.extend(values.iter().map(|v| *v as f32));
@@ -207,11 +201,20 @@ pub fn medium_values(alpha_prime: [f64; 3], eta: f64) -> Result<Vec<f32>> {
     Ok(out)
 }
 
-/// The η nodes and their Catmull-Rom weights at `eta` (a node may appear twice, with weight 0).
-fn eta_weights(eta: f64, ax: Axes) -> Result<[(usize, f64); 6]> {
+/// The (η, albedo) blocks of the table around `alpha_prime` and `eta`, as block indices
+/// e·albedos + a, and their weights: Catmull-Rom in √(η − 1) times linear in t = (1 − α′)^¼,
+/// the weights that are 0 (at a node, or the spline's doubled end nodes) left out. The first two
+/// of [`transmittance`]'s interpolations, which [`medium_values`] does once per medium.
+fn block_weights(alpha_prime: f64, eta: f64, ax: Axes) -> Result<Vec<(usize, f64)>> {
+    check("albedo", alpha_prime, (0.0..=1.0).contains(&alpha_prime), "is outside [0, 1]")?;
     check("index η", eta, (1.0..=ax.eta_max).contains(&eta), &format!("is outside the table's [1, {}]", ax.eta_max))?;
     let x = ((eta - 1.0) / (ax.eta_max - 1.0)).sqrt() * (ax.etas - 1) as f64;
-    Ok(spline_weights(x, ax.etas - 1))
+    let (ia, fa) = cell((1.0 - alpha_prime).powf(0.25), ax.albedos);
+    Ok(spline_weights(x, ax.etas - 1)
+        .into_iter()
+        .filter(|(_, we)| *we != 0.0)
+        .flat_map(|(e, we)| [(e * ax.albedos + ia, we * (1.0 - fa)), (e * ax.albedos + ia + 1, we * fa)])
+        .collect())
 }
 
 /// The internal cosine of light refracted into index `eta` at the external cosine `mu`, held at
@@ -221,13 +224,35 @@ fn refracted(mu: f64, eta: f64) -> f64 {
     (1.0 - (1.0 - mu * mu) / (eta * eta)).max(0.0).sqrt().max(1e-4)
 }
 
-/// T_F(μ_v)·T_F(μ_l): the light's Fresnel transmittance into the slab and out of it (1 at
-/// η = 1, grazing included).
-fn boundary(eta: f64, mu_v: f64, mu_l: f64) -> f64 {
-    if eta == 1.0 {
-        return 1.0;
+/// The slab's faces as the light meets them: the internal cosines ν and the Fresnel
+/// reflectances F of the exit (v) and the entry (l); computed once per point for T₁ and the
+/// table's T_F(μ_v)·T_F(μ_l) (the shader's `SlabFaces`). At η = 1: ν = μ and F = 0, grazing
+/// included.
+#[derive(Clone, Copy)]
+struct Faces {
+    nu_v: f64,
+    nu_l: f64,
+    f_v: f64,
+    f_l: f64,
+}
+
+impl Faces {
+    fn new(eta: f64, mu_v: f64, mu_l: f64) -> Faces {
+        if eta == 1.0 {
+            return Faces { nu_v: mu_v, nu_l: mu_l, f_v: 0.0, f_l: 0.0 };
+        }
+        Faces {
+            nu_v: refracted(mu_v, eta),
+            nu_l: refracted(mu_l, eta),
+            f_v: fresnel_dielectric(mu_v, eta),
+            f_l: fresnel_dielectric(mu_l, eta),
+        }
     }
-    (1.0 - fresnel_dielectric(mu_v, eta)) * (1.0 - fresnel_dielectric(mu_l, eta))
+
+    /// T_F(μ_v)·T_F(μ_l): the light's Fresnel transmittance into the slab and out of it.
+    fn boundary(&self) -> f64 {
+        (1.0 - self.f_v) * (1.0 - self.f_l)
+    }
 }
 
 /// Case's discrete eigenvalue of isotropic scattering at albedo α′ as a decay rate κ = 1/ν₀
@@ -281,18 +306,23 @@ pub fn kappa(alpha_prime: f64) -> f64 {
 /// T₁: the once-scattered share of T in closed form (see the module's doc), at external cosines
 /// under a boundary of index `eta`. 0 at a cosine of 0.
 pub fn single_scattering(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
-    if mu_v <= 0.0 || mu_l <= 0.0 {
+    single_under(alpha_prime, eta, tau, &Faces::new(eta, mu_v, mu_l))
+}
+
+/// [`single_scattering`] with the faces already met.
+fn single_under(alpha_prime: f64, eta: f64, tau: f64, faces: &Faces) -> f64 {
+    let Faces { nu_v, nu_l, f_v, f_l } = *faces;
+    // A cosine of 0 (ν = μ at η = 1; at η > 1 ν ≥ 10⁻⁴ and F = 1 there, so the faces pass nothing).
+    if nu_v <= 0.0 || nu_l <= 0.0 {
         return 0.0;
     }
     if eta == 1.0 {
-        return single_inside(alpha_prime, tau, mu_v, mu_l);
+        return single_inside(alpha_prime, tau, nu_v, nu_l);
     }
-    let (nu_v, nu_l) = (refracted(mu_v, eta), refracted(mu_l, eta));
-    let (f_v, f_l) = (fresnel_dielectric(mu_v, eta), fresnel_dielectric(mu_l, eta));
-    // The two paths with one internal reflection (module doc); ν ≥ √(1 − 1/η²) > 0 here.
+    // The two paths with one internal reflection (module doc); ν ≥ 10⁻⁴ here.
     let back = alpha_prime / 4.0 * -(-tau * (1.0 / nu_v + 1.0 / nu_l)).exp_m1() / (nu_v + nu_l);
     let reflected = back * (f_l * (-tau / nu_l).exp() + f_v * (-tau / nu_v).exp());
-    (1.0 - f_v) * (1.0 - f_l) * (single_inside(alpha_prime, tau, nu_v, nu_l) + reflected) / (eta * eta)
+    faces.boundary() * (single_inside(alpha_prime, tau, nu_v, nu_l) + reflected) / (eta * eta)
 }
 
 /// Single scattering between internal cosines (\[Chandrasekhar1960\] ch. 1).
@@ -332,28 +362,24 @@ pub fn transmittance(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64)
     check("incidence cosine", mu_l, (0.0..=1.0).contains(&mu_l), "is outside [0, 1]")?;
     let t = table()?;
     let ax = t.axes;
-    let etas = eta_weights(eta, ax)?;
-    let (ia, fa) = cell((1.0 - alpha_prime).powf(0.25), ax.albedos);
+    let blocks = block_weights(alpha_prime, eta, ax)?;
     let (ik, fk) = cell(tau.ln_1p() / ax.tau_max.ln_1p(), ax.taus);
     let (iv, fv) = cell(mu_v, ax.mus);
     let (il, fl) = cell(mu_l, ax.mus);
     let mut g = 0.0;
-    // (At a node, or with the spline's doubled end nodes, most of the six weights are 0.)
-    for &(e, we) in etas.iter().filter(|(_, w)| *w != 0.0) {
-        for (da, wa) in [(0, 1.0 - fa), (1, fa)] {
-            for (dk, wk) in [(0, 1.0 - fk), (1, fk)] {
-                for (dv, wv) in [(0, 1.0 - fv), (1, fv)] {
-                    for (dl, wl) in [(0, 1.0 - fl), (1, fl)] {
-                        let i =
-                            ((((e * ax.albedos + ia + da) * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus) + il + dl;
-                        g += we * wa * wk * wv * wl * f64::from(t.g[i]);
-                    }
+    for (b, wb) in blocks {
+        for (dk, wk) in [(0, 1.0 - fk), (1, fk)] {
+            for (dv, wv) in [(0, 1.0 - fv), (1, fv)] {
+                for (dl, wl) in [(0, 1.0 - fl), (1, fl)] {
+                    let i = ((b * ax.taus + ik + dk) * ax.mus + iv + dv) * ax.mus + il + dl;
+                    g += wb * wk * wv * wl * f64::from(t.g[i]);
                 }
             }
         }
     }
-    let multiple = g * (-kappa(alpha_prime) * tau).exp() * boundary(eta, mu_v, mu_l);
-    Ok(single_scattering(alpha_prime, eta, tau, mu_v, mu_l) + multiple)
+    let faces = Faces::new(eta, mu_v, mu_l);
+    let multiple = g * (-kappa(alpha_prime) * tau).exp() * faces.boundary();
+    Ok(single_under(alpha_prime, eta, tau, &faces) + multiple)
 }
 
 /// Samples per pixel and light of the hidden-entry gather.

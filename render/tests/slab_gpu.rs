@@ -29,7 +29,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= arrayLength(&cases) { return; }
     let c = cases[id.x];
     let ch = u32(c.x);
-    results[id.x] = slab_transmittance(ch, medium.albedo[ch], medium.kappa[ch], c.y, c.z, c.w, medium.axes);
+    let faces = slab_faces(medium.axes.x, c.z, c.w);
+    results[id.x] = slab_transmittance(ch, medium.albedo[ch], medium.kappa[ch], c.y, c.z, c.w, faces, medium.axes);
 }
 "#;
 

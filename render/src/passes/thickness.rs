@@ -187,7 +187,8 @@ impl FramePass for ThicknessPass {
         let [normal, albedo, depth, local] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth, local) = (normal?, albedo?, depth?, local?);
         let diffuse = targets.view(Target::Diffuse)?;
-        let key = [0, 1, 2, 3].map(|c| if c < 3 { uniform.slab_albedo[c] } else { uniform.slab_axes[0] }.to_bits());
+        let [r, g, b, _] = uniform.slab_albedo;
+        let key = [r, g, b, uniform.slab_axes[0]].map(f32::to_bits);
         if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
             let albedo = std::array::from_fn(|c| f64::from(uniform.slab_albedo[c]));
             let values = slab_transmittance::medium_values(albedo, f64::from(uniform.slab_axes[0]))?;

@@ -24,12 +24,15 @@ fn slab_single_inside(a: f32, tau: f32, nu_v: f32, nu_l: f32) -> f32 {
     return 0.25 * a * (exp(-tau / nu_l) - exp(-tau / nu_v)) / d;
 }
 
-// T_F(μ_v)·T_F(μ_l), 1 at η = 1 (grazing included).
-fn slab_boundary(eta: f32, mu_v: f32, mu_l: f32) -> f32 {
-    if eta == 1.0 {
-        return 1.0;
-    }
-    return (1.0 - fresnel_in(mu_v, eta)) * (1.0 - fresnel_in(mu_l, eta));
+// The slab's faces as the light meets them (the CPU twin's `Faces`): the internal cosines ν and
+// the Fresnel reflectances F of the exit (v) and the entry (l). Channel-independent: made once
+// per pixel and light (`slab_faces`) for T₁ and the table's T_F(μ_v)·T_F(μ_l). At η = 1 ν = μ
+// and F = 0, grazing included.
+struct SlabFaces {
+    nu_v: f32,
+    nu_l: f32,
+    f_v: f32,
+    f_l: f32,
 }
 
 // The internal cosine of light refracted into index η at external cosine μ, held at 10⁻⁴ and
@@ -38,31 +41,38 @@ fn slab_refracted(mu: f32, eta: f32) -> f32 {
     return max(sqrt(max(1.0 - (1.0 - mu * mu) / (eta * eta), 0.0)), 1e-4);
 }
 
+fn slab_faces(eta: f32, mu_v: f32, mu_l: f32) -> SlabFaces {
+    if eta == 1.0 {
+        return SlabFaces(mu_v, mu_l, 0.0, 0.0);
+    }
+    return SlabFaces(slab_refracted(mu_v, eta), slab_refracted(mu_l, eta), fresnel_in(mu_v, eta), fresnel_in(mu_l, eta));
+}
+
 // T₁ under the boundary: T_F(μ_v)·T_F(μ_l)·(T₁(ν_v, ν_l) + the two once-scattered paths with
 // one internal reflection)/η² (the CPU twin's doc), 0 at a cosine of 0.
-fn slab_single(a: f32, eta: f32, tau: f32, mu_v: f32, mu_l: f32) -> f32 {
-    if mu_v <= 0.0 || mu_l <= 0.0 {
+fn slab_single(a: f32, eta: f32, tau: f32, faces: SlabFaces) -> f32 {
+    // A cosine of 0 (ν = μ at η = 1; at η > 1 ν ≥ 10⁻⁴ and F = 1 there, so the faces pass nothing).
+    if faces.nu_v <= 0.0 || faces.nu_l <= 0.0 {
         return 0.0;
     }
     if eta == 1.0 {
-        return slab_single_inside(a, tau, mu_v, mu_l);
+        return slab_single_inside(a, tau, faces.nu_v, faces.nu_l);
     }
-    let nu_v = slab_refracted(mu_v, eta);
-    let nu_l = slab_refracted(mu_l, eta);
-    let f_v = fresnel_in(mu_v, eta);
-    let f_l = fresnel_in(mu_l, eta);
-    // The two paths with one internal reflection; ν ≥ √(1 − 1/η²) > 0 here.
+    let nu_v = faces.nu_v;
+    let nu_l = faces.nu_l;
+    // The two paths with one internal reflection.
     let back = 0.25 * a * (1.0 - exp(-tau * (1.0 / nu_v + 1.0 / nu_l))) / (nu_v + nu_l);
-    let reflected = back * (f_l * exp(-tau / nu_l) + f_v * exp(-tau / nu_v));
-    return (1.0 - f_v) * (1.0 - f_l) * (slab_single_inside(a, tau, nu_v, nu_l) + reflected) / (eta * eta);
+    let reflected = back * (faces.f_l * exp(-tau / nu_l) + faces.f_v * exp(-tau / nu_v));
+    return (1.0 - faces.f_v) * (1.0 - faces.f_l) * (slab_single_inside(a, tau, nu_v, nu_l) + reflected) / (eta * eta);
 }
 
 fn slab_weight(c: vec2<f32>, upper: u32) -> f32 {
     return select(1.0 - c.y, c.y, upper == 1u);
 }
 
-// T of `channel`, whose albedo is a and Case decay rate kappa, at optical thickness tau.
-fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_l: f32, axes: vec4<f32>) -> f32 {
+// T of `channel`, whose albedo is a and Case decay rate kappa, at optical thickness tau, the
+// faces met at the external cosines mu_v and mu_l (`slab_faces(axes.x, mu_v, mu_l)`).
+fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_l: f32, faces: SlabFaces, axes: vec4<f32>) -> f32 {
     let ck = slab_cell(log(1.0 + tau) / axes.w, axes.y);
     let cv = slab_cell(mu_v, axes.z);
     let cl = slab_cell(mu_l, axes.z);
@@ -79,6 +89,6 @@ fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_
             }
         }
     }
-    let eta = axes.x;
-    return slab_single(a, eta, tau, mu_v, mu_l) + g * exp(-kappa * tau) * slab_boundary(eta, mu_v, mu_l);
+    let boundary = (1.0 - faces.f_v) * (1.0 - faces.f_l);
+    return slab_single(a, axes.x, tau, faces) + g * exp(-kappa * tau) * boundary;
 }

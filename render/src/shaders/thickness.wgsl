@@ -248,9 +248,10 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     // The plane's share that is there: a finger is narrower than the light spreads in it.
     let lit = lit_extent(light, axes, m, depth_mm);
     var t = lit;
+    let faces = slab_faces(params.slab_axes.x, mu_v, mu_l);
     for (var c = 0; c < 3; c++) {
         let tau = params.slab_sigma_t[c] * depth_mm;
-        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, params.slab_axes);
+        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, faces, params.slab_axes);
     }
     // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
     // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
