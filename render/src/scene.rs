@@ -210,7 +210,8 @@ pub enum SubsurfaceModel {
     /// skin pixel lights it as a plane slab of the skin's medium, of the thickness the light
     /// crossed (its shadow map) and tilted as the face it entered (the map's slope), would: exact
     /// transport, every order of scattering, no fitted parameter, over the share of the slab's
-    /// lit plane the light's map holds ([`crate::slab_extent`]). It fades out where the exit
+    /// lit plane the light's map holds, drained toward an edge where the exit face meets a side
+    /// face the light does not reach ([`crate::slab_extent`]). It fades out where the exit
     /// face turns the same way as the entry face (past a convex terminator, the kernel's part)
     /// and is off where the surface faces the light. The thickness pass draws it,
     /// with the local-thickness target for the material id. Needs `Skin::medium`, and lights

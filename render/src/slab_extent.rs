@@ -34,6 +34,13 @@
 //! Light entering a face beside the exit face (a wedge's top face near its front edge) is the
 //! law's own limit, not this module's: there f still removes what lies beyond the silhouette.
 //!
+//!
+//! The plane also has no sides. Where the exit face meets a side face beyond which the medium
+//! ends (a wedge's front and bottom faces), the slab's light leaves through it: [`side_drain`]
+//! takes the fundamental mode's image across that face's extrapolated boundary, 1 − e^{−q(a + z_b)}
+//! at a distance a from the edge, for a side face the light does not reach (shaders/slab_edge.wgsl
+//! finds the edge in the G-buffer).
+//!
 //! The shader (`lit_extent` in shaders/thickness.wgsl) takes [`LIT_EXTENT_SAMPLES`] radii
 //! stratified in p of the channel that spreads furthest ([`lit_extent_radii`]) on the
 //! golden-angle spiral, and weights the other channels by their p over that one; this module is
@@ -80,6 +87,33 @@ pub fn lit_extent(rates: [f64; 3], covered: impl Fn(f64, f64) -> bool) -> [f64; 
             }
         }
         hit as f64 / (RADII * ANGLES) as f64
+    })
+}
+
+/// What the slab law keeps beside a side face, per channel (`side_drain` in
+/// shaders/slab_edge.wgsl, which finds the edge in the G-buffer): `edge_mm` from the exit point
+/// to the edge where its face meets a side face and the medium ends, for lateral decay rates
+/// `rates` (mm⁻¹, [`lateral_rates_per_mm`]) in a medium of extinction `sigma_t_per_mm`.
+///
+/// The slab's fundamental mode, which carries its light sideways as e^{−qρ}, meets the side
+/// face's extrapolated boundary z_b = 2/(3σt′) beyond the edge, where diffusion's fluence
+/// vanishes; its image there (\[Contini1997\]'s image sources, turned to the lateral boundary)
+/// leaves 1 − e^{−q(a + z_b)} of the plane's light at a distance a from the face. A side face
+/// the light reaches carries its own light in (the hidden-entry gather's entries, whose dipole
+/// images that face), so the drain takes only the share of the side face the light does not
+/// reach directly: w = 1 − e^{−σt′·path}, `edge_path_mm` the distance the light crossed inside
+/// before the edge. The result is 1 − w·e^{−q(a + z_b)}, in (0, 1]; 1 where the light reaches
+/// the edge directly (path 0) or the edge is far (a → ∞).
+///
+/// Domain: σt′ > 0 and q > 0 finite; a and the path are clamped at 0 (and may be infinite).
+/// Measured against the path tracer on the backlit wedges (docs/BENCHMARKS.md "The slab's side
+/// faces"); at a straight edge of a thick slab diffusion is its own limit (the near field within
+/// a mean free path of the edge).
+pub fn side_drain(rates: [f64; 3], sigma_t_per_mm: [f64; 3], edge_mm: f64, edge_path_mm: f64) -> [f64; 3] {
+    std::array::from_fn(|c| {
+        let z_b = 2.0 / (3.0 * sigma_t_per_mm[c]);
+        let unlit = -(-sigma_t_per_mm[c] * edge_path_mm.max(0.0)).exp_m1();
+        1.0 - unlit * (-rates[c] * (edge_mm.max(0.0) + z_b)).exp()
     })
 }
 
@@ -143,6 +177,43 @@ mod tests {
         // A negative depth is a slab of none.
         let none = lateral_rates_per_mm([2.0; 3], [0.1; 3], -1.0);
         assert!((none[0] - (thin[0] * thin[0] + 0.04).sqrt()).abs() < 1e-12, "{none:?}");
+    }
+
+    #[test]
+    fn the_side_drain_takes_the_unlit_edge_s_image_and_nothing_where_the_light_arrives() {
+        let (q, sigma_t) = ([0.2, 0.5, 1.0], [0.7, 1.2, 1.9]);
+        // At the edge of a side face in the dark: the image at z_b beyond leaves 1 − e^{−q·z_b}.
+        let at_edge = side_drain(q, sigma_t, 0.0, f64::INFINITY);
+        for c in 0..3 {
+            let want = 1.0 - (-q[c] * 2.0 / (3.0 * sigma_t[c])).exp();
+            assert!((at_edge[c] - want).abs() < 1e-12, "channel {c}: {} against {want}", at_edge[c]);
+        }
+        // It grows back toward the plane's light with the distance, monotonically.
+        let mut last = at_edge;
+        for a in [0.5, 1.0, 2.0, 5.0, 10.0, 40.0] {
+            let f = side_drain(q, sigma_t, a, 8.0);
+            for c in 0..3 {
+                assert!(f[c] > last[c] && f[c] <= 1.0, "a {a}, channel {c}: {f:?} after {last:?}");
+            }
+            last = f;
+        }
+        assert!(last.iter().all(|f| *f > 0.999), "{last:?}");
+        // A side face the light reaches directly drains nothing; one behind 1 mm of the medium
+        // by the share the light does not reach.
+        assert_eq!(side_drain(q, sigma_t, 0.0, 0.0), [1.0; 3]);
+        let thin = side_drain(q, sigma_t, 0.0, 1.0);
+        for c in 0..3 {
+            let w = 1.0 - (-sigma_t[c]).exp();
+            assert!((1.0 - thin[c] - w * (1.0 - at_edge[c])).abs() < 1e-12, "channel {c}: {thin:?}");
+        }
+        // The domain's edges: a negative distance or path is none, an infinite distance the plane.
+        assert_eq!(side_drain(q, sigma_t, -3.0, -1.0), [1.0; 3]);
+        assert_eq!(side_drain(q, sigma_t, f64::INFINITY, 5.0), [1.0; 3]);
+        assert_eq!(side_drain(q, sigma_t, -3.0, 5.0), side_drain(q, sigma_t, 0.0, 5.0));
+        for f in side_drain([1e-9; 3], [1e3; 3], 0.0, 1e9).into_iter().chain(side_drain([1e3; 3], [1e-6; 3], 0.0, 1e9))
+        {
+            assert!(f.is_finite() && f > 0.0 && f <= 1.0, "{f}");
+        }
     }
 
     #[test]

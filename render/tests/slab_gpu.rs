@@ -9,7 +9,7 @@ use glam::Vec3;
 use rouge_model::look::Look;
 use rouge_model::medium::Medium;
 use rouge_model::mesh::load_mesh;
-use rouge_render::slab_extent::{lateral_rates_per_mm, lit_extent};
+use rouge_render::slab_extent::{lateral_rates_per_mm, lit_extent, side_drain};
 use rouge_render::slab_transmittance::{WGSL, axes, kappa, medium_values, transmittance};
 use rouge_render::{Camera, Gpu, LightRig, Renderer, Scene, Skin, SlabThrough, SubsurfaceModel};
 use std::path::Path;
@@ -155,41 +155,60 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
 fn backlit_wedge_at(gpu: &Gpu, eta: f64) {
     let (medium, scene, mut view) = backlit_marble_wedge(gpu, SlabThrough::Law, eta);
     let wedge = rouge_model::mesh::shapes::wedge();
-    // On the front face (z = 7.5) where the wedge is 6 mm thick along z, in its middle and 3 mm
-    // above its bottom edge (the light comes from above: its path stays clear of that edge);
-    // the back face slants by atan(14/60) and the light comes from (0.55, 0.3, −0.78).
+    // On the front face (z = 7.5) where the wedge is 6 mm thick along z, in its middle, and 3 mm
+    // and 1.5 mm above its bottom edge (the light comes from above: its path stays clear of that
+    // edge, but the slab's light leaves through the bottom face, which the light does not
+    // reach); the back face slants by atan(14/60) and the light comes from (0.55, 0.3, −0.78).
     let l = Vec3::new(0.55, 0.3, -0.78).normalize();
     let back_normal = Vec3::new(-14.0 / 60.0, 0.0, -1.0).normalize();
     let mu_l = l.dot(back_normal) as f64;
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
-    let mut extents = Vec::new();
+    let (mut extents, mut drains) = (Vec::new(), Vec::new());
     let middle = Vec3::new(-8.0, 0.0, 7.5);
     let (alpha, sigma_t) = (medium.reduced_albedo(), medium.sigma_t_prime_per_mm());
-    for at in [middle, Vec3::new(-8.0, -17.0, 7.5)] {
+    for at in [middle, Vec3::new(-8.0, -17.0, 7.5), Vec3::new(-8.0, -18.5, 7.5)] {
         // The slab's thickness is the distance from `at` to the back face's plane.
         let depth_mm = (at - on_back).dot(-back_normal) as f64;
         let mu_v = (view.camera.position() - at).normalize().z as f64;
         let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
+        // The side drain of the bottom face, whose edge below `at` the light reaches through the
+        // wedge (the drain the middle, 20 mm from it, is 1 − 10⁻⁴).
+        let edge = Vec3::new(at.x, -20.0, 7.5);
+        let (entry, _) = column_entry(&wedge, edge, l).expect("the light crosses the wedge to its bottom edge");
+        let rates = lateral_rates_per_mm(sigma_t, alpha.map(kappa), depth_mm);
+        let drain = side_drain(rates, sigma_t, (at - edge).length() as f64, (entry - edge).length() as f64);
         let got = view.diffuse_at(&scene, at);
         for c in 0..3 {
             let tau = sigma_t[c] * depth_mm;
-            let want = mu_l * transmittance(alpha[c], eta, tau, mu_v, mu_l).expect("domain") * extent[c];
+            let want = mu_l * transmittance(alpha[c], eta, tau, mu_v, mu_l).expect("domain") * extent[c] * drain[c];
             eprintln!(
-                "η {eta}, {at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}; {:+.2}%)",
+                "η {eta}, {at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}, drain {:.3}; {:+.2}%)",
                 got[c],
                 extent[c],
+                drain[c],
                 100.0 * (got[c] as f64 / want - 1.0)
             );
             // The shadow map's depth bias shortens the path by about 0.1 mm: 1-2% here (lavapipe:
             // +0.9 / +1.0 / +1.2% in the middle). By the edge the hidden-entry gather adds the
-            // light of the share the slab does not stand for, 1 − 0.95 (lavapipe: +3.0 / +3.0 /
-            // +3.1%; without it +0.7 / +1.1 / +1.7%).
+            // light of the share the slab does not stand for, 1 − 0.95 at 3 mm and 1 − 0.9 at
+            // 1.5 mm (lavapipe at η 1: +2.0 / +1.8 / +1.9% and +5.4 / +3.9 / +2.8%; at η 1.3 red
+            // +6.3% at 1.5 mm; before the drain, +3.0% at 3 mm and, without the gather, +0.7 /
+            // +1.1 / +1.7%). Without the drain the pass would be 25% and 70% over.
             let err = (got[c] as f64 - want).abs() / want;
-            let allowed = if at == middle { 0.03 } else { 0.05 };
+            let allowed = if at == middle {
+                0.03
+            } else if at.y > -18.0 {
+                0.05
+            } else {
+                0.08
+            };
             assert!(err < allowed, "η {eta}, {at}, channel {c}: {} against {want} ({:.1}%)", got[c], 100.0 * err);
         }
         extents.push(extent[0]);
+        drains.push(drain[0]);
     }
+    // The drain is what the points near the edge test: a fifth and two fifths of the slab's red.
+    assert!(drains[0] > 0.9999 && drains[1] < 0.85 && drains[2] < 0.65, "{drains:?}");
     // The middle is lit all around; 3 mm from the edge (6 mm in the light's map, whose columns
     // meet the bottom face too) 6% of the plane is missing in red.
     assert!(extents[0] > 0.995 && extents[1] < 0.95, "{extents:?}");

@@ -6,7 +6,9 @@
 //! parameters live in this pass's uniform, indexed by that id (the talk's material-id packing).
 //! Under the slab law ([`crate::scene::SubsurfaceModel::Slab`]) the same pass lights the skin as a
 //! plane slab of the thickness each light crossed ([`crate::slab_transmittance`]), over the
-//! share of the slab's plane the light's map holds ([`crate::slab_extent`]); its table is
+//! share of the slab's plane the light's map holds, drained toward the exit face's edges where
+//! the medium ends in a side face the light does not reach ([`crate::slab_extent`],
+//! shaders/slab_edge.wgsl); its table is
 //! uploaded the first time a frame needs it, and a one-value stand-in is bound otherwise.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};

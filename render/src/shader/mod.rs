@@ -191,6 +191,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "fibre" => Some(crate::fibre::WGSL_SCATTERING),
         "slab" => Some(crate::slab_transmittance::WGSL),
         "through" => Some(include_str!("../shaders/through.wgsl")),
+        "slab_edge" => Some(include_str!("../shaders/slab_edge.wgsl")),
         _ => None,
     }
 }

@@ -177,21 +177,26 @@ const LIT_EXTENT_RADII = array<f32, 16>(
     1.780213, 1.999098, 2.244936, 2.529734, 2.874153, 3.319419, 3.970680, 5.307471,
 );
 
+// The lateral decay rates q (mm⁻¹) per channel of the light crossing a slab `depth_mm` thick:
+// √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′) (slab_extent::lateral_rates_per_mm, its twin).
+fn lateral_rates(depth_mm: f32) -> vec3<f32> {
+    let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
+    let span = depth_mm + vec3<f32>(4.0 / 3.0) / params.slab_sigma_t.xyz;
+    return sqrt(sigma * sigma + (PI / span) * (PI / span));
+}
+
 // The slab law's lit extent per channel (render/src/slab_extent.rs, its converged twin): the
-// share of the lateral spread p(ρ) = q²/(2π) e^{−qρ} of the light crossing a slab `depth_mm`
-// thick, q = √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′), over the offsets in the light's map
-// around `m` where the map holds the mesh: 1 on a plane, less across a finger narrower than
-// the light spreads in it. Radii stratified in p of the channel that spreads furthest (q_min),
-// each channel weighted by its p over that one, (q/q_min)² e^{−(q − q_min)ρ}; angles on the
-// golden-angle spiral. A point light's perspective map has no constant texel size (as in
-// `entry_normal`): its plane counts as whole.
-fn lit_extent(light: Light, axes: MapAxes, m: MapPoint, depth_mm: f32) -> vec3<f32> {
+// share of the lateral spread p(ρ) = q²/(2π) e^{−qρ} of the light crossing a slab, at its
+// lateral rates `q` (`lateral_rates`), over the offsets in the light's map around `m` where the
+// map holds the mesh: 1 on a plane, less across a finger narrower than the light spreads in it.
+// Radii stratified in p of the channel that spreads furthest (q_min), each channel weighted by
+// its p over that one, (q/q_min)² e^{−(q − q_min)ρ}; angles on the golden-angle spiral. A point
+// light's perspective map has no constant texel size (as in `entry_normal`): its plane counts as
+// whole.
+fn lit_extent(light: Light, axes: MapAxes, m: MapPoint, q: vec3<f32>) -> vec3<f32> {
     if light.translucency.w > 0.5 {
         return vec3<f32>(1.0);
     }
-    let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
-    let span = depth_mm + vec3<f32>(4.0 / 3.0) / params.slab_sigma_t.xyz;
-    let q = sqrt(sigma * sigma + (PI / span) * (PI / span));
     let q_min = min(q.x, min(q.y, q.z));
     var lit = vec3<f32>(0.0);
     var total = vec3<f32>(0.0);
@@ -224,7 +229,7 @@ struct SlabLight {
 // The slab law's radiance of one light (see the top of the file) at `world`, which falls at `m`
 // in its map; 0 (facing 0) where the light met no mesh before `world` or the surface faces the
 // light.
-fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
+fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
     var out: SlabLight;
     let d = light_path_mm(m);
     if d <= 0.0 {
@@ -246,8 +251,14 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: 
     // is lost: ΔE 4.6 → 6.5 on the marble wedge, 1.6 → 6.1 on the ketchup wedge.)
     let depth_mm = d * mu_l;
     // The plane's share that is there: a finger is narrower than the light spreads in it.
-    let lit = lit_extent(light, axes, m, depth_mm);
+    let q = lateral_rates(depth_mm);
+    let lit = lit_extent(light, axes, m, q);
+    // What is left of it beside a side face the light does not reach (slab_edge.wgsl); a point
+    // light's plane counts as whole, as in `lit_extent`.
     var t = lit;
+    if light.translucency.w < 0.5 {
+        t *= side_drain(light, frag, world, q);
+    }
     let faces = slab_faces(params.slab_axes.x, mu_v, mu_l);
     for (var c = 0; c < 3; c++) {
         let tau = params.slab_sigma_t[c] * depth_mm;
@@ -388,6 +399,7 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
     // lit cap 5% too red, ΔE 2.31 against 1.95; docs/BENCHMARKS.md "The gather, signed".)
     return arrival.e * sum * (t_out / (PI * f32(count))) * light.translucency.x;
 }
+//#insert slab_edge
 //#insert through
 //#endif
 
@@ -439,7 +451,7 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
                 sum += hidden_entry(light, axes, m, world, n, v);
                 continue;
             }
-            let slab = slab_radiance(light, axes, m, world, n, v);
+            let slab = slab_radiance(light, axes, m, frag.xy, world, n, v);
             sum += slab.radiance;
             // The gather takes the share the slab leaves: nothing where the light left
             // through the face opposite the one it entered, over a plane lit all around.
