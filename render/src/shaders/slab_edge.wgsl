@@ -6,12 +6,12 @@
 // face the light does not reach directly (1 − e^{−σt′·path}, path the distance the light crossed
 // inside before the edge). A side face the light reaches is the hidden-entry gather's.
 //
-// The edge is found in the G-buffer: from the pixel, in 8 directions, at 1, 2, 4, ... pixels
-// until the surface is further than `reach_mm`, then halved 4 times. The face ends where the
-// medium's pixels end while its last one still faces the camera (a smooth silhouette turns
-// away first), or where the normal turns by more than 60° between two samples the surface
-// joins (a crease). A jump in depth (another part in front, or behind) ends the search there:
-// the face goes on out of sight.
+// The edges are found in the G-buffer: from the pixel, in 8 directions, at 1, 2, 4, ... pixels
+// until the surface is 3/q_min away, then halved 4 times. The face ends where the medium's
+// pixels end while its last one still faces the camera, flat (a silhouette turns away first),
+// or where the normal turns by more than 60° between two samples the surface joins, at every
+// scale (a crease). A jump in depth (another part in front, or behind) ends the search there:
+// the face goes on out of sight. The drain is the least over the edges found.
 
 const EDGE_DIRECTIONS: u32 = 8u;
 const EDGE_DOUBLINGS: u32 = 7u;
@@ -69,15 +69,19 @@ fn edge_step(prev: EdgeSample, next: EdgeSample, step_px: f32) -> EdgeStep {
     return s;
 }
 
-// The distance (mm) from `world` (at pixel `frag`) to the nearest edge of its face
-// within `reach_mm`, and the light `light`'s path inside before that edge (mm); −1 where none is
-// found.
-fn side_edge(light: Light, frag: vec2<f32>, world: vec3<f32>, reach_mm: f32) -> vec2<f32> {
-    var best = vec2<f32>(-1.0, 0.0);
+// The slab's light kept beside a side face the light `light` does not reach (the top of the
+// file), per channel, at `world` (pixel `frag`) for lateral decay rates `q` (mm⁻¹): the least
+// over the edges found within 3/q_min, each drained by its distance and the light's path inside
+// before it (so a lit edge nearer than an unlit one does not hide it); 1 where none is near.
+fn side_drain(light: Light, frag: vec2<f32>, world: vec3<f32>, q: vec3<f32>) -> vec3<f32> {
+    var drain = vec3<f32>(1.0);
     let centre = edge_sample(frag);
     if !centre.medium {
-        return best;
+        return drain;
     }
+    let reach_mm = 3.0 / min(q.x, min(q.y, q.z));
+    let sigma_t = params.slab_sigma_t.xyz;
+    let z_b = vec3<f32>(2.0 / 3.0) / sigma_t;
     for (var k = 0u; k < EDGE_DIRECTIONS; k++) {
         let phi = f32(k) * (2.0 * PI / f32(EDGE_DIRECTIONS));
         let dir = vec2<f32>(cos(phi), sin(phi));
@@ -147,23 +151,8 @@ fn side_edge(light: Light, frag: vec2<f32>, world: vec3<f32>, reach_mm: f32) -> 
             }
         }
         let a = length(inside.world - world);
-        if best.x < 0.0 || a < best.x {
-            best = vec2<f32>(a, light_path_mm(map_point(light, inside.world)));
-        }
+        let unlit = 1.0 - exp(-sigma_t * light_path_mm(map_point(light, inside.world)));
+        drain = min(drain, 1.0 - unlit * exp(-q * (a + z_b)));
     }
-    return best;
-}
-
-// The slab's light kept beside a side face the light does not reach (the top of the file), per
-// channel, for lateral decay rates `q` (mm⁻¹); 1 where no edge is near.
-fn side_drain(light: Light, frag: vec2<f32>, world: vec3<f32>, q: vec3<f32>) -> vec3<f32> {
-    let q_min = min(q.x, min(q.y, q.z));
-    let edge = side_edge(light, frag, world, 3.0 / q_min);
-    if edge.x < 0.0 {
-        return vec3<f32>(1.0);
-    }
-    let sigma_t = params.slab_sigma_t.xyz;
-    let unlit = 1.0 - exp(-sigma_t * edge.y);
-    let z_b = vec3<f32>(2.0 / 3.0) / sigma_t;
-    return 1.0 - unlit * exp(-q * (edge.x + z_b));
+    return drain;
 }
