@@ -55,6 +55,13 @@ pub fn lit_extent_radii() -> [f64; LIT_EXTENT_SAMPLES] {
     std::array::from_fn(|j| gamma2_quantile((j as f64 + 0.5) / LIT_EXTENT_SAMPLES as f64))
 }
 
+/// The extrapolated boundary's distance beyond an index-matched face (mm), z_b = 2D = 2/(3σt′),
+/// for extinction `sigma_t_per_mm` (σa + σs′): where diffusion's fluence vanishes outside a slab's
+/// faces ([`lateral_rates_per_mm`]: L = d + 2z_b) and outside a side face ([`side_drain`]).
+pub fn extrapolation_mm(sigma_t_per_mm: f64) -> f64 {
+    2.0 / (3.0 * sigma_t_per_mm)
+}
+
 /// The lateral decay rate q (mm⁻¹) of the light crossing a slab `depth_mm` thick, per channel,
 /// for a medium of extinction `sigma_t_per_mm` (σa + σs′) and Case's decay rate `kappa` (per unit
 /// optical depth): √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′) (the module's doc). Finite and
@@ -62,7 +69,7 @@ pub fn lit_extent_radii() -> [f64; LIT_EXTENT_SAMPLES] {
 pub fn lateral_rates_per_mm(sigma_t_per_mm: [f64; 3], kappa: [f64; 3], depth_mm: f64) -> [f64; 3] {
     std::array::from_fn(|c| {
         let sigma = kappa[c] * sigma_t_per_mm[c];
-        let span = depth_mm.max(0.0) + 4.0 / (3.0 * sigma_t_per_mm[c]);
+        let span = depth_mm.max(0.0) + 2.0 * extrapolation_mm(sigma_t_per_mm[c]);
         (sigma * sigma + (std::f64::consts::PI / span).powi(2)).sqrt()
     })
 }
@@ -111,7 +118,7 @@ pub fn lit_extent(rates: [f64; 3], covered: impl Fn(f64, f64) -> bool) -> [f64; 
 /// a mean free path of the edge).
 pub fn side_drain(rates: [f64; 3], sigma_t_per_mm: [f64; 3], edge_mm: f64, edge_path_mm: f64) -> [f64; 3] {
     std::array::from_fn(|c| {
-        let z_b = 2.0 / (3.0 * sigma_t_per_mm[c]);
+        let z_b = extrapolation_mm(sigma_t_per_mm[c]);
         let unlit = -(-sigma_t_per_mm[c] * edge_path_mm.max(0.0)).exp_m1();
         1.0 - unlit * (-rates[c] * (edge_mm.max(0.0) + z_b)).exp()
     })

@@ -163,8 +163,8 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
                  and adding-doubling's table of the rest, under the medium's boundary (η {}: the faces' Fresnel \
                  transmittance and the light they hold inside); the thickness the light crossed from its shadow map, \
                  the face it entered from the map's slope; over the share of the slab's plane the map holds and, for \
-                 directional lights, drained toward the nearest edge where the face meets a side face the light does \
-                 not reach (found in the G-buffer, 8 directions); beside it, for directional lights, the light \
+                 directional lights, drained toward the edges where the face meets a side face the light does \
+                 not reach (found in the G-buffer, 8 directions; the strongest drain); beside it, for directional lights, the light \
                  entering within the medium's reach that neither the lighting nor the kernel carries (faces the \
                  camera does not see, and seen ones beyond the kernel's reach or depth), from the map, carried by \
                  the classic dipole ({} samples))",

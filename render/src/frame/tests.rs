@@ -149,7 +149,7 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     // Marble's η of 1.5: the law's table holds the boundary, and the plan says at which η.
     assert!(text.contains("under the medium's boundary (η 1.5:"), "{text}");
     // The side faces' drain is part of the law, and the plan names it.
-    assert!(text.contains("drained toward the nearest edge where the face meets a side face"), "{text}");
+    assert!(text.contains("drained toward the edges where the face meets a side face"), "{text}");
     // Past the table's last η the plan is refused, naming the medium's η.
     let mut dense = scene.clone();
     dense.skin.medium =

@@ -81,7 +81,7 @@ fn side_drain(light: Light, frag: vec2<f32>, world: vec3<f32>, q: vec3<f32>) -> 
     }
     let reach_mm = 3.0 / min(q.x, min(q.y, q.z));
     let sigma_t = params.slab_sigma_t.xyz;
-    let z_b = vec3<f32>(2.0 / 3.0) / sigma_t;
+    let z_b = slab_extrapolation_mm();
     for (var k = 0u; k < EDGE_DIRECTIONS; k++) {
         let phi = f32(k) * (2.0 * PI / f32(EDGE_DIRECTIONS));
         let dir = vec2<f32>(cos(phi), sin(phi));

@@ -177,11 +177,18 @@ const LIT_EXTENT_RADII = array<f32, 16>(
     1.780213, 1.999098, 2.244936, 2.529734, 2.874153, 3.319419, 3.970680, 5.307471,
 );
 
+// The extrapolated boundary's distance beyond a face per channel (mm), z_b = 2/(3σt′)
+// (slab_extent::extrapolation_mm): of the slab's faces (`lateral_rates`) and of a side face
+// (`side_drain`, slab_edge.wgsl).
+fn slab_extrapolation_mm() -> vec3<f32> {
+    return vec3<f32>(2.0 / 3.0) / params.slab_sigma_t.xyz;
+}
+
 // The lateral decay rates q (mm⁻¹) per channel of the light crossing a slab `depth_mm` thick:
-// √(σ² + (π/L)²), σ = κσt′, L = d + 4/(3σt′) (slab_extent::lateral_rates_per_mm, its twin).
+// √(σ² + (π/L)²), σ = κσt′, L = d + 2z_b (slab_extent::lateral_rates_per_mm, its twin).
 fn lateral_rates(depth_mm: f32) -> vec3<f32> {
     let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
-    let span = depth_mm + vec3<f32>(4.0 / 3.0) / params.slab_sigma_t.xyz;
+    let span = depth_mm + 2.0 * slab_extrapolation_mm();
     return sqrt(sigma * sigma + (PI / span) * (PI / span));
 }
 
