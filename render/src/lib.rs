@@ -56,6 +56,7 @@ pub(crate) mod shader;
 pub mod silhouettes;
 pub mod skin_study;
 pub mod slab_extent;
+pub mod slab_march;
 pub mod slab_transmittance;
 pub mod specular;
 pub mod sss;

@@ -309,6 +309,17 @@ pub fn single_scattering(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: 
     single_under(alpha_prime, eta, tau, &Faces::new(eta, mu_v, mu_l))
 }
 
+/// The share of [`single_scattering`] that meets no internal reflection,
+/// T_F(μ_v)·T_F(μ_l)·T₁(ν_v, ν_l)/η² (all of it at η = 1): what the renderer marches along the
+/// view ray through the mesh instead where it can ([`crate::slab_march`]).
+pub fn single_unreflected(alpha_prime: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
+    let faces = Faces::new(eta, mu_v, mu_l);
+    if faces.nu_v <= 0.0 || faces.nu_l <= 0.0 {
+        return 0.0;
+    }
+    faces.boundary() * single_inside(alpha_prime, tau, faces.nu_v, faces.nu_l) / (eta * eta)
+}
+
 /// [`single_scattering`] with the faces already met.
 fn single_under(alpha_prime: f64, eta: f64, tau: f64, faces: &Faces) -> f64 {
     let Faces { nu_v, nu_l, f_v, f_l } = *faces;

@@ -122,6 +122,9 @@ pub enum Target {
     Glitter,
     /// Depth buffer.
     Depth,
+    /// The depth of the nearest back face, where the camera's ray leaves the mesh (the slab law's
+    /// single scattering along the view ray).
+    BackDepth,
     /// Skin radiance before scattering.
     Diffuse,
     /// The horizontal SSS pass's output.
@@ -155,6 +158,7 @@ impl Target {
             Target::LocalThickness => "local thickness",
             Target::Glitter => "glitter footprint",
             Target::Depth => "depth",
+            Target::BackDepth => "back-face depth",
             Target::Diffuse => "diffuse",
             Target::SssScratch => "sss scratch",
             Target::Scattered => "scattered",
@@ -176,7 +180,7 @@ impl Target {
             Target::Albedo => ALBEDO_FORMAT,
             Target::LocalThickness => LOCAL_THICKNESS_FORMAT,
             Target::Glitter => GLITTER_FORMAT,
-            Target::Depth => DEPTH_FORMAT,
+            Target::Depth | Target::BackDepth => DEPTH_FORMAT,
             Target::Display => formats.display,
             Target::Linear => formats.linear,
             _ => HDR_FORMAT,

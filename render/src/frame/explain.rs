@@ -159,8 +159,10 @@ pub(super) fn material(skin: &Skin, curved: bool) -> String {
             }
             let _ = write!(
                 out,
-                " (each shadowed light through a plane slab of the medium, exactly: single scattering in closed form \
-                 and adding-doubling's table of the rest, under the medium's boundary (η {}: the faces' Fresnel \
+                " (each shadowed light through a plane slab of the medium, exactly: adding-doubling's table of \
+                 all but single scattering, which is marched along the view ray to the back faces' depth, each \
+                 point lit through its path in the shadow map (16 points; in closed form where no back face is \
+                 drawn, and its paths reflected once inside), under the medium's boundary (η {}: the faces' Fresnel \
                  transmittance and the light they hold inside); the thickness the light crossed from its shadow map, \
                  the face it entered from the map's slope; over the share of the slab's plane the map holds and, for \
                  directional lights, drained toward the edges where the face meets a side face the light does \

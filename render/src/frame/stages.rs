@@ -205,6 +205,13 @@ impl Planner {
             if matches!(source, ThicknessVariant::ShadowMap | ThicknessVariant::Slab) {
                 reads.push(Resource::ShadowMaps);
             }
+            if source == ThicknessVariant::Slab {
+                let back = Resource::Target(Target::BackDepth);
+                self.push(Step::BackDepth(()), vec![Resource::Mesh], vec![(back, Access::Replace)]);
+                reads.push(back);
+            } else {
+                self.skip("back-face depth pass", "only the slab law marches the view ray through the mesh");
+            }
             self.push(Step::Thickness(uniform), reads, added.clone());
         }
         // What a gather into the skin's pixels reads of the frame.

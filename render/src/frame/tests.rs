@@ -136,8 +136,11 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     assert!(err.to_string().contains("--medium"), "{err}");
     scene.skin.medium = Some(rouge_model::medium::Medium::builtin("marble").expect("marble"));
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
-    assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "thickness", "composite"]);
+    assert_eq!(steps(&plan), ["shadow 0", "gbuffer", "lighting", "back depth", "thickness", "composite"]);
     assert_eq!(plan.variant.thickness, ThicknessVariant::Slab);
+    // The back faces' depth is the slab law's alone: the thickness pass reads it there.
+    assert!(plan.passes.iter().any(|p| matches!(p.step, Step::Thickness(_))
+        && p.reads.contains(&Resource::Target(crate::targets::Target::BackDepth))));
     assert!(
         plan.passes
             .iter()
@@ -148,8 +151,9 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     assert!(text.contains("subsurface slab (each shadowed light through a plane slab"), "{text}");
     // Marble's η of 1.5: the law's table holds the boundary, and the plan says at which η.
     assert!(text.contains("under the medium's boundary (η 1.5:"), "{text}");
-    // The side faces' drain is part of the law, and the plan names it.
+    // The side faces' drain is part of the law, and the plan names it; so is the march.
     assert!(text.contains("drained toward the edges where the face meets a side face"), "{text}");
+    assert!(text.contains("marched along the view ray to the back faces' depth"), "{text}");
     // Past the table's last η the plan is refused, naming the medium's η.
     let mut dense = scene.clone();
     dense.skin.medium =
@@ -169,7 +173,7 @@ fn the_slab_law_runs_the_thickness_pass_on_the_shadow_maps_and_needs_a_medium() 
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
     assert_eq!(
         steps(&plan),
-        ["shadow 0", "gbuffer", "lighting", "thickness", "sss horizontal", "sss vertical", "composite"]
+        ["shadow 0", "gbuffer", "lighting", "back depth", "thickness", "sss horizontal", "sss vertical", "composite"]
     );
     assert_eq!(kernel(&plan), Some([reach, 3.0, 0.0, 0.0]));
     // At width 0 no kernel runs, and the gather takes all of the seen entries' excess.

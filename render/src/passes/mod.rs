@@ -13,6 +13,7 @@
 //!
 //! How to add a pass: docs/ARCHITECTURE.md, "How to add a pass".
 
+pub mod back_depth;
 pub mod bounce;
 pub mod composite;
 pub mod cube_atlas;
@@ -107,6 +108,8 @@ frame_passes! {
     Gbuffer => gbuffer: gbuffer::GbufferPass,
     /// Lighting through the cosmetic stack.
     Lighting => lighting: lighting::LightingPass,
+    /// The depth of the mesh's back faces, where the camera's ray leaves it (the slab law's).
+    BackDepth => back_depth: back_depth::BackDepthPass,
     /// Thickness translucency added to the skin's diffuse radiance.
     Thickness => thickness: thickness::ThicknessPass,
     /// The dipole models' light G-buffer, one view per directional light.

@@ -8,7 +8,8 @@
 //! plane slab of the thickness each light crossed ([`crate::slab_transmittance`]), over the
 //! share of the slab's plane the light's map holds, drained toward the exit face's edges where
 //! the medium ends in a side face the light does not reach ([`crate::slab_extent`],
-//! shaders/slab_edge.wgsl); its table is
+//! shaders/slab_edge.wgsl), and its light scattered once marched along the view ray to the back
+//! faces' depth ([`crate::slab_march`], [`super::back_depth`]); its table is
 //! uploaded the first time a frame needs it, and a one-value stand-in is bound otherwise.
 
 use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
@@ -133,7 +134,7 @@ pub struct ThicknessPass {
     stand_in: wgpu::Buffer,
 }
 
-/// The targets the pass reads.
+/// The targets the pass reads (the slab law also reads [`Target::BackDepth`]).
 pub fn inputs() -> [Target; 4] {
     [Target::Normal, Target::Albedo, Target::Depth, Target::LocalThickness]
 }
@@ -158,6 +159,8 @@ impl FramePass for ThicknessPass {
                 tex_entry(4, wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2Array),
                 uniform_entry(5, wgpu::ShaderStages::FRAGMENT),
                 storage_entry(6),
+                // The back faces' depth (the slab law's), read as the G-buffer's depth is.
+                float_tex(7, false),
             ],
         );
         let uniform = uniform_buffer(device, "ThicknessPass::uniform", std::mem::size_of::<ThicknessUniform>());
@@ -189,6 +192,9 @@ impl FramePass for ThicknessPass {
         let [normal, albedo, depth, local] = inputs().map(|t| targets.view(t));
         let (normal, albedo, depth, local) = (normal?, albedo?, depth?, local?);
         let diffuse = targets.view(Target::Diffuse)?;
+        // The slab law marches its single scattering to the back faces' depth; the talk's term
+        // reads none, and the G-buffer's depth stands in.
+        let back = if uniform.is_slab() { targets.view(Target::BackDepth)? } else { depth.clone() };
         let [r, g, b, _] = uniform.slab_albedo;
         let key = [r, g, b, uniform.slab_axes[0]].map(f32::to_bits);
         if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
@@ -217,6 +223,7 @@ impl FramePass for ThicknessPass {
                 tex(4, &rec.shadow_maps),
                 buf(5, &self.uniform),
                 buf(6, table),
+                tex(7, &back),
             ],
         });
         let mut pass = rec.enc.begin("thickness", &[color_load(&diffuse)], None);

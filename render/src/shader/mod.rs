@@ -192,6 +192,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "slab" => Some(crate::slab_transmittance::WGSL),
         "through" => Some(include_str!("../shaders/through.wgsl")),
         "slab_edge" => Some(include_str!("../shaders/slab_edge.wgsl")),
+        "slab_march" => Some(include_str!("../shaders/slab_march.wgsl")),
         _ => None,
     }
 }

@@ -64,9 +64,9 @@ fn every_shader_variant_validates() {
     // G-buffer: 9 layer counts × albedo × normal map × skin detail × 3 thickness variants (the
     // slab law's is the shadow map's), and the 8 with layers again with glitter; thickness: 4; lighting: 9 × shadows × env × 3
     // (dipole, atlas), and the 8 with layers again with glitter; composite: 2 × display × hair;
-    // shadow, SSS, depth copy, edge overdraw, the three dipole passes, the atlas gather and the
-    // bounce: 1 each; the atlas irradiance and the hair: shadows × env.
-    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 4 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 4 + 3 + 1 + 1 + 4 + 4;
+    // shadow, back-face depth, SSS, depth copy, edge overdraw, the three dipole passes, the atlas
+    // gather and the bounce: 1 each; the atlas irradiance and the hair: shadows × env.
+    let per_encoding = 9 * 8 * 3 + 8 * 8 * 3 + 4 + 9 * 12 + 8 * 12 + 2 * 2 * 2 + 5 + 3 + 1 + 1 + 4 + 4;
     assert_eq!(seen.len(), 2 * per_encoding);
 }
 

@@ -48,22 +48,24 @@ fn slab_faces(eta: f32, mu_v: f32, mu_l: f32) -> SlabFaces {
     return SlabFaces(slab_refracted(mu_v, eta), slab_refracted(mu_l, eta), fresnel_in(mu_v, eta), fresnel_in(mu_l, eta));
 }
 
-// T₁ under the boundary: T_F(μ_v)·T_F(μ_l)·(T₁(ν_v, ν_l) + the two once-scattered paths with
-// one internal reflection)/η² (the CPU twin's doc), 0 at a cosine of 0.
-fn slab_single(a: f32, eta: f32, tau: f32, faces: SlabFaces) -> f32 {
+// T₁ under the boundary: T_F(μ_v)·T_F(μ_l)·(once·T₁(ν_v, ν_l) + the two once-scattered paths
+// with one internal reflection)/η² (the CPU twin's doc), 0 at a cosine of 0. `once` is 1, or 0
+// where the light scattered once without reflection is marched through the mesh instead
+// (slab_march.wgsl).
+fn slab_single(a: f32, eta: f32, tau: f32, faces: SlabFaces, once: f32) -> f32 {
     // A cosine of 0 (ν = μ at η = 1; at η > 1 ν ≥ 10⁻⁴ and F = 1 there, so the faces pass nothing).
     if faces.nu_v <= 0.0 || faces.nu_l <= 0.0 {
         return 0.0;
     }
     if eta == 1.0 {
-        return slab_single_inside(a, tau, faces.nu_v, faces.nu_l);
+        return once * slab_single_inside(a, tau, faces.nu_v, faces.nu_l);
     }
     let nu_v = faces.nu_v;
     let nu_l = faces.nu_l;
     // The two paths with one internal reflection.
     let back = 0.25 * a * (1.0 - exp(-tau * (1.0 / nu_v + 1.0 / nu_l))) / (nu_v + nu_l);
     let reflected = back * (faces.f_l * exp(-tau / nu_l) + faces.f_v * exp(-tau / nu_v));
-    return (1.0 - faces.f_v) * (1.0 - faces.f_l) * (slab_single_inside(a, tau, nu_v, nu_l) + reflected) / (eta * eta);
+    return (1.0 - faces.f_v) * (1.0 - faces.f_l) * (once * slab_single_inside(a, tau, nu_v, nu_l) + reflected) / (eta * eta);
 }
 
 fn slab_weight(c: vec2<f32>, upper: u32) -> f32 {
@@ -71,8 +73,9 @@ fn slab_weight(c: vec2<f32>, upper: u32) -> f32 {
 }
 
 // T of `channel`, whose albedo is a and Case decay rate kappa, at optical thickness tau, the
-// faces met at the external cosines mu_v and mu_l (`slab_faces(axes.x, mu_v, mu_l)`).
-fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_l: f32, faces: SlabFaces, axes: vec4<f32>) -> f32 {
+// faces met at the external cosines mu_v and mu_l (`slab_faces(axes.x, mu_v, mu_l)`); `once` as
+// in `slab_single`.
+fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_l: f32, faces: SlabFaces, axes: vec4<f32>, once: f32) -> f32 {
     let ck = slab_cell(log(1.0 + tau) / axes.w, axes.y);
     let cv = slab_cell(mu_v, axes.z);
     let cl = slab_cell(mu_l, axes.z);
@@ -90,5 +93,5 @@ fn slab_transmittance(channel: u32, a: f32, kappa: f32, tau: f32, mu_v: f32, mu_
         }
     }
     let boundary = (1.0 - faces.f_v) * (1.0 - faces.f_l);
-    return slab_single(a, axes.x, tau, faces) + g * exp(-kappa * tau) * boundary;
+    return slab_single(a, axes.x, tau, faces, once) + g * exp(-kappa * tau) * boundary;
 }

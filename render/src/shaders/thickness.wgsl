@@ -8,7 +8,10 @@
 // the share f of that plane the light's map holds (render/src/slab_extent.rs),
 //   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · f · clamp(1 − n·n_e, 0, 1) / π per light,
 // μ_l the light's cosine on the face where it entered and n_e that face's normal (the slope of
-// the shadow map there), d the distance it travelled inside, from the shadow map.
+// the shadow map there), d the distance it travelled inside, from the shadow map. Its light
+// scattered once (T₁'s unreflected share) is marched along the view ray through the mesh to
+// the back faces' depth instead (slab_march.wgsl), unscaled by f or the facing, where the
+// back-face pass drew one.
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
@@ -43,6 +46,9 @@ struct ThicknessPass {
 @group(1) @binding(5) var<uniform> params: ThicknessPass;
 //#if THICKNESS_SLAB
 @group(1) @binding(6) var<storage, read> slab_table: array<f32>;
+// The depth of the nearest back face at each pixel (passes/back_depth.rs): where the camera's ray
+// leaves the mesh.
+@group(1) @binding(7) var back_depth: texture_2d<f32>;
 //#insert slab
 //#insert diffusion
 //#endif
@@ -266,11 +272,17 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, worl
     if light.translucency.w < 0.5 {
         t *= side_drain(light, frag, world, q);
     }
-    let faces = slab_faces(params.slab_axes.x, mu_v, mu_l);
+    let eta = params.slab_axes.x;
+    let faces = slab_faces(eta, mu_v, mu_l);
+    // The light scattered once is marched through the mesh along the view ray (slab_march.wgsl)
+    // where the back-face pass found the ray's exit; the plane's closed form serves elsewhere.
+    let chord = view_chord_mm(frag, world);
+    let once = select(1.0, 0.0, chord >= 0.0);
     for (var c = 0; c < 3; c++) {
         let tau = params.slab_sigma_t[c] * depth_mm;
-        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, faces, params.slab_axes);
+        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, faces, params.slab_axes, once);
     }
+    let marched = once_scattered(light, axes, world, n, v, n_e, mu_v, mu_l, faces, chord);
     // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
     // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
     // to nothing as the two faces turn the same way (n·n_e → 1: the thin cap beyond a convex
@@ -279,7 +291,9 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, worl
     out.facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
     // The slab stands for the light of the plane it assumes where that plane is there.
     out.share = out.facing * dot(lit, vec3<f32>(1.0 / 3.0));
-    out.radiance = arrival.e * mu_l * t * (out.facing / PI) * light.translucency.x;
+    // The march is the once-scattered light through the mesh as it is: no plane assumed, so
+    // neither the lit extent, the drain nor the facing scale it.
+    out.radiance = arrival.e * (mu_l * t * out.facing + marched) * (light.translucency.x / PI);
     return out;
 }
 
@@ -407,6 +421,7 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
     return arrival.e * sum * (t_out / (PI * f32(count))) * light.translucency.x;
 }
 //#insert slab_edge
+//#insert slab_march
 //#insert through
 //#endif
 
@@ -454,8 +469,9 @@ fn fs_thickness(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
                 && dot(n, light_arrival(light, world).l) < 0.0 {
                 // The gather alone, with the transmission kernel (`through_entry3`): every
                 // entry the map holds, no plane assumed. (A point light's perspective map has
-                // no constant texel size for the gather: the slab law serves it.)
-                sum += hidden_entry(light, axes, m, world, n, v);
+                // no constant texel size for the gather: the slab law serves it.) The light
+                // scattered once, which diffusion does not carry, is marched as under the law.
+                sum += hidden_entry(light, axes, m, world, n, v) + marched_light(light, axes, m, frag.xy, world, n, v);
                 continue;
             }
             let slab = slab_radiance(light, axes, m, frag.xy, world, n, v);
