@@ -131,16 +131,29 @@ fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: 
     lit_extent(rates, |x, y| covered(at + right * x as f32 + up * y as f32))
 }
 
-/// Marble of index `eta` in the built-in wedge lit from behind, under the slab model with
-/// `through` carrying the light that crossed it; no specular.
-fn backlit_marble_wedge(gpu: &Gpu, through: SlabThrough, eta: f64) -> (Medium, Scene, View) {
-    let medium = Medium::builtin("marble").expect("marble").with_eta(eta).expect("η");
+/// The built-in medium `name` of index `eta` in the built-in wedge lit from behind (above and
+/// the right), under the slab model with `through` carrying the light that crossed it; no
+/// specular.
+fn backlit_wedge(gpu: &Gpu, name: &str, eta: f64, through: SlabThrough) -> BacklitWedge {
+    let medium = Medium::builtin(name).expect("built-in medium").with_eta(eta).expect("η");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::rig(LightRig::Back);
     scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through }, ..skin };
     scene.specular = false;
     let view = View::new(gpu, "builtin:wedge", scene.skin.albedo);
-    (medium, scene, view)
+    // The back rig's light, toward it.
+    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
+    BacklitWedge { medium, scene, view, wedge: rouge_model::mesh::shapes::wedge(), l }
+}
+
+/// What [`backlit_wedge`] sets up: the medium, the scene, its view, the wedge's mesh and the
+/// unit vector toward the light.
+struct BacklitWedge {
+    medium: Medium,
+    scene: Scene,
+    view: View,
+    wedge: rouge_model::mesh::Mesh,
+    l: Vec3,
 }
 
 #[test]
@@ -154,13 +167,11 @@ fn the_backlit_wedge_transmits_what_its_slab_does() {
 }
 
 fn backlit_wedge_at(gpu: &Gpu, eta: f64) {
-    let (medium, scene, mut view) = backlit_marble_wedge(gpu, SlabThrough::Law, eta);
-    let wedge = rouge_model::mesh::shapes::wedge();
+    let BacklitWedge { medium, scene, mut view, wedge, l } = backlit_wedge(gpu, "marble", eta, SlabThrough::Law);
     // On the front face (z = 7.5) where the wedge is 6 mm thick along z, in its middle, and 3 mm
     // and 1.5 mm above its bottom edge (the light comes from above: its path stays clear of that
     // edge, but the slab's light leaves through the bottom face, which the light does not
     // reach); the back face slants by atan(14/60) and the light comes from (0.55, 0.3, −0.78).
-    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
     let back_normal = Vec3::new(-14.0 / 60.0, 0.0, -1.0).normalize();
     let mu_l = l.dot(back_normal) as f64;
     let on_back = Vec3::new(-30.0, 0.0, 6.5);
@@ -237,14 +248,7 @@ fn below_a_lit_side_face_the_light_scattered_once_is_marched_through_the_wedge()
     // entering that face. The plane's T₁ takes a slab 1 mm thick entered through the top face and
     // misses most of it (the path tracer: docs/BENCHMARKS.md "The slab's side faces").
     let gpu = Gpu::headless().expect("a wgpu adapter");
-    let medium = Medium::builtin("ketchup").expect("ketchup").with_eta(1.0).expect("η");
-    let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
-    let mut scene = Scene::rig(LightRig::Back);
-    scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through: SlabThrough::Law }, ..skin };
-    scene.specular = false;
-    let mut view = View::new(&gpu, "builtin:wedge", scene.skin.albedo);
-    let wedge = rouge_model::mesh::shapes::wedge();
-    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
+    let BacklitWedge { medium, scene, mut view, wedge, l } = backlit_wedge(&gpu, "ketchup", 1.0, SlabThrough::Law);
     let (alpha, sigma_t) = (medium.reduced_albedo(), medium.sigma_t_prime_per_mm());
     for x in [-8.0, 12.0] {
         let at = Vec3::new(x, 19.0, 7.5);
@@ -549,9 +553,7 @@ fn the_transmission_gather_through_the_backlit_wedge_is_its_kernels_integral() {
     use glam::DVec3;
     use rouge_render::through_gather::{through_channels, through_entry};
     let gpu = Gpu::headless().expect("a wgpu adapter");
-    let (medium, scene, mut view) = backlit_marble_wedge(&gpu, SlabThrough::Gather, 1.0);
-    let wedge = rouge_model::mesh::shapes::wedge();
-    let l = Vec3::new(0.55, 0.3, -0.78).normalize();
+    let BacklitWedge { medium, scene, mut view, wedge, l } = backlit_wedge(&gpu, "marble", 1.0, SlabThrough::Gather);
     // The front face's middle, 6 mm in front of the slanted back face (as in the slab law's test).
     let at = Vec3::new(-8.0, 0.0, 7.5);
     let channels = through_channels(&medium);

@@ -4,7 +4,7 @@
 //! the view ray to it ([`crate::slab_march`]); no other model reads it, and the frame plan runs
 //! it only under the slab law.
 
-use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::targets::Target;
@@ -39,16 +39,9 @@ impl FramePass for BackDepthPass {
     /// Records the mesh's back faces' depth into [`Target::BackDepth`].
     fn record(&mut self, rec: &mut Recording<'_>, _: &()) -> Result<()> {
         let shared = rec.shared;
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            shader: &Self::SHADER,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::MeshPositions,
-            vs: "vs_back_depth",
-            fs: Some("fs_back_depth"),
-            targets: vec![],
-            blend: None,
-            depth: Some(wgpu::DepthBiasState::default()),
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
+            let bias = wgpu::DepthBiasState::default();
+            PipelineSpec::mesh_depth(&Self::SHADER, &self.layout, "vs_back_depth", Some("fs_back_depth"), bias)
         })?;
         let depth = rec.targets.view(Target::BackDepth)?;
         let mut pass = rec.enc.begin("back depth", &[], depth_clear(&depth));

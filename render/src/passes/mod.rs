@@ -261,6 +261,30 @@ pub struct PipelineSpec<'a> {
     pub depth: Option<wgpu::DepthBiasState>,
 }
 
+impl<'a> PipelineSpec<'a> {
+    /// A depth-only pipeline of the mesh's positions in the bare variant, with no colour target
+    /// (the shadow and back-face depth passes'): `fs`, if any, only discards.
+    pub fn mesh_depth(
+        shader: &'static PassShader,
+        layout: &'a wgpu::BindGroupLayout,
+        vs: &'a str,
+        fs: Option<&'a str>,
+        bias: wgpu::DepthBiasState,
+    ) -> PipelineSpec<'a> {
+        PipelineSpec {
+            shader,
+            variant: Variant::BARE,
+            layout,
+            vertices: Vertices::MeshPositions,
+            vs,
+            fs,
+            targets: vec![],
+            blend: None,
+            depth: Some(bias),
+        }
+    }
+}
+
 /// Builds the render pipeline of `spec` (shader specialised, group 0 = the frame).
 ///
 /// # Errors

@@ -2,7 +2,7 @@
 //! shadow-map array (shaders/shadow.wgsl). The light's matrix is in the frame uniform
 //! ([`crate::uniforms::light_uniforms`]); this pass's uniform says which light.
 
-use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared, Vertices};
+use super::{FramePass, PipelineSpec, Pipelines, Recording, Shared};
 use crate::error::Result;
 use crate::shader::{PassShader, Variant, bare, pass_shader};
 use crate::targets::DEPTH_FORMAT;
@@ -90,16 +90,9 @@ impl FramePass for ShadowPass {
     /// Records the depth of the mesh from the step's light into its layer.
     fn record(&mut self, rec: &mut Recording<'_>, step: &ShadowStep) -> Result<()> {
         let shared = rec.shared;
-        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || PipelineSpec {
-            shader: &Self::SHADER,
-            variant: Variant::BARE,
-            layout: &self.layout,
-            vertices: Vertices::MeshPositions,
-            vs: "vs_shadow",
-            fs: None,
-            targets: vec![],
-            blend: None,
-            depth: Some(wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 }),
+        let pipeline = self.pipelines.get_or_build(shared, Variant::BARE, || {
+            let bias = wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 };
+            PipelineSpec::mesh_depth(&Self::SHADER, &self.layout, "vs_shadow", None, bias)
         })?;
         let target = self.maps.create_view(&wgpu::TextureViewDescriptor {
             label: Some("ShadowPass::map"),
