@@ -20,6 +20,10 @@ use crate::shader::{ThicknessVariant, Variant};
 use crate::sss::SeparableKernel;
 use crate::targets::Target;
 
+/// What goes when no thickness pass runs: the pass, the slab law's back-face depth pass and the
+/// G-buffer's local-thickness target.
+const THICKNESS_PASSES: &str = "thickness pass, back-face depth pass and local-thickness target";
+
 /// The plan as it is built.
 #[derive(Debug, Default)]
 pub(super) struct Planner {
@@ -377,13 +381,13 @@ impl Planner {
             SubsurfaceModel::Thickness { params, source, .. } => (params, source),
             SubsurfaceModel::Slab { through, .. } => return self.slab_model(scene, shadow_maps, *through),
             _ => {
-                self.skip("thickness pass and local-thickness target", "no material uses the thickness model");
+                self.skip(THICKNESS_PASSES, "no material uses the thickness model");
                 return Ok(None);
             }
         };
         params.check()?;
         if scene.lights.is_empty() {
-            self.skip("thickness pass and local-thickness target", "the scene has no light");
+            self.skip(THICKNESS_PASSES, "the scene has no light");
             return Ok(None);
         }
         let variant = match source {
@@ -448,7 +452,7 @@ impl Planner {
             }
         }
         if shadow_maps == 0 {
-            self.skip("thickness pass and local-thickness target", readers.none);
+            self.skip(THICKNESS_PASSES, readers.none);
         }
         shadow_maps > 0
     }

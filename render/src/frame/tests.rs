@@ -78,8 +78,11 @@ fn the_thickness_pass_and_target_exist_only_when_a_material_uses_them() {
     // Not used: neither the pass nor the target.
     let plan = FramePlan::new(&scene, up, settings()).expect("plan");
     assert!(!steps(&plan).contains(&"thickness".to_string()));
-    assert!(!plan.targets.contains(&Target::LocalThickness));
-    assert!(plan.explain().contains("no material uses the thickness model"));
+    assert!(!plan.targets.contains(&Target::LocalThickness) && !plan.targets.contains(&Target::BackDepth));
+    assert!(
+        plan.explain()
+            .contains("back-face depth pass and local-thickness target: no material uses the thickness model")
+    );
     // Baked: the G-buffer samples the map, the pass adds to the diffuse radiance, no SSS.
     let params = TranslucencyParams::THREE_JS;
     let baked = ThicknessSource::for_medium(true, None, 8, 20.0);
