@@ -186,6 +186,10 @@ def test_bench_translucency_runs_on_a_tiny_configuration(rouge, tmp_path):
     slab = {r["params"]["diffuse"]: r for r in rows if r["model"] == "slab"}
     assert set(slab) == {"lambert", "half-space"}, slab.keys()
     assert all("thickness" in r["pass_ms"] for r in slab.values() if r["pass_ms"]), "no thickness pass time"
+    # Its single scattering is marched to the back faces' depth: that pass runs for the slab law
+    # alone (docs/BENCHMARKS.md "Single scattering along the view ray").
+    assert all("back depth" in r["pass_ms"] for r in slab.values() if r["pass_ms"]), "no back-face depth pass"
+    assert not any("back depth" in r["pass_ms"] for r in thickness.values()), "a back-face depth pass for the talk's term"
     kernel_slab = next(r for r in rows if r["model"] == "screen-space+slab")
     assert kernel_slab["rmse"] < slab["half-space"]["rmse"] < none["rmse"], (kernel_slab["rmse"], slab, none["rmse"])
     # The transmission gather in the slab law's place: timed in the same pass; on a sphere, as wide
