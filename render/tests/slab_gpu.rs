@@ -268,6 +268,35 @@ fn below_a_lit_side_face_the_light_scattered_once_is_marched_through_the_wedge()
 }
 
 #[test]
+fn extreme_media_give_finite_light_under_the_law_and_the_gather() {
+    // The domain's edges: a medium that barely absorbs (the lateral spread and the march's
+    // sampling reach across the wedge), one that barely scatters (single scattering is all),
+    // one a thousand times denser than skin (the march's points all within 10⁻³ mm), at the
+    // law's η ends; every pixel of the backlit wedge finite, and no light where none can be.
+    let gpu = Gpu::headless().expect("a wgpu adapter");
+    let media = [
+        ([1e-6, 1e-5, 1e-4], [0.5, 1.0, 2.0], 1.0),
+        ([0.5, 1.0, 2.0], [1e-6, 1e-5, 1e-4], 1.6),
+        ([5.0, 10.0, 20.0], [1e3, 2e3, 3e3], 1.3),
+    ];
+    let mut view = View::new(&gpu, "builtin:wedge", [0.8; 3]);
+    for (sigma_a, sigma_s, eta) in media {
+        let medium = Medium::from_coefficients("extreme", sigma_a, sigma_s, eta).expect("medium");
+        let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
+        for through in [SlabThrough::Law, SlabThrough::Gather] {
+            let mut scene = Scene::rig(LightRig::Back);
+            scene.skin = Skin { subsurface: SubsurfaceModel::Slab { kernel: None, through }, ..skin.clone() };
+            view.r.render(&scene, &view.camera, View::SIZE, View::SIZE, false).expect("render");
+            let cap = view.r.capture().expect("capture");
+            let bad = cap.diffuse.iter().filter(|d| !d.iter().all(|v| v.is_finite())).count();
+            assert_eq!(bad, 0, "{sigma_a:?} {sigma_s:?} η {eta} {through:?}: {bad} non-finite pixels");
+            let brightest = cap.diffuse.iter().map(|d| d[0].max(d[1]).max(d[2])).fold(0.0f32, f32::max);
+            assert!(brightest < 10.0, "{sigma_a:?} {sigma_s:?} η {eta} {through:?}: {brightest}");
+        }
+    }
+}
+
+#[test]
 fn beyond_a_convex_terminator_the_slab_adds_nothing_the_kernel_should_carry() {
     // The sphere (25 mm) lit from +x: a point 6° past the terminator sees the light cross a thin
     // cap of the sphere entered at grazing, through a face turned the same way as its own. A

@@ -199,7 +199,10 @@ impl FramePass for ThicknessPass {
         let key = [r, g, b, uniform.slab_axes[0]].map(f32::to_bits);
         if uniform.is_slab() && self.slab_table.as_ref().is_none_or(|(k, _)| *k != key) {
             let albedo = std::array::from_fn(|c| f64::from(uniform.slab_albedo[c]));
-            let values = slab_transmittance::medium_values(albedo, f64::from(uniform.slab_axes[0]))?;
+            // The uniform holds the η the plan checked as an f32: the table's last node, 1.6,
+            // comes back as 1.6000000238 (a medium at η 1.6 failed to render before this).
+            let eta = f64::from(uniform.slab_axes[0]).min(slab_transmittance::axes()?.eta_max);
+            let values = slab_transmittance::medium_values(albedo, eta)?;
             let buffer = buffer_init(
                 &shared.device,
                 "ThicknessPass::slab_table",
