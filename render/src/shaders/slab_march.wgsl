@@ -4,8 +4,9 @@
 // pass, `back_depth`), each point lit through the light's path read from its shadow map,
 //   σs′/4 · ∫₀^{c′} e^{−σt′(s + ℓ′(s))} ds   per unit E/π (× T_F(μ_v)·T_F(μ_l)/η² by the caller),
 // c′ = c·μ_v/ν_v, ℓ′ = ℓ·μ_l/ν_l; s sampled at VIEW_MARCH_SAMPLES strata as e^{−ks},
-// k = σt′_min·(1 − a/ν_l), a the ray's cosine toward the entry face, held to |k·c′| ≤ 60. A point the light reaches without crossing
-// the mesh (its path shorter than −2 texels, the shadow map's bias allowed) is outside it.
+// k = σt′_min·(1 − a/ν_l), a the ray's cosine toward the entry face, held to |k·c′| ≤ 60.
+// A point the light reaches without crossing the mesh (its path shorter than −2 texels, the
+// shadow map's bias allowed) is outside it.
 
 const VIEW_MARCH_SAMPLES: u32 = 16u;
 const VIEW_MARCH_MAX_DECAYS: f32 = 60.0;
