@@ -196,19 +196,34 @@ impl GpuMesh {
     /// Draws every triangle but the hairs' that the hair pass draws as fibres (all of them for a
     /// mesh without strands).
     pub fn draw_without_hair(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let Some((indices, count)) = &self.without_hair else { return self.draw(pass) };
+        let (indices, count) = self.triangles(true);
         pass.set_vertex_buffer(0, self.moving.slice(..));
         pass.set_vertex_buffer(1, self.fixed.slice(..));
         pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..*count, 0, 0..1);
+        pass.draw_indexed(0..count, 0, 0..1);
     }
 
     /// Binds the moving stream alone (a pipeline of [`position_layout`]) and draws every
     /// triangle.
     pub fn draw_positions(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.draw_positions_of(pass, false);
+    }
+
+    /// [`GpuMesh::draw_positions`], leaving out the hairs the hair pass draws as fibres where
+    /// `without_hair` (as the G-buffer does).
+    pub fn draw_positions_of(&self, pass: &mut wgpu::RenderPass<'_>, without_hair: bool) {
+        let (indices, count) = self.triangles(without_hair);
         pass.set_vertex_buffer(0, self.moving.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..1);
+        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..count, 0, 0..1);
+    }
+
+    /// The index buffer and count of every triangle, or of every one but the fibre-drawn hairs'.
+    fn triangles(&self, without_hair: bool) -> (&wgpu::Buffer, u32) {
+        match &self.without_hair {
+            Some((indices, count)) if without_hair => (indices, *count),
+            _ => (&self.indices, self.index_count),
+        }
     }
 
     /// Draws every triangle as instance `instance` (a shader's `instance_index` then selects a

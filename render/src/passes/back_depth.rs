@@ -48,7 +48,9 @@ impl FramePass for BackDepthPass {
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &shared.frame_group, &[]);
         pass.set_bind_group(1, &self.group, &[]);
-        rec.mesh.draw_positions(&mut pass);
+        // What the G-buffer draws: not the hairs the hair pass draws as fibres (they are not
+        // the medium, and in front of the skin their back faces would cut the ray short).
+        rec.mesh.draw_positions_of(&mut pass, rec.variant.hair);
         Ok(())
     }
 }
