@@ -54,36 +54,32 @@ fn view_march(light: Light, world: vec3<f32>, dir: vec3<f32>, chord: f32, path_s
 }
 
 // The marched light scattered once toward the camera per unit E/π (the faces' transmittances
-// T_F(μ_v)·T_F(μ_l)/η² included) at `world`, of normal n, seen from v, below the entry face of
-// outward normal `n_e` met at the external cosines mu_v, mu_l (`faces`), over the camera ray's
-// chord `chord` (`view_chord_mm`, ≥ 0): into the mesh along the refracted view ray as deep below
-// the exit face as the camera's ray goes, the light's straight path from the map taken to its
-// refracted one.
-fn once_scattered(light: Light, axes: MapAxes, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>, n_e: vec3<f32>, mu_v: f32, mu_l: f32, faces: SlabFaces, chord: f32) -> vec3<f32> {
+// T_F(μ_v)·T_F(μ_l)/η² included) at `world`, of normal n, seen from v, for the light's entry `e`
+// (`slab_entry`, through the mesh), over the camera ray's chord `chord` (`view_chord_mm`; none
+// where negative): into the mesh along the refracted view ray as deep below the exit face as the
+// camera's ray goes, the light's straight path from the map taken to its refracted one.
+fn once_scattered(light: Light, axes: MapAxes, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>, e: SlabEntry, chord: f32) -> vec3<f32> {
+    let faces = e.faces;
     if chord < 0.0 || faces.nu_v <= 0.0 || faces.nu_l <= 0.0 {
         return vec3<f32>(0.0);
     }
     let eta = params.slab_axes.x;
     let dir = select(refract(-v, n, 1.0 / eta), -v, eta == 1.0);
-    let depth_scale = select(mu_v / faces.nu_v, 1.0, eta == 1.0);
-    let path_scale = select(mu_l / faces.nu_l, 1.0, eta == 1.0);
+    let depth_scale = select(e.mu_v / faces.nu_v, 1.0, eta == 1.0);
+    let path_scale = select(e.mu_l / faces.nu_l, 1.0, eta == 1.0);
     let boundary = (1.0 - faces.f_v) * (1.0 - faces.f_l) / (eta * eta);
     let texel = max(axes.texel_mm.x, axes.texel_mm.y);
-    return boundary * view_march(light, world, dir, chord * depth_scale, path_scale, dot(dir, n_e), faces.nu_l, texel);
+    return boundary * view_march(light, world, dir, chord * depth_scale, path_scale, dot(dir, e.n_e), faces.nu_l, texel);
 }
 
 // The radiance of `light` scattered once toward the camera at `world` (pixel `frag`, in the
 // light's map at `m`), marched through the mesh, where the transmission gather takes the rest
 // of the light that crossed it: the entry face from the map's slope, as the slab law's.
 fn marched_light(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    let arrival = light_arrival(light, world);
-    if light_path_mm(m) <= 0.0 || dot(n, arrival.l) >= 0.0 {
+    let e = slab_entry(light, axes, m, world, n, v);
+    if !e.through {
         return vec3<f32>(0.0);
     }
-    let n_e = entry_normal(light, axes, m, n, arrival.l);
-    let mu_l = max(dot(n_e, arrival.l), 1e-3);
-    let mu_v = clamp(dot(n, v), 0.0, 1.0);
-    let faces = slab_faces(params.slab_axes.x, mu_v, mu_l);
-    let marched = once_scattered(light, axes, world, n, v, n_e, mu_v, mu_l, faces, view_chord_mm(frag, world));
-    return arrival.e * marched * (light.translucency.x / PI);
+    let marched = once_scattered(light, axes, world, n, v, e, view_chord_mm(frag, world));
+    return e.arrival.e * marched * (light.translucency.x / PI);
 }

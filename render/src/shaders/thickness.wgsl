@@ -239,30 +239,53 @@ struct SlabLight {
     share: f32,
 }
 
+// How one light reaches the exit point `world` (normal n, seen from v) through the mesh: its
+// arrival, the distance d (mm) it travelled inside, the outward normal n_e of the face it
+// entered (from the map's slope), the external cosines there (mu_l) and at the exit (mu_v), and
+// the faces as it meets them; `through` is false where the light met no mesh before `world` or
+// the surface faces the light. The slab law's and the march's inputs alike.
+struct SlabEntry {
+    arrival: Arrival,
+    d: f32,
+    n_e: vec3<f32>,
+    mu_l: f32,
+    mu_v: f32,
+    faces: SlabFaces,
+    through: bool,
+}
+
+fn slab_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabEntry {
+    var e: SlabEntry;
+    e.d = light_path_mm(m);
+    e.arrival = light_arrival(light, world);
+    // The ray toward the light must start inside the mesh: where the surface faces the light,
+    // whatever the map saw first is another part in front of this one (a nose's shadow on the
+    // cheek), and the light it let through crossed air before arriving here.
+    e.through = e.d > 0.0 && dot(n, e.arrival.l) < 0.0;
+    if !e.through {
+        return e;
+    }
+    e.n_e = entry_normal(light, axes, m, n, e.arrival.l);
+    e.mu_l = max(dot(e.n_e, e.arrival.l), 1e-3);
+    e.mu_v = clamp(dot(n, v), 0.0, 1.0);
+    e.faces = slab_faces(params.slab_axes.x, e.mu_v, e.mu_l);
+    return e;
+}
+
 // The slab law's radiance of one light (see the top of the file) at `world`, which falls at `m`
 // in its map; 0 (facing 0) where the light met no mesh before `world` or the surface faces the
 // light.
 fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> SlabLight {
     var out: SlabLight;
-    let d = light_path_mm(m);
-    if d <= 0.0 {
+    let e = slab_entry(light, axes, m, world, n, v);
+    if !e.through {
         return out;
     }
-    let arrival = light_arrival(light, world);
-    // The ray toward the light must start inside the mesh: where the surface faces the light,
-    // whatever the map saw first is another part in front of this one (a nose's shadow on the
-    // cheek), and the light it let through crossed air before arriving here.
-    if dot(n, arrival.l) >= 0.0 {
-        return out;
-    }
-    let n_e = entry_normal(light, axes, m, n, arrival.l);
-    let mu_l = max(dot(n_e, arrival.l), 1e-3);
-    let mu_v = clamp(dot(n, v), 0.0, 1.0);
     // The slab's thickness: the distance from `world` to the plane the light entered. (Measured
     // along the exit face's normal instead, d·μ_l/(−n·n_e), the wedges' faces 13° apart come
     // 2-3% closer to the path tracer, but light entering a face at right angles to the exit face
     // is lost: ΔE 4.6 → 6.5 on the marble wedge, 1.6 → 6.1 on the ketchup wedge.)
-    let depth_mm = d * mu_l;
+    let depth_mm = e.d * e.mu_l;
     // The plane's share that is there: a finger is narrower than the light spreads in it.
     let q = lateral_rates(depth_mm);
     let lit = lit_extent(light, axes, m, q);
@@ -272,28 +295,26 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, worl
     if light.translucency.w < 0.5 {
         t *= side_drain(light, frag, world, q);
     }
-    let eta = params.slab_axes.x;
-    let faces = slab_faces(eta, mu_v, mu_l);
     // The light scattered once is marched through the mesh along the view ray (slab_march.wgsl)
     // where the back-face pass found the ray's exit; the plane's closed form serves elsewhere.
     let chord = view_chord_mm(frag, world);
     let once = select(1.0, 0.0, chord >= 0.0);
     for (var c = 0; c < 3; c++) {
         let tau = params.slab_sigma_t[c] * depth_mm;
-        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, mu_v, mu_l, faces, params.slab_axes, once);
+        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, e.mu_v, e.mu_l, e.faces, params.slab_axes, once);
     }
-    let marched = once_scattered(light, axes, world, n, v, n_e, mu_v, mu_l, faces, chord);
+    let marched = once_scattered(light, axes, world, n, v, e, chord);
     // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
     // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
     // to nothing as the two faces turn the same way (n·n_e → 1: the thin cap beyond a convex
     // terminator, lit at grazing over a strip narrower than the light spreads, which the kernel
     // carries from the lit side).
-    out.facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
+    out.facing = clamp(1.0 - dot(n, e.n_e), 0.0, 1.0);
     // The slab stands for the light of the plane it assumes where that plane is there.
     out.share = out.facing * dot(lit, vec3<f32>(1.0 / 3.0));
     // The march is the once-scattered light through the mesh as it is: no plane assumed, so
     // neither the lit extent, the drain nor the facing scale it.
-    out.radiance = arrival.e * (mu_l * t * out.facing + marched) * (light.translucency.x / PI);
+    out.radiance = e.arrival.e * (e.mu_l * t * out.facing + marched) * (light.translucency.x / PI);
     return out;
 }
 
