@@ -23,6 +23,7 @@ mod half_space;
 mod mitsuba;
 mod skin_maps;
 mod slab_gpu;
+mod slab_spread_gpu;
 mod slab_transmittance;
 mod specular_gpu;
 mod thickness;

@@ -91,9 +91,9 @@ fn the_shaders_slab_transmission_matches_its_cpu_twin() {
 
 /// A built-in mesh with a bare look, framed by the default camera at 160²: the skin's diffuse
 /// radiance at a point of it.
-struct View {
-    r: Renderer,
-    camera: Camera,
+pub(crate) struct View {
+    pub(crate) r: Renderer,
+    pub(crate) camera: Camera,
 }
 
 impl View {
@@ -108,7 +108,7 @@ impl View {
         View { r, camera }
     }
 
-    fn diffuse_at(&mut self, scene: &Scene, at: Vec3) -> [f32; 4] {
+    pub(crate) fn diffuse_at(&mut self, scene: &Scene, at: Vec3) -> [f32; 4] {
         self.r.render(scene, &self.camera, Self::SIZE, Self::SIZE, false).expect("render");
         let cap = self.r.capture().expect("capture");
         let (px, py) = self.r.project(at).expect("in view");
@@ -134,7 +134,7 @@ fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: 
 /// The built-in medium `name` of index `eta` in the built-in wedge lit from behind (above and
 /// the right), under the slab model with `through` carrying the light that crossed it; no
 /// specular.
-fn backlit_wedge(gpu: &Gpu, name: &str, eta: f64, through: SlabThrough) -> BacklitWedge {
+pub(crate) fn backlit_wedge(gpu: &Gpu, name: &str, eta: f64, through: SlabThrough) -> BacklitWedge {
     let medium = Medium::builtin(name).expect("built-in medium").with_eta(eta).expect("η");
     let (skin, _) = Skin::from_medium(&medium, rouge_render::diffusion::ProfileModel::BetterDipole);
     let mut scene = Scene::rig(LightRig::Back);
@@ -148,12 +148,12 @@ fn backlit_wedge(gpu: &Gpu, name: &str, eta: f64, through: SlabThrough) -> Backl
 
 /// What [`backlit_wedge`] sets up: the medium, the scene, its view, the wedge's mesh and the
 /// unit vector toward the light.
-struct BacklitWedge {
-    medium: Medium,
-    scene: Scene,
-    view: View,
-    wedge: rouge_model::mesh::Mesh,
-    l: Vec3,
+pub(crate) struct BacklitWedge {
+    pub(crate) medium: Medium,
+    pub(crate) scene: Scene,
+    pub(crate) view: View,
+    pub(crate) wedge: rouge_model::mesh::Mesh,
+    pub(crate) l: Vec3,
 }
 
 #[test]
@@ -520,7 +520,7 @@ fn exit_distance(mesh: &rouge_model::mesh::Mesh, p: Vec3, d: Vec3) -> f32 {
 /// (`slab_march::view_march`): along the camera's refracted ray to where it leaves the mesh, each
 /// point's path to the light (toward `l`) from the mesh's planes, the faces' transmittances as
 /// the slab law's; `entry` is the outward normal of the face the light enters above `at`.
-fn exact_march(
+pub(crate) fn exact_march(
     mesh: &rouge_model::mesh::Mesh,
     medium: &Medium,
     camera: Vec3,
@@ -555,7 +555,7 @@ fn exact_march(
 
 /// Where the line through `p` along `l` (toward the light) enters the convex `mesh`: the point
 /// furthest toward the light on it, and that face's outward normal; None if it misses.
-fn column_entry(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> Option<(Vec3, Vec3)> {
+pub(crate) fn column_entry(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> Option<(Vec3, Vec3)> {
     let (mut lo, mut hi, mut entry_normal) = (f32::NEG_INFINITY, f32::INFINITY, Vec3::ZERO);
     for face in &mesh.faces {
         let n = mesh.normals[face.corners[0].normal as usize];

@@ -193,6 +193,7 @@ fn insertion(name: &str) -> Option<&'static str> {
         "through" => Some(include_str!("../shaders/through.wgsl")),
         "slab_edge" => Some(include_str!("../shaders/slab_edge.wgsl")),
         "slab_march" => Some(include_str!("../shaders/slab_march.wgsl")),
+        "slab_spread" => Some(include_str!("../shaders/slab_spread.wgsl")),
         _ => None,
     }
 }

@@ -4,11 +4,12 @@
 // the G-buffer sampled, or, per light, the falloff w(d) of the distance d the light travelled
 // inside the mesh, read from the light's shadow map. The parameters come per material id.
 // The slab law (THICKNESS_SLAB, render/src/slab_transmittance.rs) replaces the talk's term for
-// the skin: the light through a plane slab of the thickness the light crossed, exactly, times
-// the share f of that plane the light's map holds (render/src/slab_extent.rs),
-//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · f · clamp(1 − n·n_e, 0, 1) / π per light,
+// the skin: the light through a plane slab of the thickness the light crossed, exactly,
+//   E · μ_l · T(μ_v, μ_l; α′, σt′·d·μ_l) · clamp(1 − n·n_e, 0, 1) / π per light,
 // μ_l the light's cosine on the face where it entered and n_e that face's normal (the slope of
-// the shadow map there), d the distance it travelled inside, from the shadow map. Its light
+// the shadow map there), d the distance it travelled inside, from the shadow map; taken over
+// the plane's lateral spread as the light's map holds it (slab_spread.wgsl,
+// render/src/slab_extent.rs: the share there, and a more nearly opposite face's own slab). Its light
 // scattered once (T₁'s unreflected share) is marched along the view ray through the mesh to
 // the back faces' depth instead (slab_march.wgsl), unscaled by f or the facing, where the
 // back-face pass drew one.
@@ -176,13 +177,6 @@ fn entry_normal(light: Light, axes: MapAxes, m: MapPoint, n: vec3<f32>, l: vec3<
     return normalize(l + sx * axes.right - sy * axes.up);
 }
 
-// The lit extent's radii in units of 1/q: the Gamma(2) distribution's quantiles at the 16
-// strata's midpoints, (j + ½)/16 (slab_extent::lit_extent_radii, whose test checks these).
-const LIT_EXTENT_RADII = array<f32, 16>(
-    0.273582, 0.511626, 0.701280, 0.876004, 1.046251, 1.217671, 1.394451, 1.580509,
-    1.780213, 1.999098, 2.244936, 2.529734, 2.874153, 3.319419, 3.970680, 5.307471,
-);
-
 // The extrapolated boundary's distance beyond a face per channel (mm), z_b = 2/(3σt′)
 // (slab_extent::extrapolation_mm): of the slab's faces (`lateral_rates`) and of a side face
 // (`side_drain`, slab_edge.wgsl).
@@ -196,38 +190,6 @@ fn lateral_rates(depth_mm: f32) -> vec3<f32> {
     let sigma = params.slab_kappa.xyz * params.slab_sigma_t.xyz;
     let span = depth_mm + 2.0 * slab_extrapolation_mm();
     return sqrt(sigma * sigma + (PI / span) * (PI / span));
-}
-
-// The slab law's lit extent per channel (render/src/slab_extent.rs, its converged twin): the
-// share of the lateral spread p(ρ) = q²/(2π) e^{−qρ} of the light crossing a slab, at its
-// lateral rates `q` (`lateral_rates`), over the offsets in the light's map around `m` where the
-// map holds the mesh: 1 on a plane, less across a finger narrower than the light spreads in it.
-// Radii stratified in p of the channel that spreads furthest (q_min), each channel weighted by
-// its p over that one, (q/q_min)² e^{−(q − q_min)ρ}; angles on the golden-angle spiral. A point
-// light's perspective map has no constant texel size (as in `entry_normal`): its plane counts as
-// whole.
-fn lit_extent(light: Light, axes: MapAxes, m: MapPoint, q: vec3<f32>) -> vec3<f32> {
-    if light.translucency.w > 0.5 {
-        return vec3<f32>(1.0);
-    }
-    let q_min = min(q.x, min(q.y, q.z));
-    var lit = vec3<f32>(0.0);
-    var total = vec3<f32>(0.0);
-    for (var j = 0u; j < 16u; j++) {
-        let rho = LIT_EXTENT_RADII[j] / q_min;
-        let w = exp(-(q - q_min) * rho);
-        total += w;
-        let phi = f32(j) * 2.39996323;
-        let uv = m.uv + rho * vec2<f32>(cos(phi), -sin(phi)) * axes.uv_per_mm;
-        if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
-            continue;
-        }
-        let stored = textureLoad(shadow_depths, vec2<i32>(uv * vec2<f32>(axes.size)), i32(light.shadow.x), 0).r;
-        if stored < 1.0 {
-            lit += w;
-        }
-    }
-    return lit / max(total, vec3<f32>(1e-12));
 }
 
 // One light's slab radiance, how far the exit face turns from the entry face (`facing`), and
@@ -286,35 +248,34 @@ fn slab_radiance(light: Light, axes: MapAxes, m: MapPoint, frag: vec2<f32>, worl
     // 2-3% closer to the path tracer, but light entering a face at right angles to the exit face
     // is lost: ΔE 4.6 → 6.5 on the marble wedge, 1.6 → 6.1 on the ketchup wedge.)
     let depth_mm = e.d * e.mu_l;
-    // The plane's share that is there: a finger is narrower than the light spreads in it.
-    let q = lateral_rates(depth_mm);
-    let lit = lit_extent(light, axes, m, q);
-    // What is left of it beside a side face the light does not reach (slab_edge.wgsl); a point
-    // light's plane counts as whole, as in `lit_extent`.
-    var t = lit;
-    if light.translucency.w < 0.5 {
-        t *= side_drain(light, frag, world, q);
-    }
-    // The light scattered once is marched through the mesh along the view ray (slab_march.wgsl)
-    // where the back-face pass found the ray's exit; the plane's closed form serves elsewhere.
-    let chord = view_chord_mm(frag, world);
-    let once = select(1.0, 0.0, chord >= 0.0);
-    for (var c = 0; c < 3; c++) {
-        let tau = params.slab_sigma_t[c] * depth_mm;
-        t[c] *= slab_transmittance(u32(c), params.slab_albedo[c], params.slab_kappa[c], tau, e.mu_v, e.mu_l, e.faces, params.slab_axes, once);
-    }
-    let marched = once_scattered(light, axes, world, n, v, e, chord);
     // A slab leaves through the face opposite the one it entered (outward normals at n·n_e = −1);
     // the law holds to a right angle (n·n_e = 0, a wedge's top face feeding its front) and fades
     // to nothing as the two faces turn the same way (n·n_e → 1: the thin cap beyond a convex
     // terminator, lit at grazing over a strip narrower than the light spreads, which the kernel
     // carries from the lit side).
     out.facing = clamp(1.0 - dot(n, e.n_e), 0.0, 1.0);
+    // The light scattered once is marched through the mesh along the view ray (slab_march.wgsl)
+    // where the back-face pass found the ray's exit; the plane's closed form serves elsewhere.
+    let chord = view_chord_mm(frag, world);
+    let once = select(1.0, 0.0, chord >= 0.0);
+    let centre = out.facing * plane_slab_light(depth_mm, e.mu_v, e.mu_l, e.faces, once);
+    // Over the plane's lateral spread, as the light's map holds it (slab_spread.wgsl): a finger
+    // is narrower than the light spreads in it, and beside a lit side face the opposite face's
+    // slab carries its own light.
+    let q = lateral_rates(depth_mm);
+    let spread = slab_spread(light, axes, m, e, n, centre, q, once);
+    // What is left of it beside a side face the light does not reach (slab_edge.wgsl); a point
+    // light's plane counts as whole, as in `slab_spread`.
+    var t = spread.light;
+    if light.translucency.w < 0.5 {
+        t *= side_drain(light, frag, world, q);
+    }
+    let marched = once_scattered(light, axes, world, n, v, e, chord);
     // The slab stands for the light of the plane it assumes where that plane is there.
-    out.share = out.facing * dot(lit, vec3<f32>(1.0 / 3.0));
+    out.share = out.facing * dot(spread.lit, vec3<f32>(1.0 / 3.0));
     // The march is the once-scattered light through the mesh as it is: no plane assumed, so
-    // neither the lit extent, the drain nor the facing scale it.
-    out.radiance = e.arrival.e * (e.mu_l * t * out.facing + marched) * (light.translucency.x / PI);
+    // neither the spread, the drain nor the facing scale it.
+    out.radiance = e.arrival.e * (t + marched) * (light.translucency.x / PI);
     return out;
 }
 
@@ -443,6 +404,7 @@ fn hidden_entry(light: Light, axes: MapAxes, m: MapPoint, world: vec3<f32>, n: v
 }
 //#insert slab_edge
 //#insert slab_march
+//#insert slab_spread
 //#insert through
 //#endif
 
