@@ -5,10 +5,9 @@
 // point's own entry face: the centre's slab. A face more nearly opposite the exit face than that
 // one, and nearer opposite than at right angles (a wedge's back face beside the top face the
 // centre's light entered): that face's own plane slab, at the distance from the exit point to
-// its plane and its own lateral spread. A lit side
-// face's plane slab is the law's weakest (the exit face is at right angles to it); the opposite
-// face's is the law's own case, so it serves wherever it is there (docs/BENCHMARKS.md "Each
-// column its own slab").
+// its plane and its own lateral spread. A lit side face's plane slab is the law's weakest (the
+// exit face is at right angles to it); the opposite face's is the law's own case, so it serves
+// wherever it is there (docs/BENCHMARKS.md "Each column its own slab").
 
 // The lit extent's radii in units of 1/q: the Gamma(2) distribution's quantiles at the 16
 // strata's midpoints, (j + ½)/16 (slab_extent::lit_extent_radii, whose test checks these).
@@ -62,6 +61,10 @@ fn slab_spread(light: Light, axes: MapAxes, m: MapPoint, e: SlabEntry, n: vec3<f
     }
     let q_min = min(q.x, min(q.y, q.z));
     let own_face = min(dot(n, e.n_e) - SPREAD_OPPOSITE_MARGIN, SPREAD_OPPOSITE_MAX_COS);
+    // Where the exit point's own face is within the margin of opposite (a slab's interior), no
+    // column's face can be nearer: every column the map holds is the centre's, and its face's
+    // slope is not read.
+    let any_own = own_face > -1.0;
     var sum = vec3<f32>(0.0);
     var lit = vec3<f32>(0.0);
     var total = vec3<f32>(0.0);
@@ -82,6 +85,10 @@ fn slab_spread(light: Light, axes: MapAxes, m: MapPoint, e: SlabEntry, n: vec3<f
             continue;
         }
         lit += w;
+        if !any_own {
+            sum += w * centre;
+            continue;
+        }
         s.first_mm = light_depth_mm(light, stored);
         let n_e = entry_normal(light, axes, s, n, e.arrival.l);
         if dot(n, n_e) > own_face {
