@@ -99,10 +99,11 @@ pub enum Subsurface {
     /// parameters fitted under the kernel where the --medium's file has them.
     ScreenSpaceThickness,
     /// Light through thin parts as through a plane slab of the --medium, exactly (adding-doubling;
-    /// the thickness each light crossed from its shadow map; the light scattered once marched
-    /// along the view ray through the mesh), and the light entering nearby that the diffuse law
-    /// and the kernel do not carry, mostly on faces the camera does not see (from the shadow map,
-    /// by the dipole): no fitted parameter.
+    /// the thickness each light crossed from its shadow map, over the slab's lateral spread, where
+    /// a face opposite the exit face sends its own slab's light beside a lit side face; the light
+    /// scattered once marched along the view ray through the mesh), and the light entering nearby
+    /// that the diffuse law and the kernel do not carry, mostly on faces the camera does not see
+    /// (from the shadow map, by the dipole): no fitted parameter.
     Slab,
     /// The screen-space kernel with the slab's light from behind added before the blur.
     ScreenSpaceSlab,
