@@ -11,8 +11,8 @@
 // the plane's lateral spread as the light's map holds it (slab_spread.wgsl,
 // render/src/slab_extent.rs: the share there, and a more nearly opposite face's own slab). Its light
 // scattered once (T₁'s unreflected share) is marched along the view ray through the mesh to
-// the back faces' depth instead (slab_march.wgsl), unscaled by f or the facing, where the
-// back-face pass drew one.
+// the back faces' depth instead (slab_march.wgsl), unscaled by the spread or the facing, where
+// the back-face pass drew one.
 
 @group(1) @binding(0) var gb_normal: texture_2d<f32>;
 @group(1) @binding(1) var gb_albedo: texture_2d<f32>;
