@@ -72,7 +72,7 @@
 //! golden-angle spiral, and weights the other channels (and an opposite face's columns) by their
 //! p over that one; this module is its converged twin, for the tests.
 
-/// Radii the shader samples per pixel and light (`LIT_EXTENT_RADII` in shaders/thickness.wgsl).
+/// Radii the shader samples per pixel and light (`LIT_EXTENT_RADII` in shaders/slab_spread.wgsl).
 pub const LIT_EXTENT_SAMPLES: usize = 16;
 
 /// The shader's radii in units of 1/q: p's quantiles at the midpoints of
@@ -134,9 +134,9 @@ pub enum Column {
     /// angles ([`SPREAD_OPPOSITE_MAX_COS`]): the exit point's own plane slab.
     Centre,
     /// A face more nearly opposite the exit face, and nearer opposite than at right angles to it:
-    /// the light its own plane slab sends to the exit
-    /// point (over the irradiance, per channel: μ_l·T·facing at the exit point's distance from
-    /// that face's plane) and that slab's lateral rates (mm⁻¹, [`lateral_rates_per_mm`]).
+    /// the light its own plane slab sends to the exit point (over the irradiance, per channel:
+    /// μ_l·T·facing at the exit point's distance from that face's plane) and that slab's lateral
+    /// rates (mm⁻¹, [`lateral_rates_per_mm`]).
     Own {
         /// μ_l·T·facing per channel.
         light: [f64; 3],

@@ -118,17 +118,30 @@ impl View {
 
 /// Whether the line through `p` along `l` meets the convex `mesh` (every face's plane holds the
 /// mesh on its inner side): the light's map holds the mesh in that column.
-fn line_meets_convex(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> bool {
+pub(crate) fn line_meets_convex(mesh: &rouge_model::mesh::Mesh, p: Vec3, l: Vec3) -> bool {
     column_entry(mesh, p, l).is_some()
 }
 
 /// The lit extent at `at` under the light toward `l` (exactly, `slab_extent::lit_extent`) for a
 /// slab `depth_mm` thick of `medium`, where `covered` says whether a column meets the mesh.
-fn exact_lit_extent(medium: &Medium, depth_mm: f64, l: Vec3, at: Vec3, covered: impl Fn(Vec3) -> bool) -> [f64; 3] {
+pub(crate) fn exact_lit_extent(
+    medium: &Medium,
+    depth_mm: f64,
+    l: Vec3,
+    at: Vec3,
+    covered: impl Fn(Vec3) -> bool,
+) -> [f64; 3] {
     let rates = lateral_rates_per_mm(medium.sigma_t_prime_per_mm(), medium.reduced_albedo().map(kappa), depth_mm);
     let right = l.any_orthonormal_vector();
     let up = l.cross(right);
     lit_extent(rates, |x, y| covered(at + right * x as f32 + up * y as f32))
+}
+
+/// The plane slab's transmittance without its light scattered once and not reflected, which the
+/// pass marches through the mesh instead (`exact_march`): for albedo `alpha`, index `eta`,
+/// optical thickness `tau` and the external cosines `mu_v`, `mu_l`.
+pub(crate) fn unmarched_transmittance(alpha: f64, eta: f64, tau: f64, mu_v: f64, mu_l: f64) -> f64 {
+    transmittance(alpha, eta, tau, mu_v, mu_l).expect("domain") - single_unreflected(alpha, eta, tau, mu_v, mu_l)
 }
 
 /// The built-in medium `name` of index `eta` in the built-in wedge lit from behind (above and
@@ -194,8 +207,7 @@ fn backlit_wedge_at(gpu: &Gpu, eta: f64) {
         let once = exact_march(&wedge, &medium, view.camera.position(), at, l, back_normal);
         for c in 0..3 {
             let tau = sigma_t[c] * depth_mm;
-            let t = transmittance(alpha[c], eta, tau, mu_v, mu_l).expect("domain")
-                - single_unreflected(alpha[c], eta, tau, mu_v, mu_l);
+            let t = unmarched_transmittance(alpha[c], eta, tau, mu_v, mu_l);
             let want = mu_l * t * extent[c] * drain[c] + once[c];
             eprintln!(
                 "η {eta}, {at}, channel {c}: {:.5} against the slab's {want:.5} (lit extent {:.3}, drain {:.3}, \

@@ -3,12 +3,15 @@
 //! their own slab's light (shaders/slab_spread.wgsl against its converged twin,
 //! `rouge_render::slab_extent::spread_light`, over the wedge's exact planes).
 
-use crate::slab_gpu::{BacklitWedge, backlit_wedge, column_entry, exact_march};
+use crate::slab_gpu::{
+    BacklitWedge, backlit_wedge, column_entry, exact_lit_extent, exact_march, line_meets_convex,
+    unmarched_transmittance,
+};
 use glam::Vec3;
 use rouge_render::slab_extent::{
-    Column, SPREAD_OPPOSITE_MARGIN, SPREAD_OPPOSITE_MAX_COS, lateral_rates_per_mm, lit_extent, side_drain, spread_light,
+    Column, SPREAD_OPPOSITE_MARGIN, SPREAD_OPPOSITE_MAX_COS, lateral_rates_per_mm, side_drain, spread_light,
 };
-use rouge_render::slab_transmittance::{kappa, single_unreflected, transmittance};
+use rouge_render::slab_transmittance::kappa;
 use rouge_render::{Gpu, SlabThrough};
 
 #[test]
@@ -33,16 +36,13 @@ fn beside_a_lit_side_face_the_opposite_face_s_columns_send_their_own_slab_s_ligh
             let mu_l = f64::from(l.dot(n_e));
             let facing = f64::from((1.0 - n.dot(n_e)).clamp(0.0, 1.0));
             let light: [f64; 3] = std::array::from_fn(|c| {
-                let tau = sigma_t[c] * depth_mm;
-                let t = transmittance(alpha[c], 1.0, tau, mu_v, mu_l).expect("domain")
-                    - single_unreflected(alpha[c], 1.0, tau, mu_v, mu_l);
-                mu_l * t * facing
+                mu_l * unmarched_transmittance(alpha[c], 1.0, sigma_t[c] * depth_mm, mu_v, mu_l) * facing
             });
             (depth_mm, light, lateral_rates_per_mm(sigma_t, k, depth_mm))
         };
         let (entry, n_c) = column_entry(&wedge, at, l).expect("the light crosses the wedge");
         assert!(n_c.y > 0.99, "{at}: the light's path enters the top face ({n_c})");
-        let (_, centre, q) = slab(entry, n_c);
+        let (depth_mm, centre, q) = slab(entry, n_c);
         let column = |x: f64, y: f64| {
             let p = at + right * x as f32 + up * y as f32;
             let Some((entry, n_e)) = column_entry(&wedge, p, l) else {
@@ -59,7 +59,7 @@ fn beside_a_lit_side_face_the_opposite_face_s_columns_send_their_own_slab_s_ligh
         };
         let spread = spread_light(q, centre, column);
         // The law before: the centre's slab over the share of its spread the map holds.
-        let extent = lit_extent(q, |x, y| column_entry(&wedge, at + right * x as f32 + up * y as f32, l).is_some());
+        let extent = exact_lit_extent(&medium, depth_mm, l, at, |p| line_meets_convex(&wedge, p, l));
         // The top edge above `at` is lit directly: it drains nothing.
         let edge = Vec3::new(at.x, 20.0, 7.5);
         let (top, _) = column_entry(&wedge, edge, l).expect("the light reaches the top edge");

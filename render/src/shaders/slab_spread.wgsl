@@ -39,6 +39,13 @@ fn plane_slab_light(depth_mm: f32, mu_v: f32, mu_l: f32, faces: SlabFaces, once:
     return t;
 }
 
+// A column's weight per channel at the radius rho (mm), drawn from p of the channel that spreads
+// furthest (q_min): p(ρ; q) over p(ρ; q_min), (q/q_min)² e^{−(q − q_min)ρ}, for a slab spreading
+// at the rates q.
+fn spread_weight(q: vec3<f32>, q_min: f32, rho: f32) -> vec3<f32> {
+    return (q / q_min) * (q / q_min) * exp(-(q - q_min) * rho);
+}
+
 // The spread law's light over E per channel (`light`) and the lit extent (`lit`: the share of
 // the centre's spread p(ρ) = q²/(2π) e^{−qρ} where the map holds the mesh).
 struct SlabSpread {
@@ -70,7 +77,7 @@ fn slab_spread(light: Light, axes: MapAxes, m: MapPoint, e: SlabEntry, n: vec3<f
     var total = vec3<f32>(0.0);
     for (var j = 0u; j < 16u; j++) {
         let rho = LIT_EXTENT_RADII[j] / q_min;
-        let w = (q / q_min) * (q / q_min) * exp(-(q - q_min) * rho);
+        let w = spread_weight(q, q_min, rho);
         total += w;
         let phi = f32(j) * 2.39996323;
         let uv = m.uv + rho * vec2<f32>(cos(phi), -sin(phi)) * axes.uv_per_mm;
@@ -103,10 +110,8 @@ fn slab_spread(light: Light, axes: MapAxes, m: MapPoint, e: SlabEntry, n: vec3<f
             continue;
         }
         let mu_l = max(dot(n_e, e.arrival.l), 1e-3);
-        let qj = lateral_rates(depth_mm);
-        let wj = (qj / q_min) * (qj / q_min) * exp(-(qj - q_min) * rho);
         let facing = clamp(1.0 - dot(n, n_e), 0.0, 1.0);
-        sum += wj * facing * plane_slab_light(depth_mm, e.mu_v, mu_l, slab_faces(params.slab_axes.x, e.mu_v, mu_l), once);
+        sum += spread_weight(lateral_rates(depth_mm), q_min, rho) * facing * plane_slab_light(depth_mm, e.mu_v, mu_l, slab_faces(params.slab_axes.x, e.mu_v, mu_l), once);
     }
     let norm = max(total, vec3<f32>(1e-12));
     out.light = sum / norm;
