@@ -14,6 +14,11 @@ score: a perfect model would not reach 0. This script estimates it per scene:
 
     python python/reference_noise_floor.py --scenes wedge-marble,wedge-skimmilk --model "--subsurface slab"
 
+With `--bin N` both the reference (and its smoothed self) and the model are first averaged over
+N×N blocks whose pixels are all covered, as `rouge bench translucency`'s `delta_e_binned` is
+(`rouge_render::translucency::binned`, N = 4): the floor there is what the reference's noise
+leaves in the blocked score.
+
 Smoothing also blurs real gradients; on the wedges and spheres they are gentle (a few percent per
 pixel), so the smoothed image stands for the noise-free one there; on the hand and heads, read
 the floor as an upper bound.
@@ -73,16 +78,25 @@ def smoothed(rgb: np.ndarray, covered: np.ndarray, sigma: float) -> tuple[np.nda
     return out / np.maximum(w, 1e-12)[..., None], covered & (w > 0.999)
 
 
+def binned(rgb: np.ndarray, mask: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """`rgb` averaged over n×n blocks, and the blocks whose pixels are all in `mask` (a partial
+    block at the right or bottom edge is dropped), as `rouge_render::translucency::binned`."""
+    h, w = mask.shape[0] // n, mask.shape[1] // n
+    blocks = rgb[: h * n, : w * n].reshape(h, n, w, n, 3).mean(axis=(1, 3))
+    return blocks, mask[: h * n, : w * n].reshape(h, n, w, n).all(axis=(1, 3))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--references", type=Path, default=HERE.parent / "data" / "reference" / "translucency")
     ap.add_argument("--scenes", default="", help="comma-separated sidecar names (default: all)")
     ap.add_argument("--sigma-px", type=float, default=2.0)
     ap.add_argument("--model", default="", help="rouge render options of a model to score too")
+    ap.add_argument("--bin", type=int, default=1, help="score over N×N blocks (1: per pixel)")
     ap.add_argument("--rouge", default=str(HERE.parent / "target" / "release" / "rouge"))
     a = ap.parse_args()
     names = [s for s in a.scenes.split(",") if s] or sorted(p.stem for p in a.references.glob("*.json"))
-    print("| scene | reference noise (RMS) | interior pixels | floor: ΔE(reference, smoothed) |"
+    print("| scene | reference noise (RMS) | interior pixels (blocks) | floor: ΔE(reference, smoothed) |"
           + (" model: ΔE against the reference / the smoothed reference |" if a.model else ""))
     print("| --- | --- | --- | --- |" + (" --- |" if a.model else ""))
     with tempfile.TemporaryDirectory() as tmp:
@@ -92,13 +106,15 @@ def main() -> None:
             covered = ref[..., 3] > 0.999
             rgb = ref[..., :3]
             smooth, inner = smoothed(rgb, covered, a.sigma_px)
-            row = f"| {name} | {side['noise_rms']:.2e} | {int(inner.sum())} | {delta_e(rgb[inner], smooth[inner]):.2f} |"
+            smooth, _ = binned(smooth, inner, a.bin)
+            blocks, inner = binned(rgb, inner, a.bin)
+            row = f"| {name} | {side['noise_rms']:.2e} | {int(inner.sum())} | {delta_e(blocks[inner], smooth[inner]):.2f} |"
             if a.model:
                 out = Path(tmp) / f"{name}.exr"
                 cmd = [a.rouge, "render", *side["rouge_options"], *shlex.split(a.model), "--no-specular", "--out", str(out)]
                 subprocess.run(cmd, check=True, capture_output=True, cwd=HERE.parent)
-                img = mitsuba_ref.read_exr(out)[..., :3]
-                row += f" {delta_e(img[inner], rgb[inner]):.2f} / {delta_e(img[inner], smooth[inner]):.2f} |"
+                img, _ = binned(mitsuba_ref.read_exr(out)[..., :3], np.ones(covered.shape, bool), a.bin)
+                row += f" {delta_e(img[inner], blocks[inner]):.2f} / {delta_e(img[inner], smooth[inner]):.2f} |"
             print(row, flush=True)
 
 

@@ -1,6 +1,7 @@
 //! `rouge bench translucency`: every subsurface model × reference scene × parameter set, GPU ms
 //! per frame against the error to the Mitsuba 3 reference (docs/TRANSLUCENCY.md). Rows follow
-//! ../shared/DESIGN.md's benchmark table.
+//! ../shared/DESIGN.md's benchmark table. Each row's error is the mean ΔE2000 per pixel and over
+//! 4×4 blocks of both images (`delta_e_binned`), where the references' own noise weighs less.
 
 use crate::bench::fit_thickness::{Fit, Scene};
 use crate::cli::render::scene_args::{Diffuse, Profile, SceneArgs};
@@ -9,7 +10,7 @@ use clap::{Args, Parser};
 use rouge_model::thickness::BakeSettings;
 use rouge_render::job::{Prepared, RenderJob, bake_thickness_map};
 use rouge_render::local_thickness::ThicknessSource;
-use rouge_render::translucency::{ReferenceImage, measure};
+use rouge_render::translucency::{BIN_PX, ReferenceImage, measure};
 use rouge_render::{Skin, SubsurfaceModel};
 use serde::Serialize;
 use serde_json::json;
@@ -114,6 +115,12 @@ struct Row {
     delta_e_mean: f64,
     delta_e_p95: f64,
     pixels: usize,
+    /// Mean ΔE2000 over blocks of `bin_px`² pixels (`rouge_render::translucency::binned`); absent
+    /// from rows written before it.
+    #[serde(default)]
+    delta_e_binned: Option<f64>,
+    #[serde(default)]
+    bin_px: Option<usize>,
     reference: String,
     reference_noise_rms: f64,
     device: String,
@@ -288,11 +295,12 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
             }
             let m = measure(&mut prepared, &reference, args.frames)?;
             eprintln!(
-                "  {model:<12} {params}: gpu {} ms, rmse {:.4}, ΔE mean {:.2} p95 {:.2}",
+                "  {model:<12} {params}: gpu {} ms, rmse {:.4}, ΔE mean {:.2} p95 {:.2}, over {BIN_PX}² blocks {:.2}",
                 m.gpu_ms.map_or("-".to_string(), |v| format!("{v:.2}")),
                 m.error.rmse,
                 m.error.delta_e_mean,
-                m.error.delta_e_p95
+                m.error.delta_e_p95,
+                m.error.delta_e_binned
             );
             rows.push(Row {
                 scene: name.clone(),
@@ -309,6 +317,8 @@ pub fn run(args: &TranslucencyBenchArgs) -> Result<()> {
                 delta_e_mean: m.error.delta_e_mean,
                 delta_e_p95: m.error.delta_e_p95,
                 pixels: m.error.pixels,
+                delta_e_binned: Some(m.error.delta_e_binned),
+                bin_px: Some(BIN_PX),
                 reference: exr.display().to_string(),
                 reference_noise_rms: noise,
                 device: prepared.gpu.describe(),
