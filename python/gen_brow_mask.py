@@ -8,7 +8,7 @@ a soft edge: 1 where the brow is full, falling to 0 about a millimetre outside i
 brow pencil, powder or gel layer uses it as its region (`"region": "brows"` in a look,
 rouge_model::look::Region::Brows).
 
-8-bit greyscale, row 0 at v = 1, filter 0 on every row (as gen_head.write_png). Deterministic;
+8-bit greyscale, row 0 at v = 1, filter 0 on every row (as gen_head_raster.write_png). Deterministic;
 no arguments; reads only the committed OBJ.
 
 Run: .venv/bin/python python/gen_brow_mask.py
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gen_head import write_png
+from gen_head_raster import write_png
 from gen_wrinkles import read_obj
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -22,8 +22,8 @@ translated so the origin is on the symmetry plane, at eyeball-centre height, mid
 the ears' depth. No rotation: hm08 is already +Y up with the face looking +Z.
 UVs: the original hm08 UVs, unchanged (see UV_NOTE). Normals: per-vertex, area-weighted.
 
-Masks are built from 3D geometry as per-vertex weights in [0, 1] (parameters: the constants
-below), then rasterised in UV space:
+Masks are built from 3D geometry as per-vertex weights in [0, 1] (python/gen_head_regions.py,
+whose constants are the shapes' parameters), then rasterised in UV space (gen_head_raster.py):
   lips     the mouth's concentric quad rings, counted out from the lip-contact ring (through
            hm08 vertex 474): rings 0..5 (the vermilion, up to the border) weight 1, ring 6
            (skin) and the inside of the mouth 0; the edge fades across one ring of quads.
@@ -66,19 +66,19 @@ from __future__ import annotations
 
 import argparse
 import hashlib
-import struct
 import subprocess
 import sys
 import tempfile
 import textwrap
 import zipfile
-import zlib
 from collections import defaultdict
 from pathlib import Path
 
 import numpy as np
 
 import gen_head_parts
+from gen_head_raster import gutter, rasterise, render_previews, uv_to_px, write_png
+from gen_head_regions import region_weights
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT_OBJ = ROOT / "data" / "heads" / "hm08_head.obj"
@@ -92,11 +92,6 @@ BASE_OBJ_SHA256 = "8e761e6624b8f54536409135d1636da63b32486a90d4897f84e121d144f6f
 NECK_SEED = 809  # front-midline vertex of the neck-base edge loop (the cut)
 MOUTH_SEED = 474  # upper-lip midline vertex on the lip-contact ring (ring 0 of the mouth)
 EYE_SEED_L = 6785  # vertex above the left pupil on the anterior lid-margin (lash-line) ring
-# Rings of the mouth counted outwards from the lip-contact ring: rings 0..5 are lip
-# (vermilion); ring 6 is skin. Found on the midline profile: the upper lip rolls out between
-# rings 6 and 5 (hm08 362 -> 455) and the lower lip's border is the 4 mm step back under it
-# between rings 5 and 6 (hm08 492 -> 5337). Ring -1 (inner lip, inside the slit) gets 0.
-LIP_RINGS = (0, 5)
 
 MASK_SIZE = 1024
 # The masks a look can name (model/src/look/maps.rs `Region`); the others are the skin maps'
@@ -326,111 +321,7 @@ def rings(topo: Topo, P: np.ndarray, seed: int, n_out: int, n_in: int) -> tuple[
 
 
 # --------------------------------------------------------------------------------------------
-# PNG and rasterisation
-
-
-def write_png(path: Path, img: np.ndarray) -> None:
-    """8-bit greyscale (H, W) or RGB (H, W, 3), filter 0 on every row, zlib level 9."""
-    img = np.ascontiguousarray(img, dtype=np.uint8)
-    h, w = img.shape[:2]
-    colour_type = 0 if img.ndim == 2 else 2
-    raw = b"".join(b"\x00" + img[y].tobytes() for y in range(h))
-
-    def chunk(tag: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
-
-    ihdr = struct.pack(">IIBBBBB", w, h, 8, colour_type, 0, 0, 0)
-    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
-
-
-def rasterise(tri_xy: np.ndarray, tri_attr: np.ndarray, width: int, height: int,
-              tri_depth: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Fills triangles given in pixel coordinates (pixel (c, r) has its centre at (c+0.5, r+0.5)),
-    interpolating per-corner attributes barycentrically at pixel centres. With tri_depth, a
-    z-buffer keeps the smallest depth; without, later triangles overwrite earlier ones.
-    Returns (image (H, W, C), coverage (H, W) bool)."""
-    n_attr = tri_attr.shape[2]
-    img = np.zeros((height, width, n_attr))
-    cov = np.zeros((height, width), dtype=bool)
-    zbuf = np.full((height, width), np.inf)
-    for t in range(len(tri_xy)):
-        p = tri_xy[t]
-        c0 = max(int(np.floor(p[:, 0].min() - 0.5)), 0)
-        c1 = min(int(np.ceil(p[:, 0].max() - 0.5)), width - 1)
-        r0 = max(int(np.floor(p[:, 1].min() - 0.5)), 0)
-        r1 = min(int(np.ceil(p[:, 1].max() - 0.5)), height - 1)
-        if c1 < c0 or r1 < r0:
-            continue
-        (ax, ay), (bx, by), (cx, cy) = p
-        den = (by - cy) * (ax - cx) + (cx - bx) * (ay - cy)
-        if abs(den) < 1e-14:
-            continue
-        xs = np.arange(c0, c1 + 1) + 0.5
-        ys = np.arange(r0, r1 + 1)[:, None] + 0.5
-        l0 = ((by - cy) * (xs - cx) + (cx - bx) * (ys - cy)) / den
-        l1 = ((cy - ay) * (xs - cx) + (ax - cx) * (ys - cy)) / den
-        l2 = 1.0 - l0 - l1
-        eps = -1e-9
-        inside = (l0 >= eps) & (l1 >= eps) & (l2 >= eps)
-        if not inside.any():
-            continue
-        lam = np.stack([l0, l1, l2], axis=-1)
-        sub_img = img[r0:r1 + 1, c0:c1 + 1]
-        if tri_depth is not None:
-            z = lam @ tri_depth[t]
-            sub_z = zbuf[r0:r1 + 1, c0:c1 + 1]
-            inside &= z < sub_z
-            sub_z[inside] = z[inside]
-        sub_img[inside] = (lam @ tri_attr[t])[inside]
-        cov[r0:r1 + 1, c0:c1 + 1] |= inside
-    return img, cov
-
-
-def gutter(img: np.ndarray, cov: np.ndarray, px: int) -> np.ndarray:
-    """Edge extension: `px` times, every uncovered pixel next to (8-neighbourhood) covered
-    ones takes the mean of those neighbours and becomes covered."""
-    img = img.copy()
-    cov = cov.copy()
-    h, w = cov.shape
-    for _ in range(px):
-        acc = np.zeros_like(img)
-        cnt = np.zeros((h, w))
-        pi = np.pad(img, ((1, 1), (1, 1), (0, 0)))
-        pc = np.pad(cov, 1)
-        for dy in (-1, 0, 1):
-            for dx in (-1, 0, 1):
-                if dx == 0 and dy == 0:
-                    continue
-                c = pc[1 + dy:1 + dy + h, 1 + dx:1 + dx + w]
-                acc += pi[1 + dy:1 + dy + h, 1 + dx:1 + dx + w] * c[..., None]
-                cnt += c
-        grow = (~cov) & (cnt > 0)
-        img[grow] = acc[grow] / cnt[grow][:, None]
-        cov = cov | grow
-    return img
-
-
-def smoothstep(e0: float, e1: float, x: np.ndarray) -> np.ndarray:
-    t = np.clip((x - e0) / (e1 - e0), 0.0, 1.0)
-    return t * t * (3.0 - 2.0 * t)
-
-
-def uv_to_px(uv: np.ndarray, size: int) -> np.ndarray:
-    """OBJ uv (v up) -> pixel coordinates of a size x size image whose row 0 is the top (v = 1)."""
-    return np.stack([uv[..., 0] * size, (1.0 - uv[..., 1]) * size], axis=-1)
-
-
-# --------------------------------------------------------------------------------------------
 # Build
-
-
-def seg_dist(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance from points p (N,3) to the polyline segments a[i]-b[i] (M,3): (N,) minimum."""
-    ab = b - a
-    t = np.einsum("nmk,mk->nm", p[:, None, :] - a[None], ab) / np.einsum("mk,mk->m", ab, ab)
-    t = np.clip(t, 0.0, 1.0)
-    q = a[None] + t[..., None] * ab[None]
-    return np.linalg.norm(p[:, None, :] - q, axis=-1).min(axis=1)
 
 
 def fmt_cmm(i: int) -> str:
@@ -599,172 +490,7 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
     hidden = mouth_inside | eyes["eye_l"][1] | eyes["eye_r"][1]  # mouth bag and eye sockets
     outer = np.array([v not in hidden for v in range(len(P))])
 
-    def weights_lips() -> np.ndarray:
-        w = np.zeros(len(P))
-        for k in range(LIP_RINGS[0], LIP_RINGS[1] + 1):
-            w[mouth[k]] = 1.0
-        return w
-
-    def lid(name: str, upper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """The candidate vertices near eye `name` and, for each, the distance to the upper (or
-        lower) half of its lash-line ring and the signed height above the line through the two
-        canthi (front projection)."""
-        loop0 = eyes[name][0]
-        ring = Pm[loop0]
-        i_in, i_out = np.argmin(np.abs(ring[:, 0])), np.argmax(np.abs(ring[:, 0]))
-        a, b = sorted((int(i_in), int(i_out)))
-        arc1 = loop0[a:b + 1]
-        arc2 = loop0[b:] + loop0[:a + 1]
-        pick = max if upper else min
-        arc = pick(arc1, arc2, key=lambda arc: float(np.mean(Pm[arc, 1])))
-        A, B = Pm[arc[:-1]], Pm[arc[1:]]
-        c_in, c_out = Pm[loop0[i_in]], Pm[loop0[i_out]]
-        mid = (c_in + c_out) / 2
-        cand = np.array([v for v in head_verts if outer[v] and np.linalg.norm(Pm[v] - mid) < 30.0])
-        q = Pm[cand]
-        d = seg_dist(q, A, B)
-        t = (q[:, 0] - c_in[0]) / (c_out[0] - c_in[0])
-        h = q[:, 1] - (c_in[1] + t * (c_out[1] - c_in[1]))
-        return cand, q, d, h
-
-    def weights_eyelids() -> np.ndarray:
-        w = np.zeros(len(P))
-        for name in ("eye_l", "eye_r"):
-            cand, _, d, h = lid(name, upper=True)
-            wk = (1.0 - smoothstep(EYELID_FULL_MM, EYELID_ZERO_MM, d)) * smoothstep(0.0, EYELID_H_RAMP_MM, h)
-            w[cand] = np.maximum(w[cand], wk)
-        return w
-
-    def weights_under_eye() -> np.ndarray:
-        # the lower lid and the infraorbital skin: distance from the lower half of the lash line,
-        # below the line through the canthi
-        w = np.zeros(len(P))
-        for name in ("eye_l", "eye_r"):
-            cand, _, d, h = lid(name, upper=False)
-            wk = (1.0 - smoothstep(UNDER_EYE_FULL_MM, UNDER_EYE_ZERO_MM, d)) * smoothstep(0.0, EYELID_H_RAMP_MM, -h)
-            w[cand] = np.maximum(w[cand], wk)
-        return w
-
-    # landmarks in output mm
-    e_l = eye_info["eye_l"][0] * 100 - np.array(origin) / 100
-    m_corner = Pm[mouth[0]][np.argmax(Pm[mouth[0], 0])]
-    tip = Pm[nose_tip]
-
-    def weights_cheeks() -> np.ndarray:
-        w = np.zeros(len(P))
-        hv = np.array([v for v in head_verts if outer[v]])
-        q = Pm[hv]
-        for side in (1.0, -1.0):
-            cx = side * (e_l[0] + CHEEK_DX_MM)
-            cy = e_l[1] + CHEEK_T * (m_corner[1] - e_l[1])
-            # centre: the frontmost outer vertex within 5 mm of (cx, cy) in the front projection
-            close = np.hypot(q[:, 0] - cx, q[:, 1] - cy) < 5.0
-            c = q[close][np.argmax(q[close][:, 2])]
-            d = q - c
-            ang = np.radians(CHEEK_TILT_DEG) * side
-            du = d[:, 0] * np.cos(ang) + d[:, 1] * np.sin(ang)
-            dv = -d[:, 0] * np.sin(ang) + d[:, 1] * np.cos(ang)
-            rho = np.sqrt((du / CHEEK_RX_MM) ** 2 + (dv / CHEEK_RY_MM) ** 2 + (d[:, 2] / CHEEK_RX_MM) ** 2)
-            w[hv] = np.maximum(w[hv], 1.0 - smoothstep(CHEEK_FULL, 1.0, rho))
-        return w
-
-    def front_outer() -> tuple[np.ndarray, np.ndarray]:
-        hv = np.array([v for v in head_verts if outer[v]])
-        return hv, Pm[hv]
-
-    def forehead_part(q: np.ndarray) -> np.ndarray:
-        # an ellipse in the front projection
-        fx, fy = (q[:, 0]) / TZ_FORE_R[0], (q[:, 1] - TZ_FORE_Y) / TZ_FORE_R[1]
-        return 1.0 - smoothstep(TZ_FORE_FULL, 1.0, np.hypot(fx, fy))
-
-    def weights_tzone() -> np.ndarray:
-        # forehead: an ellipse in the front projection; nose: a strip along the midline from
-        # the glabella to just below the tip, widening towards the tip. Front half only.
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        ax = np.abs(q[:, 0])
-        fore = forehead_part(q)
-        t = np.clip((TZ_NOSE_TOP[0] - q[:, 1]) / (TZ_NOSE_TOP[0] - tip[1]), 0.0, 1.0)
-        half = TZ_NOSE_HALF[0] + t * (TZ_NOSE_HALF[1] - TZ_NOSE_HALF[0])
-        nose = ((1.0 - smoothstep(half, half + TZ_NOSE_SOFT, ax))
-                * smoothstep(tip[1] + TZ_NOSE_BOTTOM[0], tip[1] + TZ_NOSE_BOTTOM[1], q[:, 1])
-                * (1.0 - smoothstep(*TZ_NOSE_TOP, q[:, 1])))
-        w[hv] = np.where(q[:, 2] > 0.0, np.maximum(fore, nose), 0.0)
-        return w
-
-    def weights_forehead() -> np.ndarray:
-        # the forehead ellipse of the T-zone alone
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        w[hv] = np.where(q[:, 2] > 0.0, forehead_part(q), 0.0)
-        return w
-
-    def weights_nose() -> np.ndarray:
-        # the external nose: 3D distance from its midline profile (nasion to tip to subnasale),
-        # the full-weight distance growing from the bridge to the alae
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        mid = np.array([v for v in head_verts if outer[v] and Pm[v, 0] == 0.0 and Pm[v, 2] > tip[2] - NOSE_DEPTH_MM
-                        and tip[1] + NOSE_BELOW_TIP_MM <= Pm[v, 1] <= e_l[1] + NOSE_TOP_MM])
-        prof = Pm[mid[np.argsort(-Pm[mid, 1])]]
-        d = seg_dist(q, prof[:-1], prof[1:])
-        t = np.clip((e_l[1] + NOSE_TOP_MM - q[:, 1]) / (e_l[1] + NOSE_TOP_MM - tip[1]), 0.0, 1.0)
-        full = NOSE_FULL_MM[0] + t * (NOSE_FULL_MM[1] - NOSE_FULL_MM[0])
-        w[hv] = np.where(q[:, 2] > 0.0, 1.0 - smoothstep(full, full + NOSE_SOFT_MM, d), 0.0)
-        return w
-
-    def ellipsoid(q: np.ndarray, centre: np.ndarray, radii: tuple[float, float, float], full: float) -> np.ndarray:
-        rho = np.sqrt((((q - centre) / np.array(radii)) ** 2).sum(axis=1))
-        return 1.0 - smoothstep(full, 1.0, rho)
-
-    def nearest_outer(q: np.ndarray, p: np.ndarray) -> np.ndarray:
-        return q[np.argmin(np.linalg.norm(q - p, axis=1))]
-
-    def weights_ears() -> np.ndarray:
-        # an ellipsoid around each auricle, centred on the middle of the outer ear's extent
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        far = q[np.abs(q[:, 0]) > EAR_MIN_X_MM]
-        for side in (1.0, -1.0):
-            s = far[far[:, 0] * side > 0]
-            c = (s.min(axis=0) + s.max(axis=0)) / 2
-            w[hv] = np.maximum(w[hv], ellipsoid(q, c, EAR_R_MM, EAR_FULL))
-        return w
-
-    def weights_chin() -> np.ndarray:
-        # the mental prominence: an ellipse in the front projection above the chin's lowest
-        # midline point, front half only
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        cy = Pm[chin][1] + CHIN_UP_MM
-        rho = np.hypot(q[:, 0] / CHIN_R_MM[0], (q[:, 1] - cy) / CHIN_R_MM[1])
-        w[hv] = np.where(q[:, 2] > 0.0, 1.0 - smoothstep(CHIN_FULL, 1.0, rho), 0.0)
-        return w
-
-    def weights_temples() -> np.ndarray:
-        # a ball on each temple, centred on the skin nearest a point lateral of and above the
-        # outer canthus
-        w = np.zeros(len(P))
-        hv, q = front_outer()
-        for side in (1.0, -1.0):
-            guess = np.array([side * (e_l[0] + TEMPLE_DX_MM), e_l[1] + TEMPLE_DY_MM, e_l[2] + TEMPLE_DZ_MM])
-            c = nearest_outer(q, guess)
-            w[hv] = np.maximum(w[hv], ellipsoid(q, c, (TEMPLE_R_MM,) * 3, TEMPLE_FULL))
-        return w
-
-    weights = {
-        "lips": weights_lips(),
-        "cheeks": weights_cheeks(),
-        "eyelids": weights_eyelids(),
-        "tzone": weights_tzone(),
-        # the anatomical regions of the skin maps (model/src/skin)
-        "nose": weights_nose(),
-        "forehead": weights_forehead(),
-        "under_eye": weights_under_eye(),
-        "ears": weights_ears(),
-        "chin": weights_chin(),
-        "temples": weights_temples(),
-    }
+    weights = region_weights(len(P), Pm, head_verts, outer, mouth, eyes, eye_info, origin, nose_tip, chin)
 
     # --- rasterise masks in UV space ---------------------------------------------------------
     tris_v, tris_t = [], []
@@ -882,127 +608,6 @@ def build(obj: Obj, wheel_name: str, preview: Path | None) -> None:
         render_previews(preview, obj, head_face_ids, eye_face_ids, Pm, UV, masks)
 
 
-# mask shape parameters (mm, relative to the landmarks named in each weights_* function)
-EYELID_FULL_MM = 5.0  # full weight up to this distance from the upper lash line
-EYELID_ZERO_MM = 11.0  # zero from this distance on
-EYELID_H_RAMP_MM = 2.5  # ramp above the line through the two eye corners
-CHEEK_DX_MM = 8.0  # cheek centre: this far lateral of the eyeball centre ...
-CHEEK_T = 0.45  # ... and this fraction of the way down from eye-centre height to mouth-corner height
-CHEEK_TILT_DEG = 20.0  # ellipse tilted up towards the temple
-CHEEK_RX_MM = 26.0
-CHEEK_RY_MM = 18.0
-CHEEK_FULL = 0.35  # full weight inside this fraction of the ellipse
-TZ_FORE_Y = 45.0  # forehead ellipse: centre this high above eye-centre height, on the midline
-TZ_FORE_R = (58.0, 27.0)  # its half-width and half-height
-TZ_FORE_FULL = 0.5  # full weight inside this fraction of it
-TZ_NOSE_HALF = (5.0, 10.0)  # nose strip: full-weight half-width at the top and at the tip
-TZ_NOSE_SOFT = 6.0  # then fading to zero over this
-TZ_NOSE_TOP = (30.0, 36.0)  # strip runs up to 30..36 mm above eye-centre height (into the forehead)
-TZ_NOSE_BOTTOM = (-6.0, -2.0)  # and down to 6..2 mm below the nose tip
-UNDER_EYE_FULL_MM = 4.0  # under_eye: full weight up to this distance from the lower lash line
-UNDER_EYE_ZERO_MM = 14.0  # zero from this distance on
-NOSE_TOP_MM = 8.0  # nose: the profile starts this far above eye-centre height (the nasion)
-NOSE_BELOW_TIP_MM = -14.0  # and ends this far below the tip (the subnasale)
-NOSE_DEPTH_MM = 40.0  # profile points lie at most this far behind the tip
-NOSE_FULL_MM = (6.0, 14.0)  # full weight up to this distance from the profile, bridge .. alae
-NOSE_SOFT_MM = 4.0  # then fading to zero over this
-EAR_MIN_X_MM = 78.0  # ears: vertices this far from the midplane lie on the auricle
-EAR_R_MM = (16.0, 34.0, 22.0)  # the ellipsoid's half-axes (x, y, z) around the auricle's centre
-EAR_FULL = 0.7  # full weight inside this fraction of it
-CHIN_UP_MM = 17.0  # chin: ellipse centre this far above the chin's lowest midline point
-CHIN_R_MM = (25.0, 17.0)  # its half-width and half-height
-CHIN_FULL = 0.45  # full weight inside this fraction of it
-TEMPLE_DX_MM = 32.0  # temples: centre nearest the point this far lateral of the eyeball centre,
-TEMPLE_DY_MM = 10.0  # this far above it
-TEMPLE_DZ_MM = -30.0  # and this far behind it
-TEMPLE_R_MM = 26.0  # a ball of this radius
-TEMPLE_FULL = 0.2  # full weight inside this fraction of it
-
-
-# --------------------------------------------------------------------------------------------
-# Previews (not part of the data; for looking at)
-
-
-def render_previews(out: Path, obj: Obj, head_ids, eye_ids, Pm, UV, masks) -> None:
-    out.mkdir(parents=True, exist_ok=True)
-    colours = {"lips": (0.85, 0.1, 0.2), "cheeks": (0.95, 0.45, 0.3), "eyelids": (0.3, 0.35, 0.9), "tzone": (0.1, 0.7, 0.3),
-               "nose": (0.9, 0.8, 0.1), "forehead": (0.2, 0.8, 0.8), "under_eye": (0.5, 0.2, 0.7),
-               "ears": (0.9, 0.3, 0.8), "chin": (0.3, 0.5, 0.2), "temples": (0.2, 0.4, 0.9)}
-    tv, tt, te = [], [], []
-    for gi, ids in enumerate([head_ids] + [eye_ids[n] for n in sorted(eye_ids)]):
-        for i in ids:
-            f = obj.faces[i]
-            for k in range(1, len(f) - 1):
-                tv.append([f[0][0], f[k][0], f[k + 1][0]])
-                tt.append([f[0][1], f[k][1], f[k + 1][1]])
-                te.append(gi > 0)
-    tv, tt, te = np.array(tv), np.array(tt), np.array(te)
-    fn = np.cross(Pm[tv[:, 1]] - Pm[tv[:, 0]], Pm[tv[:, 2]] - Pm[tv[:, 0]])
-    Nv = np.zeros_like(Pm)
-    for k in range(3):
-        np.add.at(Nv, tv[:, k], fn)
-    Nv /= np.linalg.norm(Nv, axis=1, keepdims=True) + 1e-30
-
-    def ry(a: float) -> np.ndarray:  # turn the head by a about +Y
-        return np.array([[np.cos(a), 0, -np.sin(a)], [0, 1, 0], [np.sin(a), 0, np.cos(a)]])
-
-    # name: (rotation, centre (x, y) in mm on screen, px per mm, width, height)
-    views = {
-        "front": (np.eye(3), (0.0, 20.0), 3.0, 900, 900),
-        "left": (ry(np.pi / 2), (0.0, 20.0), 3.0, 900, 900),
-        "oblique": (ry(0.6), (0.0, 20.0), 3.0, 900, 900),
-        "mouth": (np.eye(3), (0.0, -68.0), 12.0, 900, 540),
-        "eyes": (np.eye(3), (0.0, 2.0), 9.0, 900, 400),
-    }
-    light = np.array([0.3, 0.5, 0.8])
-    light /= np.linalg.norm(light)
-    for vname, (R, (cx, cy), scale, sw, sh) in views.items():
-        Q = Pm @ R.T
-        xy = np.stack([(Q[:, 0] - cx) * scale + sw / 2, (cy - Q[:, 1]) * scale + sh / 2], axis=1)
-        lam = np.clip((Nv @ R.T) @ light, 0.0, 1.0) * 0.75 + 0.2
-        attr = np.concatenate([lam[tv][..., None], UV[tt], np.repeat(te[:, None, None], 3, 1).astype(float)], axis=2)
-        img, cov = rasterise(xy[tv], attr, sw, sh, tri_depth=-Q[tv][..., 2])
-        shade, uvp, is_eye = img[..., 0], img[..., 1:3], img[..., 3] > 0.5
-        px = np.clip(uv_to_px(uvp, 1024).astype(int), 0, 1023)
-        base = np.repeat(shade[..., None], 3, axis=2) * np.array([1.0, 0.93, 0.88])
-        base[is_eye] = shade[is_eye][:, None] * np.array([0.8, 0.85, 1.0])
-        allimg = base.copy()
-        for n, m in masks.items():
-            w = (m[px[..., 1], px[..., 0]] / 255.0) * cov * (~is_eye)
-            col = np.array(colours[n])
-            one = base * (1 - w[..., None]) + (shade[..., None] * col) * w[..., None]
-            allimg = allimg * (1 - w[..., None]) + (shade[..., None] * col) * w[..., None]
-            if vname == "front":
-                write_png(out / f"{vname}_{n}.png", np.clip(one * cov[..., None] * 255, 0, 255).astype(np.uint8))
-        write_png(out / f"{vname}_all.png", np.clip(allimg * cov[..., None] * 255, 0, 255).astype(np.uint8))
-    # UV view: the masks in colour over the head's UV wireframe
-    uvimg = np.zeros((1024, 1024, 3))
-    for n, m in masks.items():
-        uvimg += (m[..., None] / 255.0) * np.array(colours[n])
-    for i in head_ids:
-        f = obj.faces[i]
-        for (a, b) in zip(f, f[1:] + f[:1]):
-            pa, pb = uv_to_px(UV[a[1]], 1024), uv_to_px(UV[b[1]], 1024)
-            for t in np.linspace(0, 1, 24):
-                c, r = (pa * (1 - t) + pb * t).astype(int)
-                if 0 <= c < 1024 and 0 <= r < 1024:
-                    uvimg[r, c] = np.maximum(uvimg[r, c], 0.35)
-    write_png(out / "uv_all.png", np.clip(uvimg * 255, 0, 255).astype(np.uint8))
-    # the face part of the UV view, 4x (nearest), with the UV edges drawn at that scale
-    r0, r1, c0, c1, z = 420, 640, 760, 980, 4
-    crop = np.zeros(((r1 - r0) * z, (c1 - c0) * z, 3))
-    for n, m in masks.items():
-        crop += np.kron(m[r0:r1, c0:c1] / 255.0, np.ones((z, z)))[..., None] * np.array(colours[n])
-    for i in head_ids:
-        f = obj.faces[i]
-        for (a, b) in zip(f, f[1:] + f[:1]):
-            pa, pb = uv_to_px(UV[a[1]], 1024), uv_to_px(UV[b[1]], 1024)
-            for t in np.linspace(0, 1, 60):
-                c, r = ((pa * (1 - t) + pb * t - (c0, r0)) * z).astype(int)
-                if 0 <= c < crop.shape[1] and 0 <= r < crop.shape[0]:
-                    crop[r, c] = np.maximum(crop[r, c], 0.45)
-    write_png(out / "uv_face_x4.png", np.clip(crop * 255, 0, 255).astype(np.uint8))
-    print(f"previews in {out}")
 
 
 def main() -> None:

@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gen_head import gutter, rasterise, smoothstep, uv_to_px
+from gen_head_raster import gutter, rasterise, uv_to_px
+from gen_head_regions import smoothstep
 
 ROOT = Path(__file__).resolve().parent.parent
 OBJ = ROOT / "data/heads/hm08_head.obj"
@@ -61,7 +62,7 @@ LIP_SPACING_MM, LIP_HALF_W_MM = 1.1, 0.22
 
 
 def read_grey_png(path: Path) -> np.ndarray:
-    """An 8-bit greyscale PNG as written by gen_head.write_png (filter 0 on every row), 0-1."""
+    """An 8-bit greyscale PNG as written by gen_head_raster.write_png (filter 0 on every row), 0-1."""
     data = path.read_bytes()
     pos, idat, w, h = 8, b"", 0, 0
     while pos < len(data):
