@@ -99,7 +99,8 @@ def uv_to_px(uv: np.ndarray, size: int) -> np.ndarray:
     return np.stack([uv[..., 0] * size, (1.0 - uv[..., 1]) * size], axis=-1)
 
 
-def render_previews(out: Path, obj: Obj, head_ids, eye_ids, Pm, UV, masks) -> None:
+def render_previews(out: Path, obj, head_ids, eye_ids, Pm, UV, masks) -> None:
+    """Check renders of the head (`obj`, a gen_head.Obj) and its region `masks` into `out`."""
     out.mkdir(parents=True, exist_ok=True)
     colours = {"lips": (0.85, 0.1, 0.2), "cheeks": (0.95, 0.45, 0.3), "eyelids": (0.3, 0.35, 0.9), "tzone": (0.1, 0.7, 0.3),
                "nose": (0.9, 0.8, 0.1), "forehead": (0.2, 0.8, 0.8), "under_eye": (0.5, 0.2, 0.7),
