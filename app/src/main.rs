@@ -113,7 +113,7 @@ pub fn emit(text: &str) -> anyhow::Result<()> {
 /// The write's error, naming `path`.
 pub fn write_output(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> anyhow::Result<()> {
     use anyhow::Context as _;
-    rouge_measure::preset::write_atomic(path, bytes.as_ref())
+    rouge_measure::file_set::write_atomic(path, bytes.as_ref())
         .with_context(|| format!("cannot write {}", path.display()))
 }
 

@@ -9,10 +9,12 @@
 //! generation's companions, which nothing names any more, are removed. Until the commit file's
 //! rename, the old set is whole on disk; after it, the new one is.
 //!
+//! [`read_bounded`] is the reading side: a file another file names is read whole only when it is a
+//! regular file under a size limit.
+//!
 //! The names' hash ([`bytes_hash`]) is a multiply-rotate mix with SplitMix64's finaliser
 //! ([`mix64`], \[Steele2014\]): not cryptographic, only to tell contents apart.
 
-use crate::preset::write_atomic;
 use std::path::{Path, PathBuf};
 
 /// Hex digits of a content tag.
@@ -94,6 +96,52 @@ pub fn write_file_set(
         }
     }
     Ok(written)
+}
+
+/// Reads the regular file `path` whole, refusing anything else (a folder, a device such as
+/// `/dev/zero`, a pipe) and any file over `max_bytes` before reading it: files that other files
+/// name (a look's maps and presets, a project's skin maps, a glTF's buffers) come from wherever
+/// that file points, and a device never ends.
+///
+/// # Errors
+/// The I/O error, or [`std::io::ErrorKind::InvalidData`] naming the size or the kind of file.
+pub fn read_bounded(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
+    // Asked before opening: opening a pipe blocks until something writes into it.
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(invalid("not a regular file".into()));
+    }
+    if meta.len() > max_bytes {
+        return Err(invalid(format!("{} bytes: more than the {max_bytes} allowed", meta.len())));
+    }
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // A file that grows while it is read stops at the limit all the same.
+    file.take(max_bytes + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(invalid(format!("more than the {max_bytes} bytes allowed")));
+    }
+    Ok(bytes)
+}
+
+/// Writes `bytes` to `path` through a temporary sibling file and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@
 
 use crate::colorimetry::{Colorimeter, Viewing, delta_e_2000_raw, srgb_encode};
 use crate::error::LocatedError;
+use crate::file_set::{read_bounded, write_atomic};
 use crate::import::{Kind, Measurement, WorkingMeasurement};
 use crate::km::{self, KmCoefficients, KmError, LayerRt, Saunderson};
 use crate::layer_table::{TableLayer, layer_rgb_at};
@@ -609,49 +610,3 @@ impl Preset {
 
 /// Largest preset file read (bytes); a preset of the 401-wavelength grid is about 40 kB.
 pub const MAX_PRESET_FILE_BYTES: u64 = 16 << 20;
-
-/// Reads the regular file `path` whole, refusing anything else (a folder, a device such as
-/// `/dev/zero`, a pipe) and any file over `max_bytes` before reading it: files that other files
-/// name (a look's maps and presets, a project's skin maps, a glTF's buffers) come from wherever
-/// that file points, and a device never ends.
-///
-/// # Errors
-/// The I/O error, or [`std::io::ErrorKind::InvalidData`] naming the size or the kind of file.
-pub fn read_bounded(path: &Path, max_bytes: u64) -> std::io::Result<Vec<u8>> {
-    use std::io::Read;
-    let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidData, m);
-    // Asked before opening: opening a pipe blocks until something writes into it.
-    let meta = std::fs::metadata(path)?;
-    if !meta.is_file() {
-        return Err(invalid("not a regular file".into()));
-    }
-    if meta.len() > max_bytes {
-        return Err(invalid(format!("{} bytes: more than the {max_bytes} allowed", meta.len())));
-    }
-    let file = std::fs::File::open(path)?;
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    // A file that grows while it is read stops at the limit all the same.
-    file.take(max_bytes + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(invalid(format!("more than the {max_bytes} bytes allowed")));
-    }
-    Ok(bytes)
-}
-
-/// Writes `bytes` to `path` through a temporary sibling file and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}

@@ -161,7 +161,7 @@ impl EnvMap {
         let fail = |m: String| RenderError::file(path, m);
         // A regular file of bounded size (not a pipe or a device), and a size in its header
         // that fits, before any texel is decoded: a header of a few bytes can claim any size.
-        let bytes = rouge_measure::preset::read_bounded(path, MAX_ENV_FILE_BYTES)
+        let bytes = rouge_measure::file_set::read_bounded(path, MAX_ENV_FILE_BYTES)
             .map_err(|e| fail(format!("cannot read: {e}")))?;
         let (width, height, texels) = rouge_model::hdr::decode_rgb_exr(&bytes, MAX_ENV_SIDE_PX).map_err(fail)?;
         if let Some(i) = texels.iter().position(|t| t.iter().any(|c| !c.is_finite() || *c < 0.0)) {

@@ -537,7 +537,8 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
     let encoder = image::codecs::png::PngEncoder::new(&mut bytes);
     image::ImageEncoder::write_image(encoder, rgba, width, height, image::ExtendedColorType::Rgba8)
         .map_err(|e| RenderError::file(path, format!("cannot encode PNG: {e}")))?;
-    rouge_measure::preset::write_atomic(path, &bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+    rouge_measure::file_set::write_atomic(path, &bytes)
+        .map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
 }
 
 /// Writes linear RGB radiance as a 32-bit float EXR, atomically.
@@ -546,7 +547,8 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
 /// [`RenderError::File`] naming `path`.
 pub fn write_exr(path: &Path, width: u32, height: u32, rgba: &[[f32; 4]]) -> Result<()> {
     let bytes = encode_exr(width, height, rgba).map_err(|e| RenderError::file(path, e))?;
-    rouge_measure::preset::write_atomic(path, &bytes).map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
+    rouge_measure::file_set::write_atomic(path, &bytes)
+        .map_err(|e| RenderError::file(path, format!("cannot write: {e}")))
 }
 
 /// Encodes linear RGB (alpha ignored) as a 32-bit float EXR in memory.

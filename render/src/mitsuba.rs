@@ -364,7 +364,7 @@ impl MitsubaScene {
             self.files.iter().map(|(n, b)| (n.as_str(), b.as_slice())).chain([("scene.xml", self.xml.as_bytes())])
         {
             let path = dir.join(name);
-            rouge_measure::preset::write_atomic(&path, bytes)
+            rouge_measure::file_set::write_atomic(&path, bytes)
                 .map_err(|e| RenderError::file(&path, format!("cannot write: {e}")))?;
         }
         Ok(())

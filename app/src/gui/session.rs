@@ -250,7 +250,7 @@ impl RougeApp {
         self.editor.document_mut().autosave(&dir)?;
         let from = dir.join(RECOVERED_FROM_FILE);
         match &self.options.project {
-            Some(p) => rouge_measure::preset::write_atomic(&from, p.display().to_string().as_bytes())
+            Some(p) => rouge_measure::file_set::write_atomic(&from, p.display().to_string().as_bytes())
                 .with_context(|| format!("{}", from.display()))?,
             None => {
                 let _ = std::fs::remove_file(&from);

@@ -34,7 +34,8 @@ use project::{layer_files, look_layer};
 
 use crate::error::{ModelError, Result};
 use crate::look::{BUILTIN_PREFIX, Look, LookLayer, MAX_THICKNESS_MM, ThicknessMap, ThicknessSource, builtin_preset};
-use rouge_measure::preset::{Preset, PresetError, write_atomic};
+use rouge_measure::file_set::write_atomic;
+use rouge_measure::preset::{Preset, PresetError};
 use std::collections::{HashSet, VecDeque};
 use std::fmt;
 use std::path::{Path, PathBuf};

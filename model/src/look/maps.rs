@@ -120,10 +120,10 @@ pub const MAX_MAP_SIDE_PX: u32 = 8192;
 /// of five 32-bit channels, uncompressed, fit.
 pub const MAX_MAP_FILE_BYTES: u64 = 1 << 31;
 
-/// Reads a map file named by a look or a project ([`rouge_measure::preset::read_bounded`] with
+/// Reads a map file named by a look or a project ([`rouge_measure::file_set::read_bounded`] with
 /// [`MAX_MAP_FILE_BYTES`]).
 pub(crate) fn read_map_file(path: &Path) -> std::io::Result<Vec<u8>> {
-    rouge_measure::preset::read_bounded(path, MAX_MAP_FILE_BYTES)
+    rouge_measure::file_set::read_bounded(path, MAX_MAP_FILE_BYTES)
 }
 
 /// Refuses a `width × height` image past [`MAX_MAP_SIDE_PX`].

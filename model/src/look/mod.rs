@@ -21,7 +21,8 @@ pub use maps::*;
 pub use source::*;
 
 use crate::error::{ModelError, Result};
-use rouge_measure::preset::{Preset, write_atomic};
+use rouge_measure::file_set::write_atomic;
+use rouge_measure::preset::Preset;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};

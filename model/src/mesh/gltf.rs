@@ -100,7 +100,7 @@ fn load_buffers(doc: &gltf::Document, blob: Option<Vec<u8>>, path: &Path) -> Res
                     decode_base64(payload).ok_or_else(|| gltf_err(path, "invalid base64 in data URI"))?
                 } else {
                     let file = path.parent().unwrap_or(Path::new(".")).join(uri);
-                    rouge_measure::preset::read_bounded(&file, MAX_BUFFER_BYTES)
+                    rouge_measure::file_set::read_bounded(&file, MAX_BUFFER_BYTES)
                         .map_err(|source| MeshError::Io { path: file, source })?
                 }
             }

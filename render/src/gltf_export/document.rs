@@ -8,8 +8,8 @@
 //! [glTF2]: https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html
 
 use crate::error::{RenderError, Result};
+use rouge_measure::file_set::write_atomic;
 use rouge_measure::file_set::{content_tagged, write_file_set};
-use rouge_measure::preset::write_atomic;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
