@@ -3,7 +3,7 @@
 //! their own slab's light (shaders/slab_spread.wgsl against its converged twin,
 //! `rouge_render::slab_extent::spread_light`, over the wedge's exact planes).
 
-use crate::slab_gpu::{
+use crate::common::wedge::{
     BacklitWedge, backlit_wedge, column_entry, exact_lit_extent, exact_march, line_meets_convex,
     unmarched_transmittance,
 };

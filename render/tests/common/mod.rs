@@ -3,6 +3,8 @@
 //! (Each test crate uses part of it.)
 #![allow(dead_code)]
 
+pub mod wedge;
+
 use rouge_model::look::Look;
 use rouge_model::mesh::load_mesh;
 use rouge_render::renderer::FrameCapture;
