@@ -8,8 +8,9 @@ the path tracer per channel, and the bin's mean ΔE2000.
         --model "--subsurface screen-space-slab --diffuse half-space"
 
 The cosines and the single scattering come from Mitsuba 3 (`scalar_rgb`, runs here) on the scene
-`rouge export mitsuba` writes from the sidecar's options: an `aov` render of the shading normals
-and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model renders with
+`rouge export mitsuba --without-parts` writes from the sidecar's options (the head as its
+references were rendered, before it had lashes, brows, teeth and tongue): an `aov` render of
+the shading normals and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model renders with
 `rouge render` and the sidecar's options, `--no-specular`. Needs the release binary.
 
 `--screen-bounce R,G,B` also estimates the light one part's glow gives another by one bounce
@@ -69,7 +70,9 @@ def main() -> None:
     ref = mitsuba_ref.read_exr(refs / side["image"])
     covered, r = ref[..., 3] > 0.999, ref[..., :3]
     with tempfile.TemporaryDirectory() as tmp:
-        xml = mitsuba_ref.export(args.rouge, side["rouge_options"], "medium", Path(tmp) / "medium")
+        # The scene as the reference was rendered: the head without the parts it has had since
+        # (`rouge export mitsuba --without-parts`, as `rouge bench translucency` draws it).
+        xml = mitsuba_ref.export(args.rouge, [*side["rouge_options"], "--without-parts"], "medium", Path(tmp) / "medium")
         scene = mi.load_file(str(xml))
         aov = np.array(mi.render(scene, integrator=mi.load_dict({"type": "aov", "aovs": "nn:sh_normal,pp:position"}), spp=4))
         single = mi.load_dict({"type": "volpathmis", "max_depth": 2, "hide_emitters": True})

@@ -68,9 +68,16 @@ fn an_expression_changes_the_render_and_the_export() {
         args.extend_from_slice(extra);
         let o = rouge(&args);
         assert!(o.status.success(), "{}", stderr(&o));
-        std::fs::read(out.join("skin.ply")).expect("skin.ply")
+        let read = |file: &str| std::fs::read(out.join(file)).expect(file);
+        (read("skin.ply"), read("eyes.ply"))
     };
-    assert_ne!(export("a", &[]), export("b", &["--expression", "blink"]), "the export carries the pose");
+    let (skin, parts) = export("a", &[]);
+    assert_ne!(skin, export("b", &["--expression", "blink"]).0, "the export carries the pose");
+    // Without the lashes, brows, teeth and tongue (as the head's translucency references were
+    // rendered): the same tissue, and only the eyes beside it.
+    let (bare_skin, eyes) = export("c", &["--without-parts"]);
+    assert_eq!(bare_skin, skin, "the tissue is the same");
+    assert!(eyes.len() * 2 < parts.len(), "eyes alone: {} bytes against {} with the parts", eyes.len(), parts.len());
 }
 
 #[test]

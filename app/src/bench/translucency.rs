@@ -485,7 +485,7 @@ fn plot(rows: &[Row]) -> Result<Vec<u8>> {
 /// since (lashes, brows, teeth, tongue). Any other mesh is returned as it is.
 fn as_referenced(mesh: &rouge_model::mesh::TriangleMesh) -> rouge_model::mesh::TriangleMesh {
     use rouge_model::mesh::Part;
-    let mut out = mesh.only(|g| g.is_tissue() || g.is_eye());
+    let mut out = mesh.without_parts();
     for g in out.groups.iter_mut().filter(|g| g.part() == Part::Mouth) {
         g.material = Some("skin".into());
     }

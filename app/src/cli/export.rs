@@ -106,6 +106,11 @@ pub struct MitsubaArgs {
     /// tracer combine light and BSDF samples (MIS). docs/TRANSLUCENCY.md measures both.
     #[arg(long, default_value_t = 0.0)]
     pub light_radius_deg: f64,
+    /// Leave out the mesh's lashes, brows, teeth and tongue (its tissue and eyes alone): the
+    /// default head as the committed translucency references were rendered, before it had those
+    /// parts (python/translucency_pixel_bins.py compares with them).
+    #[arg(long)]
+    pub without_parts: bool,
     /// Output folder (created; scene.xml and its files are replaced atomically).
     #[arg(long)]
     pub out: PathBuf,
@@ -205,8 +210,9 @@ fn run_mitsuba(args: &MitsubaArgs) -> Result<()> {
         InteriorArg::Absorber => Interior::Absorber,
         InteriorArg::Lambert => Interior::Lambert,
     };
+    let mesh = if args.without_parts { loaded.mesh.without_parts() } else { loaded.mesh.clone() };
     let scene = export(&ExportInput {
-        mesh: &loaded.mesh,
+        mesh: &mesh,
         scene: &loaded.scene,
         env: loaded.env.as_ref(),
         camera: &loaded.camera,
@@ -221,7 +227,7 @@ fn run_mitsuba(args: &MitsubaArgs) -> Result<()> {
     eprintln!(
         "rouge: wrote {} ({} triangles, interior {}, {}×{})",
         args.out.join("scene.xml").display(),
-        loaded.mesh.triangle_count(),
+        mesh.triangle_count(),
         interior.name(),
         job.width,
         job.height

@@ -400,6 +400,14 @@ impl TriangleMesh {
             .collect()
     }
 
+    /// The tissue and the eyes alone: no lashes, brows, teeth or tongue ([`TriangleMesh::only`]).
+    /// The default head's Mitsuba references of issue 31 (`data/reference/translucency`) were
+    /// rendered before it had those parts; `rouge bench translucency` and `rouge export mitsuba
+    /// --without-parts` draw it this way to compare with them.
+    pub fn without_parts(&self) -> TriangleMesh {
+        self.only(|g| g.is_tissue() || g.is_eye())
+    }
+
     /// The mesh with only the triangles of the groups `keep` accepts, and those groups (their
     /// ranges renumbered); all vertices are kept, so values stay per vertex. A group's range
     /// past the indices counts as empty. A mesh without groups is returned whole; the
