@@ -8,8 +8,8 @@ order, η = 1). This script predicts the ratio from the osculating sphere alone:
 e^{−σt(t(s) + s)} along the view ray (t(s): the distance from the ray's point back toward the light
 to the sphere), over the flat e^{−σt·s(1 + μ/μ₀)}. It checks the prediction against Mitsuba 3's own
 single scattering (`volpathmis`, `max_depth` 2, `scalar_rgb`) of a reference sphere scene exported
-by `rouge export mitsuba`: per bin of μ₀, the mean predicted ratio and Mitsuba's single
-scattering over the flat law, the beam's irradiance calibrated on the pixels lit within 45° of
+by `rouge export mitsuba` (`mitsuba_ref.scene_view`): per bin of μ₀, the mean predicted ratio
+and Mitsuba's single scattering over the flat law, the beam's irradiance calibrated on the pixels lit within 45° of
 normal incidence (where both are flat).
 
     .venv/bin/python python/grazing_single_check.py --scene sphere-skimmilk --spp 128
@@ -23,7 +23,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -62,9 +61,6 @@ def main() -> None:
     ap.add_argument("--per-bin", type=int, default=60, help="pixels per bin the prediction is evaluated at")
     ap.add_argument("--rouge", default=str(ROOT / "target/release/rouge"))
     a = ap.parse_args()
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
     side = json.loads((Path(a.references) / f"{a.scene}.json").read_text())
     opts = side["rouge_options"]
     if "builtin:sphere" not in opts or "--eta" not in opts or opts[opts.index("--eta") + 1] != "1":
@@ -74,20 +70,9 @@ def main() -> None:
     medium = json.loads((ROOT / "data/media" / f"{opts[opts.index('--medium') + 1]}.json").read_text())
     sigma_t = np.array(medium["sigma_a_per_mm"]) + np.array(medium["sigma_s_prime_per_mm"])
     alpha = np.array(medium["sigma_s_prime_per_mm"]) / sigma_t
-    with tempfile.TemporaryDirectory() as tmp:
-        xml = mitsuba_ref.export(a.rouge, opts, "medium", Path(tmp) / "medium")
-        scene = mi.load_file(str(xml))
-        aov = np.array(mi.render(scene, integrator=mi.load_dict({"type": "aov", "aovs": "nn:sh_normal,pp:position"}), spp=4))
-        single = mi.load_dict({"type": "volpathmis", "max_depth": 2, "hide_emitters": True})
-        ss = np.array(mi.render(scene, integrator=single, spp=a.spp))[..., :3]
-        camera = np.array(scene.sensors()[0].world_transform().translation())
-        emitter = next(e for e in scene.emitters() if not e.is_environment())
-        to_light = -np.array(emitter.world_transform() @ mi.Vector3f(0, 0, 1))
-    to_light /= np.linalg.norm(to_light)
-    n, p = aov[..., :3], aov[..., 3:6]
+    view = mitsuba_ref.scene_view(a.rouge, opts, a.spp)
+    n, v, to_light, ss = view.n, view.v, view.l, view.single
     covered = np.linalg.norm(n, axis=-1) > 0.5
-    v = camera - p
-    v /= np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
     mu0, mu = (n * to_light).sum(-1), (n * v).sum(-1)
     with np.errstate(divide="ignore", invalid="ignore"):
         flat = alpha * mu0[..., None] / (4.0 * np.pi * (mu + mu0)[..., None])

@@ -47,6 +47,45 @@ def export(rouge: str, args: list[str], interior: str, out: Path) -> Path:
     return out / "scene.xml"
 
 
+@dataclass
+class SceneView:
+    """What Mitsuba 3 sees of a scene, per pixel: shading normals `n` and positions `p` (mm), unit
+    directions to the camera `v`, the unit direction to its light `l`, and its single scattering
+    `single` (RGB)."""
+
+    n: np.ndarray
+    p: np.ndarray
+    v: np.ndarray
+    l: np.ndarray
+    single: np.ndarray
+
+
+def scene_view(rouge: str, options: list[str], spp: int) -> SceneView:
+    """The [`SceneView`] of the medium scene `rouge export mitsuba --without-parts` writes from
+    `options` (the head as its references were rendered, before it had lashes, brows, teeth and
+    tongue; as `rouge bench translucency` draws it), on `scalar_rgb`: an `aov` render of the
+    shading normals and positions, and a `volpathmis` render with `max_depth` 2 at `spp`."""
+    import tempfile
+
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    with tempfile.TemporaryDirectory() as tmp:
+        xml = export(rouge, [*options, "--without-parts"], "medium", Path(tmp) / "medium")
+        scene = mi.load_file(str(xml))
+        aovs = mi.load_dict({"type": "aov", "aovs": "nn:sh_normal,pp:position"})
+        aov = np.array(mi.render(scene, integrator=aovs, spp=4))
+        once = mi.load_dict({"type": "volpathmis", "max_depth": 2, "hide_emitters": True})
+        single = np.array(mi.render(scene, integrator=once, spp=spp))[..., :3]
+        camera = np.array(scene.sensors()[0].world_transform().translation())
+        emitter = next(e for e in scene.emitters() if not e.is_environment())
+        l = -np.array(emitter.world_transform() @ mi.Vector3f(0, 0, 1))
+    n, p = aov[..., :3], aov[..., 3:6]
+    v = camera - p
+    v /= np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
+    return SceneView(n=n, p=p, v=v, l=l / np.linalg.norm(l), single=single)
+
+
 def scene_hash(scene_dir: Path) -> str:
     """SHA-256 over scene.xml and the files beside it, in name order."""
     h = hashlib.sha256()

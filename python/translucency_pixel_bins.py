@@ -8,9 +8,9 @@ the path tracer per channel, and the bin's mean ΔE2000.
         --model "--subsurface screen-space-slab --diffuse half-space"
 
 The cosines and the single scattering come from Mitsuba 3 (`scalar_rgb`, runs here) on the scene
-`rouge export mitsuba --without-parts` writes from the sidecar's options (the head as its
-references were rendered, before it had lashes, brows, teeth and tongue): an `aov` render of
-the shading normals and positions, and a `volpathmis` render with `max_depth` 2 (`--spp`). The model renders with
+`rouge export mitsuba --without-parts` writes from the sidecar's options
+(`mitsuba_ref.scene_view`: the head as its references were rendered, before it had lashes,
+brows, teeth and tongue; `--spp` samples of the single scattering). The model renders with
 `rouge render` and the sidecar's options, `--no-specular`. Needs the release binary.
 
 `--screen-bounce R,G,B` also estimates the light one part's glow gives another by one bounce
@@ -62,33 +62,17 @@ def main() -> None:
         "model's own (what a pass inside Rouge would have)",
     )
     args = ap.parse_args()
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
     refs = Path(args.references)
     side = json.loads((refs / f"{args.scene}.json").read_text())
     ref = mitsuba_ref.read_exr(refs / side["image"])
     covered, r = ref[..., 3] > 0.999, ref[..., :3]
+    view = mitsuba_ref.scene_view(args.rouge, side["rouge_options"], args.spp)
     with tempfile.TemporaryDirectory() as tmp:
-        # The scene as the reference was rendered: the head without the parts it has had since
-        # (`rouge export mitsuba --without-parts`, as `rouge bench translucency` draws it).
-        xml = mitsuba_ref.export(args.rouge, [*side["rouge_options"], "--without-parts"], "medium", Path(tmp) / "medium")
-        scene = mi.load_file(str(xml))
-        aov = np.array(mi.render(scene, integrator=mi.load_dict({"type": "aov", "aovs": "nn:sh_normal,pp:position"}), spp=4))
-        single = mi.load_dict({"type": "volpathmis", "max_depth": 2, "hide_emitters": True})
-        ss = np.array(mi.render(scene, integrator=single, spp=args.spp))[..., :3]
         out = Path(tmp) / "model.exr"
         cmd = [args.rouge, "render", *side["rouge_options"], *shlex.split(args.model), "--no-specular", "--out", str(out)]
         subprocess.run(cmd, check=True, capture_output=True, cwd=ROOT)
         model = mitsuba_ref.read_exr(out)[..., :3]
-        sensor = scene.sensors()[0]
-        camera = np.array(sensor.world_transform().translation())
-        emitter = next(e for e in scene.emitters() if e.is_environment() is False)
-        to_light = -np.array(emitter.world_transform() @ mi.Vector3f(0, 0, 1))
-    n, p = aov[..., :3], aov[..., 3:6]
-    v = camera - p
-    v /= np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
-    to_light /= np.linalg.norm(to_light)
+    n, p, v, to_light, ss = view.n, view.p, view.v, view.l, view.single
     mu_o, mu_i = (n * v).sum(-1), (n * to_light).sum(-1)
     lum = r.mean(-1)
     top = np.percentile(lum[covered], 99)

@@ -210,9 +210,10 @@ fn run_mitsuba(args: &MitsubaArgs) -> Result<()> {
         InteriorArg::Absorber => Interior::Absorber,
         InteriorArg::Lambert => Interior::Lambert,
     };
-    let mesh = if args.without_parts { loaded.mesh.without_parts() } else { loaded.mesh.clone() };
+    let stripped = args.without_parts.then(|| loaded.mesh.without_parts());
+    let mesh = stripped.as_ref().unwrap_or(&loaded.mesh);
     let scene = export(&ExportInput {
-        mesh: &mesh,
+        mesh,
         scene: &loaded.scene,
         env: loaded.env.as_ref(),
         camera: &loaded.camera,
